@@ -1,0 +1,51 @@
+"""Errors a person can cause, all under one root.
+
+Hierarchy::
+
+    HomebotError                 anything a person typed or loaded is wrong
+    ├── WorldError               a world file or world reference is invalid
+    ├── TaskError                a task file or task step is invalid
+    ├── NavigationError          no route exists (bad target, unreachable place)
+    ├── KnowledgeError           a knowledge-base file, query or update is invalid
+    └── LanguageError            a command cannot be understood
+
+Every message says what is wrong and how to fix it; the CLI prints it without a
+traceback and exits with status 2. Expected failures while acting in the world
+(an object not found, a door closed) are not errors: skills return them as
+``Outcome`` values.
+"""
+
+from __future__ import annotations
+
+__all__ = [
+    "HomebotError",
+    "KnowledgeError",
+    "LanguageError",
+    "NavigationError",
+    "TaskError",
+    "WorldError",
+]
+
+
+class HomebotError(Exception):
+    """Root of every error a person can cause by what they type or load."""
+
+
+class WorldError(HomebotError):
+    """A world file is malformed, or a name does not exist in the world."""
+
+
+class TaskError(HomebotError):
+    """A task file or step is malformed (unknown skill, missing argument)."""
+
+
+class NavigationError(HomebotError):
+    """A navigation target is unknown or has no pose."""
+
+
+class KnowledgeError(HomebotError):
+    """A knowledge-base file, query or update is invalid."""
+
+
+class LanguageError(HomebotError):
+    """A command cannot be parsed at all."""
