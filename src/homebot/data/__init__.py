@@ -1,0 +1,1 @@
+"""Data files shipped with homebot: worlds, knowledge bases, dialogue models, domains."""

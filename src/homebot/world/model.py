@@ -1,0 +1,191 @@
+"""The home as data: pydantic models of everything a world file holds.
+
+These models validate one world file; cross-references between entities (a door
+naming a room, an object on a placement) are checked by ``homebot.world.world``.
+"""
+
+from __future__ import annotations
+
+from enum import StrEnum
+from typing import Annotated
+
+from pydantic import BaseModel, ConfigDict, Field, field_validator
+
+__all__ = [
+    "DisturbanceModel",
+    "DoorModel",
+    "DoorState",
+    "Gesture",
+    "ObjectCategoryModel",
+    "ObjectModel",
+    "PersonModel",
+    "PlacementKind",
+    "PlacementModel",
+    "Posture",
+    "RobotModel",
+    "RoomModel",
+    "WorldModel",
+]
+
+Point = tuple[float, float]
+Probability = Annotated[float, Field(ge=0.0, le=1.0)]
+Name = Annotated[str, Field(min_length=1, pattern=r"^[A-Za-z][A-Za-z0-9_ '\-]*$")]
+
+
+class _Strict(BaseModel):
+    """Base for world entities: unknown fields are errors (they are usually typos)."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+class DoorState(StrEnum):
+    """Whether a door lets the robot through."""
+
+    OPEN = "open"  #: passable
+    CLOSED = "closed"  #: blocks the route; the robot may open it
+    LOCKED = "locked"  #: blocks the route; only someone with the key opens it
+
+
+class Posture(StrEnum):
+    """How a person's body is placed."""
+
+    STANDING = "standing"
+    SITTING = "sitting"
+    LYING = "lying"
+
+
+class Gesture(StrEnum):
+    """What a person is doing with their arms."""
+
+    NONE = "none"
+    WAVING = "waving"
+    RAISING_LEFT_ARM = "raising_left_arm"
+    RAISING_RIGHT_ARM = "raising_right_arm"
+    POINTING_LEFT = "pointing_left"
+    POINTING_RIGHT = "pointing_right"
+
+
+class PlacementKind(StrEnum):
+    """Furniture occupies floor; a spot is a place on the floor the robot can stand at."""
+
+    FURNITURE = "furniture"
+    SPOT = "spot"
+
+
+class RoomModel(_Strict):
+    """A room: a named polygon, corners in metres, counter-clockwise or not."""
+
+    name: Name
+    polygon: list[Point] = Field(min_length=3)
+
+
+class DoorModel(_Strict):
+    """A door in the wall between two rooms, centred at ``position``."""
+
+    name: Name
+    rooms: tuple[Name, Name]
+    position: Point
+    width: float = Field(default=0.9, gt=0.4, le=3.0)
+    state: DoorState = DoorState.OPEN
+
+
+class PlacementModel(_Strict):
+    """Furniture or a spot: where objects are put and people are met.
+
+    ``center`` and ``size`` give the furniture footprint (axis-aligned); ``approach``
+    is where the robot stands to use it (x, y, heading in radians); when left out
+    it is computed as the nearest free place facing the footprint.
+    ``holds`` lists the object categories the placement is meant to hold.
+    """
+
+    name: Name
+    category: Name
+    room: Name
+    kind: PlacementKind = PlacementKind.FURNITURE
+    center: Point
+    size: tuple[float, float] = (0.6, 0.6)
+    approach: tuple[float, float, float] | None = None
+    holds: list[Name] = Field(default_factory=list)
+
+    @field_validator("size")
+    @classmethod
+    def _positive_size(cls, size: tuple[float, float]) -> tuple[float, float]:
+        if size[0] <= 0 or size[1] <= 0:
+            raise ValueError("width and depth must both be greater than 0")
+        return size
+
+
+class ObjectCategoryModel(_Strict):
+    """An object category with its plural, as people say it."""
+
+    name: Name
+    plural: Name
+
+
+class ObjectModel(_Strict):
+    """An object and the placement it lies on."""
+
+    name: Name
+    category: Name
+    placement: Name
+
+
+class PersonModel(_Strict):
+    """A person in the home and how the simulation plays them.
+
+    ``answers`` maps a question (lower case, as asked) to the reply the person
+    gives; ``cooperative`` people step aside and open doors when asked.
+    """
+
+    name: Name
+    room: Name
+    position: Point
+    posture: Posture = Posture.STANDING
+    gesture: Gesture = Gesture.NONE
+    clothes: list[str] = Field(default_factory=list)
+    answers: dict[str, str] = Field(default_factory=dict)
+    cooperative: bool = True
+
+
+class RobotModel(_Strict):
+    """The robot's body: start pose (x, y, heading), size, speed and hands."""
+
+    pose: tuple[float, float, float]
+    radius: float = Field(default=0.25, gt=0.05, le=1.0)
+    speed: float = Field(default=0.5, gt=0.0, le=3.0)
+    hands: list[Name] = Field(default_factory=lambda: ["left", "right"], min_length=1)
+
+
+class DisturbanceModel(_Strict):
+    """How often the simulated world differs from what the robot expects.
+
+    Each field is a probability per opportunity (per grasp, per detection, per
+    door at the start of a task, per object...). All zero: a perfect world.
+    """
+
+    grasp_slip: Probability = 0.0
+    detection_miss: Probability = 0.0
+    detection_confusion: Probability = 0.0
+    door_closed: Probability = 0.0
+    person_in_way: Probability = 0.0
+    object_moved: Probability = 0.0
+    object_moved_during_task: Probability = 0.0
+    object_missing: Probability = 0.0
+
+
+class WorldModel(_Strict):
+    """A whole world file."""
+
+    name: Name
+    description: str = ""
+    grid_resolution: float = Field(default=0.05, gt=0.005, le=0.5)
+    wall_thickness: float = Field(default=0.1, gt=0.0, le=0.5)
+    rooms: list[RoomModel] = Field(min_length=1)
+    doors: list[DoorModel] = Field(default_factory=list)
+    placements: list[PlacementModel] = Field(default_factory=list)
+    categories: list[ObjectCategoryModel] = Field(default_factory=list)
+    objects: list[ObjectModel] = Field(default_factory=list)
+    people: list[PersonModel] = Field(default_factory=list)
+    operator: Name | None = None
+    robot: RobotModel
+    disturbances: DisturbanceModel = Field(default_factory=DisturbanceModel)

@@ -1,0 +1,349 @@
+"""``World``: a validated home with geometry, lookups and cross-reference checks."""
+
+from __future__ import annotations
+
+import difflib
+import math
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+import yaml
+from shapely.geometry import Point, Polygon, box
+from shapely.prepared import prep
+
+from homebot.errors import WorldError
+from homebot.world.loading import (
+    LocatedDocument,
+    field_error,
+    load_yaml_document,
+    parse_yaml_text,
+    validate_document,
+)
+from homebot.world.model import (
+    DoorModel,
+    PersonModel,
+    PlacementKind,
+    PlacementModel,
+    RoomModel,
+    WorldModel,
+)
+
+__all__ = ["Placement", "World", "shipped_world_names", "shipped_world_path"]
+
+# Clearance between the robot's body and furniture when the approach pose is derived.
+_APPROACH_CLEARANCE = 0.12
+
+
+@dataclass(frozen=True, slots=True)
+class Placement:
+    """A placement with its footprint and the pose the robot uses it from."""
+
+    model: PlacementModel
+    footprint: Polygon
+    approach: tuple[float, float, float]
+
+    @property
+    def name(self) -> str:
+        return self.model.name
+
+    @property
+    def room(self) -> str:
+        return self.model.room
+
+    @property
+    def category(self) -> str:
+        return self.model.category
+
+    @property
+    def holds(self) -> list[str]:
+        return self.model.holds
+
+
+def shipped_world_names() -> list[str]:
+    """Names of the worlds that ship with homebot (``apartment``, ``supermarket``...)."""
+    folder = resources.files("homebot.data") / "worlds"
+    return sorted(entry.name[: -len(".yaml")] for entry in folder.iterdir()
+                  if entry.name.endswith(".yaml"))
+
+
+def shipped_world_path(name: str) -> Path:
+    """The file of a shipped world."""
+    return Path(str(resources.files("homebot.data") / "worlds" / f"{name}.yaml"))
+
+
+class World:
+    """The home: rooms, doors, placements, objects, people and the robot.
+
+    A ``World`` is immutable ground truth as loaded; the simulator copies what
+    changes (object locations, door states, people) into its own state.
+    """
+
+    def __init__(self, model: WorldModel, document: LocatedDocument | None = None) -> None:
+        self.model = model
+        self.source = document.source if document else f"<world {model.name}>"
+        self._document = document
+        self._problems: list[str] = []
+        self.rooms = {room.name: room for room in model.rooms}
+        self.room_polygons = {room.name: Polygon(room.polygon) for room in model.rooms}
+        self.doors = {door.name: door for door in model.doors}
+        self.categories = {category.name: category for category in model.categories}
+        self.objects = {obj.name: obj for obj in model.objects}
+        self.people = {person.name: person for person in model.people}
+        self._check_names()
+        self._check_rooms()
+        self._check_doors()
+        self.placements = self._build_placements()
+        self._check_objects()
+        self._check_people()
+        self._check_robot()
+        if self._problems:
+            raise WorldError("\n".join(self._problems))
+
+    # ------------------------------------------------------------------ loading
+
+    @classmethod
+    def load(cls, path_or_name: str | Path) -> World:
+        """Load a world file, or a shipped world by name (``apartment``)."""
+        candidate = Path(path_or_name)
+        if not candidate.suffix and not candidate.exists():
+            if str(path_or_name) not in shipped_world_names():
+                raise WorldError(
+                    f"no world named '{path_or_name}'; give a YAML file or one of: "
+                    f"{', '.join(shipped_world_names())}"
+                )
+            candidate = shipped_world_path(str(path_or_name))
+        document = load_yaml_document(candidate)
+        return cls(validate_document(document, WorldModel), document)
+
+    @classmethod
+    def from_yaml_text(cls, text: str, source: str = "<text>") -> World:
+        """Load a world from YAML text (``source`` names it in errors)."""
+        document = parse_yaml_text(text, source)
+        return cls(validate_document(document, WorldModel), document)
+
+    @classmethod
+    def from_dict(cls, data: Mapping[str, Any], source: str = "<dict>") -> World:
+        """Build a world from plain data (as written by ``to_dict``)."""
+        return cls.from_yaml_text(yaml.safe_dump(dict(data), sort_keys=False), source)
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain data that ``from_dict`` reads back to an equal world."""
+        data: dict[str, Any] = self.model.model_dump(mode="json", exclude_defaults=True)
+        data["name"] = self.model.name
+        data["robot"] = self.model.robot.model_dump(mode="json")
+        return data
+
+    def save(self, path: str | Path) -> None:
+        """Write the world as YAML."""
+        Path(path).write_text(yaml.safe_dump(self.to_dict(), sort_keys=False), encoding="utf-8")
+
+    # ------------------------------------------------------------------ lookups
+
+    @property
+    def name(self) -> str:
+        return self.model.name
+
+    @property
+    def robot(self) -> Any:
+        return self.model.robot
+
+    @property
+    def disturbances(self) -> Any:
+        return self.model.disturbances
+
+    @property
+    def operator(self) -> PersonModel | None:
+        return self.people.get(self.model.operator) if self.model.operator else None
+
+    def room_at(self, x: float, y: float) -> str | None:
+        """The room containing the point, or None when it is outside every room."""
+        point = Point(x, y)
+        for name, polygon in self.room_polygons.items():
+            if polygon.covers(point):
+                return name
+        return None
+
+    def placement(self, name: str) -> Placement:
+        """The named placement; an unknown name raises ``WorldError`` with a suggestion."""
+        if name in self.placements:
+            return self.placements[name]
+        raise WorldError(_unknown("placement", name, self.placements))
+
+    def room(self, name: str) -> RoomModel:
+        """The named room; an unknown name raises ``WorldError`` with a suggestion."""
+        if name in self.rooms:
+            return self.rooms[name]
+        raise WorldError(_unknown("room", name, self.rooms))
+
+    def person(self, name: str) -> PersonModel:
+        """The named person; an unknown name raises ``WorldError`` with a suggestion."""
+        if name in self.people:
+            return self.people[name]
+        raise WorldError(_unknown("person", name, self.people))
+
+    def plural_of(self, category: str) -> str:
+        """The plural of an object category (its declared plural, else ``category + s``)."""
+        declared = self.categories.get(category)
+        return declared.plural if declared else f"{category}s"
+
+    def placements_in(self, room: str) -> list[Placement]:
+        """Placements of a room, in file order."""
+        return [placement for placement in self.placements.values() if placement.room == room]
+
+    def placements_holding(self, category: str) -> list[Placement]:
+        """Placements meant to hold objects of ``category``, in file order."""
+        return [p for p in self.placements.values() if category in p.holds]
+
+    def bounds(self) -> tuple[float, float, float, float]:
+        """(min x, min y, max x, max y) over all rooms."""
+        xs = [x for polygon in self.room_polygons.values() for x in polygon.exterior.xy[0]]
+        ys = [y for polygon in self.room_polygons.values() for y in polygon.exterior.xy[1]]
+        return min(xs), min(ys), max(xs), max(ys)
+
+    # ------------------------------------------------------------------ checks
+
+    def _problem(self, location: list[str | int], message: str) -> None:
+        if self._document is not None:
+            self._problems.append(field_error(self._document, location, message))
+        else:
+            where = ".".join(str(step) for step in location)
+            self._problems.append(f"{self.source}: {where}: {message}")
+
+    def _check_names(self) -> None:
+        groups: list[tuple[str, Iterable[Any]]] = [
+            ("rooms", self.model.rooms), ("doors", self.model.doors),
+            ("placements", self.model.placements), ("categories", self.model.categories),
+            ("objects", self.model.objects), ("people", self.model.people),
+        ]
+        for field, entries in groups:
+            seen: set[str] = set()
+            for index, entry in enumerate(entries):
+                if entry.name in seen:
+                    self._problem([field, index, "name"],
+                                  f"'{entry.name}' is used twice in {field}; rename one")
+                seen.add(entry.name)
+        for index, placement in enumerate(self.model.placements):
+            if placement.name in self.rooms:
+                self._problem(["placements", index, "name"],
+                              f"'{placement.name}' is also a room name; rename the placement")
+
+    def _check_rooms(self) -> None:
+        for index, room in enumerate(self.model.rooms):
+            if not self.room_polygons[room.name].is_valid or self.room_polygons[room.name].area <= 0:
+                self._problem(["rooms", index, "polygon"],
+                              "polygon is not a simple area; list its corners in order")
+        names = list(self.room_polygons)
+        for i, first in enumerate(names):
+            for second in names[i + 1:]:
+                overlap = self.room_polygons[first].intersection(self.room_polygons[second]).area
+                if overlap > 1e-6:
+                    self._problem(["rooms", i, "polygon"],
+                                  f"room '{first}' overlaps room '{second}' by {overlap:.2f} m²")
+
+    def _check_doors(self) -> None:
+        tolerance = self.model.wall_thickness + 0.05
+        for index, door in enumerate(self.model.doors):
+            self._check_door(index, door, tolerance)
+
+    def _check_door(self, index: int, door: DoorModel, tolerance: float) -> None:
+        unknown = [room for room in door.rooms if room not in self.rooms]
+        for room in unknown:
+            self._problem(["doors", index, "rooms"], _unknown("room", room, self.rooms))
+        if unknown:
+            return
+        if door.rooms[0] == door.rooms[1]:
+            self._problem(["doors", index, "rooms"], "a door must join two different rooms")
+            return
+        point = Point(door.position)
+        for room in door.rooms:
+            if self.room_polygons[room].exterior.distance(point) > tolerance:
+                self._problem(["doors", index, "position"],
+                              f"{list(door.position)} is not on the wall of room '{room}'; "
+                              "put the door on the wall the two rooms share")
+
+    def _build_placements(self) -> dict[str, Placement]:
+        footprints = {
+            p.name: box(p.center[0] - p.size[0] / 2, p.center[1] - p.size[1] / 2,
+                        p.center[0] + p.size[0] / 2, p.center[1] + p.size[1] / 2)
+            for p in self.model.placements
+        }
+        furniture = [footprints[p.name] for p in self.model.placements
+                     if p.kind is PlacementKind.FURNITURE]
+        placements: dict[str, Placement] = {}
+        for index, model in enumerate(self.model.placements):
+            if model.room not in self.rooms:
+                self._problem(["placements", index, "room"], _unknown("room", model.room, self.rooms))
+                continue
+            if not self.room_polygons[model.room].covers(Point(model.center)):
+                self._problem(["placements", index, "center"],
+                              f"{list(model.center)} lies outside room '{model.room}'")
+                continue
+            if self.categories:
+                for position, category in enumerate(model.holds):
+                    if category not in self.categories:
+                        self._problem(["placements", index, "holds", position],
+                                      _unknown("object category", category, self.categories))
+            approach = model.approach or self._derive_approach(model, footprints[model.name],
+                                                               furniture)
+            if approach is None:
+                self._problem(["placements", index],
+                              "no free side to approach it from; give an 'approach' pose")
+                continue
+            placements[model.name] = Placement(model, footprints[model.name], approach)
+        return placements
+
+    def _derive_approach(self, model: PlacementModel, footprint: Polygon,
+                         furniture: list[Polygon]) -> tuple[float, float, float] | None:
+        """The nearest free standing point facing the placement, on its most open side."""
+        radius = self.model.robot.radius
+        if model.kind is PlacementKind.SPOT:
+            return (model.center[0], model.center[1], 0.0)
+        room = self.room_polygons[model.room]
+        free_area = prep(room.buffer(-(radius + self.model.wall_thickness / 2)))
+        obstacles = [f.buffer(radius + 0.02) for f in furniture if not f.equals(footprint)]
+        cx, cy = model.center
+        half_w, half_d = model.size[0] / 2, model.size[1] / 2
+        offset = radius + _APPROACH_CLEARANCE
+        room_center = room.centroid
+        sides = [(cx + half_w + offset, cy), (cx - half_w - offset, cy),
+                 (cx, cy + half_d + offset), (cx, cy - half_d - offset)]
+        sides.sort(key=lambda xy: math.dist(xy, (room_center.x, room_center.y)))
+        for x, y in sides:
+            spot = Point(x, y)
+            if free_area.contains(spot) and not any(o.contains(spot) for o in obstacles):
+                return (round(x, 3), round(y, 3), round(math.atan2(cy - y, cx - x), 4))
+        return None
+
+    def _check_objects(self) -> None:
+        for index, obj in enumerate(self.model.objects):
+            if obj.placement not in self.placements:
+                self._problem(["objects", index, "placement"],
+                              _unknown("placement", obj.placement, self.placements))
+            if self.categories and obj.category not in self.categories:
+                self._problem(["objects", index, "category"],
+                              _unknown("object category", obj.category, self.categories))
+
+    def _check_people(self) -> None:
+        for index, person in enumerate(self.model.people):
+            if person.room not in self.rooms:
+                self._problem(["people", index, "room"], _unknown("room", person.room, self.rooms))
+            elif not self.room_polygons[person.room].covers(Point(person.position)):
+                self._problem(["people", index, "position"],
+                              f"{list(person.position)} lies outside room '{person.room}'")
+        if self.model.operator is not None and self.model.operator not in self.people:
+            self._problem(["operator"], _unknown("person", self.model.operator, self.people))
+
+    def _check_robot(self) -> None:
+        x, y, _ = self.model.robot.pose
+        if self.room_at(x, y) is None:
+            self._problem(["robot", "pose"], f"({x}, {y}) is outside every room")
+
+
+def _unknown(kind: str, name: str, known: Iterable[str]) -> str:
+    names = sorted(known)
+    guess = difflib.get_close_matches(name, names, n=1)
+    hint = f"did you mean '{guess[0]}'?" if guess else f"known: {', '.join(names) or 'none'}"
+    return f"unknown {kind} '{name}'; {hint}"
