@@ -123,11 +123,17 @@ class ObjectCategoryModel(_Strict):
 
 
 class ObjectModel(_Strict):
-    """An object and the placement it lies on."""
+    """An object, the placement it lies on, and what perception can tell of it.
+
+    ``size`` is its largest dimension in metres and ``weight`` its mass in kg
+    (used to answer "the heaviest object on the desk").
+    """
 
     name: Name
     category: Name
     placement: Name
+    size: float = Field(default=0.12, gt=0.0, le=2.0)
+    weight: float = Field(default=0.3, gt=0.0, le=30.0)
 
 
 class PersonModel(_Strict):
