@@ -1,0 +1,8 @@
+"""Navigation for the simulator: occupancy grid, A*, and the topological map."""
+
+from homebot.navigation.astar import astar
+from homebot.navigation.grid import OccupancyGrid
+from homebot.navigation.navigator import NavigationPlan, Navigator
+from homebot.navigation.topology import Route, TopologicalMap
+
+__all__ = ["NavigationPlan", "Navigator", "OccupancyGrid", "Route", "TopologicalMap", "astar"]

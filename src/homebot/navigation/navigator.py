@@ -1,0 +1,125 @@
+"""``Navigator``: metric paths on the grid, routed through the topological map."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from homebot.navigation.astar import astar
+from homebot.navigation.grid import OccupancyGrid
+from homebot.navigation.topology import Route, TopologicalMap
+from homebot.world import World
+
+__all__ = ["NavigationPlan", "Navigator"]
+
+# How many path segments a navigator remembers; fetch-and-deliver tasks revisit the same places.
+_CACHE_SIZE = 4096
+
+
+@dataclass(frozen=True, slots=True)
+class NavigationPlan:
+    """A path the robot can drive: waypoints, its length, and the doors it passes."""
+
+    waypoints: tuple[tuple[float, float], ...]
+    length: float
+    doors: tuple[str, ...]
+    route: Route
+
+    def __bool__(self) -> bool:
+        return bool(self.waypoints)
+
+
+@dataclass
+class Navigator:
+    """Plans paths in one world for one robot radius.
+
+    ``plan`` first asks the topological map whether the goal room is reachable
+    with the given doors shut (fast, and it names the doors on the way), then
+    runs A* on the occupancy grid for the metric path.
+    """
+
+    world: World
+    grid: OccupancyGrid = field(init=False)
+    topology: TopologicalMap = field(init=False)
+    _masks: dict[frozenset[str], np.ndarray] = field(init=False, default_factory=dict)
+    _cache: dict[tuple[int, int, frozenset[str]], list[int] | None] = field(
+        init=False, default_factory=dict)
+
+    def __post_init__(self) -> None:
+        self.grid = OccupancyGrid.from_world(self.world)
+        self.topology = TopologicalMap(self.world)
+
+    def plan(self, start: tuple[float, float], goal: tuple[float, float],
+             closed_doors: frozenset[str] = frozenset()) -> NavigationPlan | None:
+        """A path from ``start`` to ``goal`` avoiding shut doors, or None if there is none.
+
+        The topological route fixes the doors to pass; A* then runs on the grid
+        from door to door (CAESAR's global/local split), which keeps each search
+        inside one room where the octile heuristic is nearly exact. Start and
+        goal are snapped to the nearest free cell, so a goal on the edge of
+        furniture (a person sitting on the couch) is still reachable.
+        """
+        start_room, goal_room = self.world.room_at(*start), self.world.room_at(*goal)
+        if start_room is None or goal_room is None:
+            return None
+        route = self.topology.route(start_room, goal_room, closed_doors, start, goal)
+        if route is None:
+            return None
+        mask = self._mask(closed_doors)
+        start_cell = self.grid.nearest_free(mask, *self.grid.cell_of(*start))
+        goal_cell = self.grid.nearest_free(mask, *self.grid.cell_of(*goal))
+        if start_cell is None or goal_cell is None:
+            return None
+        columns = self.grid.shape[1]
+        stops = [start_cell[0] * columns + start_cell[1]]
+        for door in route.doors:
+            row, column = self.grid.cell_of(*self.world.doors[door].position)
+            stops.append(row * columns + column)
+        stops.append(goal_cell[0] * columns + goal_cell[1])
+        cells: list[int] = [stops[0]]
+        for here, there in zip(stops, stops[1:], strict=False):
+            segment = self._segment(here, there, closed_doors, mask)
+            if segment is None:
+                return None
+            cells.extend(segment[1:])
+        points = [self.grid.center_of(*divmod(cell, columns)) for cell in cells]
+        length = sum(math.dist(a, b) for a, b in zip(points, points[1:], strict=False))
+        length += math.dist(start, points[0]) + math.dist(goal, points[-1])
+        waypoints = (start, *_simplify(points)[1:-1], goal)
+        return NavigationPlan(waypoints, length, route.doors, route)
+
+    def distance(self, start: tuple[float, float], goal: tuple[float, float],
+                 closed_doors: frozenset[str] = frozenset()) -> float:
+        """Path length from start to goal (infinite when unreachable)."""
+        plan = self.plan(start, goal, closed_doors)
+        return plan.length if plan else math.inf
+
+    def _mask(self, closed_doors: frozenset[str]) -> np.ndarray:
+        if closed_doors not in self._masks:
+            self._masks[closed_doors] = self.grid.blocked_with(closed_doors)
+        return self._masks[closed_doors]
+
+    def _segment(self, start: int, goal: int, closed_doors: frozenset[str],
+                 mask: np.ndarray) -> list[int] | None:
+        key = (start, goal, closed_doors)
+        if key not in self._cache:
+            if len(self._cache) >= _CACHE_SIZE:
+                self._cache.clear()
+            self._cache[key] = astar(mask, self.grid.shape, start, goal)
+        return self._cache[key]
+
+
+def _simplify(points: list[tuple[float, float]]) -> list[tuple[float, float]]:
+    """Drop waypoints that lie on a straight line between their neighbours."""
+    if len(points) <= 2:
+        return points
+    kept = [points[0]]
+    for previous, current, following in zip(points, points[1:], points[2:], strict=False):
+        direction_in = (current[0] - previous[0], current[1] - previous[1])
+        direction_out = (following[0] - current[0], following[1] - current[1])
+        if abs(direction_in[0] * direction_out[1] - direction_in[1] * direction_out[0]) > 1e-9:
+            kept.append(current)
+    kept.append(points[-1])
+    return kept
