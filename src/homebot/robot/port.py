@@ -1,0 +1,158 @@
+"""The ``Robot`` port: everything skills may ask of a robot body, simulated or real.
+
+Skills reach the world only through this interface. Every method reports what
+the robot's own sensors and actuators say, never ground truth: a detection may
+be wrong, a grasp may close on nothing. ``SimRobot`` implements it over
+``homebot.sim``; ROS 2 adapters implement it over a real robot.
+"""
+
+from __future__ import annotations
+
+from abc import ABC, abstractmethod
+from dataclasses import dataclass
+from enum import StrEnum
+
+__all__ = [
+    "Blocker",
+    "Detection",
+    "HelpRequest",
+    "MoveReport",
+    "PersonPercept",
+    "Pose",
+    "Robot",
+]
+
+
+@dataclass(frozen=True, slots=True)
+class Pose:
+    """A planar pose: position in metres and heading in radians."""
+
+    x: float
+    y: float
+    theta: float = 0.0
+
+    def xy(self) -> tuple[float, float]:
+        return (self.x, self.y)
+
+
+class Blocker(StrEnum):
+    """What stopped a motion."""
+
+    DOOR_CLOSED = "door_closed"  #: a shut (or locked) door is on the way
+    PERSON = "person"  #: someone stands in a doorway on the way
+    NO_PATH = "no_path"  #: no way exists even with every door open
+
+
+@dataclass(frozen=True, slots=True)
+class MoveReport:
+    """What the base reports after a motion: where it stopped and why."""
+
+    reached: bool
+    pose: Pose
+    distance: float
+    blocker: Blocker | None = None
+    door: str | None = None  #: the door where the robot stopped, if blocked at one
+    person: str | None = None  #: the person in the way, if any
+    doors_passed: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True, slots=True)
+class Detection:
+    """An object seen by perception. ``handle`` lets the arm reach that very object."""
+
+    label: str
+    category: str
+    handle: int
+
+
+@dataclass(frozen=True, slots=True)
+class PersonPercept:
+    """A person seen by perception, with what the robot can tell of them."""
+
+    name: str | None
+    posture: str
+    gesture: str
+    clothes: tuple[str, ...]
+    position: tuple[float, float]
+    room: str
+
+
+class HelpRequest(StrEnum):
+    """Things the robot can ask a person to do for it."""
+
+    STEP_ASIDE = "step_aside"
+    OPEN_DOOR = "open_door"
+
+
+class Robot(ABC):
+    """The port between skills and a robot body.
+
+    Methods advance the robot's clock by the time the action takes. None of them
+    raise for failures in the world; they report what the sensors saw.
+    """
+
+    @property
+    @abstractmethod
+    def hands(self) -> tuple[str, ...]:
+        """The robot's hands, by name."""
+
+    @abstractmethod
+    def now(self) -> float:
+        """Seconds since the robot started, on the robot's (simulated) clock."""
+
+    @abstractmethod
+    def pose(self) -> Pose:
+        """Where the robot believes it is (localisation)."""
+
+    @abstractmethod
+    def move_to(self, goal: Pose, avoid_doors: frozenset[str] = frozenset(),
+                escort: str | None = None) -> MoveReport:
+        """Drive to ``goal``, not through ``avoid_doors``; ``escort`` walks along."""
+
+    @abstractmethod
+    def perceive_objects(self, placement: str) -> list[Detection]:
+        """Objects seen on a placement the robot stands at (empty when too far away)."""
+
+    @abstractmethod
+    def perceive_people(self) -> list[PersonPercept]:
+        """People seen in the room the robot is in."""
+
+    @abstractmethod
+    def grasp(self, detection: Detection, hand: str) -> None:
+        """Close ``hand`` on the detected object (the hand sensor tells if it worked)."""
+
+    @abstractmethod
+    def held(self, hand: str) -> Detection | None:
+        """What the hand's camera sees in ``hand``: None when it is empty."""
+
+    @abstractmethod
+    def release(self, hand: str, placement: str) -> None:
+        """Put what ``hand`` holds on ``placement`` (the robot must stand at it)."""
+
+    @abstractmethod
+    def hand_over(self, hand: str, person: str) -> bool:
+        """Offer what ``hand`` holds to a nearby person; True when they took it."""
+
+    @abstractmethod
+    def open_door(self, door: str) -> bool:
+        """Try to open a door the robot stands at; True when it is open afterwards."""
+
+    @abstractmethod
+    def door_is_open(self, door: str) -> bool | None:
+        """Whether a door the robot stands at is open (None when it cannot see it)."""
+
+    @abstractmethod
+    def say(self, text: str) -> None:
+        """Speak ``text`` aloud."""
+
+    @abstractmethod
+    def ask(self, person: str, question: str) -> str | None:
+        """Ask a nearby person and return what they answered (None: no answer)."""
+
+    @abstractmethod
+    def request(self, person: str, request: HelpRequest, target: str) -> bool:
+        """Ask a nearby person for help (open ``target`` door, step aside from it)."""
+
+    @abstractmethod
+    def follow(self, person: str, goal: Pose | None) -> MoveReport:
+        """Follow a person until they stop (at ``goal`` when the robot was told it)."""

@@ -1,0 +1,24 @@
+"""The simulated home behind the Robot port: ground truth, clock, disturbances."""
+
+from homebot.sim.clock import Clock
+from homebot.sim.people import (
+    InteractiveResponder,
+    Responder,
+    ScriptedResponder,
+    normalise_question,
+)
+from homebot.sim.robot import ActionDurations, SimRobot
+from homebot.sim.simulation import HAND_PREFIX, PERSON_PREFIX, Simulation
+
+__all__ = [
+    "HAND_PREFIX",
+    "PERSON_PREFIX",
+    "ActionDurations",
+    "Clock",
+    "InteractiveResponder",
+    "Responder",
+    "ScriptedResponder",
+    "SimRobot",
+    "Simulation",
+    "normalise_question",
+]

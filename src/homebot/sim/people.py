@@ -1,0 +1,53 @@
+"""How simulated people answer: scripted per world or scenario, or typed by a human."""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+
+from homebot.world import PersonModel
+
+__all__ = ["InteractiveResponder", "Responder", "ScriptedResponder", "normalise_question"]
+
+Responder = Callable[[PersonModel, str], str | None]
+
+
+def normalise_question(question: str) -> str:
+    """Lower case, no punctuation, single spaces: the key under which answers are scripted."""
+    return " ".join(re.sub(r"[^\w\s']", " ", question.lower()).split())
+
+
+@dataclass
+class ScriptedResponder:
+    """Answers from each person's ``answers`` in the world, overridden by a scenario script.
+
+    ``script`` maps person name to {question: answer}. Everyone tells their name
+    when asked; a question nobody scripted gets no answer.
+    """
+
+    script: Mapping[str, Mapping[str, str]] = field(default_factory=dict)
+
+    def __call__(self, person: PersonModel, question: str) -> str | None:
+        key = normalise_question(question)
+        for answers in (self.script.get(person.name, {}), person.answers):
+            for asked, answer in answers.items():
+                if normalise_question(asked) == key:
+                    return answer
+        if key in {"what is your name", "what's your name", "who are you"}:
+            return person.name
+        return None
+
+
+@dataclass
+class InteractiveResponder:
+    """A human types each person's answers at a prompt (``--interactive``)."""
+
+    read_line: Callable[[str], str] = input
+
+    def __call__(self, person: PersonModel, question: str) -> str | None:
+        try:
+            answer = self.read_line(f"[{person.name} is asked] {question}\n> ").strip()
+        except EOFError:
+            return None
+        return answer or None

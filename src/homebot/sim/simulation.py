@@ -1,0 +1,153 @@
+"""``Simulation``: the ground truth of a running home and the disturbances that change it.
+
+The truth (where every object is, which doors are shut, who stands where) lives
+here alone. The robot sees it only through ``SimRobot``'s sensors. Every random
+choice draws from one ``random.Random`` seeded at construction.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+from dataclasses import dataclass
+
+from homebot.events import EventLog
+from homebot.navigation import Navigator
+from homebot.sim.clock import Clock
+from homebot.sim.people import Responder, ScriptedResponder
+from homebot.world import DisturbanceModel, DoorState, PersonModel, PlacementKind, World
+
+__all__ = ["HAND_PREFIX", "PERSON_PREFIX", "Simulation"]
+
+HAND_PREFIX = "hand:"  #: object location held in a robot hand, e.g. ``hand:left``
+PERSON_PREFIX = "person:"  #: object location given to a person, e.g. ``person:Alex``
+
+
+@dataclass
+class _PersonState:
+    model: PersonModel
+    position: tuple[float, float]
+    room: str
+    blocking_door: str | None = None
+
+
+class Simulation:
+    """The simulated home: truth, clock, seeded randomness and disturbances.
+
+    Args:
+        world: the home as loaded.
+        seed: seeds every random choice.
+        disturbances: overrides the world's disturbance model (None: the world's).
+        responder: how people answer questions (default: scripted from the world).
+        navigator: a navigator for this world, shared between runs to save rasterising.
+    """
+
+    def __init__(self, world: World, *, seed: int = 0,
+                 disturbances: DisturbanceModel | None = None,
+                 responder: Responder | None = None,
+                 navigator: Navigator | None = None) -> None:
+        self.world = world
+        self.seed = seed
+        self.random = random.Random(seed)
+        self.clock = Clock()
+        self.events = EventLog(self.clock.now)
+        self.navigator = navigator if navigator is not None else Navigator(world)
+        self.disturbances = disturbances if disturbances is not None else world.disturbances
+        self.responder: Responder = responder or ScriptedResponder()
+        self.object_location: dict[str, str | None] = {
+            name: obj.placement for name, obj in world.objects.items()}
+        self.object_ids = {name: index for index, name in enumerate(sorted(world.objects))}
+        self.door_state = {name: door.state for name, door in world.doors.items()}
+        self.people = {name: _PersonState(person, person.position, person.room)
+                       for name, person in world.people.items()}
+        x, y, theta = world.robot.pose
+        self.robot_pose = (x, y, theta)
+        self.hands: dict[str, str | None] = {hand: None for hand in world.robot.hands}
+        self._looked_at: set[str] = set()
+        self._apply_start_disturbances()
+
+    # ------------------------------------------------------------ disturbances
+
+    def _apply_start_disturbances(self) -> None:
+        model = self.disturbances
+        shelves = [p.name for p in self.world.placements.values()
+                   if p.model.kind is PlacementKind.FURNITURE]
+        for name in sorted(self.object_location):
+            draw = self.random.random()
+            if draw < model.object_missing:
+                self.object_location[name] = None
+                self.events.record("sim.disturbance", what="object_missing", object=name)
+            elif draw < model.object_missing + model.object_moved:
+                self._move_object_elsewhere(name, shelves, "object_moved")
+        for door in sorted(self.door_state):
+            if self.door_state[door] is DoorState.OPEN and self.random.random() < model.door_closed:
+                self.door_state[door] = DoorState.CLOSED
+                self.events.record("sim.disturbance", what="door_closed", door=door)
+        for door in sorted(self.world.doors):
+            if self.random.random() < model.person_in_way:
+                self.place_person_in_doorway(door)
+
+    def _move_object_elsewhere(self, name: str, placements: list[str], what: str) -> None:
+        current = self.object_location[name]
+        choices = [p for p in placements if p != current]
+        if not choices:
+            return
+        destination = self.random.choice(choices)
+        self.object_location[name] = destination
+        self.events.record("sim.disturbance", what=what, object=name, to=destination)
+
+    def place_person_in_doorway(self, door: str, name: str | None = None) -> str:
+        """Put someone (a visitor unless named) in a doorway; returns their name."""
+        position = self.world.doors[door].position
+        room = self.world.doors[door].rooms[0]
+        name = name or f"visitor {len([p for p in self.people if p.startswith('visitor')]) + 1}"
+        if name not in self.people:
+            model = PersonModel(name=name, room=room, position=position, cooperative=True)
+            self.people[name] = _PersonState(model, position, room)
+        state = self.people[name]
+        state.position, state.room, state.blocking_door = position, room, door
+        self.events.record("sim.disturbance", what="person_in_way", door=door, person=name)
+        return name
+
+    def maybe_move_during_task(self, placement: str) -> None:
+        """The first time the robot looks at a placement, someone may just have moved an object."""
+        if placement in self._looked_at:
+            return
+        self._looked_at.add(placement)
+        here = sorted(name for name, where in self.object_location.items() if where == placement)
+        if here and self.random.random() < self.disturbances.object_moved_during_task:
+            shelves = [p.name for p in self.world.placements.values()
+                       if p.model.kind is PlacementKind.FURNITURE]
+            self._move_object_elsewhere(self.random.choice(here), shelves,
+                                        "object_moved_during_task")
+
+    # ------------------------------------------------------------ truth queries
+
+    def closed_doors(self) -> frozenset[str]:
+        """Doors that are shut or locked, or that someone stands in."""
+        shut = {door for door, state in self.door_state.items() if state is not DoorState.OPEN}
+        shut |= {p.blocking_door for p in self.people.values() if p.blocking_door}
+        return frozenset(shut)
+
+    def objects_on(self, placement: str) -> list[str]:
+        return sorted(name for name, where in self.object_location.items() if where == placement)
+
+    def object_by_id(self, handle: int) -> str | None:
+        return next((name for name, index in self.object_ids.items() if index == handle), None)
+
+    def robot_room(self) -> str | None:
+        return self.world.room_at(self.robot_pose[0], self.robot_pose[1])
+
+    def distance_to(self, point: tuple[float, float]) -> float:
+        return math.dist(self.robot_pose[:2], point)
+
+    def person_state(self, name: str) -> _PersonState | None:
+        return self.people.get(name)
+
+    def move_person(self, name: str, position: tuple[float, float]) -> None:
+        """Move a person (walking, following the robot); they no longer block a door."""
+        state = self.people[name]
+        room = self.world.room_at(*position)
+        state.position, state.blocking_door = position, None
+        if room is not None:
+            state.room = room
