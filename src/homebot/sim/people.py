@@ -23,7 +23,8 @@ class ScriptedResponder:
     """Answers from each person's ``answers`` in the world, overridden by a scenario script.
 
     ``script`` maps person name to {question: answer}. Everyone tells their name
-    when asked; a question nobody scripted gets no answer.
+    when asked and, asked for their question, asks how many rooms there are; any
+    other question nobody scripted gets no answer.
     """
 
     script: Mapping[str, Mapping[str, str]] = field(default_factory=dict)
@@ -36,6 +37,8 @@ class ScriptedResponder:
                     return answer
         if key in {"what is your name", "what's your name", "who are you"}:
             return person.name
+        if key == "what is your question":
+            return "How many rooms are there?"
         return None
 
 

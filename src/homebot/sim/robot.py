@@ -73,6 +73,7 @@ class SimRobot(Robot):
             travelled = sim.navigator.distance(start, stop, avoid_doors)
             travelled = plan.length if math.isinf(travelled) else travelled
             self._travel(travelled, stop, escort)
+            sim.trail.append(stop)
             blocker_person = next((name for name, p in sim.people.items()
                                    if p.blocking_door == door), None)
             blocker = Blocker.PERSON if blocker_person and sim.door_state[door] is \
@@ -82,6 +83,7 @@ class SimRobot(Robot):
                               blocker_person if blocker is Blocker.PERSON else None,
                               plan.doors[:index])
         self._travel(plan.length, goal.xy(), escort, goal.theta)
+        sim.trail.extend(plan.waypoints[1:])
         return MoveReport(True, self.pose(), plan.length, doors_passed=plan.doors)
 
     def _point_before(self, door: str, room: str) -> tuple[float, float]:
@@ -125,6 +127,7 @@ class SimRobot(Robot):
         if sim.world.room_at(*stop) is None:
             stop = behind
         sim.robot_pose = (stop[0], stop[1], math.atan2(dy, dx))
+        sim.trail.extend([*plan.waypoints[1:-1], stop])
         return MoveReport(True, self.pose(), plan.length, doors_passed=plan.doors)
 
     # ------------------------------------------------------------ perception

@@ -62,6 +62,7 @@ class Simulation:
                        for name, person in world.people.items()}
         x, y, theta = world.robot.pose
         self.robot_pose = (x, y, theta)
+        self.trail: list[tuple[float, float]] = [(x, y)]  #: where the robot has driven
         self.hands: dict[str, str | None] = {hand: None for hand in world.robot.hands}
         self._looked_at: set[str] = set()
         self._apply_start_disturbances()

@@ -10,7 +10,7 @@ from typing import Any, TypeVar
 import yaml
 from pydantic import BaseModel, ValidationError
 
-from homebot.errors import WorldError
+from homebot.errors import HomebotError, WorldError
 
 __all__ = [
     "LocatedDocument",
@@ -69,19 +69,21 @@ def _child_node(
     return None
 
 
-def load_yaml_document(path: Path | str) -> LocatedDocument:
-    """Read a YAML file safely, keeping node positions. Raises ``WorldError``."""
+def load_yaml_document(path: Path | str,
+                       error_type: type[HomebotError] = WorldError) -> LocatedDocument:
+    """Read a YAML file safely, keeping node positions. Raises ``error_type``."""
     path = Path(path)
     try:
         text = path.read_text(encoding="utf-8")
     except FileNotFoundError:
-        raise WorldError(f"{path}: no such file; check the path or use a shipped world name")
+        raise error_type(f"{path}: no such file; check the path") from None
     except (OSError, UnicodeDecodeError) as error:
-        raise WorldError(f"{path}: cannot be read ({error})") from None
-    return parse_yaml_text(text, str(path))
+        raise error_type(f"{path}: cannot be read ({error})") from None
+    return parse_yaml_text(text, str(path), error_type)
 
 
-def parse_yaml_text(text: str, source: str) -> LocatedDocument:
+def parse_yaml_text(text: str, source: str,
+                    error_type: type[HomebotError] = WorldError) -> LocatedDocument:
     """Parse YAML text named ``source``; a syntax error names its line and column."""
     try:
         root = yaml.compose(text, Loader=yaml.SafeLoader)
@@ -89,11 +91,11 @@ def parse_yaml_text(text: str, source: str) -> LocatedDocument:
     except yaml.MarkedYAMLError as error:
         mark = error.problem_mark
         where = f"line {mark.line + 1}, column {mark.column + 1}" if mark else "unknown line"
-        raise WorldError(
+        raise error_type(
             f"{source}: {where}: YAML syntax error: {error.problem}; fix the indentation or quoting"
         ) from None
     except yaml.YAMLError as error:
-        raise WorldError(f"{source}: YAML syntax error: {error}") from None
+        raise error_type(f"{source}: YAML syntax error: {error}") from None
     return LocatedDocument(data, root, source)
 
 

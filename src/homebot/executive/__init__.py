@@ -1,0 +1,7 @@
+"""The executive: runs tasks with retries and recovery protocols, and reports."""
+
+from homebot.executive.executive import Executive
+from homebot.executive.recovery import PROTOCOLS
+from homebot.executive.report import StepReport, TaskReport
+
+__all__ = ["PROTOCOLS", "Executive", "StepReport", "TaskReport"]

@@ -1,0 +1,112 @@
+"""``Executive``: runs a task step by step with retries, recovery, and a word for the operator."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from homebot.executive.recovery import PROTOCOLS
+from homebot.executive.report import StepReport, TaskReport
+from homebot.skills import OPERATOR, Outcome, SkillContext, Status, skill_named, speak
+from homebot.task import Step, Task
+
+__all__ = ["Executive"]
+
+# How many recovery protocols one step may use before the executive gives up on it.
+_MAX_RECOVERIES = 4
+
+
+class Executive:
+    """Runs tasks on one robot.
+
+    With ``recovery`` on, a step that fails or is aborted after its own retries
+    goes through the recovery protocols (door closed, path blocked, object or
+    person not where expected) and is run again; when nothing applies, the
+    robot stops safely, goes back to the operator and says what failed and why.
+    With monitoring off in the context, it is a plain sequence, as in the
+    monolithic state machines the Care-O-bot paper replaced.
+    """
+
+    def __init__(self, context: SkillContext, *, recovery: bool = True) -> None:
+        self.context = context
+        self.recovery = recovery and context.monitoring
+
+    def run(self, task: Task) -> TaskReport:
+        """Run every step in order; the report says whether all ended as expected."""
+        context = self.context
+        started = context.robot.now()
+        first_speech = len(list(context.events.of_kind("speech")))
+        context.events.record("task.start", description=task.description,
+                              steps=task.to_dicts())
+        reports: list[StepReport] = []
+        reason = ""
+        for index, step in enumerate(task.steps):
+            args = self._bind(step.args)
+            outcome, recoveries = self._run_step(step.skill, args)
+            reports.append(StepReport(step.skill, args, outcome.status.value,
+                                      outcome.error.value if outcome.error else None,
+                                      outcome.message, tuple(recoveries)))
+            self._remember(step, outcome)
+            if outcome.status in (Status.FAILED, Status.ABORTED):
+                reason = outcome.message or (outcome.error.value if outcome.error else "")
+                self._tell_operator_failure(index, step, reason)
+                break
+        success = len(reports) == len(task.steps) and all(
+            report.status in (Status.VERIFIED.value, Status.FINISHED.value) for report in reports)
+        if success and context.monitoring:
+            speak(context, "I have done what you asked.")
+        context.events.record("task.end", success=success, reason=reason)
+        speech = [event.data["text"] for event in list(context.events.of_kind("speech"))
+                  [first_speech:]]
+        return TaskReport(success, reports, speech, context.robot.now() - started, reason)
+
+    def _run_step(self, skill: str, args: Mapping[str, Any],
+                  depth: int = 0) -> tuple[Outcome, list[str]]:
+        outcome = skill_named(skill).run(self.context, args)
+        recoveries: list[str] = []
+
+        def nested(name: str, nested_args: Mapping[str, Any]) -> Outcome:
+            # Steps a protocol runs may recover too, one level deep.
+            if depth >= 1:
+                return skill_named(name).run(self.context, nested_args)
+            return self._run_step(name, nested_args, depth + 1)[0]
+
+        while (self.recovery and not outcome and outcome.error in PROTOCOLS
+               and len(recoveries) < _MAX_RECOVERIES):
+            protocol = PROTOCOLS[outcome.error]
+            recoveries.append(outcome.error.value)
+            self.context.events.record("recovery", skill=skill, error=outcome.error.value)
+            recovered = protocol(self.context, skill, args, outcome, nested)
+            if isinstance(recovered, Outcome):
+                outcome = recovered
+                continue
+            if not recovered:
+                break
+            args = self._bind(args)
+            outcome = skill_named(skill).run(self.context, args)
+        return outcome, recoveries
+
+    def _bind(self, args: Mapping[str, Any]) -> dict[str, Any]:
+        """Replace a requested object or category by the object actually found for it."""
+        bound = dict(args)
+        wanted = bound.get("object")
+        if isinstance(wanted, str) and f"object:{wanted}" in self.context.bindings:
+            bound["object"] = self.context.bindings[f"object:{wanted}"]
+        return bound
+
+    def _remember(self, step: Step, outcome: Outcome) -> None:
+        if step.skill == "find_object" and outcome.data.get("object"):
+            found = outcome.data["object"]
+            self.context.bindings[f"object:{step.args['object']}"] = found
+            self.context.bindings[f"placement:{found}"] = outcome.data.get("placement")
+        if step.skill == "find_person" and outcome.data.get("person"):
+            self.context.bindings["person"] = outcome.data["person"]
+
+    def _tell_operator_failure(self, index: int, step: Step, reason: str) -> None:
+        context = self.context
+        if not context.monitoring:
+            return
+        # Stop safely: put nothing down, go back to the operator and explain.
+        skill_named("navigate").run(context, {"to": OPERATOR})
+        speak(context, f"I am sorry, I could not finish step {index + 1} ({step.skill}): "
+                       f"{reason}.")

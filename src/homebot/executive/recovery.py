@@ -1,0 +1,120 @@
+"""Recovery protocols (Golem-III §5): known failures and the standard ways to mend them.
+
+Each protocol takes the failed outcome and returns True when the ground is
+recovered and the step is worth running again, False when it cannot help, or an
+``Outcome`` that stands for the step itself (a wider search that found the object
+is the find step's result). Protocols talk to people and call
+skills; they never touch the world except through the skills and the Robot port.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from typing import Any
+
+from homebot.robot import HelpRequest
+from homebot.skills import ErrorCode, Outcome, SkillContext, speak
+from homebot.skills.perception import candidate_placements
+from homebot.skills.places import resolve_target
+
+__all__ = ["PROTOCOLS", "Protocol", "StepRunner"]
+
+# A protocol gets the context, the failed skill, its arguments and outcome, and a
+# runner that runs a skill step with recovery (so a search can open doors on its way).
+StepRunner = Callable[[str, Mapping[str, Any]], Outcome]
+Protocol = Callable[[SkillContext, str, Mapping[str, Any], Outcome, StepRunner], bool | Outcome]
+
+
+def _door_closed(context: SkillContext, skill: str, args: Mapping[str, Any],
+                 outcome: Outcome, run: StepRunner) -> bool:
+    """Open the door; if it will not open, ask someone nearby; else go round it."""
+    door = str(outcome.data.get("door", ""))
+    if not door:
+        return False
+    opened = run("open_door", {"door": door})
+    if opened:
+        return True
+    for person in context.robot.perceive_people():
+        if person.name is None:
+            continue
+        speak(context, f"{person.name}, could you please open the {door} for me?")
+        if context.robot.request(person.name, HelpRequest.OPEN_DOOR, door):
+            context.beliefs.door_open(door)
+            speak(context, "Thank you!")
+            return True
+    # The door stays in the believed-closed set, so the next attempt routes round it.
+    return _has_other_way(context, skill, args)
+
+
+def _path_blocked(context: SkillContext, skill: str, args: Mapping[str, Any],
+                  outcome: Outcome, run: StepRunner) -> bool:
+    """Ask the person in the way to step aside; if they do not, go round them."""
+    person, door = outcome.data.get("person"), str(outcome.data.get("door", ""))
+    if person:
+        speak(context, f"Excuse me, {person}, could you please let me through?")
+        if context.robot.request(str(person), HelpRequest.STEP_ASIDE, door):
+            speak(context, "Thank you!")
+            return True
+    context.beliefs.door_closed(door)
+    return _has_other_way(context, skill, args)
+
+
+def _has_other_way(context: SkillContext, skill: str, args: Mapping[str, Any]) -> bool:
+    target = args.get("to") or args.get("placement") or args.get("room")
+    if target is None:
+        return True
+    goal = resolve_target(context, str(target))
+    if goal is None:
+        return False
+    plan = context.navigator.plan(context.robot.pose().xy(), goal.xy(),
+                                  frozenset(context.beliefs.closed_doors))
+    return plan is not None
+
+
+def _object_not_found(context: SkillContext, skill: str, args: Mapping[str, Any],
+                      outcome: Outcome, run: StepRunner) -> bool | Outcome:
+    """Search the next most likely placements for the object, nearest first."""
+    wanted = str(args.get("object", ""))
+    if not wanted:
+        return False
+    searched = list(outcome.data.get("searched", ())) + (
+        [str(outcome.data["placement"])] if outcome.data.get("placement") else [])
+    if not candidate_placements(context, wanted, exclude=searched):
+        # Every place was searched once; a detection may have missed it, so sweep again.
+        context.beliefs.not_at.pop(wanted, None)
+        searched = []
+    speak(context, f"The {wanted} is not where I expected. I will look elsewhere.")
+    found = run("find_object", {"object": wanted, "exclude": searched})
+    if not found:
+        return False
+    context.bindings[f"object:{wanted}"] = found.data["object"]
+    context.bindings[f"placement:{found.data['object']}"] = found.data["placement"]
+    return found if skill == "find_object" else True
+
+
+def _person_not_found(context: SkillContext, skill: str, args: Mapping[str, Any],
+                      outcome: Outcome, run: StepRunner) -> bool | Outcome:
+    """Look for the person in the other rooms."""
+    if skill != "find_person":
+        return False
+    speak(context, "I cannot see them here. I will look in the other rooms.")
+    found = run("find_person", {"person": args.get("person") or {}})
+    if found:
+        context.bindings["person"] = found.data["person"]
+        return found
+    return False
+
+
+def _find_again(context: SkillContext, skill: str, args: Mapping[str, Any],
+                outcome: Outcome, run: StepRunner) -> bool | Outcome:
+    """Something was not where it should be: widen the search for it."""
+    if skill in {"find_object", "pick"}:
+        return _object_not_found(context, skill, args, outcome, run)
+    return _person_not_found(context, skill, args, outcome, run)
+
+
+PROTOCOLS: Mapping[ErrorCode, Protocol] = {
+    ErrorCode.DOOR_CLOSED: _door_closed,
+    ErrorCode.PATH_BLOCKED: _path_blocked,
+    ErrorCode.NOT_FOUND: _find_again,
+}

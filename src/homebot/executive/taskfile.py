@@ -1,0 +1,68 @@
+"""Task files: YAML lists of skill steps, checked against the world before anything runs.
+
+A task file is either a list of steps or a mapping with ``description`` and
+``steps``; each step is ``{skill: NAME, ARG: VALUE, ...}``::
+
+    description: bring the cola to the operator
+    steps:
+      - {skill: navigate, to: fridge}
+      - {skill: find_object, object: cola, placement: fridge}
+      - {skill: pick, object: cola}
+      - {skill: navigate, to: operator}
+      - {skill: give, person: operator}
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from homebot.errors import TaskError
+from homebot.skills import check_step
+from homebot.task import Step, Task
+from homebot.world import World
+from homebot.world.loading import LocatedDocument, load_yaml_document, parse_yaml_text
+
+__all__ = ["load_task", "task_from_text", "validate_task"]
+
+
+def load_task(path: str | Path, world: World) -> Task:
+    """Read and check a task file; every problem raises ``TaskError`` naming the line."""
+    return _task(load_yaml_document(path, TaskError), world)
+
+
+def task_from_text(text: str, world: World, source: str = "<task>") -> Task:
+    """Read and check a task from YAML text."""
+    return _task(parse_yaml_text(text, source, TaskError), world)
+
+
+def validate_task(task: Task, world: World, source: str = "<task>") -> None:
+    """Check every step of an already built task against the world."""
+    for index, step in enumerate(task.steps):
+        check_step(step, world, f"{source}: step {index + 1}")
+
+
+def _task(document: LocatedDocument, world: World) -> Task:
+    data: Any = document.data
+    description = ""
+    prefix: list[str | int] = []
+    if isinstance(data, dict):
+        unknown = set(data) - {"description", "steps"}
+        if unknown:
+            raise TaskError(f"{document.source}: line {document.line_of([sorted(unknown)[0]])}: "
+                            f"unknown field '{sorted(unknown)[0]}'; use 'description' and 'steps'")
+        description = str(data.get("description", ""))
+        data = data.get("steps")
+        prefix = ["steps"]
+    if not isinstance(data, list) or not data:
+        raise TaskError(f"{document.source}: a task is a non-empty list of steps "
+                        "({skill: NAME, ARG: VALUE}), or a mapping with 'steps'")
+    steps = []
+    for index, entry in enumerate(data):
+        where = f"{document.source}: line {document.line_of([*prefix, index])}: step {index + 1}"
+        if not isinstance(entry, dict) or "skill" not in entry:
+            raise TaskError(f"{where}: a step is a mapping with a 'skill' field")
+        step = Step.from_dict(entry)
+        check_step(step, world, where)
+        steps.append(step)
+    return Task(tuple(steps), description)

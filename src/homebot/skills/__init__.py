@@ -1,0 +1,18 @@
+"""Monitored skills: each executes, monitors its effect by sensing, and reports."""
+
+from homebot.skills.catalogue import SKILLS, check_step, skill_named
+from homebot.skills.places import OPERATOR
+from homebot.skills.skill import ErrorCode, Outcome, Skill, SkillContext, Status, speak
+
+__all__ = [
+    "OPERATOR",
+    "SKILLS",
+    "ErrorCode",
+    "Outcome",
+    "Skill",
+    "SkillContext",
+    "Status",
+    "check_step",
+    "skill_named",
+    "speak",
+]

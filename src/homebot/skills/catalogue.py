@@ -1,0 +1,92 @@
+"""The skill library by name, and checks that a step names a real skill with sane arguments."""
+
+from __future__ import annotations
+
+import difflib
+from collections.abc import Mapping
+from typing import Any
+
+from homebot.errors import TaskError
+from homebot.skills.interaction import AnswerQuestion, Ask, Greet, Say
+from homebot.skills.manipulation import Give, Pick, Place
+from homebot.skills.motion import Follow, Guide, Navigate, OpenDoor
+from homebot.skills.perception import Count, Describe, FindObject, FindPerson, Look
+from homebot.skills.places import OPERATOR
+from homebot.skills.skill import Skill
+from homebot.task import Step
+from homebot.world import World
+
+__all__ = ["SKILLS", "check_step", "skill_named"]
+
+SKILLS: Mapping[str, type[Skill]] = {
+    skill.name: skill
+    for skill in (Navigate, Look, FindObject, Pick, Place, Give, FindPerson, Follow, Guide,
+                  Greet, Say, Ask, Count, Describe, OpenDoor, AnswerQuestion)
+}
+
+# Which kind of name each argument holds, for checking steps against the world.
+_ARGUMENT_KINDS = {"to": "target", "placement": "placement", "room": "room",
+                   "object": "object", "door": "door"}
+_PERSON_FIELDS = {"name", "posture", "gesture", "clothes"}
+
+
+def skill_named(name: str) -> Skill:
+    """A fresh instance of the named skill; an unknown name raises ``TaskError``."""
+    if name not in SKILLS:
+        guess = difflib.get_close_matches(name, list(SKILLS), n=1)
+        hint = f"did you mean '{guess[0]}'?" if guess else f"skills: {', '.join(SKILLS)}"
+        raise TaskError(f"unknown skill '{name}'; {hint}")
+    return SKILLS[name]()
+
+
+def check_step(step: Step, world: World, where: str) -> None:
+    """Raise ``TaskError`` (prefixed by ``where``) if the step cannot make sense in ``world``."""
+    try:
+        skill = skill_named(step.skill)
+    except TaskError as error:
+        raise TaskError(f"{where}: {error}") from None
+    missing = [name for name in skill.required if name not in step.args]
+    if missing:
+        raise TaskError(f"{where}: {step.skill} needs argument '{missing[0]}'; add it "
+                        f"(arguments: {', '.join(skill.required + skill.optional)})")
+    allowed = set(skill.required) | set(skill.optional)
+    for name, value in step.args.items():
+        if name not in allowed:
+            guess = difflib.get_close_matches(name, sorted(allowed), n=1)
+            hint = f"did you mean '{guess[0]}'?" if guess else (
+                f"arguments: {', '.join(sorted(allowed)) or 'none'}")
+            raise TaskError(f"{where}: {step.skill} has no argument '{name}'; {hint}")
+        _check_value(step.skill, name, value, world, where)
+
+
+def _check_value(skill: str, name: str, value: Any, world: World, where: str) -> None:
+    if name == "person" and isinstance(value, Mapping):
+        unknown = set(value) - _PERSON_FIELDS
+        if unknown:
+            raise TaskError(f"{where}: a person is described by {', '.join(sorted(_PERSON_FIELDS))}"
+                            f", not '{sorted(unknown)[0]}'")
+        return
+    kind = _ARGUMENT_KINDS.get(name)
+    if name == "person":
+        kind = "person"
+    if kind is None:
+        return
+    text = str(value)
+    known = _names(world, kind, skill)
+    if text not in known and not text.startswith("$"):
+        guess = difflib.get_close_matches(text, sorted(known), n=1)
+        hint = f"did you mean '{guess[0]}'?" if guess else "check the world's names"
+        raise TaskError(f"{where}: unknown {kind} '{text}' for {skill}.{name}; {hint}")
+
+
+def _names(world: World, kind: str, skill: str) -> set[str]:
+    people = {*world.people, OPERATOR}
+    categories = {*world.categories, *(c.plural for c in world.categories.values())}
+    return {
+        "placement": set(world.placements),
+        "room": set(world.rooms),
+        "door": set(world.doors),
+        "person": people,
+        "object": {*world.objects, *categories, "object"},
+        "target": {*world.placements, *world.rooms, *people, *world.doors},
+    }[kind]

@@ -1,0 +1,152 @@
+"""Skills that talk: say, ask, greet, answer_question."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+from homebot.skills.places import person_name
+from homebot.skills.skill import ErrorCode, Outcome, Skill, SkillContext, speak
+
+__all__ = ["AnswerQuestion", "Ask", "Greet", "Say", "answer_about_home", "talk_about"]
+
+_DAYS = ("Monday", "Tuesday", "Wednesday", "Thursday", "Friday", "Saturday", "Sunday")
+
+
+def talk_about(context: SkillContext, topic: str) -> str:
+    """A sentence on a GPSR talk topic; time and day come from the simulated clock."""
+    seconds = context.robot.now()
+    day = int(seconds // 86400)
+    minutes = int(seconds // 60) % (24 * 60)
+    topic_key = topic.lower()
+    if "time" in topic_key:
+        return f"It is {9 + minutes // 60:02d}:{minutes % 60:02d}."
+    if "tomorrow" in topic_key:
+        return f"Tomorrow is {_DAYS[(day + 1) % 7]}."
+    if "day" in topic_key and "month" in topic_key:
+        return f"Today is the {day + 1}th of the month."
+    if "day" in topic_key:
+        return f"Today is {_DAYS[day % 7]}."
+    if "joke" in topic_key:
+        return "Why did the robot go on holiday? It needed to recharge."
+    if "yourself" in topic_key or "name" in topic_key:
+        return "I am homebot, a service robot for the home."
+    if "team" in topic_key:
+        return "My team is homebot."
+    return topic
+
+
+def answer_about_home(context: SkillContext, question: str) -> str:
+    """Answer a question about the home from what the robot believes."""
+    words = question.lower().rstrip("?").split()
+    text = " ".join(words)
+    world = context.world
+    if "how many rooms" in text:
+        return f"There are {len(world.rooms)} rooms."
+    if "how many people" in text:
+        return f"{len(world.people)} people live here."
+    if text.startswith("where is") or text.startswith("where are"):
+        thing = " ".join(w for w in words[2:] if w not in {"the", "a", "an"})
+        where = context.beliefs.object_at.get(thing)
+        if where:
+            return f"The {thing} is on the {where}."
+        return f"I do not know where the {thing} is."
+    if "time" in text or "day" in text:
+        return talk_about(context, text)
+    return "I am sorry, I do not know the answer."
+
+
+class Say(Skill):
+    """Say literal text, a talk topic (``info``), or ``$result`` (the last count or description)."""
+
+    name = "say"
+    optional = ("text", "info")
+
+    def execute(self, context: SkillContext, args: Mapping[str, Any]) -> Outcome:
+        if args.get("info"):
+            text = talk_about(context, str(args["info"]))
+        else:
+            text = str(args.get("text", ""))
+            if text == "$result":
+                text = str(context.bindings.get("result", "I have nothing to report."))
+        if not text:
+            return Outcome.failed(ErrorCode.UNKNOWN_TARGET, "I have nothing to say")
+        speak(context, text)
+        return Outcome.finished(text, text=text)
+
+    def monitor(self, context: SkillContext, args: Mapping[str, Any],
+                finished: Outcome) -> Outcome:
+        return Outcome.verified(finished.message, text=finished.data["text"])
+
+
+class Ask(Skill):
+    """Ask a person (or the person last found) a question. Binds ``answer``."""
+
+    name = "ask"
+    required = ("question",)
+    optional = ("person",)
+    retries = 1
+
+    def execute(self, context: SkillContext, args: Mapping[str, Any]) -> Outcome:
+        person = person_name(context, args.get("person"))
+        if person is None:
+            return Outcome.failed(ErrorCode.NO_PERSON, "I have nobody to ask")
+        question = str(args["question"])
+        context.events.record("speech", text=question)
+        answer = context.robot.ask(person, question)
+        return Outcome.finished(question, person=person, answer=answer)
+
+    def monitor(self, context: SkillContext, args: Mapping[str, Any],
+                finished: Outcome) -> Outcome:
+        answer = finished.data["answer"]
+        if not answer:
+            return Outcome.aborted(ErrorCode.NO_ANSWER, f"{finished.data['person']} did not answer")
+        context.bindings["answer"] = answer
+        context.events.record("heard", person=finished.data["person"], text=answer)
+        return Outcome.verified(f"{finished.data['person']} said: {answer}", answer=answer)
+
+
+class Greet(Skill):
+    """Greet the person last found (or the named person) by name."""
+
+    name = "greet"
+    optional = ("person",)
+
+    def execute(self, context: SkillContext, args: Mapping[str, Any]) -> Outcome:
+        person = person_name(context, args.get("person"))
+        if person is None:
+            return Outcome.failed(ErrorCode.NO_PERSON, "I have nobody to greet")
+        text = f"Hello {person}, nice to meet you."
+        speak(context, text)
+        return Outcome.finished(text, person=person)
+
+    def monitor(self, context: SkillContext, args: Mapping[str, Any],
+                finished: Outcome) -> Outcome:
+        person = finished.data["person"]
+        if any(seen.name == person for seen in context.robot.perceive_people()):
+            return Outcome.verified(f"greeted {person}")
+        return Outcome.aborted(ErrorCode.LOST_PERSON, f"{person} is not here to be greeted")
+
+
+class AnswerQuestion(Skill):
+    """Ask the person last found for their question and answer it from the robot's beliefs."""
+
+    name = "answer_question"
+    optional = ("person",)
+    retries = 1
+
+    def execute(self, context: SkillContext, args: Mapping[str, Any]) -> Outcome:
+        person = person_name(context, args.get("person"))
+        if person is None:
+            return Outcome.failed(ErrorCode.NO_PERSON, "I have nobody to answer")
+        question = context.robot.ask(person, "What is your question?")
+        return Outcome.finished(person=person, question=question)
+
+    def monitor(self, context: SkillContext, args: Mapping[str, Any],
+                finished: Outcome) -> Outcome:
+        question = finished.data["question"]
+        if not question:
+            return Outcome.aborted(ErrorCode.NO_ANSWER, f"{finished.data['person']} asked nothing")
+        answer = answer_about_home(context, question)
+        speak(context, answer)
+        return Outcome.verified(answer, question=question, answer=answer)

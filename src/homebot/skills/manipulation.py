@@ -1,0 +1,150 @@
+"""Skills that handle objects: pick, place, give."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from typing import Any
+
+from homebot.skills.motion import drive
+from homebot.skills.perception import go_and_look, matches_object
+from homebot.skills.places import person_name, resolve_target
+from homebot.skills.skill import ErrorCode, Outcome, Skill, SkillContext, Status, speak
+
+__all__ = ["Give", "Pick", "Place"]
+
+
+class Pick(Skill):
+    """Grasp an object from where the robot believes it is.
+
+    Preconditions: a free hand; the object's placement is believed. Effects: the
+    object is in a hand. Monitor: the hand camera sees the object in the hand
+    (an empty hand or a different object is ``aborted``, and retried).
+    """
+
+    name = "pick"
+    required = ("object",)
+    retries = 2
+    retry_on = frozenset({ErrorCode.NOT_FOUND})
+
+    def execute(self, context: SkillContext, args: Mapping[str, Any]) -> Outcome:
+        wanted = str(args["object"])
+        hand = context.beliefs.free_hand()
+        if hand is None:
+            return Outcome.failed(ErrorCode.HANDS_FULL, "both my hands are full")
+        placement = context.bindings.get(f"placement:{wanted}") or context.beliefs.object_at.get(
+            wanted)
+        if placement not in context.world.placements:
+            return Outcome.failed(ErrorCode.NOT_FOUND, f"I do not know where the {wanted} is")
+        outcome, detections = go_and_look(context, placement)
+        if outcome.status is not Status.FINISHED:
+            return outcome
+        targets = [d for d in detections if d.label == wanted] or [
+            d for d in detections if matches_object(context, wanted, d)]
+        if not targets:
+            return Outcome.failed(ErrorCode.NOT_FOUND, f"the {wanted} is not on the {placement}",
+                                  placement=placement)
+        context.robot.grasp(targets[0], hand)
+        return Outcome.finished(f"closed my {hand} hand on the {targets[0].label}", hand=hand,
+                                object=targets[0].label, placement=placement)
+
+    def monitor(self, context: SkillContext, args: Mapping[str, Any],
+                finished: Outcome) -> Outcome:
+        hand, expected = finished.data["hand"], finished.data["object"]
+        held = context.robot.held(hand)
+        if held is None:
+            return Outcome.aborted(ErrorCode.NOT_GRASPED, f"the {expected} slipped from my hand")
+        if held.label != expected and not matches_object(context, str(args["object"]), held):
+            context.robot.release(hand, finished.data["placement"])
+            context.beliefs.saw_object(held.label, finished.data["placement"])
+            return Outcome.aborted(ErrorCode.WRONG_OBJECT,
+                                   f"I picked the {held.label}, not the {expected}")
+        context.beliefs.took(held.label, hand)
+        return Outcome.verified(f"I have the {held.label}", object=held.label, hand=hand)
+
+    def assume(self, context: SkillContext, args: Mapping[str, Any], finished: Outcome) -> None:
+        context.beliefs.took(finished.data["object"], finished.data["hand"])
+
+
+class Place(Skill):
+    """Put what the robot holds (or the named object) on a placement.
+
+    Monitor: looking at the placement shows the object on it.
+    """
+
+    name = "place"
+    required = ("placement",)
+    optional = ("object",)
+    retries = 1
+
+    def execute(self, context: SkillContext, args: Mapping[str, Any]) -> Outcome:
+        placement = str(args["placement"])
+        if placement not in context.world.placements:
+            return Outcome.failed(ErrorCode.UNKNOWN_TARGET, f"I do not know the {placement}")
+        wanted = args.get("object")
+        hand = context.beliefs.hand_holding(str(wanted) if wanted else None) or (
+            context.beliefs.hand_holding())
+        if hand is None:
+            return Outcome.failed(ErrorCode.NOT_HOLDING, "I am not holding anything to place")
+        label = context.beliefs.holding[hand]
+        x, y, theta = context.world.placements[placement].approach
+        goal = resolve_target(context, placement)
+        if goal is not None and math.dist(context.robot.pose().xy(), (x, y)) > 0.3:
+            moved = drive(context, goal)
+            if moved.status is not Status.FINISHED:
+                return moved
+        context.robot.release(hand, placement)
+        context.beliefs.let_go(hand, placement)
+        return Outcome.finished(f"put the {label} on the {placement}", object=label)
+
+    def monitor(self, context: SkillContext, args: Mapping[str, Any],
+                finished: Outcome) -> Outcome:
+        name, placement = finished.data["object"], str(args["placement"])
+        outcome, detections = go_and_look(context, placement)
+        if outcome.status is Status.FINISHED and any(d.label == name for d in detections):
+            return Outcome.verified(f"the {name} is on the {placement}", object=name)
+        return Outcome.aborted(ErrorCode.NOT_PLACED, f"I do not see the {name} on the {placement}")
+
+
+class Give(Skill):
+    """Hand what the robot holds to a person (``operator``, a name, or the person last found).
+
+    Monitor: the hand is empty afterwards (the person took it).
+    """
+
+    name = "give"
+    optional = ("person", "object")
+    retries = 1
+
+    def execute(self, context: SkillContext, args: Mapping[str, Any]) -> Outcome:
+        person = person_name(context, args.get("person"))
+        if person is None:
+            return Outcome.failed(ErrorCode.NO_PERSON, "I do not know whom to give it to")
+        wanted = args.get("object")
+        hand = context.beliefs.hand_holding(str(wanted) if wanted else None) or (
+            context.beliefs.hand_holding())
+        if hand is None:
+            return Outcome.failed(ErrorCode.NOT_HOLDING, "I have nothing to give")
+        label = context.beliefs.holding[hand]
+        position = context.beliefs.person_at.get(person)
+        if position is not None and math.dist(context.robot.pose().xy(), position) > 1.5:
+            goal = resolve_target(context, person)
+            moved = drive(context, goal) if goal else None
+            if moved is not None and moved.status is not Status.FINISHED:
+                return moved
+        speak(context, f"{person}, here is the {label}.")
+        context.robot.hand_over(hand, person)
+        return Outcome.finished(f"offered it to {person}", hand=hand, person=person, object=label)
+
+    def assume(self, context: SkillContext, args: Mapping[str, Any], finished: Outcome) -> None:
+        context.beliefs.let_go(finished.data["hand"], f"person:{finished.data['person']}")
+
+    def monitor(self, context: SkillContext, args: Mapping[str, Any],
+                finished: Outcome) -> Outcome:
+        hand = finished.data["hand"]
+        if context.robot.held(hand) is None:
+            context.beliefs.let_go(hand, f"person:{finished.data['person']}")
+            return Outcome.verified(f"{finished.data['person']} has the {finished.data['object']}",
+                                    person=finished.data["person"])
+        return Outcome.aborted(ErrorCode.NOT_DELIVERED,
+                               f"{finished.data['person']} did not take the object")

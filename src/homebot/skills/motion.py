@@ -1,0 +1,154 @@
+"""Skills that move the robot: navigate, follow, guide, open_door."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from typing import Any
+
+from homebot.robot import Blocker, MoveReport, Pose
+from homebot.skills.places import near, person_name, resolve_target
+from homebot.skills.skill import ErrorCode, Outcome, Skill, SkillContext, Status, speak
+
+__all__ = ["Follow", "Guide", "Navigate", "OpenDoor", "drive"]
+
+
+def drive(context: SkillContext, goal: Pose, escort: str | None = None) -> Outcome:
+    """Drive to ``goal`` around doors believed shut; a blocked way is a failed outcome."""
+    report = context.robot.move_to(goal, frozenset(context.beliefs.closed_doors), escort)
+    return _motion_outcome(context, report)
+
+
+def _motion_outcome(context: SkillContext, report: MoveReport) -> Outcome:
+    if report.reached:
+        return Outcome.finished(f"moved {report.distance:.1f} m", distance=report.distance)
+    if report.blocker is Blocker.DOOR_CLOSED and report.door:
+        context.beliefs.door_closed(report.door)
+        return Outcome.failed(ErrorCode.DOOR_CLOSED, f"the {report.door} is closed",
+                              door=report.door)
+    if report.blocker is Blocker.PERSON and report.door:
+        return Outcome.failed(ErrorCode.PATH_BLOCKED,
+                              f"{report.person} is standing in the {report.door}",
+                              door=report.door, person=report.person)
+    return Outcome.failed(ErrorCode.NO_PATH, "there is no way there with the doors I know of")
+
+
+class Navigate(Skill):
+    """Drive to a placement, room, person, ``operator`` or door.
+
+    Preconditions: the target is known. Effects: the robot stands at the target's
+    pose. Monitor: localisation says the robot is within 0.3 m of the goal.
+    """
+
+    name = "navigate"
+    required = ("to",)
+    retries = 1
+
+    def execute(self, context: SkillContext, args: Mapping[str, Any]) -> Outcome:
+        goal = resolve_target(context, str(args["to"]))
+        if goal is None:
+            return Outcome.failed(ErrorCode.UNKNOWN_TARGET, f"I do not know where {args['to']} is")
+        outcome = drive(context, goal)
+        if outcome.status is not Status.FINISHED:
+            return outcome
+        return Outcome.finished(outcome.message, goal=goal)
+
+    def monitor(self, context: SkillContext, args: Mapping[str, Any],
+                finished: Outcome) -> Outcome:
+        goal = finished.data["goal"]
+        if near(context, goal):
+            return Outcome.verified(f"I am at {args['to']}")
+        return Outcome.aborted(ErrorCode.NOT_REACHED, f"I did not get to {args['to']}")
+
+
+class Follow(Skill):
+    """Follow the person last found (to a room, when told where they go).
+
+    Monitor: the person is seen within reach when they stop.
+    """
+
+    name = "follow"
+    optional = ("to", "person")
+
+    def execute(self, context: SkillContext, args: Mapping[str, Any]) -> Outcome:
+        person = person_name(context, args.get("person"))
+        if person is None:
+            return Outcome.failed(ErrorCode.NO_PERSON, "I have nobody to follow")
+        goal = resolve_target(context, str(args["to"])) if args.get("to") else None
+        report = context.robot.follow(person, goal)
+        if not report.reached:
+            return Outcome.failed(ErrorCode.LOST_PERSON, f"I could not follow {person}")
+        return Outcome.finished(f"followed {person}", person=person)
+
+    def monitor(self, context: SkillContext, args: Mapping[str, Any],
+                finished: Outcome) -> Outcome:
+        return _person_nearby(context, finished.data["person"], "followed")
+
+
+class Guide(Skill):
+    """Lead the person last found to a place.
+
+    Monitor: at the goal, the person is seen close behind the robot.
+    """
+
+    name = "guide"
+    required = ("to",)
+    optional = ("person",)
+    retries = 1
+    retry_on = frozenset({ErrorCode.LOST_PERSON})
+
+    def execute(self, context: SkillContext, args: Mapping[str, Any]) -> Outcome:
+        person = person_name(context, args.get("person"))
+        if person is None:
+            return Outcome.failed(ErrorCode.NO_PERSON, "I have nobody to guide")
+        goal = resolve_target(context, str(args["to"]))
+        if goal is None:
+            return Outcome.failed(ErrorCode.UNKNOWN_TARGET, f"I do not know where {args['to']} is")
+        speak(context, f"{person}, please follow me to the {args['to']}.")
+        outcome = drive(context, goal, escort=person)
+        if outcome.status is not Status.FINISHED:
+            return outcome
+        return Outcome.finished(outcome.message, person=person)
+
+    def monitor(self, context: SkillContext, args: Mapping[str, Any],
+                finished: Outcome) -> Outcome:
+        return _person_nearby(context, finished.data["person"], "guided")
+
+
+def _person_nearby(context: SkillContext, person: str, verb: str) -> Outcome:
+    here = context.robot.pose().xy()
+    for seen in context.robot.perceive_people():
+        if seen.name == person and math.dist(seen.position, here) <= 2.0:
+            context.beliefs.saw_person(person, seen.position)
+            return Outcome.verified(f"{verb} {person}", person=person)
+    return Outcome.aborted(ErrorCode.LOST_PERSON, f"I lost {person} on the way")
+
+
+class OpenDoor(Skill):
+    """Open a door the robot stands at (driving to it first if needed).
+
+    Monitor: the door is seen open.
+    """
+
+    name = "open_door"
+    required = ("door",)
+    retries = 1
+
+    def execute(self, context: SkillContext, args: Mapping[str, Any]) -> Outcome:
+        door = str(args["door"])
+        if door not in context.world.doors:
+            return Outcome.failed(ErrorCode.UNKNOWN_TARGET, f"I do not know the door {door}")
+        if context.robot.door_is_open(door) is None:
+            goal = resolve_target(context, door)
+            if goal is not None:
+                context.robot.move_to(goal, frozenset(context.beliefs.closed_doors))
+        context.robot.open_door(door)
+        return Outcome.finished(f"pushed the {door}")
+
+    def monitor(self, context: SkillContext, args: Mapping[str, Any],
+                finished: Outcome) -> Outcome:
+        door = str(args["door"])
+        if context.robot.door_is_open(door):
+            context.beliefs.door_open(door)
+            return Outcome.verified(f"the {door} is open")
+        return Outcome.aborted(ErrorCode.DOOR_LOCKED, f"the {door} did not open")

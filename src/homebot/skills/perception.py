@@ -1,0 +1,357 @@
+"""Skills that look: look, find_object, find_person, count, describe."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+from homebot.robot import Detection, PersonPercept, Pose
+from homebot.skills.motion import drive
+from homebot.skills.places import near, resolve_target
+from homebot.skills.skill import ErrorCode, Outcome, Skill, SkillContext, Status
+
+__all__ = [
+    "Count",
+    "Describe",
+    "FindObject",
+    "FindPerson",
+    "Look",
+    "candidate_placements",
+    "go_and_look",
+    "matches_object",
+    "matches_person",
+]
+
+
+def matches_object(context: SkillContext, wanted: str, detection: Detection) -> bool:
+    """Whether a detection is the wanted object, or belongs to the wanted category."""
+    return detection.label == wanted or detection.category == wanted or (
+        context.world.plural_of(detection.category) == wanted)
+
+
+def go_and_look(context: SkillContext, placement: str) -> tuple[Outcome, list[Detection]]:
+    """Drive to a placement unless already there, then look at it; beliefs follow."""
+    x, y, theta = context.world.placements[placement].approach
+    goal = Pose(x, y, theta)
+    if not near(context, goal):
+        moved = drive(context, goal)
+        if moved.status is not Status.FINISHED:
+            return moved, []
+    detections = context.robot.perceive_objects(placement)
+    seen = {d.label for d in detections}
+    for detection in detections:
+        context.beliefs.saw_object(detection.label, placement)
+    for name, where in list(context.beliefs.object_at.items()):
+        if where == placement and name not in seen:
+            context.beliefs.missed_object(name, placement)
+    return Outcome.finished(), detections
+
+
+def candidate_placements(context: SkillContext, wanted: str, room: str | None = None,
+                         exclude: Sequence[str] = ()) -> list[str]:
+    """Where ``wanted`` (an object or category) most likely is, most likely first.
+
+    Order: where the robot believes it is; placements meant to hold its category;
+    the rest; each group nearest first. Placements already known not to hold it
+    are left out, and ``room`` restricts the search to one room.
+    """
+    world, beliefs = context.world, context.beliefs
+    category = world.objects[wanted].category if wanted in world.objects else _category(
+        context, wanted)
+    names = [wanted] if wanted in world.objects else [
+        name for name, obj in world.objects.items() if obj.category == category]
+    believed = [beliefs.object_at.get(name) for name in names]
+    believed_places = [p for p in believed if p in world.placements]
+    holding = [p.name for p in world.placements_holding(category)] if category else []
+    here = context.robot.pose().xy()
+    rest = sorted(world.placements, key=lambda p: math.dist(world.placements[p].approach[:2],
+                                                             here))
+    ordered = list(dict.fromkeys([*believed_places, *holding, *rest]))
+    excluded = set(exclude)
+    if wanted in beliefs.not_at:
+        excluded |= beliefs.not_at[wanted]
+    return [p for p in ordered if p not in excluded and (
+        room is None or world.placements[p].room == room)]
+
+
+def _category(context: SkillContext, wanted: str) -> str | None:
+    for name, category in context.world.categories.items():
+        if wanted in (name, category.plural):
+            return name
+    return None
+
+
+class Look(Skill):
+    """Look at what is on a placement (driving there first). Data: the labels seen."""
+
+    name = "look"
+    required = ("placement",)
+
+    def execute(self, context: SkillContext, args: Mapping[str, Any]) -> Outcome:
+        placement = str(args["placement"])
+        if placement not in context.world.placements:
+            return Outcome.failed(ErrorCode.UNKNOWN_TARGET, f"I do not know the {placement}")
+        outcome, detections = go_and_look(context, placement)
+        if outcome.status is not Status.FINISHED:
+            return outcome
+        return Outcome.finished(objects=[d.label for d in detections])
+
+    def monitor(self, context: SkillContext, args: Mapping[str, Any],
+                finished: Outcome) -> Outcome:
+        labels = finished.data["objects"]
+        listed = ", ".join(labels) if labels else "nothing"
+        return Outcome.verified(f"on the {args['placement']} I see {listed}", objects=labels)
+
+
+class FindObject(Skill):
+    """Search candidate placements in order until the object (or one of the category) is seen.
+
+    Monitor: a second look at that placement sees it again (a confused detection
+    rarely repeats). Data: ``object`` (what was found) and ``placement``.
+    """
+
+    name = "find_object"
+    required = ("object",)
+    optional = ("placement", "room", "exclude")
+    retries = 1
+    retry_on = frozenset({ErrorCode.NOT_FOUND})  # a missed detection rarely repeats
+
+    def execute(self, context: SkillContext, args: Mapping[str, Any]) -> Outcome:
+        wanted = str(args["object"])
+        if wanted not in context.world.objects and _category(context, wanted) is None:
+            return Outcome.failed(ErrorCode.UNKNOWN_TARGET, f"I do not know what {wanted} is")
+        if args.get("placement"):
+            if args["placement"] not in context.world.placements:
+                return Outcome.failed(ErrorCode.UNKNOWN_TARGET,
+                                      f"I do not know the {args['placement']}")
+            candidates = [str(args["placement"])]
+        else:
+            candidates = candidate_placements(context, wanted, args.get("room"),
+                                              args.get("exclude", ()))
+        for placement in candidates:
+            outcome, detections = go_and_look(context, placement)
+            if outcome.status is not Status.FINISHED:
+                return outcome
+            found = [d for d in detections if matches_object(context, wanted, d)]
+            if found:
+                return Outcome.finished(f"I see the {found[0].label} on the {placement}",
+                                        object=found[0].label, placement=placement)
+            context.beliefs.not_at.setdefault(wanted, set()).add(placement)
+        where = candidates[0] if len(candidates) == 1 else f"{len(candidates)} places"
+        return Outcome.failed(ErrorCode.NOT_FOUND, f"I did not find the {wanted} ({where})",
+                              searched=candidates)
+
+    def monitor(self, context: SkillContext, args: Mapping[str, Any],
+                finished: Outcome) -> Outcome:
+        name, placement = finished.data["object"], finished.data["placement"]
+        if any(d.label == name for d in context.robot.perceive_objects(placement)):
+            return Outcome.verified(finished.message, object=name, placement=placement)
+        context.beliefs.missed_object(name, placement)
+        return Outcome.aborted(ErrorCode.NOT_FOUND, f"the {name} is not on the {placement}")
+
+
+def matches_person(percept: PersonPercept, description: Mapping[str, Any]) -> bool:
+    """Whether a seen person fits every field of a description (name, posture...)."""
+    for key, value in description.items():
+        wanted = str(value).lower().replace(" ", "_") if key != "clothes" else str(value).lower()
+        if key == "name" and (percept.name or "").lower() != str(value).lower():
+            return False
+        if key == "posture" and percept.posture != wanted:
+            return False
+        if key == "gesture" and not percept.gesture.startswith(wanted):
+            return False
+        if key == "clothes" and not any(wanted in item.lower() for item in percept.clothes):
+            return False
+    return True
+
+
+class FindPerson(Skill):
+    """Find a person fitting a description, in a room or at a placement, and face them.
+
+    Monitor: the person is seen again within reach. Binds ``person``.
+    """
+
+    name = "find_person"
+    optional = ("person", "room", "placement")
+    retries = 1
+
+    def execute(self, context: SkillContext, args: Mapping[str, Any]) -> Outcome:
+        description = dict(args.get("person") or {})
+        where = args.get("room") or args.get("placement")
+        rooms = [str(args["room"])] if args.get("room") else (
+            [context.world.placements[str(args["placement"])].room] if args.get("placement")
+            else self._likely_rooms(context, description))
+        for room in rooms:
+            if room not in context.world.rooms:
+                return Outcome.failed(ErrorCode.UNKNOWN_TARGET, f"I do not know the {where}")
+            if context.world.room_at(*context.robot.pose().xy()) != room:
+                goal = resolve_target(context, str(where) if where and len(rooms) == 1 else room)
+                moved = drive(context, goal) if goal else None
+                if moved is not None and moved.status is not Status.FINISHED:
+                    return moved
+            for seen in context.robot.perceive_people():
+                if seen.name and matches_person(seen, description):
+                    context.beliefs.saw_person(seen.name, seen.position)
+                    moved = drive(context, resolve_target(context, seen.name) or
+                                  context.robot.pose())
+                    if moved.status is not Status.FINISHED:
+                        return moved
+                    return Outcome.finished(f"I found {seen.name}", person=seen.name)
+        return Outcome.failed(ErrorCode.NOT_FOUND,
+                              f"I did not find {_describe(description)} in {', '.join(rooms)}")
+
+    @staticmethod
+    def _likely_rooms(context: SkillContext, description: Mapping[str, Any]) -> list[str]:
+        name = description.get("name")
+        known = context.beliefs.person_at.get(str(name)) if name else None
+        first = [context.world.room_at(*known)] if known else []
+        return list(dict.fromkeys([*[r for r in first if r], *context.world.rooms]))
+
+    def monitor(self, context: SkillContext, args: Mapping[str, Any],
+                finished: Outcome) -> Outcome:
+        person = finished.data["person"]
+        outcome = _seen_nearby(context, person)
+        if outcome:
+            context.bindings["person"] = person
+        return outcome
+
+
+def _seen_nearby(context: SkillContext, person: str) -> Outcome:
+    here = context.robot.pose().xy()
+    for seen in context.robot.perceive_people():
+        if seen.name == person and math.dist(seen.position, here) <= 2.0:
+            return Outcome.verified(f"I am with {person}", person=person)
+    return Outcome.aborted(ErrorCode.NOT_FOUND, f"{person} is no longer here")
+
+
+def _describe(description: Mapping[str, Any]) -> str:
+    if "name" in description:
+        return str(description["name"])
+    if not description:
+        return "anyone"
+    return "a person " + " ".join(f"{key} {value}" for key, value in description.items())
+
+
+class Count(Skill):
+    """Count objects of a category on a placement, or people fitting a description in a room.
+
+    Monitor: a second count agrees with the first. Binds ``result`` (a sentence).
+    """
+
+    name = "count"
+    optional = ("object", "placement", "person", "room")
+    retries = 1
+
+    def execute(self, context: SkillContext, args: Mapping[str, Any]) -> Outcome:
+        counted = self._count(context, args)
+        if isinstance(counted, Outcome):
+            return counted
+        return Outcome.finished(count=counted)
+
+    def _count(self, context: SkillContext, args: Mapping[str, Any]) -> int | Outcome:
+        if args.get("placement"):
+            placement = str(args["placement"])
+            if placement not in context.world.placements:
+                return Outcome.failed(ErrorCode.UNKNOWN_TARGET, f"I do not know the {placement}")
+            outcome, detections = go_and_look(context, placement)
+            if outcome.status is not Status.FINISHED:
+                return outcome
+            wanted = str(args.get("object", ""))
+            return sum(1 for d in detections if not wanted or matches_object(context, wanted, d))
+        room = str(args.get("room", ""))
+        if room not in context.world.rooms:
+            return Outcome.failed(ErrorCode.UNKNOWN_TARGET, f"I do not know the room {room}")
+        if context.world.room_at(*context.robot.pose().xy()) != room:
+            goal = resolve_target(context, room)
+            moved = drive(context, goal) if goal else None
+            if moved is not None and moved.status is not Status.FINISHED:
+                return moved
+        description = dict(args.get("person") or {})
+        return sum(1 for seen in context.robot.perceive_people()
+                   if matches_person(seen, description))
+
+    def monitor(self, context: SkillContext, args: Mapping[str, Any],
+                finished: Outcome) -> Outcome:
+        again = self._count(context, args)
+        if again != finished.data["count"]:
+            return Outcome.aborted(ErrorCode.NOT_FOUND, "my two counts disagree")
+        text = _count_sentence(context, args, int(again))
+        context.bindings["result"] = text
+        return Outcome.verified(text, count=again, result=text)
+
+
+def _count_sentence(context: SkillContext, args: Mapping[str, Any], count: int) -> str:
+    if args.get("placement"):
+        thing = str(args.get("object") or "object")
+        if thing in context.world.categories:
+            thing = context.world.plural_of(thing) if count != 1 else thing
+        elif count != 1:
+            thing = f"{thing}s" if not thing.endswith("s") else thing
+        return f"There {'is' if count == 1 else 'are'} {count} {thing} on the {args['placement']}."
+    people = "person" if count == 1 else "people"
+    who = _describe(dict(args.get("person") or {}))
+    suffix = "" if not args.get("person") else f" ({who})"
+    verb = "is" if count == 1 else "are"
+    return f"There {verb} {count} {people}{suffix} in the {args['room']}."
+
+
+class Describe(Skill):
+    """Tell something about the person last found, or the object with a property on a placement.
+
+    Data and binding ``result``: the sentence to say.
+    """
+
+    name = "describe"
+    optional = ("info", "property", "object", "placement", "person")
+
+    def execute(self, context: SkillContext, args: Mapping[str, Any]) -> Outcome:
+        if args.get("property"):
+            return self._object_property(context, args)
+        person = context.bindings.get("person")
+        if person is None:
+            return Outcome.failed(ErrorCode.NO_PERSON, "I have nobody to describe")
+        for seen in context.robot.perceive_people():
+            if seen.name == person:
+                info = str(args.get("info", "name"))
+                text = _person_fact(seen, info)
+                return Outcome.finished(text, result=text)
+        return Outcome.failed(ErrorCode.NOT_FOUND, f"I cannot see {person} any more")
+
+    def _object_property(self, context: SkillContext, args: Mapping[str, Any]) -> Outcome:
+        placement = str(args.get("placement", ""))
+        if placement not in context.world.placements:
+            return Outcome.failed(ErrorCode.UNKNOWN_TARGET, f"I do not know the {placement}")
+        outcome, detections = go_and_look(context, placement)
+        if outcome.status is not Status.FINISHED:
+            return outcome
+        wanted = str(args.get("object") or "object")
+        known = [d for d in detections if d.label in context.world.objects and (
+            wanted == "object" or matches_object(context, wanted, d))]
+        if not known:
+            return Outcome.failed(ErrorCode.NOT_FOUND, f"I see no {wanted} on the {placement}")
+        prop = str(args["property"])
+        measure = {"biggest": "size", "largest": "size", "smallest": "size",
+                   "heaviest": "weight", "lightest": "weight", "thinnest": "size"}
+        field = measure.get(prop, "size")
+        pick_max = prop in {"biggest", "largest", "heaviest"}
+        choose = max if pick_max else min
+        best = choose(known, key=lambda d: getattr(context.world.objects[d.label], field))
+        text = f"The {prop} {wanted} on the {placement} is the {best.label}."
+        return Outcome.finished(text, result=text)
+
+    def monitor(self, context: SkillContext, args: Mapping[str, Any],
+                finished: Outcome) -> Outcome:
+        context.bindings["result"] = finished.data["result"]
+        return Outcome.verified(finished.message, result=finished.data["result"])
+
+
+def _person_fact(seen: PersonPercept, info: str) -> str:
+    name = seen.name or "The person"
+    if info in {"pose", "posture"}:
+        return f"{name} is {seen.posture}."
+    if info == "gesture":
+        return f"{name} is {seen.gesture.replace('_', ' ')}."
+    if info == "clothes":
+        return f"{name} is wearing {' and '.join(seen.clothes) or 'nothing I can recognise'}."
+    return f"This is {name}."

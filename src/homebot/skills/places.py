@@ -1,0 +1,74 @@
+"""Where things are for the robot: poses of placements, rooms, people and doors."""
+
+from __future__ import annotations
+
+import math
+
+from homebot.robot import Pose
+from homebot.skills.skill import SkillContext
+
+__all__ = ["OPERATOR", "near", "person_name", "pose_near_point", "resolve_target"]
+
+OPERATOR = "operator"  #: how a task names the person who gave the command
+
+# How far from a person the robot stops to talk or hand over, in metres.
+_PERSON_DISTANCE = 0.9
+
+
+def person_name(context: SkillContext, name: str | None) -> str | None:
+    """A person's name: ``operator`` becomes the world's operator, None the person last found."""
+    if name is None:
+        found = context.bindings.get("person")
+        return str(found) if found else None
+    if name == OPERATOR:
+        operator = context.world.model.operator
+        return operator
+    return name if name in context.beliefs.person_at else None
+
+
+def pose_near_point(context: SkillContext, point: tuple[float, float],
+                    distance: float = _PERSON_DISTANCE) -> Pose:
+    """A free pose ``distance`` from ``point``, facing it, on the side nearest the robot."""
+    grid = context.navigator.grid
+    here = context.robot.pose()
+    mask = grid.blocked.ravel()
+    columns = grid.shape[1]
+    candidates = []
+    for step in range(12):
+        angle = step * math.pi / 6
+        x, y = point[0] + distance * math.cos(angle), point[1] + distance * math.sin(angle)
+        row, column = grid.cell_of(x, y)
+        if context.world.room_at(x, y) is None or mask[row * columns + column]:
+            continue
+        candidates.append((math.dist((x, y), here.xy()), x, y))
+    if not candidates:
+        return Pose(point[0], point[1], 0.0)
+    _, x, y = min(candidates)
+    return Pose(x, y, math.atan2(point[1] - y, point[0] - x))
+
+
+def resolve_target(context: SkillContext, target: str) -> Pose | None:
+    """The pose to drive to for a placement, room, person, ``operator`` or door name."""
+    world = context.world
+    if target in world.placements:
+        x, y, theta = world.placements[target].approach
+        return Pose(x, y, theta)
+    if target in world.rooms:
+        centre = world.room_polygons[target].centroid
+        return Pose(centre.x, centre.y, 0.0)
+    name = person_name(context, target)
+    if name is not None and name in context.beliefs.person_at:
+        return pose_near_point(context, context.beliefs.person_at[name])
+    if target in world.doors:
+        door = world.doors[target]
+        room = world.room_polygons[door.rooms[0]].centroid
+        dx, dy = room.x - door.position[0], room.y - door.position[1]
+        norm = math.hypot(dx, dy) or 1.0
+        return Pose(door.position[0] + 0.6 * dx / norm, door.position[1] + 0.6 * dy / norm,
+                    math.atan2(-dy, -dx))
+    return None
+
+
+def near(context: SkillContext, pose: Pose, tolerance: float = 0.3) -> bool:
+    """Whether the robot (as it localises itself) is within ``tolerance`` of ``pose``."""
+    return math.dist(context.robot.pose().xy(), pose.xy()) <= tolerance
