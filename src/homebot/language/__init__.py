@@ -1,0 +1,7 @@
+"""Understanding commands: GPSR sentences to skill steps, questions or refusals."""
+
+from homebot.language.parser import parse_command
+from homebot.language.result import ParseResult, ParseStatus
+from homebot.language.vocabulary import Entity, Vocabulary
+
+__all__ = ["Entity", "ParseResult", "ParseStatus", "Vocabulary", "parse_command"]

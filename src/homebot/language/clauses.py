@@ -1,0 +1,171 @@
+"""Clauses: a tagged command cut into one action each, with its arguments as items."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+from typing import Any
+
+from homebot.language import lexicon
+from homebot.language.vocabulary import Token
+
+__all__ = ["Clause", "Item", "build_clauses"]
+
+_ATTRIBUTE_KINDS = frozenset({"posture", "gesture", "clothes"})
+_CONTENT_KINDS = frozenset({"entity", "person", "me", "pronoun", "generic", "topic", "info",
+                            "property", "count", "quote"})
+_QUESTION_KINDS = {"count": "count", "property": "describe", "topic": "tell_me"}
+
+
+@dataclass(slots=True)
+class Item:
+    """One argument of a clause: what it is, its value and the preposition before it.
+
+    ``kind`` is room, placement, object, category, door, person, me, pronoun,
+    generic, topic, info, property, count, quote, ambiguous or unknown. ``owner``
+    is the index of the item this one locates ("Maria *in the kitchen*").
+    """
+
+    kind: str
+    value: Any
+    text: str
+    prep: str | None = None
+    definite: bool = False
+    owner: int | None = None
+
+
+@dataclass(slots=True)
+class Clause:
+    """One action with its items, in the order they were said."""
+
+    action: str | None
+    verb: str
+    items: list[Item] = field(default_factory=list)
+    words: list[str] = field(default_factory=list)
+
+    def first(self, kinds: Iterable[str], preps: Iterable[str | None] | None = None,
+              start: int = 0) -> Item | None:
+        """The first item of one of ``kinds`` (and, if given, one of ``preps``)."""
+        kinds, allowed = set(kinds), None if preps is None else set(preps)
+        for item in self.items[start:]:
+            if item.kind in kinds and (allowed is None or item.prep in allowed):
+                return item
+        return None
+
+    def located(self, item: Item) -> Item | None:
+        """The place that locates ``item`` ("the apple *on the table*"), if any."""
+        index = self.items.index(item)
+        for other in self.items:
+            if other.owner == index:
+                return other
+        return None
+
+    def has(self, kind: str) -> bool:
+        return any(item.kind == kind for item in self.items)
+
+
+def build_clauses(tokens: list[Token]) -> list[Clause]:
+    """Cut at separators and verbs; verbless pieces join their neighbour."""
+    pieces: list[list[Token]] = [[]]
+    for token in tokens:
+        if token.kind == "sep":
+            pieces.append([])
+        elif token.kind == "action" and any(t.kind != "word" for t in pieces[-1]) and (
+                _has_action_or_question(pieces[-1])):
+            pieces.append([token])
+        else:
+            pieces[-1].append(token)
+    pieces = [piece for piece in pieces if piece]
+    merged: list[list[Token]] = []
+    pending: list[Token] = []
+    for piece in pieces:
+        if _has_action_or_question(piece):
+            merged.append(pending + piece)
+            pending = []
+        elif merged:
+            merged[-1].extend(piece)
+        else:
+            pending.extend(piece)
+    if pending:
+        merged.append(pending)
+    clauses = [_clause(piece) for piece in merged]
+    return [clause for index, clause in enumerate(clauses)
+            if not (clause.action == "go" and not clause.items and index + 1 < len(clauses))]
+
+
+def _has_action_or_question(piece: list[Token]) -> bool:
+    return any(token.kind == "action" or token.kind in _QUESTION_KINDS for token in piece)
+
+
+def _clause(piece: list[Token]) -> Clause:
+    action_token = next((token for token in piece if token.kind == "action"), None)
+    if action_token is None:
+        question = next((t for t in piece if t.kind in _QUESTION_KINDS), None)
+        action = _QUESTION_KINDS[question.kind] if question else None
+        clause = Clause(action=action, verb="")
+    else:
+        clause = Clause(action=action_token.value, verb=action_token.text)
+    prep: str | None = None
+    definite = False
+    unknown: list[str] = []
+    seen_action = action_token is None
+    for token in piece:
+        if token is action_token:
+            seen_action = True
+            continue
+        if not seen_action and token.kind == "action":
+            continue
+        clause.words.append(token.text)
+        if token.kind == "word":
+            if token.value in lexicon.ARTICLES:
+                definite = token.value in {"the", "this", "that"}
+            elif token.value not in lexicon.FUNCTION_WORDS and token.value.isalpha():
+                unknown.append(token.value)
+            continue
+        if unknown and token.kind not in _CONTENT_KINDS:
+            clause.items.append(Item("unknown", " ".join(unknown), " ".join(unknown), prep,
+                                     definite))
+            prep, definite = None, False
+        unknown = []
+        if token.kind == "prep":
+            prep = token.value
+        elif token.kind in _ATTRIBUTE_KINDS:
+            _attach_attribute(clause, token)
+        elif token.kind in _CONTENT_KINDS:
+            clause.items.append(_item(token, prep, definite))
+            prep, definite = None, False
+    if unknown:
+        clause.items.append(Item("unknown", " ".join(unknown), " ".join(unknown), prep, definite))
+    _link_locations(clause)
+    return clause
+
+
+def _item(token: Token, prep: str | None, definite: bool) -> Item:
+    if token.kind == "entity":
+        candidates = token.value
+        if len(candidates) == 1:
+            return Item(candidates[0].kind, candidates[0].name, token.text, prep, definite)
+        return Item("ambiguous", tuple(candidates), token.text, prep, definite)
+    return Item(token.kind, token.value, token.text, prep, definite)
+
+
+def _attach_attribute(clause: Clause, token: Token) -> None:
+    """Give a free-standing posture, gesture or clothes to the last described person."""
+    for item in reversed(clause.items):
+        if item.kind == "person" and "name" not in item.value:
+            item.value.setdefault(token.kind, token.value)
+            return
+
+
+def _link_locations(clause: Clause) -> None:
+    """Mark each room or placement that follows a thing or person as locating it."""
+    for index, item in enumerate(clause.items):
+        if index == 0 or item.kind not in {"room", "placement", "ambiguous"}:
+            continue
+        if item.prep not in {"in", "at", "on", "from"}:
+            continue
+        previous = clause.items[index - 1]
+        if previous.kind in {"person", "object", "category", "generic", "pronoun", "me"}:
+            item.owner = index - 1
+        elif previous.kind in {"room", "placement", "ambiguous"} and previous.owner is not None:
+            item.owner = previous.owner  # "the table in the kitchen" narrows the same thing

@@ -1,0 +1,243 @@
+"""Clauses about things: take, bring, place, find an object, look at, open."""
+
+from __future__ import annotations
+
+from homebot.language.clauses import Clause, Item
+from homebot.language.context import PLACES, Clarification, Context, Refusal, describe_item, where
+
+__all__ = ["deliver", "direct_object", "fetch", "handle_bring", "handle_find_object",
+           "handle_look", "handle_open", "handle_place", "handle_take", "handle_want"]
+
+THINGS = frozenset({"object", "category", "generic", "pronoun", "person", "me", "room",
+                    "placement", "door", "unknown", "ambiguous", "topic", "quote"})
+_PLACE_LIKE = PLACES | {"ambiguous", "unknown"}
+_SOURCE_PREPS = frozenset({"from", "on", "in", "at"})
+_DEFAULT_RECIPIENT_VERBS = frozenset({"bring", "give", "hand", "pass", "serve", "hand over"})
+
+
+def direct_object(clause: Clause, *, skip_me: bool = True) -> Item | None:
+    """What the verb acts on: the first item said without a preposition.
+
+    "bring me a cup": with ``skip_me`` the "me" is the recipient and "a cup" the
+    object. Falls back to the first thing after "of" ("one of the apples").
+    """
+    bare = [item for item in clause.items if item.prep is None and item.kind in THINGS]
+    if skip_me and len(bare) > 1 and bare[0].kind == "me":
+        bare = bare[1:]
+    if bare:
+        return bare[0]
+    return clause.first({"object", "category", "generic", "pronoun"}, {"of"})
+
+
+def source_of(clause: Clause, target: Item | None, exclude: Item | None = None) -> Item | None:
+    """Where an object is to be taken from: its locator, else a place after "from"."""
+    if target is not None and target in clause.items:
+        located = clause.located(target)
+        if located is not None and located.kind in _PLACE_LIKE:
+            return located
+    for item in clause.items:
+        if item is exclude or item.kind not in _PLACE_LIKE or item.prep != "from":
+            continue
+        return item
+    return None
+
+
+def fetch(clause: Clause, ctx: Context, target: Item, source: Item | None) -> str:
+    """Steps to have ``target`` in hand: navigate, find_object, pick. Returns its name."""
+    refers_back = target.kind == "pronoun" or (
+        ctx.obj is not None and target.kind in {"object", "category", "generic"}
+        and ctx.object_of(target) == ctx.obj and ctx.obj_state != "named"
+        and target.definite)
+    if refers_back and source is None:
+        name = ctx.object_of(target)
+        if ctx.obj_state == "found":
+            ctx.emit("pick", object=name)
+        elif ctx.obj_state == "named":
+            ctx.found_object(name, ctx.here())
+            ctx.emit("pick", object=name)
+        ctx.obj_state = "held"
+        return name
+    name = ctx.object_of(target)
+    if target.kind == "category" and target.definite and source is None:
+        members = ctx.vocabulary.objects_of(name)
+        if len(members) > 1:
+            listed = ", ".join(members[:-1]) + f" or {members[-1]}"
+            raise Clarification(f"Which {name} do you mean: {listed}?")
+    if source is not None:
+        place = ctx.place_of(source, clause, "take things from")
+        ctx.go(place)
+        ctx.found_object(name, where(place))
+    else:
+        ctx.found_object(name, ctx.here())
+    ctx.emit("pick", object=name)
+    ctx.obj_state = "held"
+    return name
+
+
+def deliver(clause: Clause, ctx: Context, recipient: Item, name: str) -> None:
+    """Steps to hand ``name`` to a person or put it on a placement."""
+    if recipient.kind == "me" or (recipient.kind == "person"
+                                  and recipient.value.get("name") == "operator"):
+        ctx.go_to_operator()
+        ctx.emit("give", person="operator")
+        return
+    if recipient.kind == "person" or (recipient.kind == "pronoun" and ctx.person is not None):
+        description = ctx.person_of(recipient)
+        located = clause.located(recipient) if recipient in clause.items else None
+        if located is not None:
+            place = ctx.place_of(located, clause, "look for people")
+            ctx.go(place)
+            ctx.found_person(description, where(place))
+        elif recipient.kind == "person" and description != ctx.person:
+            ctx.found_person(description, {})
+        if "name" in description:
+            ctx.emit("give", person=description["name"])
+        else:
+            ctx.emit("give")
+        return
+    if recipient.kind in {"room", "placement", "ambiguous"}:
+        place = ctx.place_of(recipient, clause, "put things")
+        if place.kind == "room":
+            options = ctx.vocabulary.placements_in(str(place.value))
+            raise Clarification(f"Where in the {place.value} should I put the {name}"
+                                + (f": {', '.join(options)}?" if options else "?"))
+        ctx.go(place)
+        ctx.emit("place", placement=place.value)
+        return
+    if recipient.kind == "unknown":
+        raise Refusal(f"I do not know anyone or any place called '{recipient.value}' here, "
+                      f"so I cannot deliver the {name} there.")
+    raise Refusal(f"I can hand things to people or put them on furniture, but not to "
+                  f"{describe_item(recipient)}.")
+
+
+def handle_take(clause: Clause, ctx: Context) -> None:
+    """take / get / grasp / fetch / pick up: guide when the object is a person."""
+    target = direct_object(clause, skip_me=False)
+    destination = clause.first({"me", "person", "room", "placement", "ambiguous", "unknown",
+                                "pronoun"}, {"to"})
+    recipient_me = target is not None and target.kind == "me"
+    if recipient_me:
+        target = direct_object(clause)
+    if target is None or target.kind == "me":
+        raise Clarification("What should I take?")
+    _refuse_non_object(target, "pick up")
+    name = fetch(clause, ctx, target, source_of(clause, target, destination))
+    if destination is not None:
+        deliver(clause, ctx, destination, name)
+    elif recipient_me:
+        deliver(clause, ctx, Item("me", "operator", "me"), name)
+
+
+def handle_bring(clause: Clause, ctx: Context) -> None:
+    """bring / give / deliver: fetch unless held, then hand over or put down."""
+    things = [item for item in clause.items
+              if item.prep in {None, "of"} and item.kind in THINGS - {"me"}]
+    objects = [item for item in things if item.kind != "person"]
+    people = [item for item in things if item.kind == "person"]
+    recipient = clause.first({"me", "person", "room", "placement", "ambiguous", "unknown",
+                              "pronoun"}, {"to", "for"})
+    target = objects[0] if objects else None
+    if target is None and ctx.obj is not None and ctx.obj_state == "held":
+        target = Item("pronoun", "it", "it")
+    if target is None:
+        raise Clarification("What should I bring?")
+    _refuse_non_object(target, "bring")
+    if recipient is None:
+        me = clause.first({"me"})
+        recipient = me if me is not None else (people[0] if people else None)
+    name = ctx.object_of(target) if target.kind == "pronoun" else None
+    if not (name is not None and ctx.obj_state == "held" and name == ctx.obj):
+        name = fetch(clause, ctx, target, source_of(clause, target, recipient))
+    if recipient is None:
+        if clause.verb not in _DEFAULT_RECIPIENT_VERBS:
+            raise Clarification(f"Who should I {clause.verb} the {name} to?")
+        recipient = Item("me", "operator", "me")
+    deliver(clause, ctx, recipient, name)
+
+
+def handle_want(clause: Clause, ctx: Context) -> None:
+    """"I want a cola": bring it to the person who asked."""
+    target = direct_object(clause)
+    if target is None:
+        raise Clarification("What would you like me to bring you?")
+    _refuse_non_object(target, "bring")
+    name = fetch(clause, ctx, target, source_of(clause, target))
+    deliver(clause, ctx, Item("me", "operator", "me"), name)
+
+
+def handle_place(clause: Clause, ctx: Context) -> None:
+    """put / place / leave: fetch unless held, then navigate and place."""
+    target = direct_object(clause)
+    destination = clause.first(_PLACE_LIKE | {"me", "person"}, {"on", "in", "to", "at"})
+    if destination is not None and destination.kind == "unknown":
+        raise Refusal(f"There is no placement called '{destination.value}' in this home; "
+                      f"I can put things on: {', '.join(ctx.vocabulary.placements)}.")
+    if target is not None and target.kind in _PLACE_LIKE and target.prep is None:
+        target = None
+    if target is None:
+        if ctx.obj is None:
+            raise Clarification("What should I put there?")
+        target = Item("pronoun", "it", "it")
+    _refuse_non_object(target, "put down")
+    source = clause.first(_PLACE_LIKE, {"from"})
+    if destination is None or destination is source:
+        obj = ctx.object_of(target)
+        raise Clarification(f"Where should I put the {'object' if obj == 'it' else obj}?")
+    name = ctx.object_of(target)
+    if not (ctx.obj_state == "held" and name == ctx.obj):
+        name = fetch(clause, ctx, target, source)
+    deliver(clause, ctx, destination, name)
+
+
+def handle_find_object(clause: Clause, ctx: Context, target: Item) -> None:
+    """find / locate / look for an object or category, where said or where the robot is."""
+    _refuse_non_object(target, "look for")
+    name = ctx.object_of(target)
+    located = clause.located(target)
+    if located is None:
+        located = next((item for item in clause.items if item.kind in _PLACE_LIKE
+                        and item.prep in _SOURCE_PREPS and item.owner is None), None)
+    if located is not None:
+        place = ctx.place_of(located, clause, "look for things")
+        ctx.go(place)
+        ctx.found_object(name, where(place))
+    else:
+        ctx.found_object(name, ctx.here())
+
+
+def handle_look(clause: Clause, ctx: Context) -> None:
+    """look at / inspect a placement."""
+    target = clause.first(_PLACE_LIKE)
+    if target is None:
+        raise Clarification("What should I look at?")
+    place = ctx.place_of(target, clause, "look")
+    ctx.go(place)
+    ctx.emit("look", placement=place.value)
+
+
+def handle_open(clause: Clause, ctx: Context) -> None:
+    """open a door."""
+    target = direct_object(clause)
+    if target is None:
+        raise Clarification("What should I open?")
+    if target.kind == "ambiguous":
+        doors = [entity.name for entity in target.value if entity.kind == "door"]
+        if doors:
+            raise Clarification(f"Which door do you mean: {', '.join(doors)}?")
+    if target.kind != "door":
+        raise Refusal(f"I can only open doors, and {describe_item(target)} is not a door.")
+    ctx.emit("open_door", door=target.value)
+
+
+def _refuse_non_object(target: Item, purpose: str) -> None:
+    if target.kind in {"object", "category", "generic", "pronoun"}:
+        return
+    if target.kind == "unknown":
+        raise Refusal(f"I do not know what '{target.value}' is, so I cannot {purpose} it.")
+    if target.kind == "ambiguous":
+        raise Refusal(f"I cannot {purpose} the {target.text}: it is furniture, not an object.")
+    what = {"room": "it is a room", "placement": "it is a piece of furniture",
+            "person": "it is a person", "me": "you are a person", "door": "it is a door"}
+    reason = what.get(target.kind, "it is not an object")
+    raise Refusal(f"I cannot {purpose} {describe_item(target)}: {reason}.")

@@ -1,0 +1,73 @@
+"""From what a person typed to clean tokens: case, contractions, quotes, misspellings."""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+from rapidfuzz import fuzz, process
+
+from homebot.language import lexicon
+from homebot.language.vocabulary import Vocabulary
+
+__all__ = ["QUOTE_MARK", "Normalised", "correct_spelling", "normalise"]
+
+_QUOTED = re.compile(r"\"([^\"]+)\"|“([^”]+)”|«([^»]+)»")
+_CONTRACTIONS = tuple((re.compile(rf"\b{re.escape(short)}\b"), long)
+                      for short, long in lexicon.CONTRACTIONS)
+_BREAKS = re.compile(r"[,;:.!?]+")
+_OTHER = re.compile(r"[^a-z0-9,' ]+")
+QUOTE_MARK = "xquote"
+
+
+@dataclass(frozen=True, slots=True)
+class Normalised:
+    """The tokens of a command (lower case, "," for clause breaks) and its quoted words.
+
+    A quoted passage appears among the tokens as ``xquoteN`` (N its index).
+    """
+
+    tokens: tuple[str, ...]
+    quotes: tuple[str, ...]
+    corrections: tuple[tuple[str, str], ...]
+
+
+def normalise(text: str, vocabulary: Vocabulary) -> Normalised:
+    """Lower-case, expand contractions, split off quoted words, fix misspelt names."""
+    quotes: list[str] = []
+
+    def keep_quote(match: re.Match[str]) -> str:
+        quotes.append(next(group for group in match.groups() if group is not None).strip())
+        return f" {QUOTE_MARK}{len(quotes) - 1} "
+
+    text = _QUOTED.sub(keep_quote, text.replace("’", "'").replace("‘", "'"))
+    lowered = text.lower()
+    for pattern, long in _CONTRACTIONS:
+        lowered = pattern.sub(long, lowered)
+    lowered = _BREAKS.sub(" , ", lowered)
+    raw = _OTHER.sub(" ", lowered).replace("'", "").split()
+    tokens: list[str] = []
+    corrections: list[tuple[str, str]] = []
+    for token in raw:
+        fixed = correct_spelling(token, vocabulary)
+        if fixed != token:
+            corrections.append((token, fixed))
+        tokens.append(fixed)
+    while tokens and tokens[-1] == ",":
+        tokens.pop()
+    return Normalised(tuple(tokens), tuple(quotes), tuple(corrections))
+
+
+def correct_spelling(token: str, vocabulary: Vocabulary) -> str:
+    """The known word closest to an unknown ``token`` (rapidfuzz ratio), else ``token``.
+
+    Only words of four letters or more are corrected, and only to a word the
+    vocabulary knows, so function words and short words never change.
+    """
+    if (len(token) < 4 or not token.isalpha() or token in vocabulary.words
+            or token in lexicon.FUNCTION_WORDS):
+        return token
+    cutoff = 80.0 if len(token) >= 5 else 85.0
+    match = process.extractOne(token, vocabulary.spelling_choices, scorer=fuzz.ratio,
+                               score_cutoff=cutoff)
+    return str(match[0]) if match else token

@@ -1,0 +1,129 @@
+"""``parse_command``: a GPSR command to skill steps, a clarification question or a refusal."""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from types import MappingProxyType
+
+from homebot.errors import LanguageError
+from homebot.language import lexicon
+from homebot.language.clauses import Clause, build_clauses
+from homebot.language.context import Clarification, Context, Refusal, describe_item
+from homebot.language.fetching import (
+    direct_object,
+    handle_bring,
+    handle_find_object,
+    handle_look,
+    handle_open,
+    handle_place,
+    handle_take,
+    handle_want,
+)
+from homebot.language.normalise import normalise
+from homebot.language.people import (
+    find_person_frame,
+    handle_answer,
+    handle_ask,
+    handle_follow,
+    handle_go,
+    handle_greet,
+    handle_guide,
+    handle_meet,
+    handle_return,
+    wants_person,
+)
+from homebot.language.reporting import handle_count, handle_tell, handle_tell_me
+from homebot.language.result import ParseResult, ParseStatus
+from homebot.language.tagging import tag
+from homebot.language.vocabulary import Vocabulary
+
+__all__ = ["MAX_COMMAND_LENGTH", "parse_command"]
+
+MAX_COMMAND_LENGTH = 1000
+Handler = Callable[[Clause, Context], None]
+
+
+def parse_command(text: str, vocabulary: Vocabulary) -> ParseResult:
+    """Parse one command. Raises ``LanguageError`` only for input that is not a command
+    at all (empty or absurdly long); anything else is a result with a status."""
+    if not isinstance(text, str) or not text.strip():
+        raise LanguageError("the command is empty; say what the robot should do")
+    if len(text) > MAX_COMMAND_LENGTH:
+        raise LanguageError(f"the command has {len(text)} characters; keep it under "
+                            f"{MAX_COMMAND_LENGTH}, one task at a time")
+    clauses = build_clauses(tag(normalise(text, vocabulary), vocabulary))
+    ctx = Context(vocabulary)
+    try:
+        if not clauses:
+            raise Refusal("I did not hear anything I can do in that command.")
+        for clause in clauses:
+            _HANDLERS.get(clause.action or "", _no_action)(clause, ctx)
+    except Clarification as clarification:
+        return ParseResult(ParseStatus.CLARIFY, text, question=clarification.question)
+    except Refusal as refusal:
+        return ParseResult(ParseStatus.REJECT, text, reason=refusal.reason)
+    if not ctx.steps:
+        return ParseResult(ParseStatus.REJECT, text,
+                           reason="I understood no action I can carry out in that command.")
+    return ParseResult(ParseStatus.OK, text, steps=list(ctx.steps))
+
+
+def _find(clause: Clause, ctx: Context) -> None:
+    target = direct_object(clause, skip_me=False)
+    if target is None:
+        raise Clarification("What or whom should I look for?")
+    if wants_person(target, ctx) or (target.kind == "pronoun" and ctx.obj is None):
+        find_person_frame(clause, ctx, target)
+    elif target.kind in {"room", "placement", "ambiguous"}:
+        handle_go(clause, ctx)
+    elif target.kind == "unknown":
+        raise Refusal(f"I do not know what or who '{target.value}' is in this home.")
+    else:
+        handle_find_object(clause, ctx, target)
+
+
+def _take(clause: Clause, ctx: Context) -> None:
+    target = direct_object(clause, skip_me=False)
+    to_place = clause.first({"room", "placement", "ambiguous"}, {"to"})
+    if target is not None and (target.kind == "person" or (
+            target.kind == "me" and to_place is not None) or (
+            ctx.pronoun_means_person(target) and ctx.obj_state != "held")):
+        handle_guide(clause, ctx)
+    else:
+        handle_take(clause, ctx)
+
+
+def _bring(clause: Clause, ctx: Context) -> None:
+    bare = [item for item in clause.items if item.prep is None and item.kind != "me"]
+    to_place = clause.first({"room", "placement", "ambiguous"}, {"to"})
+    if bare and to_place is not None and (bare[0].kind == "person" or (
+            ctx.pronoun_means_person(bare[0]) and ctx.obj_state != "held")):
+        handle_guide(clause, ctx)
+    else:
+        handle_bring(clause, ctx)
+
+
+def _no_action(clause: Clause, ctx: Context) -> None:
+    first = next(iter(clause.words), "")
+    if first in lexicon.IMPOSSIBLE_ACTIONS:
+        raise Refusal(f"I cannot {first}: my skills are to go somewhere, find, pick up, place "
+                      f"and bring objects, find, greet, follow and guide people, count, "
+                      f"describe, answer questions and talk.")
+    places = [item for item in clause.items if item.kind in {"room", "placement"}]
+    if places:
+        raise Clarification(f"What should I do at {describe_item(places[0])}?")
+    things = [item for item in clause.items if item.kind in {"object", "category"}]
+    if things:
+        raise Clarification(f"What should I do with {describe_item(things[0])}?")
+    raise Refusal("I did not understand what to do: say an action like bring, go, find, "
+                  "follow or tell.")
+
+
+_HANDLERS: Mapping[str, Handler] = MappingProxyType({
+    "go": handle_go, "return": handle_return, "find": _find, "meet": handle_meet,
+    "take": _take, "bring": _bring, "place": handle_place, "count": handle_count,
+    "tell": handle_tell, "tell_me": handle_tell_me, "describe": handle_tell_me,
+    "answer": handle_answer, "greet": handle_greet, "follow": handle_follow,
+    "guide": handle_guide, "ask": handle_ask, "look": handle_look, "open": handle_open,
+    "want": handle_want,
+})
