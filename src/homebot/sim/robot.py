@@ -73,7 +73,7 @@ class SimRobot(Robot):
             travelled = sim.navigator.distance(start, stop, avoid_doors)
             travelled = plan.length if math.isinf(travelled) else travelled
             self._travel(travelled, stop, escort)
-            sim.trail.append(stop)
+            self._trail([stop])
             blocker_person = next((name for name, p in sim.people.items()
                                    if p.blocking_door == door), None)
             blocker = Blocker.PERSON if blocker_person and sim.door_state[door] is \
@@ -83,8 +83,14 @@ class SimRobot(Robot):
                               blocker_person if blocker is Blocker.PERSON else None,
                               plan.doors[:index])
         self._travel(plan.length, goal.xy(), escort, goal.theta)
-        sim.trail.extend(plan.waypoints[1:])
+        self._trail(plan.waypoints[1:])
         return MoveReport(True, self.pose(), plan.length, doors_passed=plan.doors)
+
+    def _trail(self, points: list[tuple[float, float]] | tuple[tuple[float, float], ...]) -> None:
+        rounded = [(round(x, 3), round(y, 3)) for x, y in points]
+        self.sim.trail.extend(rounded)
+        self.sim.events.record("robot.path", world=self.sim.world.name,
+                               points=[list(point) for point in rounded])
 
     def _point_before(self, door: str, room: str) -> tuple[float, float]:
         """Where the robot stops, in ``room``, in front of a door it cannot pass."""
@@ -127,7 +133,7 @@ class SimRobot(Robot):
         if sim.world.room_at(*stop) is None:
             stop = behind
         sim.robot_pose = (stop[0], stop[1], math.atan2(dy, dx))
-        sim.trail.extend([*plan.waypoints[1:-1], stop])
+        self._trail([*plan.waypoints[1:-1], stop])
         return MoveReport(True, self.pose(), plan.length, doors_passed=plan.doors)
 
     # ------------------------------------------------------------ perception

@@ -138,8 +138,12 @@ class FindObject(Skill):
                 return Outcome.finished(f"I see the {found[0].label} on the {placement}",
                                         object=found[0].label, placement=placement)
             context.beliefs.not_at.setdefault(wanted, set()).add(placement)
-        where = candidates[0] if len(candidates) == 1 else f"{len(candidates)} places"
-        return Outcome.failed(ErrorCode.NOT_FOUND, f"I did not find the {wanted} ({where})",
+        if not candidates:
+            return Outcome.failed(ErrorCode.NOT_FOUND,
+                                  f"I did not find the {wanted} anywhere I looked", searched=[])
+        where = f"on the {candidates[0]}" if len(candidates) == 1 else (
+            f"in {len(candidates)} places")
+        return Outcome.failed(ErrorCode.NOT_FOUND, f"I did not find the {wanted} {where}",
                               searched=candidates)
 
     def monitor(self, context: SkillContext, args: Mapping[str, Any],

@@ -1,0 +1,1 @@
+"""Benchmarks run by `homebot bench NAME`: each module has add_arguments(parser) and run(args)."""

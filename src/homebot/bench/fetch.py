@@ -1,0 +1,46 @@
+"""Wall time of one simulated fetch-and-deliver task (pyrobosim's fastest setting: ~300 ms)."""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import time
+from typing import Any
+
+from rich.console import Console
+
+from homebot.bench.fetch_tasks import fetch_tasks
+from homebot.navigation import Navigator
+from homebot.scenarios import SimulatedRun
+from homebot.world import World
+
+__all__ = ["add_arguments", "run"]
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--tasks", type=int, default=200, help="tasks to time")
+    parser.add_argument("--seed", type=int, default=3)
+
+
+def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, Any]:
+    """Median and 95th percentile wall time per task, with and without warm path caches."""
+    world = World.load("apartment")
+    navigator = Navigator(world)
+    figures: dict[str, Any] = {}
+    for label, shared in (("cold paths (new navigator cache per task)", False),
+                          ("warm paths (shared navigator)", True)):
+        samples = []
+        for index, fetch in enumerate(fetch_tasks(world, args.tasks, args.seed)):
+            if not shared:
+                navigator._cache.clear()
+            run_ = SimulatedRun.create(world, seed=index, navigator=navigator)
+            began = time.perf_counter()
+            run_.run(fetch.task)
+            samples.append(time.perf_counter() - began)
+        samples.sort()
+        figures[label] = {"median_ms": round(1000 * statistics.median(samples), 3),
+                          "p95_ms": round(1000 * samples[int(0.95 * (len(samples) - 1))], 3)}
+    if console is not None:
+        for name, values in figures.items():
+            console.print(f"fetch-and-deliver, {name}: {values}")
+    return {"benchmark": "fetch", "tasks": args.tasks, "figures": figures}

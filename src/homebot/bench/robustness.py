@@ -1,0 +1,94 @@
+"""Fetch-and-deliver under disturbances: monitoring and recovery against a plain sequence."""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import time
+from dataclasses import dataclass, field
+from typing import Any
+
+from rich.console import Console
+from rich.table import Table
+
+from homebot.bench.fetch_tasks import delivered, fetch_tasks
+from homebot.navigation import Navigator
+from homebot.scenarios import SimulatedRun, disturbed
+from homebot.world import World
+
+__all__ = ["ModeResult", "add_arguments", "compare_modes", "run"]
+
+
+@dataclass
+class ModeResult:
+    """How one execution mode fared over the task set."""
+
+    mode: str
+    tasks: int = 0
+    delivered: int = 0
+    verified: int = 0
+    told_why: int = 0
+    failed: int = 0
+    sim_times: list[float] = field(default_factory=list)
+    wall_times: list[float] = field(default_factory=list)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {
+            "mode": self.mode, "tasks": self.tasks, "delivered": self.delivered,
+            "verified_delivery_rate": round(self.verified / max(self.tasks, 1), 4),
+            "delivery_rate": round(self.delivered / max(self.tasks, 1), 4),
+            "failed": self.failed, "failed_and_told_why": self.told_why,
+            "median_sim_time_s": round(statistics.median(self.sim_times or [0.0]), 1),
+            "median_wall_ms": round(1000 * statistics.median(self.wall_times or [0.0]), 3),
+        }
+
+
+def compare_modes(world: World, tasks: int, seed: int, level: float = 1.0) -> list[ModeResult]:
+    """Run the same seeded tasks with monitoring and recovery, and as a plain sequence."""
+    navigator = Navigator(world)
+    results = []
+    for mode, monitoring in (("monitored + recovery", True), ("plain sequence", False)):
+        result = ModeResult(mode)
+        for index, fetch in enumerate(fetch_tasks(world, tasks, seed)):
+            run = SimulatedRun.create(world, seed=seed * 100_003 + index,
+                                      disturbances=disturbed(level), monitoring=monitoring,
+                                      navigator=navigator)
+            started = time.perf_counter()
+            report = run.run(fetch.task)
+            result.wall_times.append(time.perf_counter() - started)
+            result.tasks += 1
+            result.sim_times.append(report.sim_time)
+            really = delivered(run.simulation, fetch)
+            result.delivered += really
+            result.verified += really and report.success
+            if not report.success:
+                result.failed += 1
+                result.told_why += any(text.startswith("I am sorry") for text in report.speech)
+        results.append(result)
+    return results
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--tasks", type=int, default=200, help="tasks per mode (default 200)")
+    parser.add_argument("--seed", type=int, default=1, help="seed of tasks and disturbances")
+    parser.add_argument("--world", default="apartment", help="world file or shipped name")
+    parser.add_argument("--level", type=float, default=1.0, help="disturbance level (1 = default)")
+
+
+def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, Any]:
+    """Compare the modes and print a table; returns the figures."""
+    world = World.load(args.world)
+    results = [result.to_dict() for result in compare_modes(world, args.tasks, args.seed,
+                                                            args.level)]
+    if console is not None:
+        table = Table(title=f"Fetch-and-deliver, {args.tasks} tasks, disturbances x{args.level}")
+        for column in ("mode", "verified delivery", "delivered", "failed", "told why",
+                       "median sim time", "median wall time"):
+            table.add_column(column)
+        for result in results:
+            table.add_row(result["mode"], f"{100 * result['verified_delivery_rate']:.1f} %",
+                          str(result["delivered"]), str(result["failed"]),
+                          str(result["failed_and_told_why"]),
+                          f"{result['median_sim_time_s']} s", f"{result['median_wall_ms']} ms")
+        console.print(table)
+    return {"benchmark": "robustness", "tasks": args.tasks, "seed": args.seed, "modes": results}

@@ -1,0 +1,127 @@
+"""``homebot world check|show``: validate a world file, or show one as a table, JSON or PNG."""
+
+from __future__ import annotations
+
+import argparse
+import importlib.util
+import json
+import os
+from pathlib import Path
+from typing import Any
+
+from rich.console import Console
+from rich.table import Table
+
+from homebot.cli.options import load_world
+from homebot.errors import WorldError
+from homebot.world import World
+
+__all__ = ["last_run_path", "register", "world_summary"]
+
+
+def last_run_path() -> Path:
+    """Where the event log of the last simulated run is kept (for ``world show``)."""
+    cache = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache"))
+    return cache / "homebot" / "last-run.jsonl"
+
+
+def register(subparsers: Any) -> None:
+    parser = subparsers.add_parser("world", help="check or show a world")
+    world_parsers = parser.add_subparsers(dest="world_command", metavar="COMMAND")
+    check = world_parsers.add_parser("check", help="validate a world file")
+    check.add_argument("file", help="world YAML file (or a shipped world name)")
+    check.set_defaults(handler=_check)
+    show = world_parsers.add_parser("show", help="list a world, or draw it as a PNG")
+    show.add_argument("--world", default="apartment", help="world file or shipped name")
+    show.add_argument("--png", type=Path, help="draw the map (with the last run's path) here")
+    show.add_argument("--events", type=Path,
+                      help="event log whose robot path to draw (default: the last run)")
+    show.add_argument("--json", action="store_true", help="print the world's entities as JSON")
+    show.set_defaults(handler=_show)
+    if importlib.util.find_spec("homebot.cli.world_robocup") is not None:
+        from homebot.cli import world_robocup
+
+        world_robocup.register_robocup(world_parsers)
+    parser.set_defaults(handler=lambda args: _no_command())
+
+
+def _no_command() -> int:
+    raise WorldError("name a world command: check FILE, show [--world W]")
+
+
+def _check(args: argparse.Namespace) -> int:
+    world = World.load(args.file)
+    print(f"{world.source}: ok — {len(world.rooms)} rooms, {len(world.doors)} doors, "
+          f"{len(world.placements)} placements, {len(world.objects)} objects, "
+          f"{len(world.people)} people")
+    return 0
+
+
+def world_summary(world: World) -> dict[str, Any]:
+    """Rooms, doors, placements, objects and people with their attributes."""
+    return {
+        "name": world.name,
+        "rooms": [{"name": name, "polygon": [list(p) for p in room.polygon]}
+                  for name, room in world.rooms.items()],
+        "doors": [{"name": d.name, "rooms": list(d.rooms), "position": list(d.position),
+                   "state": d.state.value} for d in world.doors.values()],
+        "placements": [{"name": p.name, "category": p.category, "room": p.room,
+                        "kind": p.model.kind.value, "approach": list(p.approach),
+                        "holds": list(p.holds)} for p in world.placements.values()],
+        "objects": [{"name": o.name, "category": o.category, "placement": o.placement}
+                    for o in world.objects.values()],
+        "people": [{"name": p.name, "room": p.room, "position": list(p.position),
+                    "posture": p.posture.value, "gesture": p.gesture.value,
+                    "clothes": list(p.clothes)} for p in world.people.values()],
+        "operator": world.model.operator,
+        "robot": {"pose": list(world.robot.pose), "hands": list(world.robot.hands)},
+    }
+
+
+def _show(args: argparse.Namespace) -> int:
+    world = load_world(args)
+    if args.png:
+        from homebot.viz import render_map
+
+        render_map(world, _path_from_events(args.events or last_run_path(), world)).save(args.png)
+        print(f"wrote {args.png}")
+    if args.json:
+        print(json.dumps(world_summary(world)))
+    elif not args.png:
+        _print_tables(world)
+    return 0
+
+
+def _path_from_events(events: Path, world: World) -> list[tuple[float, float]]:
+    if not events.exists():
+        return []
+    start = (world.robot.pose[0], world.robot.pose[1])
+    path: list[tuple[float, float]] = [start]
+    for line in events.read_text(encoding="utf-8").splitlines():
+        try:
+            event = json.loads(line)
+        except json.JSONDecodeError:
+            raise WorldError(f"{events}: not a homebot event log (JSON lines)") from None
+        if event.get("kind") == "robot.path" and event.get("world") == world.name:
+            path.extend((float(x), float(y)) for x, y in event["points"])
+    return path if len(path) > 1 else []
+
+
+def _print_tables(world: World) -> None:
+    console = Console()
+    console.print(f"[bold]{world.name}[/]: {world.model.description}")
+    table = Table("placement", "category", "room", "holds", "objects on it")
+    for placement in world.placements.values():
+        objects = [o.name for o in world.objects.values() if o.placement == placement.name]
+        table.add_row(placement.name, placement.category, placement.room,
+                      ", ".join(placement.holds), ", ".join(objects))
+    console.print(table)
+    people = Table("person", "room", "posture", "gesture", "clothes")
+    for person in world.people.values():
+        people.add_row(person.name, person.room, person.posture.value, person.gesture.value,
+                       ", ".join(person.clothes))
+    console.print(people)
+    doors = Table("door", "between", "state")
+    for door in world.doors.values():
+        doors.add_row(door.name, " and ".join(door.rooms), door.state.value)
+    console.print(doors)

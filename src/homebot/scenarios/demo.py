@@ -1,0 +1,104 @@
+"""The demo: representative tasks in the apartment, each meeting a different disturbance."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+from homebot.events import Event
+from homebot.executive import TaskReport
+from homebot.navigation import Navigator
+from homebot.scenarios.runtime import SimulatedRun, disturbed
+from homebot.sim import Simulation
+from homebot.task import Step, Task
+from homebot.world import DoorState, World
+
+__all__ = ["DEMO_TASKS", "DemoTask", "run_demo"]
+
+
+@dataclass(frozen=True)
+class DemoTask:
+    """A task, and what goes wrong in the home before it starts."""
+
+    title: str
+    task: Task
+    setup: Callable[[Simulation], None]
+    seed: int = 0
+
+
+def _bring(obj: str, placement: str, person: str) -> Task:
+    return Task((Step("navigate", {"to": placement}),
+                 Step("find_object", {"object": obj, "placement": placement}),
+                 Step("pick", {"object": obj}),
+                 Step("navigate", {"to": person}),
+                 Step("give", {"person": person})), f"bring the {obj} to {person}")
+
+
+def _nothing(simulation: Simulation) -> None:
+    """No extra disturbance."""
+
+
+def _close_kitchen(simulation: Simulation) -> None:
+    for door in ("kitchen arch", "kitchen door"):
+        simulation.door_state[door] = DoorState.CLOSED
+
+
+def _someone_in_the_office_door(simulation: Simulation) -> None:
+    simulation.place_person_in_doorway("office door", "Maria")
+
+
+def _cola_moved(simulation: Simulation) -> None:
+    simulation.object_location["cola"] = "coffee table"
+
+
+def _slippery(simulation: Simulation) -> None:
+    simulation.disturbances = simulation.disturbances.model_copy(update={"grasp_slip": 0.6})
+
+
+def _gone(simulation: Simulation) -> None:
+    simulation.object_location["red wine"] = None
+
+
+DEMO_TASKS: tuple[DemoTask, ...] = (
+    DemoTask("Bring the orange juice to Alex (nothing goes wrong)",
+             _bring("orange juice", "fridge", "operator"), _nothing),
+    DemoTask("Bring the apple to Alex: the kitchen doors are shut",
+             _bring("apple", "kitchen table", "operator"), _close_kitchen),
+    DemoTask("Bring the teddy bear to Alex: Maria stands in the office door",
+             _bring("teddy bear", "office shelf", "operator"), _someone_in_the_office_door),
+    DemoTask("Bring the cola to Sophie: someone took it to the living room",
+             _bring("cola", "fridge", "Sophie"), _cola_moved),
+    DemoTask("Bring the biscuits to Alex: a slippery packet",
+             _bring("biscuits", "pantry", "operator"), _slippery, seed=5),
+    DemoTask("Bring the red wine to Alex: it has run out",
+             _bring("red wine", "kitchen counter", "operator"), _gone),
+    DemoTask("Count the drinks in the fridge and report",
+             Task((Step("navigate", {"to": "fridge"}),
+                   Step("count", {"object": "drink", "placement": "fridge"}),
+                   Step("navigate", {"to": "operator"}), Step("say", {"text": "$result"})),
+                  "count the drinks in the fridge"), _nothing),
+    DemoTask("Guide John from the bedroom to the living room",
+             Task((Step("navigate", {"to": "bedroom"}),
+                   Step("find_person", {"person": {"name": "John"}, "room": "bedroom"}),
+                   Step("guide", {"to": "living room"})), "guide John to the living room"),
+             _nothing),
+)
+
+
+def run_demo(world: World, on_event: Callable[[Event], None] | None = None,
+             on_task: Callable[[DemoTask], None] | None = None,
+             level: float = 0.5) -> list[tuple[DemoTask, TaskReport, SimulatedRun]]:
+    """Run every demo task in a fresh home with light random disturbances on top."""
+    navigator = Navigator(world)
+    results = []
+    for demo in DEMO_TASKS:
+        run = SimulatedRun.create(world, seed=demo.seed, disturbances=disturbed(level) if
+                                  demo.setup is _nothing else disturbed(0.0),
+                                  navigator=navigator)
+        demo.setup(run.simulation)
+        if on_task is not None:
+            on_task(demo)
+        if on_event is not None:
+            run.simulation.events.listeners.append(on_event)
+        results.append((demo, run.run(demo.task), run))
+    return results

@@ -1,0 +1,5 @@
+"""Pictures of the home: a pure renderer of the world (and a path) to an image."""
+
+from homebot.viz.map_image import render_map
+
+__all__ = ["render_map"]
