@@ -77,6 +77,9 @@ class Literal:
 
         return format_literal(self)
 
+    def __repr__(self) -> str:
+        return f"Literal({self})"
+
 
 @dataclass(frozen=True, slots=True)
 class Preference:
@@ -101,6 +104,9 @@ class Preference:
         from homebot.knowledge.terms import format_statement
 
         return format_statement(self)
+
+    def __repr__(self) -> str:
+        return f"Preference({self}, weight={self.weight})"
 
 
 #: A statement in a property or relation list: a literal (weight 0) or a preference.
@@ -232,7 +238,10 @@ class Taxonomy:
     # -- comparison ------------------------------------------------------------
 
     def canonical(self) -> tuple[object, ...]:
-        """A hashable summary: equal for taxonomies that state the same things in order."""
+        """A hashable summary: equal for taxonomies that state the same things in order.
+
+        Individuals are compared in the order their classes list them.
+        """
         return (
             tuple(
                 (c.name, c.mother, tuple(c.properties), tuple(c.relations), tuple(c.individuals))
@@ -240,8 +249,11 @@ class Taxonomy:
             ),
             tuple(
                 (i.name, i.class_name, tuple(i.properties), tuple(i.relations))
-                for i in self.individuals.values()
+                for c in self.classes.values()
+                for i in (self.individuals.get(name) for name in c.individuals)
+                if i is not None
             ),
+            len(self.individuals),
         )
 
     def __eq__(self, other: object) -> bool:
@@ -274,6 +286,7 @@ def _unknown_message(what: str, name: str, known: list[str]) -> str:
     """``unknown class 'x'`` with the closest known names as a hint."""
     import difflib
 
+    name = str(name)
     close = difflib.get_close_matches(name, known, n=3)
     hint = f"; did you mean {', '.join(repr(c) for c in close)}?" if close else ""
     return f"unknown {what} '{name}'{hint}"

@@ -90,7 +90,9 @@ class TermParser:
         column = offset - (self.text.rfind("\n", 0, offset) + 1) + 1
         return line, column
 
-    def error(self, expected: str, index: int | None = None, found: str | None = None) -> KnowledgeError:
+    def error(
+        self, expected: str, index: int | None = None, found: str | None = None
+    ) -> KnowledgeError:
         """A ``KnowledgeError`` naming the place, what was expected and what was found."""
         at = self.index if index is None else index
         line, column = self.position(at)

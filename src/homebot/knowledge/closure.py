@@ -1,0 +1,297 @@
+"""What holds for one class or individual: facts by specificity, then conditional defaults.
+
+Evaluation is lazy, key by key, and memoised. A key settled by a weight-0 statement at
+any level is never derived (a plain statement beats a preference). Otherwise its
+conditional defaults are tried in priority order (more specific level first, then lower
+weight) and the first whose antecedents all hold concludes it. Antecedents may be
+concluded by other defaults (chaining); evaluation uses an explicit stack, so a chain
+costs time linear in its length and never exhausts Python's recursion limit. Within a
+cycle of defaults a key still being evaluated counts as unknown, and cycles are always
+entered at the same key (see ``DependencyGraph``), so answers do not depend on the order
+of questions.
+"""
+
+from __future__ import annotations
+
+from homebot.knowledge.model import ANY, Literal, Value
+from homebot.knowledge.tables import (
+    EMPTY,
+    NAMESPACES,
+    ClassTable,
+    DependencyGraph,
+    Key,
+    Resolution,
+    Rule,
+    group_rules,
+    own_levels,
+    resolve_levels,
+    sort_rules,
+)
+
+__all__ = ["Closure", "antecedent_holds", "instantiate"]
+
+
+class _Missing(Exception):
+    """Raised inside a derivation that needs a key not evaluated yet."""
+
+    def __init__(self, key: Key) -> None:
+        super().__init__(key)
+        self.key = key
+
+
+class Closure:
+    """The lazily evaluated theory of one entity.
+
+    For a class, ``table`` is its own table and ``own`` is ``None``. For an individual,
+    ``own`` holds its statements; when it states no conditional defaults of its own, a
+    derived key none of whose inputs it overrides is taken from ``inherited`` (the class's
+    closure), so most of an individual's conclusions are computed once per class.
+    """
+
+    __slots__ = (
+        "_affected",
+        "_facts",
+        "_graph",
+        "_groups",
+        "_memo",
+        "_own_levels",
+        "inherited",
+        "name",
+        "rules",
+        "table",
+    )
+
+    def __init__(
+        self,
+        name: str,
+        table: ClassTable,
+        own: tuple[list, list] | None = None,
+        inherited: Closure | None = None,
+    ) -> None:
+        self.name = name
+        self.table = table
+        self._memo: tuple[dict[str, Resolution], dict[str, Resolution]] = ({}, {})
+        self._facts: tuple[dict[str, Resolution], dict[str, Resolution]] = ({}, {})
+        self._affected: set[Key] | None = None
+        self.inherited = inherited
+        self._own_levels = own_levels(own) if own is not None else ({}, {})
+        own_rules = []
+        if own is not None:
+            own_rules = sort_rules(
+                [
+                    (statement, namespace)
+                    for namespace in NAMESPACES
+                    for statement in own[namespace]
+                    if not isinstance(statement, Literal)
+                ],
+                name,
+            )
+        if own_rules:
+            self.inherited = None
+            self.rules: tuple[Rule, ...] = (*own_rules, *table.rules)
+            self._groups = group_rules(own_rules, table.groups)
+            self._graph: DependencyGraph | None = None
+        else:
+            self.rules = table.rules
+            self._groups = table.groups
+            self._graph = None
+
+    # -- structure -------------------------------------------------------------------
+
+    @property
+    def graph(self) -> DependencyGraph:
+        """The dependency graph of this entity's rules."""
+        if self._graph is None:
+            if self._groups is self.table.groups:
+                self._graph = self.table.graph
+            else:
+                self._graph = DependencyGraph(self.rules)
+        return self._graph
+
+    def derived_keys(self) -> list[Key]:
+        """Keys that some conditional default concludes about, in priority order."""
+        return list(self.graph.order)
+
+    def fact_names(self, namespace: int) -> list[str]:
+        """Names stated by weight-0 statements, own first, then inherited."""
+        own = self._own_levels[namespace]
+        return [*own, *(n for n in self.table.facts[namespace] if n not in own)]
+
+    def rules_for(self, key: Key) -> tuple[Rule, ...]:
+        """The conditional defaults concluding about ``key``, in priority order."""
+        return self._groups[key[0]].get(key[1], ())
+
+    # -- facts -----------------------------------------------------------------------------
+
+    def facts(self, namespace: int, name: str) -> Resolution:
+        """What weight-0 statements settle about a key (specificity only)."""
+        own = self._own_levels[namespace].get(name)
+        if own is None:
+            return self.table.facts[namespace].get(name, EMPTY)
+        cache = self._facts[namespace]
+        found = cache.get(name)
+        if found is None:
+            found = resolve_levels((own, *self.table.levels[namespace].get(name, ())))
+            cache[name] = found
+        return found
+
+    # -- evaluation ----------------------------------------------------------------------
+
+    def resolve(self, namespace: int, name: str) -> Resolution:
+        """What holds about ``name`` in ``namespace``, conditional defaults included."""
+        found = self._memo[namespace].get(name)
+        if found is not None:
+            return found
+        facts = self.facts(namespace, name)
+        if facts.decisive or name not in self._groups[namespace]:
+            self._memo[namespace][name] = facts
+            return facts
+        reused = self._reused((namespace, name))
+        if reused is not None:
+            self._memo[namespace][name] = reused
+            return reused
+        self._evaluate((namespace, name))
+        return self._memo[namespace][name]
+
+    def _reused(self, key: Key) -> Resolution | None:
+        inherited = self.inherited
+        if inherited is None:
+            return None
+        affected = self._affected
+        if affected is None:
+            own = [(ns, n) for ns in NAMESPACES for n in self._own_levels[ns]]
+            affected = self._affected = self.graph.affected_by(own)
+            affected.update(own)
+        if key in affected:
+            return None
+        return inherited.resolve(*key)
+
+    def _evaluate(self, start: Key) -> None:
+        memo = self._memo
+        cycles = self.graph.cycles
+        in_progress: set[Key] = set()
+        stack = [start]
+        while stack:
+            key = stack[-1]
+            namespace, name = key
+            if name in memo[namespace]:
+                stack.pop()
+                continue
+            if key not in in_progress:
+                cycle = cycles.get(key)
+                if cycle is not None and not in_progress.intersection(cycle):
+                    # Enter a cycle only at its canonical first key.
+                    pending = [k for k in cycle if k[1] not in memo[k[0]]]
+                    if pending[0] != key:
+                        stack.extend(reversed(pending))
+                        continue
+                in_progress.add(key)
+            try:
+                result = self._derive(key, in_progress)
+            except _Missing as missing:
+                stack.append(missing.key)
+                continue
+            memo[namespace][name] = result
+            in_progress.discard(key)
+            stack.pop()
+
+    def _lookup(self, key: Key, in_progress: set[Key]) -> Resolution:
+        namespace, name = key
+        found = self._memo[namespace].get(name)
+        if found is not None:
+            return found
+        if key in in_progress:
+            return EMPTY
+        facts = self.facts(namespace, name)
+        if facts.decisive or name not in self._groups[namespace]:
+            self._memo[namespace][name] = facts
+            return facts
+        reused = self._reused(key)
+        if reused is not None:
+            self._memo[namespace][name] = reused
+            return reused
+        raise _Missing(key)
+
+    def _derive(self, key: Key, in_progress: set[Key]) -> Resolution:
+        namespace, name = key
+        facts = self.facts(namespace, name)
+        for rule in self._groups[namespace][name]:
+            binding: Value | None = None
+            holds = True
+            for antecedent in rule.preference.antecedents:
+                found = self._lookup((rule.namespace, antecedent.name), in_progress)
+                if not found.literals:
+                    found = self._lookup((1 - rule.namespace, antecedent.name), in_progress)
+                holds, binding = antecedent_holds(antecedent, found.literals, binding)
+                if not holds:
+                    break
+            if not holds:
+                continue
+            conclusion = instantiate(rule.preference.consequent, binding)
+            if _excluded(conclusion, facts.literals):
+                continue
+            rest = tuple(x for x in facts.literals if x != conclusion)
+            return Resolution((conclusion, *rest), True, rule, binding)
+        return facts
+
+    # -- beyond the first conclusion -----------------------------------------------
+
+    def firing(self, key: Key) -> list[tuple[Rule, Literal, Value | None]]:
+        """Every conditional default for ``key`` whose antecedents hold, in priority order."""
+        result = []
+        for rule in self.rules_for(key):
+            binding = None
+            holds = True
+            for antecedent in rule.preference.antecedents:
+                found = self.resolve(rule.namespace, antecedent.name)
+                if not found.literals:
+                    found = self.resolve(1 - rule.namespace, antecedent.name)
+                holds, binding = antecedent_holds(antecedent, found.literals, binding)
+                if not holds:
+                    break
+            if holds:
+                result.append((rule, instantiate(rule.preference.consequent, binding), binding))
+        return result
+
+
+def antecedent_holds(
+    antecedent: Literal, literals: tuple[Literal, ...], binding: Value | None
+) -> tuple[bool, Value | None]:
+    """Whether ``antecedent`` holds given what holds about its key; binds ``'-'``."""
+    wanted = antecedent.value
+    if wanted == ANY:
+        if binding is not None:
+            wanted = binding
+        else:
+            for literal in literals:
+                if literal.negated == antecedent.negated and literal.value is not None:
+                    return True, literal.value
+            return False, binding
+    if antecedent.negated:
+        for literal in literals:
+            if literal.negated and (literal.value is None or literal.value == wanted):
+                return True, binding
+        return False, binding
+    for literal in literals:
+        if literal.negated:
+            continue
+        if wanted is None:
+            return True, binding
+        value = literal.value
+        if value == wanted or (isinstance(value, tuple) and wanted in value):
+            return True, binding
+    return False, binding
+
+
+def instantiate(consequent: Literal, binding: Value | None) -> Literal:
+    """The consequent with the captured value in place of ``'-'``."""
+    if consequent.value == ANY and binding is not None:
+        return consequent.with_value(binding)
+    return consequent
+
+
+def _excluded(conclusion: Literal, facts: tuple[Literal, ...]) -> bool:
+    """Whether a weight-0 exclusion ``not(p=>v)`` rules the conclusion ``p=>v`` out."""
+    if conclusion.negated or conclusion.value is None:
+        return False
+    return any(f.negated and f.value == conclusion.value for f in facts)

@@ -1,0 +1,283 @@
+"""Per-class inherited tables: facts resolved by specificity, rules in priority order.
+
+A class's table is built from its mother's by overlaying the class's own statements, so
+building every table costs one pass over the KB, and an individual's view is its class
+table plus its own few statements. Keys are ``(namespace, name)`` with namespace 0 for
+properties and 1 for relations.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass
+
+from homebot.knowledge.coherence import contradicting
+from homebot.knowledge.model import Kind, Literal, Preference, Statement, Value
+
+__all__ = [
+    "EMPTY",
+    "NAMESPACES",
+    "ClassTable",
+    "DependencyGraph",
+    "Key",
+    "Resolution",
+    "Rule",
+    "own_levels",
+    "resolve_levels",
+    "sort_rules",
+]
+
+PROPERTY, RELATION = 0, 1
+NAMESPACES = (PROPERTY, RELATION)
+KIND_OF_NAMESPACE = (Kind.PROPERTY, Kind.RELATION)
+Key = tuple[int, str]
+Levels = tuple[tuple[Literal, ...], ...]
+
+
+@dataclass(frozen=True, slots=True)
+class Rule:
+    """A conditional default as the reasoner uses it: where it comes from, which list."""
+
+    preference: Preference
+    source: str
+    namespace: int
+
+    @property
+    def key(self) -> Key:
+        """The key its consequent concludes about."""
+        return (self.namespace, self.preference.consequent.name)
+
+    def antecedent_keys(self) -> Iterable[Key]:
+        """Every key an antecedent may be looked up under (own namespace, then the other)."""
+        for antecedent in self.preference.antecedents:
+            yield (self.namespace, antecedent.name)
+            yield (1 - self.namespace, antecedent.name)
+
+
+@dataclass(frozen=True, slots=True)
+class Resolution:
+    """What holds about one key of one entity.
+
+    ``literals`` is what holds, in output order; ``decisive`` is false when only
+    exclusions (``not(p=>v)``) are known; ``rule`` and ``binding`` say which
+    conditional default concluded it, if one did.
+    """
+
+    literals: tuple[Literal, ...]
+    decisive: bool
+    rule: Rule | None = None
+    binding: Value | None = None
+
+
+EMPTY = Resolution((), False)
+
+
+def effective(level: Iterable[Literal]) -> tuple[Literal, ...]:
+    """The literals of one list, dropping those that contradict an earlier one."""
+    kept: list[Literal] = []
+    for literal in level:
+        if not any(contradicting(literal, other) for other in kept):
+            kept.append(literal)
+    return tuple(kept)
+
+
+def resolve_levels(levels: Levels) -> Resolution:
+    """Specificity: the most specific level that settles the key decides it.
+
+    ``not(p=>v)`` only excludes ``v`` and lets less specific levels speak; ``p``,
+    ``not(p)`` and ``p=>w`` (``w`` not excluded) settle the key.
+    """
+    exclusions: list[Literal] = []
+    for level in levels:
+        decided = []
+        for literal in level:
+            if literal.negated and literal.value is not None:
+                if literal not in exclusions:
+                    exclusions.append(literal)
+            elif not _excluded_by(literal, exclusions):
+                decided.append(literal)
+        if decided:
+            return Resolution((*decided, *exclusions), True)
+    if not exclusions:
+        return EMPTY
+    return Resolution(tuple(exclusions), False)
+
+
+def _excluded_by(literal: Literal, exclusions: list[Literal]) -> bool:
+    if literal.negated or literal.value is None:
+        return False
+    return any(e.value == literal.value for e in exclusions)
+
+
+def sort_rules(preferences: Iterable[tuple[Preference, int]], source: str) -> list[Rule]:
+    """One entity's conditional defaults by weight (stable: ties keep their order)."""
+    rules = [Rule(p, source, namespace) for p, namespace in preferences]
+    rules.sort(key=lambda rule: rule.preference.weight)
+    return rules
+
+
+def own_levels(
+    statements_by_namespace: tuple[list[Statement], list[Statement]],
+) -> tuple[dict[str, tuple[Literal, ...]], dict[str, tuple[Literal, ...]]]:
+    """One entity's literals grouped by name per namespace, contradictions dropped."""
+    result: tuple[dict[str, tuple[Literal, ...]], dict[str, tuple[Literal, ...]]] = ({}, {})
+    for namespace in NAMESPACES:
+        grouped: dict[str, list[Literal]] = {}
+        for statement in statements_by_namespace[namespace]:
+            if isinstance(statement, Literal):
+                grouped.setdefault(statement.name, []).append(statement)
+        result[namespace].update({name: effective(level) for name, level in grouped.items()})
+    return result
+
+
+class DependencyGraph:
+    """Which derived keys read which keys, and the cycles among them.
+
+    Keys that depend on each other in a cycle form a component evaluated as one unit,
+    starting from the key whose first rule comes first in priority order, so that an
+    answer never depends on which question was asked first.
+    """
+
+    __slots__ = ("cycles", "dependents", "order")
+
+    def __init__(self, rules: tuple[Rule, ...]) -> None:
+        order: dict[Key, int] = {}
+        edges: dict[Key, list[Key]] = {}
+        for rule in rules:
+            key = rule.key
+            if key not in order:
+                order[key] = len(order)
+                edges[key] = []
+        dependents: dict[Key, list[Key]] = {}
+        for rule in rules:
+            for needed in rule.antecedent_keys():
+                if needed in order:
+                    edges[rule.key].append(needed)
+                dependents.setdefault(needed, []).append(rule.key)
+        self.order = order
+        self.dependents = dependents
+        self.cycles: dict[Key, tuple[Key, ...]] = {}
+        for component in _strongly_connected(edges):
+            if len(component) > 1 or component[0] in edges[component[0]]:
+                ordered = tuple(sorted(component, key=order.__getitem__))
+                for key in ordered:
+                    self.cycles[key] = ordered
+
+    def affected_by(self, keys: Iterable[Key]) -> set[Key]:
+        """Every derived key whose evaluation reads one of ``keys``, transitively."""
+        seen: set[Key] = set()
+        stack = list(keys)
+        dependents = self.dependents
+        while stack:
+            for dependent in dependents.get(stack.pop(), ()):
+                if dependent not in seen:
+                    seen.add(dependent)
+                    stack.append(dependent)
+        return seen
+
+
+def _strongly_connected(edges: dict[Key, list[Key]]) -> list[list[Key]]:
+    """Tarjan's algorithm without recursion (chains of defaults can be long)."""
+    index: dict[Key, int] = {}
+    low: dict[Key, int] = {}
+    on_stack: set[Key] = set()
+    stack: list[Key] = []
+    components: list[list[Key]] = []
+    for root in edges:
+        if root in index:
+            continue
+        work = [(root, 0)]
+        while work:
+            node, child_at = work.pop()
+            if child_at == 0:
+                index[node] = low[node] = len(index)
+                stack.append(node)
+                on_stack.add(node)
+            children = edges[node]
+            if child_at < len(children):
+                work.append((node, child_at + 1))
+                child = children[child_at]
+                if child not in index:
+                    work.append((child, 0))
+                elif child in on_stack:
+                    low[node] = min(low[node], index[child])
+                continue
+            if low[node] == index[node]:
+                component = []
+                while True:
+                    member = stack.pop()
+                    on_stack.discard(member)
+                    component.append(member)
+                    if member == node:
+                        break
+                components.append(component)
+            if work:
+                parent = work[-1][0]
+                low[parent] = min(low[parent], low[node])
+    return components
+
+
+class ClassTable:
+    """Everything a class and its members inherit, resolved once."""
+
+    __slots__ = ("_graph", "facts", "groups", "levels", "name", "rules")
+
+    def __init__(
+        self,
+        name: str,
+        properties: list[Statement],
+        relations: list[Statement],
+        mother: ClassTable | None,
+    ) -> None:
+        self.name = name
+        own = own_levels((properties, relations))
+        self.levels: tuple[dict[str, Levels], dict[str, Levels]] = ({}, {})
+        self.facts: tuple[dict[str, Resolution], dict[str, Resolution]] = ({}, {})
+        for namespace in NAMESPACES:
+            inherited_levels = mother.levels[namespace] if mother else {}
+            inherited_facts = mother.facts[namespace] if mother else {}
+            levels = self.levels[namespace]
+            facts = self.facts[namespace]
+            for literal_name, level in own[namespace].items():
+                chain = (level, *inherited_levels.get(literal_name, ()))
+                levels[literal_name] = chain
+                facts[literal_name] = resolve_levels(chain)
+            for literal_name, chain in inherited_levels.items():
+                if literal_name not in levels:
+                    levels[literal_name] = chain
+                    facts[literal_name] = inherited_facts[literal_name]
+        own_rules = sort_rules(_preferences(properties, relations), name)
+        self.rules: tuple[Rule, ...] = (*own_rules, *(mother.rules if mother else ()))
+        self.groups = group_rules(own_rules, mother.groups if mother else ({}, {}))
+        self._graph: DependencyGraph | None = None
+
+    @property
+    def graph(self) -> DependencyGraph:
+        """The dependency graph of the class's rules (built on first use)."""
+        if self._graph is None:
+            self._graph = DependencyGraph(self.rules)
+        return self._graph
+
+
+def group_rules(
+    own_rules: list[Rule], inherited: tuple[dict[str, tuple[Rule, ...]], ...]
+) -> tuple[dict[str, tuple[Rule, ...]], dict[str, tuple[Rule, ...]]]:
+    """Rules grouped by the key they conclude about; own rules before inherited ones."""
+    groups: tuple[dict[str, tuple[Rule, ...]], dict[str, tuple[Rule, ...]]] = (
+        dict(inherited[PROPERTY]),
+        dict(inherited[RELATION]),
+    )
+    own_grouped: dict[Key, list[Rule]] = {}
+    for rule in own_rules:
+        own_grouped.setdefault(rule.key, []).append(rule)
+    for (namespace, name), rules in own_grouped.items():
+        groups[namespace][name] = (*rules, *inherited[namespace].get(name, ()))
+    return groups
+
+
+def _preferences(
+    properties: list[Statement], relations: list[Statement]
+) -> list[tuple[Preference, int]]:
+    found = [(s, PROPERTY) for s in properties if isinstance(s, Preference)]
+    found.extend((s, RELATION) for s in relations if isinstance(s, Preference))
+    return found
