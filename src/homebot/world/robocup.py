@@ -1,0 +1,290 @@
+"""A playable world built from a RoboCup@Home data directory (names, rooms, locations, objects)."""
+
+from __future__ import annotations
+
+import math
+import re
+import zlib
+from pathlib import Path
+from typing import Any
+
+from homebot.errors import WorldError
+
+__all__ = ["read_robocup_data", "world_from_robocup"]
+
+_CELL = 2.0  # metres between placement centres
+_STRIP = 2.5  # free strip along the bottom of every room (doors, people, robot)
+_MARGIN = 1.5  # free band along the left wall (doors to the room above)
+_FOOTPRINT = (0.8, 0.6)
+_SPOTS = frozenset({"entrance", "exit"})
+# Which room a location most likely stands in, by a word of its name.
+_AFFINITY: tuple[tuple[str, tuple[str, ...]], ...] = (
+    ("bedside", ("bedroom",)), ("bed", ("bedroom",)), ("kitchen", ("kitchen",)),
+    ("dishwasher", ("kitchen",)), ("refrigerator", ("kitchen",)), ("fridge", ("kitchen",)),
+    ("pantry", ("kitchen",)), ("sink", ("kitchen", "bathroom")), ("desk", ("office",)),
+    ("sofa", ("living room",)), ("couch", ("living room",)), ("tv", ("living room",)),
+    ("armchair", ("living room",)), ("bookshelf", ("living room", "office")),
+    ("cabinet", ("kitchen", "bathroom")), ("shelf", ("bathroom", "office")),
+    ("entrance", ("living room", "hallway", "corridor")),
+    ("exit", ("hallway", "corridor", "kitchen")), ("coatrack", ("hallway", "living room")),
+)
+_GESTURES = ("waving", "none", "raising_left_arm", "pointing_right", "raising_right_arm",
+             "pointing_left", "none")
+_POSTURES = ("standing", "sitting", "standing", "lying", "standing")
+_CLOTHES = ("blue t-shirt", "red sweater", "black jacket", "white shirt", "yellow coat",
+            "gray sweater", "orange jacket", "blue blouse", "green coat", "black t-shirt")
+
+
+def read_robocup_data(directory: str | Path) -> dict[str, Any]:
+    """The names, rooms, locations (with placeability and category) and object classes.
+
+    Raises ``WorldError`` naming the missing file or the table it could not read.
+    """
+    root = Path(directory)
+    if not root.is_dir():
+        raise WorldError(f"{root}: not a directory; give a RoboCup@Home data directory "
+                         "(with names/, maps/ and objects/)")
+    names = _first_column(_read(root / "names" / "names.md"))
+    rooms = _first_column(_read(root / "maps" / "room_names.md"))
+    locations = _locations(_read(root / "maps" / "location_names.md"), root)
+    classes = _object_classes(_read(root / "objects" / "objects.md"), root)
+    for label, entries, path in (("names", names, "names/names.md"),
+                                 ("rooms", rooms, "maps/room_names.md"),
+                                 ("locations", locations, "maps/location_names.md"),
+                                 ("object classes", classes, "objects/objects.md")):
+        if not entries:
+            raise WorldError(f"{root / path}: no {label} found; expected a markdown table")
+    return {"names": names, "rooms": rooms, "locations": locations, "classes": classes}
+
+
+def world_from_robocup(directory: str | Path, name: str | None = None) -> dict[str, Any]:
+    """Plain world data (for ``World.from_dict``) from a RoboCup@Home data directory.
+
+    Rooms are laid out on a grid with doors between neighbours; every location is
+    furniture (or a spot, for entrance and exit) in a room; every object lies on a
+    placeable location, its category's default location when there is one.
+    """
+    data = read_robocup_data(directory)
+    rooms: list[str] = [_clean(room) for room in data["rooms"]]
+    locations: list[dict[str, Any]] = data["locations"]
+    classes: list[dict[str, Any]] = data["classes"]
+    _check_clashes(rooms, locations)
+    in_room = _assign_rooms([location["name"] for location in locations], rooms)
+    per_room = max(1, max(list(in_room.values()).count(room) for room in rooms))
+    columns_inside = max(2, math.ceil(math.sqrt(per_room)))
+    rows_inside = max(1, math.ceil(per_room / columns_inside))
+    width = _MARGIN + columns_inside * _CELL + 0.5
+    height = _STRIP + rows_inside * _CELL + 0.5
+    grid_columns = math.ceil(math.sqrt(len(rooms)))
+    origins = {room: ((index % grid_columns) * width, (index // grid_columns) * height)
+               for index, room in enumerate(rooms)}
+    category_names = {entry["plural"]: entry["name"] for entry in classes}
+    category_names.update({entry["name"]: entry["name"] for entry in classes})
+    placements = _placements(locations, in_room, origins, columns_inside, category_names)
+    objects = _objects(classes, placements)
+    people = _people(data["names"], rooms, origins, width)
+    x0, y0 = origins[rooms[0]]
+    return {
+        "name": name or _clean(Path(directory).name) or "robocup",
+        "description": f"Built from the RoboCup@Home data in {Path(directory).name}.",
+        "rooms": [{"name": room, "polygon": _rectangle(origins[room], width, height)}
+                  for room in rooms],
+        "doors": _doors(rooms, origins, width, height, grid_columns),
+        "placements": placements,
+        "categories": [{"name": entry["name"], "plural": entry["plural"]} for entry in classes],
+        "objects": objects,
+        "people": people,
+        "robot": {"pose": [round(x0 + width - 1.0, 2), round(y0 + 1.0, 2), 1.5708]},
+    }
+
+
+# ---------------------------------------------------------------- reading
+
+
+def _read(path: Path) -> str:
+    try:
+        return path.read_text(encoding="utf-8")
+    except FileNotFoundError:
+        raise WorldError(f"{path}: no such file; a RoboCup@Home data directory has "
+                         "names/names.md, maps/room_names.md, maps/location_names.md "
+                         "and objects/objects.md") from None
+    except (OSError, UnicodeDecodeError) as error:
+        raise WorldError(f"{path}: cannot be read ({error})") from None
+
+
+def _rows(text: str) -> list[list[str]]:
+    rows = []
+    for line in text.splitlines():
+        if "|" not in line or re.fullmatch(r"[\s|:\-]*", line):
+            continue
+        cells = [cell.strip() for cell in line.strip().strip("|").split("|")]
+        rows.append(cells)
+    return rows[1:]  # the first row is the header
+
+
+def _first_column(text: str) -> list[str]:
+    return [row[0] for row in _rows(text) if row and row[0]]
+
+
+def _locations(text: str, root: Path) -> list[dict[str, Any]]:
+    locations = []
+    for row in _rows(text):
+        if len(row) < 2 or not row[1]:
+            continue
+        label = row[1]
+        placeable = "(p)" in label
+        location = _clean(label.replace("(p)", ""))
+        category = _clean(row[2]) if len(row) > 2 and row[2] else None
+        if not location:
+            raise WorldError(f"{root / 'maps/location_names.md'}: a row has no location name")
+        locations.append({"name": location, "placeable": placeable, "category": category})
+    return locations
+
+
+def _object_classes(text: str, root: Path) -> list[dict[str, Any]]:
+    classes: list[dict[str, Any]] = []
+    header = re.compile(r"^#+\s*Class\s+(\S+)\s*\((\S+)\)", re.IGNORECASE)
+    for line in text.splitlines():
+        match = header.match(line.strip())
+        if match:
+            classes.append({"plural": _clean(match.group(1)), "name": _clean(match.group(2)),
+                            "objects": []})
+            continue
+        cells = [cell.strip() for cell in line.strip().strip("|").split("|")]
+        if classes and "|" in line and cells and cells[0] and not re.fullmatch(
+                r"[:\- ]*", cells[0]) and cells[0].lower() != "objectname":
+            classes[-1]["objects"].append(_clean(cells[0]))
+    if any(not entry["objects"] for entry in classes):
+        empty = next(entry["plural"] for entry in classes if not entry["objects"])
+        raise WorldError(f"{root / 'objects/objects.md'}: class '{empty}' lists no objects")
+    return classes
+
+
+def _clean(text: str) -> str:
+    """A name as people say it: underscores as spaces, single spaces, no markup."""
+    cleaned = re.sub(r"[^A-Za-z0-9 '\-]", " ", text.replace("_", " "))
+    return " ".join(cleaned.split()).strip()
+
+
+def _check_clashes(rooms: list[str], locations: list[dict[str, Any]]) -> None:
+    clashes = sorted({location["name"] for location in locations} & set(rooms))
+    if clashes:
+        raise WorldError(f"'{clashes[0]}' is both a room and a location; rename one in the "
+                         "data directory")
+
+
+# ---------------------------------------------------------------- layout
+
+
+def _assign_rooms(locations: list[str], rooms: list[str]) -> dict[str, str]:
+    """Each location's room: by name affinity when the room exists, else the emptiest."""
+    assigned: dict[str, str] = {}
+    counts = dict.fromkeys(rooms, 0)
+    for location in locations:
+        words = location.lower().split()
+        room = next((candidate for word, candidates in _AFFINITY
+                     if any(w.startswith(word) for w in words)
+                     for candidate in candidates if candidate in counts), None)
+        if room is None or counts[room] >= math.ceil(len(locations) / len(rooms)) + 1:
+            room = min(rooms, key=lambda r: (counts[r], rooms.index(r)))
+        assigned[location] = room
+        counts[room] += 1
+    return assigned
+
+
+def _rectangle(origin: tuple[float, float], width: float, height: float) -> list[list[float]]:
+    x, y = origin
+    return [[round(x, 3), round(y, 3)], [round(x + width, 3), round(y, 3)],
+            [round(x + width, 3), round(y + height, 3)], [round(x, 3), round(y + height, 3)]]
+
+
+def _doors(rooms: list[str], origins: dict[str, tuple[float, float]], width: float,
+           height: float, columns: int) -> list[dict[str, Any]]:
+    doors = []
+    for index, room in enumerate(rooms):
+        x, y = origins[room]
+        right = index + 1
+        if right < len(rooms) and right % columns != 0:
+            doors.append({"name": f"{room} {rooms[right]} door", "rooms": [room, rooms[right]],
+                          "position": [round(x + width, 3), round(y + _STRIP / 2, 3)]})
+        above = index + columns
+        if above < len(rooms):
+            doors.append({"name": f"{room} {rooms[above]} door", "rooms": [room, rooms[above]],
+                          "position": [round(x + _MARGIN / 2, 3), round(y + height, 3)]})
+    return doors
+
+
+def _placements(locations: list[dict[str, Any]], in_room: dict[str, str],
+                origins: dict[str, tuple[float, float]], columns: int,
+                category_names: dict[str, str]) -> list[dict[str, Any]]:
+    placements = []
+    slots: dict[str, int] = {}
+    for location in locations:
+        room = in_room[location["name"]]
+        slot = slots.get(room, 0)
+        slots[room] = slot + 1
+        x0, y0 = origins[room]
+        center = [round(x0 + _MARGIN + _CELL / 2 + (slot % columns) * _CELL, 3),
+                  round(y0 + _STRIP + _CELL / 2 + (slot // columns) * _CELL, 3)]
+        entry: dict[str, Any] = {"name": location["name"], "category": _furniture(location),
+                                 "room": room, "center": center}
+        if location["name"].lower() in _SPOTS:
+            entry["kind"] = "spot"
+        else:
+            entry["size"] = list(_FOOTPRINT)
+        category = category_names.get(location["category"] or "")
+        if category:
+            entry["holds"] = [category]
+        placements.append(entry)
+    return placements
+
+
+def _furniture(location: dict[str, Any]) -> str:
+    name = location["name"].lower()
+    for word, kind in (("table", "table"), ("shelf", "storage"), ("cabinet", "storage"),
+                       ("rack", "storage"), ("stand", "storage"), ("bed", "seating"),
+                       ("sofa", "seating"), ("chair", "seating"), ("desk", "table"),
+                       ("lamp", "lamp"), ("bin", "bin"), ("basket", "bin")):
+        if word in name:
+            return kind
+    return "spot" if name in _SPOTS else ("furniture" if location["placeable"] else "fixture")
+
+
+def _objects(classes: list[dict[str, Any]], placements: list[dict[str, Any]]) -> list[dict[str, Any]]:
+    """Every object on its category's placement, else spread over the placeable ones."""
+    placeable = [p["name"] for p in placements if p.get("kind") != "spot"]
+    objects = []
+    spread = 0
+    for entry in classes:
+        homes = [p["name"] for p in placements if entry["name"] in p.get("holds", [])]
+        for object_name in entry["objects"]:
+            if homes:
+                placement = homes[0]
+            else:
+                placement = placeable[spread % len(placeable)]
+                spread += 1
+            checksum = zlib.crc32(object_name.encode("utf-8"))
+            objects.append({"name": object_name, "category": entry["name"],
+                            "placement": placement,
+                            "size": round(0.05 + (checksum % 30) / 100, 2),
+                            "weight": round(0.1 + (checksum // 30 % 20) / 10, 2)})
+    return objects
+
+
+def _people(names: list[str], rooms: list[str], origins: dict[str, tuple[float, float]],
+            width: float) -> list[dict[str, Any]]:
+    people = []
+    for index, person in enumerate(names):
+        room = rooms[index % len(rooms)]
+        x0, y0 = origins[room]
+        slot = index // len(rooms)
+        people.append({
+            "name": _clean(person), "room": room,
+            "position": [round(x0 + _MARGIN + 0.6 + slot * 1.0, 2), round(y0 + 1.2, 2)],
+            "posture": _POSTURES[index % len(_POSTURES)],
+            "gesture": _GESTURES[index % len(_GESTURES)],
+            "clothes": [_CLOTHES[index % len(_CLOTHES)]],
+        })
+        if x0 + _MARGIN + 0.6 + slot * 1.0 > x0 + width - 0.5:
+            raise WorldError(f"too many people for room '{room}'; the data lists {len(names)}")
+    return people
