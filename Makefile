@@ -23,11 +23,11 @@ demo: $(STAMP_RUN)
 	$(BIN)/homebot demo
 
 test: $(STAMP_DEV)
-	$(BIN)/ruff check src tests benchmarks
+	$(BIN)/ruff check src tests
 	$(BIN)/python -m pytest
 
 lint: $(STAMP_DEV)
-	$(BIN)/ruff check src tests benchmarks
+	$(BIN)/ruff check src tests
 
 bench: $(STAMP_RUN)
 	$(BIN)/homebot bench all

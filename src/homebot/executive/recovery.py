@@ -14,7 +14,6 @@ from typing import Any
 
 from homebot.robot import HelpRequest
 from homebot.skills import ErrorCode, Outcome, SkillContext, speak
-from homebot.skills.perception import candidate_placements
 from homebot.skills.places import resolve_target
 
 __all__ = ["PROTOCOLS", "Protocol", "StepRunner"]
@@ -79,17 +78,26 @@ def _object_not_found(context: SkillContext, skill: str, args: Mapping[str, Any]
         return False
     searched = list(outcome.data.get("searched", ())) + (
         [str(outcome.data["placement"])] if outcome.data.get("placement") else [])
-    if not candidate_placements(context, wanted, exclude=searched):
-        # Every place was searched once; a detection may have missed it, so sweep again.
-        context.beliefs.not_at.pop(wanted, None)
-        searched = []
     speak(context, f"The {wanted} is not where I expected. I will look elsewhere.")
     found = run("find_object", {"object": wanted, "exclude": searched})
+    if not found and found.error is ErrorCode.NOT_FOUND:
+        # Every likely place was searched once; a detection may have missed it, so
+        # forget where it was not seen and sweep the whole home once more.
+        context.beliefs.not_at.pop(wanted, None)
+        speak(context, f"I will search the whole home once more for the {wanted}.")
+        found = run("find_object", {"object": wanted})
     if not found:
         return False
     context.bindings[f"object:{wanted}"] = found.data["object"]
     context.bindings[f"placement:{found.data['object']}"] = found.data["placement"]
     return found if skill == "find_object" else True
+
+
+def _slipped(context: SkillContext, skill: str, args: Mapping[str, Any],
+             outcome: Outcome, run: StepRunner) -> bool | Outcome:
+    """A grasp that slipped is worth another round of attempts after a fresh look."""
+    speak(context, f"The {args.get('object', 'object')} keeps slipping. Let me try again.")
+    return True
 
 
 def _person_not_found(context: SkillContext, skill: str, args: Mapping[str, Any],
@@ -117,4 +125,5 @@ PROTOCOLS: Mapping[ErrorCode, Protocol] = {
     ErrorCode.DOOR_CLOSED: _door_closed,
     ErrorCode.PATH_BLOCKED: _path_blocked,
     ErrorCode.NOT_FOUND: _find_again,
+    ErrorCode.NOT_GRASPED: _slipped,
 }

@@ -8,6 +8,7 @@ and a tight pure-Python loop meets the ≤ 5 ms budget for a 15 m path.
 from __future__ import annotations
 
 import heapq
+
 import numpy as np
 
 __all__ = ["astar"]

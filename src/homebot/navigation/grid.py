@@ -106,7 +106,7 @@ class OccupancyGrid:
             window = flat[top:bottom + 1, left:right + 1]
             free = np.argwhere(~window)
             if free.size:
-                offsets = free + (top, left)
+                offsets = np.add(free, (top, left))
                 best = np.argmin(np.hypot(offsets[:, 0] - row, offsets[:, 1] - column))
                 return (int(offsets[best, 0]), int(offsets[best, 1]))
         return None

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass, field
 
@@ -79,13 +80,13 @@ class Navigator:
             stops.append(row * columns + column)
         stops.append(goal_cell[0] * columns + goal_cell[1])
         cells: list[int] = [stops[0]]
-        for here, there in zip(stops, stops[1:], strict=False):
+        for here, there in itertools.pairwise(stops):
             segment = self._segment(here, there, closed_doors, mask)
             if segment is None:
                 return None
             cells.extend(segment[1:])
         points = [self.grid.center_of(*divmod(cell, columns)) for cell in cells]
-        length = sum(math.dist(a, b) for a, b in zip(points, points[1:], strict=False))
+        length = sum(math.dist(a, b) for a, b in itertools.pairwise(points))
         length += math.dist(start, points[0]) + math.dist(goal, points[-1])
         waypoints = (start, *_simplify(points)[1:-1], goal)
         return NavigationPlan(waypoints, length, route.doors, route)

@@ -87,7 +87,7 @@ class Place(Skill):
         if hand is None:
             return Outcome.failed(ErrorCode.NOT_HOLDING, "I am not holding anything to place")
         label = context.beliefs.holding[hand]
-        x, y, theta = context.world.placements[placement].approach
+        x, y, _ = context.world.placements[placement].approach
         goal = resolve_target(context, placement)
         if goal is not None and math.dist(context.robot.pose().xy(), (x, y)) > 0.3:
             moved = drive(context, goal)

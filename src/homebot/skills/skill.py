@@ -141,7 +141,11 @@ class Skill(ABC):
         """Sense whether the effect is there: ``verified`` (carrying data) or ``aborted``."""
 
     def assume(self, context: SkillContext, args: Mapping[str, Any], finished: Outcome) -> None:
-        """With monitoring off, take the expected effect for granted in the beliefs."""
+        """With monitoring off, take the expected effect for granted in the beliefs.
+
+        Most skills change nothing the robot believes; those that do override this.
+        """
+        return None
 
     def run(self, context: SkillContext, args: Mapping[str, Any]) -> Outcome:
         """Execute, monitor and report, retrying within the budget; logs every status."""

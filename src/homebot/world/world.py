@@ -232,7 +232,8 @@ class World:
 
     def _check_rooms(self) -> None:
         for index, room in enumerate(self.model.rooms):
-            if not self.room_polygons[room.name].is_valid or self.room_polygons[room.name].area <= 0:
+            polygon = self.room_polygons[room.name]
+            if not polygon.is_valid or polygon.area <= 0:
                 self._problem(["rooms", index, "polygon"],
                               "polygon is not a simple area; list its corners in order")
         names = list(self.room_polygons)
@@ -275,7 +276,8 @@ class World:
         placements: dict[str, Placement] = {}
         for index, model in enumerate(self.model.placements):
             if model.room not in self.rooms:
-                self._problem(["placements", index, "room"], _unknown("room", model.room, self.rooms))
+                self._problem(["placements", index, "room"],
+                              _unknown("room", model.room, self.rooms))
                 continue
             if not self.room_polygons[model.room].covers(Point(model.center)):
                 self._problem(["placements", index, "center"],

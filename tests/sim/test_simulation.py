@@ -1,0 +1,93 @@
+"""The simulator: seeded disturbances, sensors that can be wrong, ground truth kept apart."""
+
+from __future__ import annotations
+
+from homebot.navigation import Navigator
+from homebot.robot import Blocker, Pose
+from homebot.sim import ScriptedResponder, SimRobot, Simulation
+from homebot.world import DisturbanceModel, DoorState, World
+
+EVERYTHING = DisturbanceModel(object_moved=0.3, object_missing=0.1, door_closed=0.4,
+                              person_in_way=0.2)
+
+
+def test_same_seed_same_disturbances(apartment: World, apartment_navigator: Navigator) -> None:
+    first = Simulation(apartment, seed=7, disturbances=EVERYTHING, navigator=apartment_navigator)
+    second = Simulation(apartment, seed=7, disturbances=EVERYTHING,
+                        navigator=apartment_navigator)
+    other = Simulation(apartment, seed=8, disturbances=EVERYTHING, navigator=apartment_navigator)
+    assert first.events.to_json_lines() == second.events.to_json_lines()
+    assert first.object_location == second.object_location
+    assert first.events.to_json_lines() != other.events.to_json_lines()
+
+
+def test_no_disturbances_means_truth_is_the_world_file(apartment: World,
+                                                       apartment_navigator: Navigator) -> None:
+    simulation = Simulation(apartment, seed=1, navigator=apartment_navigator)
+    assert simulation.object_location == {n: o.placement for n, o in apartment.objects.items()}
+    assert simulation.closed_doors() == frozenset()
+
+
+def test_moving_takes_simulated_time_by_path_length(apartment: World,
+                                                    apartment_navigator: Navigator) -> None:
+    simulation = Simulation(apartment, seed=1, navigator=apartment_navigator)
+    robot = SimRobot(simulation)
+    report = robot.move_to(Pose(*apartment.placements["fridge"].approach))
+    assert report.reached
+    assert simulation.clock.now() >= report.distance / apartment.robot.speed
+    assert robot.pose().xy() == apartment.placements["fridge"].approach[:2]
+
+
+def test_a_closed_door_stops_the_robot_in_front_of_it(apartment: World,
+                                                      apartment_navigator: Navigator) -> None:
+    simulation = Simulation(apartment, seed=1, navigator=apartment_navigator)
+    simulation.door_state["bedroom door"] = DoorState.CLOSED
+    robot = SimRobot(simulation)
+    report = robot.move_to(Pose(*apartment.placements["bed"].approach))
+    assert not report.reached
+    assert report.blocker is Blocker.DOOR_CLOSED and report.door == "bedroom door"
+    assert apartment.room_at(*robot.pose().xy()) == "corridor"
+
+
+def test_a_person_in_a_doorway_blocks_until_asked(apartment: World,
+                                                  apartment_navigator: Navigator) -> None:
+    simulation = Simulation(apartment, seed=1, navigator=apartment_navigator)
+    simulation.place_person_in_doorway("office door", "Maria")
+    robot = SimRobot(simulation)
+    report = robot.move_to(Pose(*apartment.placements["desk"].approach))
+    assert report.blocker is Blocker.PERSON and report.person == "Maria"
+    from homebot.robot import HelpRequest
+
+    assert robot.request("Maria", HelpRequest.STEP_ASIDE, "office door")
+    assert robot.move_to(Pose(*apartment.placements["desk"].approach)).reached
+
+
+def test_grasp_needs_reach_and_can_slip(apartment: World, apartment_navigator: Navigator) -> None:
+    slippery = DisturbanceModel(grasp_slip=1.0)
+    simulation = Simulation(apartment, seed=1, disturbances=slippery,
+                            navigator=apartment_navigator)
+    robot = SimRobot(simulation)
+    robot.move_to(Pose(*apartment.placements["fridge"].approach))
+    cola = next(d for d in robot.perceive_objects("fridge") if d.label == "cola")
+    robot.grasp(cola, "left")
+    assert robot.held("left") is None
+    assert simulation.object_location["cola"] == "fridge"
+    simulation.disturbances = DisturbanceModel()
+    robot.grasp(cola, "left")
+    held = robot.held("left")
+    assert held is not None and held.label == "cola"
+
+
+def test_perception_far_from_a_placement_sees_nothing(apartment: World,
+                                                      apartment_navigator: Navigator) -> None:
+    robot = SimRobot(Simulation(apartment, seed=1, navigator=apartment_navigator))
+    assert robot.perceive_objects("fridge") == []
+
+
+def test_people_answer_from_the_world_and_the_script(apartment: World) -> None:
+    responder = ScriptedResponder({"Alex": {"What is your favourite drink?": "tea"}})
+    alex = apartment.person("Alex")
+    assert responder(alex, "What would you like to drink?") == "orange juice"
+    assert responder(alex, "what is your favourite drink") == "tea"
+    assert responder(alex, "What is your name?") == "Alex"
+    assert responder(alex, "How is the weather on Mars?") is None

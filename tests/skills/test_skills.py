@@ -1,0 +1,125 @@
+"""Skills: each executes, monitors by sensing, and reports the Care-O-bot outcomes."""
+
+from __future__ import annotations
+
+import pytest
+
+from homebot.errors import TaskError
+from homebot.navigation import Navigator
+from homebot.scenarios import SimulatedRun
+from homebot.skills import SKILLS, ErrorCode, Status, check_step, skill_named
+from homebot.task import Step
+from homebot.world import DisturbanceModel, World
+
+
+@pytest.fixture
+def run(apartment: World, apartment_navigator: Navigator) -> SimulatedRun:
+    return SimulatedRun.create(apartment, navigator=apartment_navigator)
+
+
+def _do(run: SimulatedRun, skill: str, **args: object):
+    return skill_named(skill).run(run.context, args)
+
+
+def test_the_issue_lists_every_skill() -> None:
+    assert set(SKILLS) == {"navigate", "look", "find_object", "pick", "place", "give",
+                           "find_person", "follow", "guide", "greet", "say", "ask", "count",
+                           "describe", "open_door", "answer_question"}
+
+
+def test_navigate_verifies_the_pose(run: SimulatedRun) -> None:
+    outcome = _do(run, "navigate", to="kitchen")
+    assert outcome.status is Status.VERIFIED and bool(outcome)
+    assert run.world.room_at(*run.robot.pose().xy()) == "kitchen"
+
+
+def test_unknown_target_fails(run: SimulatedRun) -> None:
+    outcome = _do(run, "navigate", to="garage")
+    assert outcome.status is Status.FAILED and outcome.error is ErrorCode.UNKNOWN_TARGET
+    assert not outcome
+
+
+def test_pick_aborts_when_the_hand_is_empty(apartment: World,
+                                            apartment_navigator: Navigator) -> None:
+    run = SimulatedRun.create(apartment, navigator=apartment_navigator,
+                              disturbances=DisturbanceModel(grasp_slip=1.0),
+                              retries={"pick": 0})
+    outcome = skill_named("pick").run(run.context, {"object": "cola"})
+    assert outcome.status is Status.ABORTED and outcome.error is ErrorCode.NOT_GRASPED
+    assert run.context.beliefs.free_hand() == "left"
+
+
+def test_pick_then_place_moves_the_object(run: SimulatedRun) -> None:
+    assert _do(run, "pick", object="cola")
+    assert run.context.beliefs.holding["left"] == "cola"
+    outcome = _do(run, "place", placement="kitchen table")
+    assert outcome.status is Status.VERIFIED
+    assert run.simulation.object_location["cola"] == "kitchen table"
+
+
+def test_place_with_empty_hands_fails(run: SimulatedRun) -> None:
+    outcome = _do(run, "place", placement="kitchen table")
+    assert outcome.error is ErrorCode.NOT_HOLDING
+
+
+def test_two_hands_then_full(run: SimulatedRun) -> None:
+    assert _do(run, "pick", object="cola")
+    assert _do(run, "pick", object="milk")
+    assert _do(run, "pick", object="water").error is ErrorCode.HANDS_FULL
+
+
+def test_find_object_by_category_binds_a_real_object(run: SimulatedRun) -> None:
+    outcome = _do(run, "find_object", object="fruit", room="kitchen")
+    assert outcome and outcome.data["object"] in {"apple", "banana", "orange", "lemon", "pear"}
+    assert outcome.data["placement"] == "kitchen table"
+
+
+def test_count_and_say_the_result(run: SimulatedRun) -> None:
+    counted = _do(run, "count", object="drink", placement="fridge")
+    assert counted and counted.data["count"] == 5
+    said = _do(run, "say", text="$result")
+    assert said.data["text"] == "There are 5 drinks on the fridge."
+
+
+def test_find_person_by_gesture_then_describe(run: SimulatedRun) -> None:
+    found = _do(run, "find_person", person={"gesture": "waving"}, room="office")
+    assert found and found.data["person"] == "Sophie"
+    described = _do(run, "describe", info="clothes")
+    assert described and "yellow jacket" in described.data["result"]
+
+
+def test_describe_object_property(run: SimulatedRun) -> None:
+    outcome = _do(run, "describe", property="heaviest", object="object", placement="fridge")
+    assert outcome and "fridge" in outcome.data["result"]
+
+
+def test_guide_brings_the_person_along(run: SimulatedRun) -> None:
+    assert _do(run, "find_person", person={"name": "John"}, room="bedroom")
+    assert _do(run, "guide", to="kitchen")
+    assert run.simulation.people["John"].room == "kitchen"
+
+
+def test_ask_binds_the_answer_and_no_answer_aborts(run: SimulatedRun) -> None:
+    assert _do(run, "find_person", person={"name": "Alex"})
+    answer = _do(run, "ask", question="What would you like to drink?")
+    assert answer.data["answer"] == "orange juice"
+    silent = _do(run, "ask", question="What is the meaning of life?")
+    assert silent.error is ErrorCode.NO_ANSWER
+
+
+def test_answer_question_from_beliefs(run: SimulatedRun) -> None:
+    assert _do(run, "find_person", person={"name": "Alex"})
+    outcome = _do(run, "answer_question")
+    assert outcome and outcome.data["answer"] == "There are 7 rooms."
+
+
+def test_check_step_rejects_bad_steps(apartment: World) -> None:
+    check_step(Step("navigate", {"to": "fridge"}), apartment, "step 1")
+    with pytest.raises(TaskError, match="did you mean 'navigate'"):
+        check_step(Step("navigat", {"to": "fridge"}), apartment, "step 1")
+    with pytest.raises(TaskError, match="needs argument 'object'"):
+        check_step(Step("pick", {}), apartment, "step 2")
+    with pytest.raises(TaskError, match=r"unknown placement 'fridg'.*did you mean 'fridge'"):
+        check_step(Step("place", {"placement": "fridg"}), apartment, "step 3")
+    with pytest.raises(TaskError, match="has no argument 'where'"):
+        check_step(Step("navigate", {"to": "fridge", "where": "x"}), apartment, "step 4")
