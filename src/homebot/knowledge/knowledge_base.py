@@ -13,7 +13,9 @@ from homebot.knowledge.reasoner import Reasoner, Touched
 from homebot.knowledge.tables import NAMESPACES, PROPERTY, RELATION, Resolution
 from homebot.knowledge.terms import parse_statement
 
-__all__ = ["UNKNOWN", "Answer", "KnowledgeBase"]
+__all__ = ["UNKNOWN", "Answer", "KnowledgeBase", "shipped_kb_names", "shipped_kb_path"]
+
+_DATA_TOKEN = "$DATA"
 
 #: The answer when neither a statement nor its negation holds (no closed world).
 UNKNOWN = "unknown"
@@ -48,6 +50,17 @@ class KnowledgeBase:
         if path.suffix.lower() in (".yaml", ".yml"):
             return cls(read_kb_yaml(path))
         return cls(read_kb(path))
+
+    @classmethod
+    def load(cls, spec: str | Path) -> KnowledgeBase:
+        """Load a KB file, a store (``.db``), ``$DATA/kb/NAME.kb`` or a shipped KB by name."""
+        path = shipped_kb_path(spec)
+        if path.suffix.lower() in (".db", ".sqlite", ".sqlite3"):
+            from homebot.knowledge.store import KnowledgeStore
+
+            with KnowledgeStore.open(path) as store:
+                return store.kb
+        return cls.from_file(path)
 
     @classmethod
     def from_text(cls, text: str, source: str = "<text>") -> KnowledgeBase:
@@ -236,6 +249,30 @@ class KnowledgeBase:
 
     def __repr__(self) -> str:
         return f"KnowledgeBase({self.taxonomy!r})"
+
+
+def _data_directory() -> Path:
+    return Path(__file__).resolve().parent.parent / "data"
+
+
+def shipped_kb_names() -> list[str]:
+    """The KBs shipped in ``homebot/data/kb`` (``butler``, ``animals``, ...)."""
+    return sorted(path.stem for path in (_data_directory() / "kb").glob("*.kb"))
+
+
+def shipped_kb_path(spec: str | Path) -> Path:
+    """The file a KB argument names: a path, ``$DATA/...``, or a shipped KB's name."""
+    text = str(spec)
+    if text.startswith(_DATA_TOKEN):
+        return _data_directory() / text[len(_DATA_TOKEN) :].lstrip("/")
+    path = Path(text)
+    if path.exists():
+        return path
+    shipped = _data_directory() / "kb" / f"{text}.kb"
+    if "/" not in text and shipped.is_file():
+        return shipped
+    names = ", ".join(shipped_kb_names())
+    raise KnowledgeError(f"no KB file '{text}'; give a path or a shipped KB name ({names})")
 
 
 def _pattern(prop: str | Literal) -> Literal:

@@ -22,7 +22,7 @@ from homebot.knowledge.terms import (
     statement_from_term,
 )
 
-__all__ = ["read_kb", "read_kb_text", "write_kb", "write_kb_text"]
+__all__ = ["kb_warnings", "read_kb", "read_kb_text", "write_kb", "write_kb_text"]
 
 _NONE = "none"
 
@@ -178,6 +178,22 @@ def read_kb_text(text: str, source: str = "<text>") -> Taxonomy:
     if found:
         parser.raise_problem(found[0])
     return taxonomy
+
+
+def kb_warnings(path: str | Path) -> list[str]:
+    """Statements of a KB file the reasoner ignores (see ``coherence``), with line and column."""
+    path = Path(path)
+    parser = _KBParser(path.read_text(encoding="utf-8"), str(path))
+    taxonomy = parser.knowledge_base()
+    messages = []
+    for problem in coherence.warnings(taxonomy):
+        index = parser.statement_at.get((problem.entity, problem.kind, problem.position))
+        if index is None:
+            messages.append(f"{path}: {problem.message}")
+            continue
+        line, column = parser.position(index)
+        messages.append(f"{path}, line {line}, column {column}: {problem.message}")
+    return messages
 
 
 def read_kb(path: str | Path) -> Taxonomy:
