@@ -250,7 +250,8 @@ def _furniture(location: dict[str, Any]) -> str:
     return "spot" if name in _SPOTS else ("furniture" if location["placeable"] else "fixture")
 
 
-def _objects(classes: list[dict[str, Any]], placements: list[dict[str, Any]]) -> list[dict[str, Any]]:
+def _objects(classes: list[dict[str, Any]],
+             placements: list[dict[str, Any]]) -> list[dict[str, Any]]:
     """Every object on its category's placement, else spread over the placeable ones."""
     placeable = [p["name"] for p in placements if p.get("kind") != "spot"]
     objects = []
