@@ -114,3 +114,19 @@ def test_bench_robustness_json(capsys: pytest.CaptureFixture[str]) -> None:
 
 def test_no_command_prints_help(capsys: pytest.CaptureFixture[str]) -> None:
     assert main([]) == 2
+
+
+def test_do_understands_and_carries_out_a_command(capsys: pytest.CaptureFixture[str]) -> None:
+    command = "find a fruit in the kitchen then get it and deliver it to Maria in the kitchen"
+    assert main(["do", command, "--json"]) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert report["success"] is True
+    assert [step["skill"] for step in report["steps"]] == [
+        "navigate", "find_object", "pick", "navigate", "find_person", "give"]
+    assert report["steps"][2]["args"]["object"] in {"apple", "banana", "orange", "lemon", "pear"}
+
+
+def test_do_refuses_the_impossible_with_a_reason(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["do", "fetch the kitchen", "--json"]) == 1
+    said = json.loads(capsys.readouterr().out)["speech"][0]
+    assert "kitchen" in said and "room" in said

@@ -1,0 +1,51 @@
+"""``homebot do "COMMAND"``: understand a spoken command and carry it out in the simulated home."""
+
+from __future__ import annotations
+
+import argparse
+import json
+from typing import Any
+
+from rich.console import Console
+
+from homebot.cli.options import add_world_options, load_world
+from homebot.cli.run_task import print_report
+from homebot.language import Vocabulary, parse_command
+from homebot.scenarios import SimulatedRun, disturbed
+from homebot.sim import InteractiveResponder
+
+__all__ = ["register"]
+
+
+def register(subparsers: Any) -> None:
+    parser = subparsers.add_parser("do", help="understand a command and carry it out")
+    parser.add_argument("command", help='what to do, e.g. "bring me the cola from the fridge"')
+    add_world_options(parser)
+    parser.add_argument("--disturb", type=float, default=0.0, metavar="LEVEL",
+                        help="switch disturbances on (1 = the benchmark's level)")
+    parser.add_argument("--interactive", action="store_true",
+                        help="type the answers of the people the robot talks to")
+    parser.add_argument("--json", action="store_true", help="print the report as JSON")
+    parser.set_defaults(handler=do)
+
+
+def do(args: argparse.Namespace) -> int:
+    world = load_world(args)
+    parsed = parse_command(args.command, Vocabulary.from_world(world))
+    if not parsed:
+        said = parsed.question or parsed.reason or "I did not understand."
+        if args.json:
+            print(json.dumps({"success": False, "parse": parsed.to_dict(), "steps": [],
+                              "speech": [said], "sim_time": 0.0}))
+        else:
+            Console().print(f"  [cyan]robot:[/] {said}", highlight=False)
+        return 1
+    run = SimulatedRun.create(
+        world, seed=args.seed, disturbances=disturbed(args.disturb) if args.disturb else None,
+        responder=InteractiveResponder() if args.interactive else None)
+    report = run.run(parsed.to_task())
+    if args.json:
+        print(json.dumps(report.to_dict()))
+    else:
+        print_report(Console(), report)
+    return 0 if report.success else 1
