@@ -50,9 +50,12 @@ class Closure:
 
     __slots__ = (
         "_affected",
+        "_entries",
         "_facts",
+        "_flat",
         "_graph",
         "_groups",
+        "_holding",
         "_memo",
         "_own_levels",
         "inherited",
@@ -73,10 +76,16 @@ class Closure:
         self._memo: tuple[dict[str, Resolution], dict[str, Resolution]] = ({}, {})
         self._facts: tuple[dict[str, Resolution], dict[str, Resolution]] = ({}, {})
         self._affected: set[Key] | None = None
+        self._holding: list[tuple[Literal, ...] | None] = [None, None]
+        self._entries: list[list[tuple[str, tuple[Literal, ...]]] | None] = [None, None]
+        self._flat: list[tuple[tuple[Literal, ...], dict[str, tuple[int, int]]] | None] = [
+            None,
+            None,
+        ]
         self.inherited = inherited
         self._own_levels = own_levels(own) if own is not None else ({}, {})
         own_rules = []
-        if own is not None:
+        if own is not None and any(type(s) is not Literal for s in (*own[0], *own[1])):
             own_rules = sort_rules(
                 [
                     (statement, namespace)
@@ -146,23 +155,98 @@ class Closure:
         if facts.decisive or name not in self._groups[namespace]:
             self._memo[namespace][name] = facts
             return facts
-        reused = self._reused((namespace, name))
-        if reused is not None:
-            self._memo[namespace][name] = reused
-            return reused
-        self._evaluate((namespace, name))
-        return self._memo[namespace][name]
+        key = (namespace, name)
+        reused = self._reused(key)
+        if reused is None:
+            try:  # most keys need nothing that is not evaluated yet
+                reused = self._derive(key, set())
+            except _Missing:
+                self._evaluate(key)
+                return self._memo[namespace][name]
+        self._memo[namespace][name] = reused
+        return reused
 
-    def _reused(self, key: Key) -> Resolution | None:
+    def holding(self, namespace: int) -> tuple[Literal, ...]:
+        """Everything that holds in one namespace: stated names first, then derived ones."""
+        found = self._holding[namespace]
+        if found is not None:
+            return found
+        result: list[Literal] = []
         inherited = self.inherited
         if inherited is None:
-            return None
+            seen: set[str] = set()
+            for name in self.fact_names(namespace):
+                seen.add(name)
+                result.extend(self.resolve(namespace, name).literals)
+            for key_namespace, name in self.graph.order:
+                if key_namespace == namespace and name not in seen:
+                    seen.add(name)
+                    result.extend(self.resolve(namespace, name).literals)
+        else:
+            # The class's answer, re-evaluated only where this individual makes a difference.
+            own = self._own_levels[namespace]
+            for name in own:
+                result.extend(self.resolve(namespace, name).literals)
+            flat, spans = inherited.flat_entries(namespace)
+            replaced = sorted(
+                (*spans[name], name)
+                for name in {k[1] for k in self._affected_keys() if k[0] == namespace}
+                if name in spans
+            )
+            position = 0
+            for start, end, name in replaced:
+                result.extend(flat[position:start])
+                if name not in own:
+                    result.extend(self.resolve(namespace, name).literals)
+                position = end
+            result.extend(flat[position:])
+        holding = tuple(result)
+        self._holding[namespace] = holding
+        return holding
+
+    def entries(self, namespace: int) -> list[tuple[str, tuple[Literal, ...]]]:
+        """``(name, literals)`` in the order ``holding`` lists them (for classes)."""
+        cached = self._entries[namespace]
+        if cached is not None:
+            return cached
+        seen: set[str] = set()
+        result: list[tuple[str, tuple[Literal, ...]]] = []
+        for name in self.fact_names(namespace):
+            seen.add(name)
+            result.append((name, self.resolve(namespace, name).literals))
+        for key_namespace, name in self.graph.order:
+            if key_namespace == namespace and name not in seen:
+                seen.add(name)
+                result.append((name, self.resolve(namespace, name).literals))
+        self._entries[namespace] = result
+        return result
+
+    def flat_entries(
+        self, namespace: int
+    ) -> tuple[tuple[Literal, ...], dict[str, tuple[int, int]]]:
+        """``holding`` as one tuple, with the span each name occupies in it."""
+        cached = self._flat[namespace]
+        if cached is not None:
+            return cached
+        flat: list[Literal] = []
+        spans: dict[str, tuple[int, int]] = {}
+        for name, literals in self.entries(namespace):
+            spans[name] = (len(flat), len(flat) + len(literals))
+            flat.extend(literals)
+        self._flat[namespace] = (tuple(flat), spans)
+        return self._flat[namespace]
+
+    def _affected_keys(self) -> set[Key]:
         affected = self._affected
         if affected is None:
             own = [(ns, n) for ns in NAMESPACES for n in self._own_levels[ns]]
             affected = self._affected = self.graph.affected_by(own)
             affected.update(own)
-        if key in affected:
+        return affected
+
+    def _reused(self, key: Key) -> Resolution | None:
+        inherited = self.inherited
+        if inherited is None or key in self._affected_keys():
             return None
         return inherited.resolve(*key)
 

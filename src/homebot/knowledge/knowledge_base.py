@@ -85,9 +85,9 @@ class KnowledgeBase:
         """``(individual, answer)`` for every individual whose answer is not unknown."""
         pattern = _pattern(prop)
         result = []
-        closure = self.reasoner.closure
+        resolve = self.reasoner.resolve
         for individual in self.reasoner.class_extension("top"):
-            answer = _answer(pattern, closure(individual).resolve(PROPERTY, pattern.name))
+            answer = _answer(pattern, resolve(individual, PROPERTY, pattern.name))
             if answer != UNKNOWN:
                 result.append((individual, answer))
         return result
@@ -97,7 +97,7 @@ class KnowledgeBase:
         pattern = _pattern(relation)
         result = []
         for individual in self.reasoner.class_extension("top"):
-            resolution = self.reasoner.closure(individual).resolve(RELATION, pattern.name)
+            resolution = self.reasoner.resolve(individual, RELATION, pattern.name)
             objects: list[Value] = []
             for literal in resolution.literals:
                 if literal.negated or literal.value is None:
@@ -191,17 +191,7 @@ class KnowledgeBase:
 
     def holding(self, entity: str, namespace: int) -> list[Literal]:
         """What holds about a class or individual in one namespace, in output order."""
-        closure = self.reasoner.closure(entity)
-        result: list[Literal] = []
-        seen: set[str] = set()
-        for name in closure.fact_names(namespace):
-            seen.add(name)
-            result.extend(closure.resolve(namespace, name).literals)
-        for key_namespace, name in closure.derived_keys():
-            if key_namespace == namespace and name not in seen:
-                seen.add(name)
-                result.extend(closure.resolve(namespace, name).literals)
-        return result
+        return list(self.reasoner.closure(entity).holding(namespace))
 
     def explanations(self, entity: str) -> list[Explanation]:
         """Explanations for a class or an individual (``explain`` on the CLI)."""
@@ -226,10 +216,9 @@ class KnowledgeBase:
     # -- helpers ---------------------------------------------------------------------------------
 
     def _resolve_either(self, entity: str, name: str) -> Resolution:
-        closure = self.reasoner.closure(entity)
-        found = closure.resolve(PROPERTY, name)
+        found = self.reasoner.resolve(entity, PROPERTY, name)
         if not found.literals:
-            found = closure.resolve(RELATION, name)
+            found = self.reasoner.resolve(entity, RELATION, name)
         return found
 
     def _objects(self, value: Value) -> list[Value]:

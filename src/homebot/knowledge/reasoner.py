@@ -5,10 +5,12 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from homebot.knowledge.closure import Closure
-from homebot.knowledge.model import Taxonomy
-from homebot.knowledge.tables import ClassTable
+from homebot.knowledge.model import Kind, Literal, Taxonomy
+from homebot.knowledge.tables import EMPTY, ClassTable, Resolution, effective, resolve_levels
 
 __all__ = ["CacheStatistics", "Reasoner", "Touched"]
+
+_KINDS = (Kind.PROPERTY, Kind.RELATION)
 
 
 @dataclass(frozen=True, slots=True)
@@ -99,6 +101,29 @@ class Reasoner:
         self._closures[name] = closure
         self.statistics.closures_built += 1
         return closure
+
+    def resolve(self, entity: str, namespace: int, name: str) -> Resolution:
+        """What holds about one key of an entity, without building a closure when facts suffice.
+
+        An individual's key that no conditional default concludes is settled by its own
+        literals and its class table alone; anything else goes through its closure.
+        """
+        closure = self._closures.get(entity)
+        if closure is not None:
+            return closure.resolve(namespace, name)
+        individual = self.taxonomy.individuals.get(entity)
+        if individual is None:
+            return self.closure(entity).resolve(namespace, name)
+        table = self.table(individual.class_name)
+        own_statements = individual.statements(_KINDS[namespace])
+        if name in table.groups[namespace] or any(
+            type(s) is not Literal for s in own_statements
+        ):
+            return self.closure(entity).resolve(namespace, name)
+        own = [s for s in own_statements if s.name == name]
+        if not own:
+            return table.facts[namespace].get(name, EMPTY)
+        return resolve_levels((effective(own), *table.levels[namespace].get(name, ())))
 
     def children(self) -> dict[str, list[str]]:
         """Direct subclasses of every class."""

@@ -41,11 +41,12 @@ class Rule:
     preference: Preference
     source: str
     namespace: int
+    key: Key  # (namespace, consequent name): what it concludes about
 
-    @property
-    def key(self) -> Key:
-        """The key its consequent concludes about."""
-        return (self.namespace, self.preference.consequent.name)
+    @staticmethod
+    def of(preference: Preference, source: str, namespace: int) -> Rule:
+        """The rule for a preference stated by ``source`` in one of its lists."""
+        return Rule(preference, source, namespace, (namespace, preference.consequent.name))
 
     def antecedent_keys(self) -> Iterable[Key]:
         """Every key an antecedent may be looked up under (own namespace, then the other)."""
@@ -74,6 +75,8 @@ EMPTY = Resolution((), False)
 
 def effective(level: Iterable[Literal]) -> tuple[Literal, ...]:
     """The literals of one list, dropping those that contradict an earlier one."""
+    if isinstance(level, tuple | list) and len(level) == 1:
+        return tuple(level)
     kept: list[Literal] = []
     for literal in level:
         if not any(contradicting(literal, other) for other in kept):
@@ -111,7 +114,7 @@ def _excluded_by(literal: Literal, exclusions: list[Literal]) -> bool:
 
 def sort_rules(preferences: Iterable[tuple[Preference, int]], source: str) -> list[Rule]:
     """One entity's conditional defaults by weight (stable: ties keep their order)."""
-    rules = [Rule(p, source, namespace) for p, namespace in preferences]
+    rules = [Rule.of(p, source, namespace) for p, namespace in preferences]
     rules.sort(key=lambda rule: rule.preference.weight)
     return rules
 
@@ -122,11 +125,20 @@ def own_levels(
     """One entity's literals grouped by name per namespace, contradictions dropped."""
     result: tuple[dict[str, tuple[Literal, ...]], dict[str, tuple[Literal, ...]]] = ({}, {})
     for namespace in NAMESPACES:
-        grouped: dict[str, list[Literal]] = {}
+        grouped = result[namespace]
+        repeated = False
         for statement in statements_by_namespace[namespace]:
-            if isinstance(statement, Literal):
-                grouped.setdefault(statement.name, []).append(statement)
-        result[namespace].update({name: effective(level) for name, level in grouped.items()})
+            if type(statement) is Literal:
+                name = statement.name
+                if name in grouped:
+                    grouped[name] = (*grouped[name], statement)
+                    repeated = True
+                else:
+                    grouped[name] = (statement,)
+        if repeated:
+            for name, level in grouped.items():
+                if len(level) > 1:
+                    grouped[name] = effective(level)
     return result
 
 
