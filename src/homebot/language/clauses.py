@@ -14,7 +14,8 @@ __all__ = ["Clause", "Item", "build_clauses"]
 _ATTRIBUTE_KINDS = frozenset({"posture", "gesture", "clothes"})
 _CONTENT_KINDS = frozenset({"entity", "person", "me", "pronoun", "generic", "topic", "info",
                             "property", "count", "quote"})
-_QUESTION_KINDS = {"count": "count", "property": "describe", "topic": "tell_me"}
+_QUESTION_KINDS = {"count": "count", "property": "describe", "topic": "tell_me",
+                   "info": "tell_me"}
 
 
 @dataclass(slots=True)
@@ -32,6 +33,7 @@ class Item:
     prep: str | None = None
     definite: bool = False
     owner: int | None = None
+    position: int = 0
 
 
 @dataclass(slots=True)
@@ -42,6 +44,7 @@ class Clause:
     verb: str
     items: list[Item] = field(default_factory=list)
     words: list[str] = field(default_factory=list)
+    after: bool = False  # said after "after": happens before the clause it follows
 
     def first(self, kinds: Iterable[str], preps: Iterable[str | None] | None = None,
               start: int = 0) -> Item | None:
@@ -67,9 +70,12 @@ class Clause:
 def build_clauses(tokens: list[Token]) -> list[Clause]:
     """Cut at separators and verbs; verbless pieces join their neighbour."""
     pieces: list[list[Token]] = [[]]
-    for token in tokens:
+    for index, token in enumerate(tokens):
         if token.kind == "sep":
             pieces.append([])
+        elif (token.kind == "word" and token.value in {"after", "before"}
+              and index + 1 < len(tokens) and tokens[index + 1].kind == "action"):
+            pieces.append([token])
         elif token.kind == "action" and any(t.kind != "word" for t in pieces[-1]) and (
                 _has_action_or_question(pieces[-1])):
             pieces.append([token])
@@ -82,15 +88,54 @@ def build_clauses(tokens: list[Token]) -> list[Clause]:
         if _has_action_or_question(piece):
             merged.append(pending + piece)
             pending = []
+        elif merged and _has_object(piece) and _has_object(merged[-1]):
+            merged.append(_gapped(merged[-1]) + piece)  # "get me a lemon and some biscuits"
         elif merged:
             merged[-1].extend(piece)
         else:
             pending.extend(piece)
     if pending:
         merged.append(pending)
-    clauses = [_clause(piece) for piece in merged]
+    clauses = _reorder([_clause(piece) for piece in merged])
     return [clause for index, clause in enumerate(clauses)
             if not (clause.action == "go" and not clause.items and index + 1 < len(clauses))]
+
+
+def _reorder(clauses: list[Clause]) -> list[Clause]:
+    """"put the spoon on the table after taking it from the dishwasher": the clause
+    after "after" happens first, and its "it" is the object of the main clause."""
+    ordered: list[Clause] = []
+    for clause in clauses:
+        if not (clause.after and ordered):
+            ordered.append(clause)
+            continue
+        main = ordered.pop()
+        thing = next((item for item in main.items
+                      if item.kind in {"object", "category", "generic"}), None)
+        for index, item in enumerate(clause.items):
+            if item.kind == "pronoun" and thing is not None:
+                clause.items[index] = Item(thing.kind, thing.value, thing.text, item.prep,
+                                           thing.definite, item.owner, item.position)
+        if thing is not None:
+            main.items[main.items.index(thing)] = Item("pronoun", "it", "it", thing.prep)
+        ordered.extend([clause, main])
+    return ordered
+
+
+def _has_object(piece: list[Token]) -> bool:
+    return any(token.kind == "entity" and len(token.value) == 1
+               and token.value[0].kind in {"object", "category"} for token in piece)
+
+
+def _gapped(previous: list[Token]) -> list[Token]:
+    """The verb (and a "me" right after it) of the previous clause, for a verbless one."""
+    verb_at = next((i for i, token in enumerate(previous) if token.kind == "action"), None)
+    if verb_at is None:
+        return []
+    head = [previous[verb_at]]
+    if verb_at + 1 < len(previous) and previous[verb_at + 1].kind == "me":
+        head.append(previous[verb_at + 1])
+    return head
 
 
 def _has_action_or_question(piece: list[Token]) -> bool:
@@ -98,6 +143,9 @@ def _has_action_or_question(piece: list[Token]) -> bool:
 
 
 def _clause(piece: list[Token]) -> Clause:
+    after = bool(piece) and piece[0].kind == "word" and piece[0].value == "after"
+    if piece and piece[0].kind == "word" and piece[0].value in {"after", "before"}:
+        piece = piece[1:]
     action_token = next((token for token in piece if token.kind == "action"), None)
     if action_token is None:
         question = next((t for t in piece if t.kind in _QUESTION_KINDS), None)
@@ -105,11 +153,12 @@ def _clause(piece: list[Token]) -> Clause:
         clause = Clause(action=action, verb="")
     else:
         clause = Clause(action=action_token.value, verb=action_token.text)
+    clause.after = after
     prep: str | None = None
     definite = False
     unknown: list[str] = []
     seen_action = action_token is None
-    for token in piece:
+    for at, token in enumerate(piece):
         if token is action_token:
             seen_action = True
             continue
@@ -129,15 +178,28 @@ def _clause(piece: list[Token]) -> Clause:
         unknown = []
         if token.kind == "prep":
             prep = token.value
+        elif token.kind == "wearing" and not _clothes_follow(piece, at):
+            clause.items.append(Item("info", "clothes", token.text, prep, False,
+                                     position=len(clause.words) - 1))
         elif token.kind in _ATTRIBUTE_KINDS:
             _attach_attribute(clause, token)
         elif token.kind in _CONTENT_KINDS:
-            clause.items.append(_item(token, prep, definite))
+            item = _item(token, prep, definite)
+            item.position = len(clause.words) - 1
+            clause.items.append(item)
             prep, definite = None, False
     if unknown:
         clause.items.append(Item("unknown", " ".join(unknown), " ".join(unknown), prep, definite))
     _link_locations(clause)
     return clause
+
+
+def _clothes_follow(piece: list[Token], at: int) -> bool:
+    for token in piece[at + 1:]:
+        if token.kind == "word" and token.value in lexicon.ARTICLES:
+            continue
+        return token.kind == "clothes"
+    return False
 
 
 def _item(token: Token, prep: str | None, definite: bool) -> Item:

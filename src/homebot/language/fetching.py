@@ -39,6 +39,10 @@ def source_of(clause: Clause, target: Item | None, exclude: Item | None = None) 
         if item is exclude or item.kind not in _PLACE_LIKE or item.prep != "from":
             continue
         return item
+    for item in clause.items:  # "at the pantry, pick up the biscuits"
+        if (item is not exclude and item.kind in _PLACE_LIKE and item.owner is None
+                and item.prep in {"at", "in", "on"}):
+            return item
     return None
 
 
@@ -89,7 +93,8 @@ def deliver(clause: Clause, ctx: Context, recipient: Item, name: str) -> None:
             ctx.go(place)
             ctx.found_person(description, where(place))
         elif recipient.kind == "person" and description != ctx.person:
-            ctx.found_person(description, {})
+            in_room = ctx.location is not None and ctx.location.kind == "room"
+            ctx.found_person(description, ctx.here() if in_room else {})
         if "name" in description:
             ctx.emit("give", person=description["name"])
         else:
@@ -116,8 +121,9 @@ def handle_take(clause: Clause, ctx: Context) -> None:
     target = direct_object(clause, skip_me=False)
     destination = clause.first({"me", "person", "room", "placement", "ambiguous", "unknown",
                                 "pronoun"}, {"to"})
-    recipient_me = target is not None and target.kind == "me"
-    if recipient_me:
+    recipient_me = (target is not None and target.kind == "me") or clause.first(
+        {"me"}, {"for"}) is not None
+    if target is not None and target.kind == "me":
         target = direct_object(clause)
     if target is None or target.kind == "me":
         raise Clarification("What should I take?")
@@ -144,7 +150,7 @@ def handle_bring(clause: Clause, ctx: Context) -> None:
         raise Clarification("What should I bring?")
     _refuse_non_object(target, "bring")
     if recipient is None:
-        me = clause.first({"me"})
+        me = clause.first({"me"}, {None, "for"})
         recipient = me if me is not None else (people[0] if people else None)
     name = ctx.object_of(target) if target.kind == "pronoun" else None
     if not (name is not None and ctx.obj_state == "held" and name == ctx.obj):

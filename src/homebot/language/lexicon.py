@@ -88,8 +88,10 @@ FILLERS: tuple[str, ...] = (
     "i would appreciate it if you could", "be so kind as to", "be a dear and",
     "go ahead and", "if you can", "if possible", "if you could", "thanks", "thank you",
     "thank you very much", "okay", "ok", "hey", "hello robot", "hi robot", "robot",
-    "homebot", "hey robot", "dear robot", "now", "quickly", "right away", "for me",
-    "immediately", "as soon as possible", "asap",
+    "homebot", "hey robot", "dear robot", "now", "quickly", "right away",
+    "immediately", "as soon as possible", "asap", "first", "firstly", "first of all",
+    "to start", "start by", "begin by", "start with", "would you be so kind as to",
+    "be so kind and", "i would appreciate it if you could", "when you get a chance",
     "your task is to", "you need to", "you should", "you must", "try and", "just",
     "carefully", "there", "over", "over there", "right now", "real quick", "buddy",
     "pal", "mate", "the robot", "for us", "i wonder if you could", "do me a favour and",
@@ -233,7 +235,8 @@ TOPICS: tuple[tuple[str, str], ...] = (
 INFO_WORDS: tuple[tuple[str, str], ...] = (
     ("name", "name"), ("pose", "pose"), ("posture", "pose"), ("gesture", "gesture"),
     ("clothes", "clothes"), ("outfit", "clothes"), ("clothing", "clothes"),
-    ("what they are wearing", "clothes"),
+    ("what they are wearing", "clothes"), ("what she is wearing", "clothes"),
+    ("what he is wearing", "clothes"), ("what they wear", "clothes"),
 )
 
 # Superlatives for describe(property=...).

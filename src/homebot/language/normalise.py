@@ -6,6 +6,7 @@ import re
 from dataclasses import dataclass
 
 from rapidfuzz import fuzz, process
+from rapidfuzz.distance import JaroWinkler
 
 from homebot.language import lexicon
 from homebot.language.vocabulary import Vocabulary
@@ -41,6 +42,7 @@ def normalise(text: str, vocabulary: Vocabulary) -> Normalised:
         return f" {QUOTE_MARK}{len(quotes) - 1} "
 
     text = _QUOTED.sub(keep_quote, text.replace("’", "'").replace("‘", "'"))
+    capitalised = _capitalised_words(text)
     lowered = text.lower()
     for pattern, long in _CONTRACTIONS:
         lowered = pattern.sub(long, lowered)
@@ -49,7 +51,7 @@ def normalise(text: str, vocabulary: Vocabulary) -> Normalised:
     tokens: list[str] = []
     corrections: list[tuple[str, str]] = []
     for token in raw:
-        fixed = correct_spelling(token, vocabulary)
+        fixed = correct_spelling(token, vocabulary, as_name=token in capitalised)
         if fixed != token:
             corrections.append((token, fixed))
         tokens.append(fixed)
@@ -58,15 +60,32 @@ def normalise(text: str, vocabulary: Vocabulary) -> Normalised:
     return Normalised(tuple(tokens), tuple(quotes), tuple(corrections))
 
 
-def correct_spelling(token: str, vocabulary: Vocabulary) -> str:
-    """The known word closest to an unknown ``token`` (rapidfuzz ratio), else ``token``.
+def _capitalised_words(text: str) -> set[str]:
+    """Words written with a capital inside a sentence: probably names."""
+    words = re.findall(r"[A-Za-z]+|[.!?]", text)
+    found = set()
+    for previous, word in zip(["."] + words, words, strict=False):
+        if word[0].isupper() and previous not in {".", "!", "?"} and not word.isupper():
+            found.add(word.lower())
+    return found
+
+
+def correct_spelling(token: str, vocabulary: Vocabulary, *, as_name: bool = False) -> str:
+    """The known word closest to an unknown ``token`` (rapidfuzz), else ``token``.
 
     Only words of four letters or more are corrected, and only to a word the
-    vocabulary knows, so function words and short words never change.
+    vocabulary knows, so function words and short words never change. A word
+    written with a capital (``as_name``) is first compared with people's names by
+    Jaro-Winkler similarity, which forgives swapped and doubled letters ("Jhon").
     """
     if (len(token) < 4 or not token.isalpha() or token in vocabulary.words
             or token in lexicon.FUNCTION_WORDS):
         return token
+    if as_name and vocabulary.name_choices:
+        name = process.extractOne(token, vocabulary.name_choices,
+                                  scorer=JaroWinkler.normalized_similarity, score_cutoff=0.85)
+        if name:
+            return str(name[0])
     cutoff = 80.0 if len(token) >= 5 else 85.0
     match = process.extractOne(token, vocabulary.spelling_choices, scorer=fuzz.ratio,
                                score_cutoff=cutoff)

@@ -103,6 +103,17 @@ def _bring(clause: Clause, ctx: Context) -> None:
         handle_bring(clause, ctx)
 
 
+def _go(clause: Clause, ctx: Context) -> None:
+    """"move the candle to the desk" carries an object; otherwise the robot goes."""
+    target = direct_object(clause, skip_me=False)
+    carries = target is not None and (target.kind in {"object", "category", "generic"} or (
+        target.kind == "pronoun" and not ctx.pronoun_means_person(target)))
+    if carries and clause.first({"room", "placement", "ambiguous", "unknown"}, {"to"}):
+        handle_take(clause, ctx)
+    else:
+        handle_go(clause, ctx)
+
+
 def _no_action(clause: Clause, ctx: Context) -> None:
     first = next(iter(clause.words), "")
     if first in lexicon.IMPOSSIBLE_ACTIONS:
@@ -120,7 +131,7 @@ def _no_action(clause: Clause, ctx: Context) -> None:
 
 
 _HANDLERS: Mapping[str, Handler] = MappingProxyType({
-    "go": handle_go, "return": handle_return, "find": _find, "meet": handle_meet,
+    "go": _go, "return": handle_return, "find": _find, "meet": handle_meet,
     "take": _take, "bring": _bring, "place": handle_place, "count": handle_count,
     "tell": handle_tell, "tell_me": handle_tell_me, "describe": handle_tell_me,
     "answer": handle_answer, "greet": handle_greet, "follow": handle_follow,

@@ -181,12 +181,16 @@ def _question(clause: Clause) -> str:
     topic = clause.first({"topic"})
     if topic is not None:
         return str(topic.value)
-    words = [word for word in clause.words if word not in {"to", "for", "the", "a", "if"}]
-    unknown = clause.first({"unknown"})
-    if unknown is not None:
-        return " ".join(words[words.index(unknown.value.split()[0]):]) if unknown.value.split()[
-            0] in words else str(unknown.value)
-    raise Clarification("What should I ask?")
+    anchors = [item for item in clause.items if item.kind in _PLACE_LIKE | {"person", "me"}
+               and item.kind != "unknown" or (item.kind == "pronoun" and item.prep is None
+                                              and item is clause.items[0])]
+    start = max((item.position for item in anchors), default=-1) + 1
+    words = clause.words[start:]
+    while words and words[0] in {"to", "for", "if", "whether", "about", ","}:
+        words = words[1:]
+    if not words:
+        raise Clarification("What should I ask?")
+    return " ".join(words)
 
 
 def _refuse_non_person(target: Item) -> None:

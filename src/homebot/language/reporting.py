@@ -24,8 +24,18 @@ def report(clause: Clause, ctx: Context, exclude: Item | None = None) -> None:
     ctx.emit("say", text="$result")
 
 
+def _already_reported(clause: Clause, ctx: Context) -> bool:
+    """"... and tell me" after a count or description that is reported already."""
+    said = bool(ctx.steps) and ctx.steps[-1].skill == "say" and ctx.steps[-1].args.get(
+        "text") == "$result"
+    content = [item for item in clause.items if item.kind not in {"me", "pronoun", "count"}]
+    return said and not content
+
+
 def handle_tell(clause: Clause, ctx: Context) -> None:
     """tell / say: a count, a property, a person's info, a talk topic or literal words."""
+    if _already_reported(clause, ctx):
+        return
     if clause.has("count"):
         handle_count(clause, ctx)
     elif clause.has("property"):
@@ -56,6 +66,8 @@ def handle_count(clause: Clause, ctx: Context) -> None:
     if counted is None:
         counted = clause.first({"category", "object", "generic", "person"})
     if counted is None:
+        if _already_reported(clause, ctx):
+            return
         raise Clarification("What should I count?")
     if counted.kind == "person" and "name" in counted.value:
         raise Refusal(f"{counted.value['name']} is one person; there is nothing to count.")
@@ -108,7 +120,12 @@ def _describe_person(clause: Clause, ctx: Context) -> None:
         subject = next((item for item in people if item.prep != "to"), None)
     if subject is not None:
         find_person_frame(clause, ctx, subject)
-    elif ctx.person is None:
+    if (subject is None or subject.kind == "pronoun") and ctx.person is not None and (
+            len(ctx.steps) >= 2 and ctx.steps[-1].args.get("to") == "operator"
+            and ctx.steps[-2].skill == "find_person"):
+        ctx.steps.pop()  # "come back and tell me his pose": look at him before leaving
+        ctx.location = None
+    if subject is None and ctx.person is None:
         located = clause.first(_PLACE_LIKE)
         if located is None:
             raise Clarification(f"Whose {info.value} should I tell?")

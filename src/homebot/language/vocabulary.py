@@ -11,7 +11,7 @@ from typing import Any
 from homebot.errors import LanguageError
 from homebot.language import lexicon
 
-__all__ = ["SYNONYMS", "Entity", "Token", "Vocabulary", "phrase_tokens"]
+__all__ = ["SYNONYMS", "Entity", "Token", "Vocabulary", "phrase_tokens", "progressive"]
 
 # Other words for common places and things; used only when the target exists in the
 # world and the word is not itself a name there.
@@ -80,6 +80,7 @@ class Vocabulary:
     index: Mapping[tuple[str, ...], Token] = field(default_factory=dict)
     words: frozenset[str] = frozenset()
     spelling_choices: tuple[str, ...] = ()
+    name_choices: tuple[str, ...] = ()
     longest: int = 1
 
     @classmethod
@@ -107,11 +108,14 @@ class Vocabulary:
                 raise LanguageError(f"the name {name!r} has no letters; rename it")
         index = _build_index(rooms, placements, objects, categories, people, doors)
         words = frozenset(word for phrase in index for word in phrase)
+        targets = {word for phrase, token in index.items() if token.kind != "filler"
+                   for word in phrase}
         return cls(rooms=rooms, placements=MappingProxyType(dict(placements)),
                    objects=MappingProxyType(dict(objects)),
                    categories=MappingProxyType(dict(categories)), people=people, doors=doors,
                    index=MappingProxyType(index), words=words,
-                   spelling_choices=tuple(sorted(w for w in words if len(w) >= 3 and w.isalpha())),
+                   spelling_choices=tuple(sorted(w for w in targets if len(w) >= 3 and w.isalpha())),
+                   name_choices=tuple(sorted({w for name in people for w in phrase_tokens(name)})),
                    longest=max(len(phrase) for phrase in index))
 
     def kind_of(self, name: str) -> str | None:
@@ -224,13 +228,16 @@ def _add_lexicon(index: dict[tuple[str, ...], Token]) -> None:
         ("generic", ((word, "object") for word in lexicon.GENERIC_OBJECT_WORDS)),
         ("me", (("me", "operator"), ("myself", "operator"), ("us", "operator"))),
         ("pronoun", (("it", "it"), ("them", "them"), ("him", "them"), ("her", "them"),
-                     ("they", "them"), ("those", "them"))),
+                     ("they", "them"), ("those", "them"), ("she", "them"), ("he", "them"))),
         ("count", (("how many", "count"), ("the number of", "count"),
                    ("the amount of", "count"), ("number of", "count"))),
     ]
     for kind, pairs in tables:
         for phrase, value in pairs:
             index[phrase_tokens(phrase)] = Token(kind, value, phrase)
+    for phrase, value in lexicon.ACTIONS:
+        first, *rest = phrase_tokens(phrase)
+        index.setdefault((progressive(first), *rest), Token("action", value, phrase))
     index[(",",)] = Token("sep", "then", ",")
     for phrase, value in lexicon.GESTURES:
         for variant in _possessive_variants(phrase):
@@ -241,6 +248,17 @@ def _add_lexicon(index: dict[tuple[str, ...], Token]) -> None:
                 "clothes", f"{colour_value} {garment_value}", f"{colour} {garment}")
     for garment, garment_value in lexicon.CLOTHING_GARMENTS:
         index[phrase_tokens(garment)] = Token("clothes", garment_value, garment)
+
+
+def progressive(verb: str) -> str:
+    """The -ing form of a verb: bring -> bringing, take -> taking, put -> putting."""
+    vowels = "aeiou"
+    if verb.endswith("e") and not verb.endswith("ee"):
+        return verb[:-1] + "ing"
+    if (3 <= len(verb) <= 4 and verb[-1] not in vowels + "wxy" and verb[-2] in vowels
+            and verb[-3] not in vowels and not (len(verb) == 4 and verb[0] in vowels)):
+        return verb + verb[-1] + "ing"
+    return verb + "ing"
 
 
 def _possessive_variants(phrase: str) -> list[tuple[str, ...]]:
