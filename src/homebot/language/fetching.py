@@ -120,7 +120,7 @@ def handle_take(clause: Clause, ctx: Context) -> None:
     """take / get / grasp / fetch / pick up: guide when the object is a person."""
     target = direct_object(clause, skip_me=False)
     destination = clause.first({"me", "person", "room", "placement", "ambiguous", "unknown",
-                                "pronoun"}, {"to"})
+                                "pronoun", "door"}, {"to"})
     recipient_me = (target is not None and target.kind == "me") or clause.first(
         {"me"}, {"for"}) is not None
     if target is not None and target.kind == "me":
@@ -142,7 +142,7 @@ def handle_bring(clause: Clause, ctx: Context) -> None:
     objects = [item for item in things if item.kind != "person"]
     people = [item for item in things if item.kind == "person"]
     recipient = clause.first({"me", "person", "room", "placement", "ambiguous", "unknown",
-                              "pronoun"}, {"to", "for"})
+                              "pronoun", "door"}, {"to", "for"})
     target = objects[0] if objects else None
     if target is None and ctx.obj is not None and ctx.obj_state == "held":
         target = Item("pronoun", "it", "it")

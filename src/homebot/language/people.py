@@ -118,6 +118,10 @@ def handle_follow(clause: Clause, ctx: Context) -> None:
     target = person_target(clause, ctx)
     if target is not None and target.kind not in {"person", "pronoun", "me"}:
         _refuse_non_person(target)
+    thing = clause.first({"object", "category"}, {"to"})
+    if thing is not None:
+        raise Refusal(f"I can follow people to rooms and furniture, not to "
+                      f"{describe_item(thing)}.")
     destination = clause.first(_PLACE_LIKE, {"to"})
     if target is not None and target.kind != "me":
         source = clause.first(_PLACE_LIKE, {"from", "at", "in", "on"})

@@ -1,0 +1,60 @@
+"""``homebot parse "COMMAND"``: what a GPSR command means as skill steps (or a question)."""
+
+from __future__ import annotations
+
+import argparse
+import json
+from pathlib import Path
+from typing import Any
+
+from homebot.cli.options import load_world
+from homebot.errors import LanguageError
+from homebot.language import ParseResult, Vocabulary, parse_command
+
+__all__ = ["register"]
+
+
+def register(subparsers: Any) -> None:
+    parser = subparsers.add_parser("parse", help="turn a command into skill steps")
+    parser.add_argument("command", nargs="?", help="the command, in quotes")
+    parser.add_argument("--world", default="apartment",
+                        help="world file, or a shipped world name (default: apartment)")
+    parser.add_argument("--json", action="store_true", help="print the result as JSON")
+    parser.add_argument("--file", type=Path,
+                        help="parse every line of FILE; one JSON object a line")
+    parser.set_defaults(handler=_parse)
+
+
+def _parse(args: argparse.Namespace) -> int:
+    if (args.command is None) == (args.file is None):
+        raise LanguageError('give one command in quotes, or --file FILE (not both)')
+    vocabulary = Vocabulary.from_world(load_world(args))
+    if args.file is not None:
+        return _parse_file(args.file, vocabulary)
+    result = parse_command(args.command, vocabulary)
+    print(json.dumps(result.to_dict()) if args.json else _readable(result))
+    return 0 if result else 1
+
+
+def _parse_file(path: Path, vocabulary: Vocabulary) -> int:
+    try:
+        lines = path.read_text(encoding="utf-8").splitlines()
+    except (OSError, UnicodeDecodeError) as error:
+        raise LanguageError(f"{path}: cannot be read ({error}); give a text file, "
+                            "one command a line") from None
+    status = 0
+    for line in lines:
+        if not line.strip():
+            continue
+        result = parse_command(line, vocabulary)
+        print(json.dumps({"command": line, **result.to_dict()}))
+        status = status or (0 if result else 1)
+    return status
+
+
+def _readable(result: ParseResult) -> str:
+    if result.question is not None:
+        return f"clarify: {result.question}"
+    if result.reason is not None:
+        return f"reject: {result.reason}"
+    return "\n".join(f"{number}. {step}" for number, step in enumerate(result.steps, 1))
