@@ -6,9 +6,9 @@ import csv
 from pathlib import Path
 
 import pytest
-from conftest import GPSR_COMMANDS
 from gpsr_expectations import Expectations, Names
 
+from conftest import GPSR_COMMANDS
 from homebot.language import Vocabulary, parse_command
 from homebot.language.generator import generate_commands
 from homebot.world import World

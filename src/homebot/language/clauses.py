@@ -73,11 +73,7 @@ def build_clauses(tokens: list[Token]) -> list[Clause]:
     for index, token in enumerate(tokens):
         if token.kind == "sep":
             pieces.append([])
-        elif (token.kind == "word" and token.value in {"after", "before"}
-              and index + 1 < len(tokens) and tokens[index + 1].kind == "action"):
-            pieces.append([token])
-        elif token.kind == "action" and any(t.kind != "word" for t in pieces[-1]) and (
-                _has_action_or_question(pieces[-1])):
+        elif _starts_clause(tokens, index, pieces[-1]):
             pieces.append([token])
         else:
             pieces[-1].append(token)
@@ -120,6 +116,14 @@ def _reorder(clauses: list[Clause]) -> list[Clause]:
             main.items[main.items.index(thing)] = Item("pronoun", "it", "it", thing.prep)
         ordered.extend([clause, main])
     return ordered
+
+
+def _starts_clause(tokens: list[Token], index: int, current: list[Token]) -> bool:
+    """A verb after a clause that has its own verb, or "after" before a verb."""
+    token = tokens[index]
+    if token.kind == "word" and token.value in {"after", "before"}:
+        return index + 1 < len(tokens) and tokens[index + 1].kind == "action"
+    return token.kind == "action" and _has_action_or_question(current)
 
 
 def _has_object(piece: list[Token]) -> bool:

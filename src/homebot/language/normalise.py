@@ -64,7 +64,7 @@ def _capitalised_words(text: str) -> set[str]:
     """Words written with a capital inside a sentence: probably names."""
     words = re.findall(r"[A-Za-z]+|[.!?]", text)
     found = set()
-    for previous, word in zip(["."] + words, words, strict=False):
+    for previous, word in zip([".", *words], words, strict=False):
         if word[0].isupper() and previous not in {".", "!", "?"} and not word.isupper():
             found.add(word.lower())
     return found

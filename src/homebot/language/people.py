@@ -185,9 +185,9 @@ def _question(clause: Clause) -> str:
     topic = clause.first({"topic"})
     if topic is not None:
         return str(topic.value)
-    anchors = [item for item in clause.items if item.kind in _PLACE_LIKE | {"person", "me"}
-               and item.kind != "unknown" or (item.kind == "pronoun" and item.prep is None
-                                              and item is clause.items[0])]
+    anchors = [item for item in clause.items
+               if (item.kind in PLACES | {"ambiguous", "person", "me"})
+               or (item.kind == "pronoun" and item.prep is None and item is clause.items[0])]
     start = max((item.position for item in anchors), default=-1) + 1
     words = clause.words[start:]
     while words and words[0] in {"to", "for", "if", "whether", "about", ","}:

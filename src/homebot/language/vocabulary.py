@@ -114,8 +114,10 @@ class Vocabulary:
                    objects=MappingProxyType(dict(objects)),
                    categories=MappingProxyType(dict(categories)), people=people, doors=doors,
                    index=MappingProxyType(index), words=words,
-                   spelling_choices=tuple(sorted(w for w in targets if len(w) >= 3 and w.isalpha())),
-                   name_choices=tuple(sorted({w for name in people for w in phrase_tokens(name)})),
+                   spelling_choices=tuple(sorted(w for w in targets
+                                                 if len(w) >= 3 and w.isalpha())),
+                   name_choices=tuple(sorted({w for name in people
+                                              for w in phrase_tokens(name)})),
                    longest=max(len(phrase) for phrase in index))
 
     def kind_of(self, name: str) -> str | None:

@@ -1,0 +1,129 @@
+"""A playable world from a RoboCup@Home data directory."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from homebot.errors import WorldError
+from homebot.world import World
+from homebot.world.robocup import read_robocup_data, world_from_robocup
+
+SHARED = Path(__file__).resolve().parents[3] / "shared" / "data" / "robocup" / "CompetitionTemplate"
+
+NAMES = "## Names\n| Names |\n| --- |\n| Ada |\n| Bo |\n| Cy |\n"
+ROOMS = "## Rooms\n| Name |\n| --- |\n| kitchen |\n| bedroom |\n| study room |\n"
+LOCATIONS = """## Locations
+| Number | Name | Object Category
+| --- | --- | --- |
+| 1 | bed (p) |
+| 2 | kitchen table (p) | dishes |
+| 3 | fridge (p) | drinks |
+| 4 | lamp |
+| 5 | entrance |
+"""
+OBJECTS = """# Class drinks (drink)
+| Objectname | Image |
+|:---:|:---:|
+| orange_juice | ![](a.jpg) |
+| cola | ![](b.jpg) |
+
+# Class dishes (dish)
+| Objectname | Image |
+:---:|:---:
+| cup | ![](c.png) |
+
+# Class toys (toy)
+| Objectname | Image |
+:---:|:---:
+| dice | ![](d.png) |
+"""
+
+
+def write_directory(root: Path, **overrides: str) -> Path:
+    files = {"names/names.md": NAMES, "maps/room_names.md": ROOMS,
+             "maps/location_names.md": LOCATIONS, "objects/objects.md": OBJECTS}
+    files.update({key.replace("__", "/") + ".md": value for key, value in overrides.items()})
+    for name, text in files.items():
+        (root / name).parent.mkdir(parents=True, exist_ok=True)
+        (root / name).write_text(text, encoding="utf-8")
+    return root
+
+
+def test_reads_the_tables(tmp_path: Path) -> None:
+    data = read_robocup_data(write_directory(tmp_path))
+    assert data["names"] == ["Ada", "Bo", "Cy"]
+    assert data["rooms"] == ["kitchen", "bedroom", "study room"]
+    assert data["locations"][1] == {"name": "kitchen table", "placeable": True,
+                                    "category": "dishes"}
+    assert [entry["name"] for entry in data["classes"]] == ["drink", "dish", "toy"]
+
+
+def test_builds_a_valid_world(tmp_path: Path) -> None:
+    world = World.from_dict(world_from_robocup(write_directory(tmp_path)))
+    assert set(world.rooms) == {"kitchen", "bedroom", "study room"}
+    assert set(world.placements) == {"bed", "kitchen table", "fridge", "lamp", "entrance"}
+    assert world.placements["fridge"].holds == ["drink"]
+    assert world.objects["orange juice"].placement == "fridge"
+    assert world.objects["cup"].placement == "kitchen table"
+    assert world.categories["drink"].plural == "drinks"
+    assert set(world.people) == {"Ada", "Bo", "Cy"}
+    assert world.room_at(*world.robot.pose[:2]) is not None
+
+
+def test_objects_without_a_home_go_on_a_placeable_location(tmp_path: Path) -> None:
+    world = World.from_dict(world_from_robocup(write_directory(tmp_path)))
+    assert world.objects["dice"].placement in {"bed", "kitchen table", "fridge", "lamp"}
+
+
+def test_every_room_is_reachable_through_doors(tmp_path: Path) -> None:
+    world = World.from_dict(world_from_robocup(write_directory(tmp_path)))
+    reached, frontier = {"kitchen"}, ["kitchen"]
+    while frontier:
+        room = frontier.pop()
+        for door in world.doors.values():
+            if room in door.rooms:
+                other = door.rooms[1] if door.rooms[0] == room else door.rooms[0]
+                if other not in reached:
+                    reached.add(other)
+                    frontier.append(other)
+    assert reached == set(world.rooms)
+
+
+def test_same_directory_same_world(tmp_path: Path) -> None:
+    directory = write_directory(tmp_path)
+    assert world_from_robocup(directory) == world_from_robocup(directory)
+
+
+def test_missing_file_is_a_world_error(tmp_path: Path) -> None:
+    directory = write_directory(tmp_path)
+    (directory / "maps" / "room_names.md").unlink()
+    with pytest.raises(WorldError, match=r"room_names\.md"):
+        world_from_robocup(directory)
+
+
+def test_not_a_directory_is_a_world_error(tmp_path: Path) -> None:
+    with pytest.raises(WorldError, match="not a directory"):
+        world_from_robocup(tmp_path / "nowhere")
+
+
+def test_empty_table_is_a_world_error(tmp_path: Path) -> None:
+    directory = write_directory(tmp_path, names__names="## Names\n| Names |\n| --- |\n")
+    with pytest.raises(WorldError, match="no names"):
+        world_from_robocup(directory)
+
+
+def test_a_room_named_like_a_location_is_a_world_error(tmp_path: Path) -> None:
+    rooms = ROOMS + "| bed |\n"
+    with pytest.raises(WorldError, match="both a room and a location"):
+        world_from_robocup(write_directory(tmp_path, maps__room_names=rooms))
+
+
+@pytest.mark.acceptance
+def test_the_competition_template_builds_a_world() -> None:
+    if not SHARED.is_dir():
+        pytest.skip("the shared acceptance data (../shared/data) is absent")
+    world = World.from_dict(world_from_robocup(SHARED))
+    assert len(world.rooms) == 5 and len(world.placements) == 25
+    assert len(world.objects) == 39 and len(world.people) == 10
