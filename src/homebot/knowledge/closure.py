@@ -78,7 +78,7 @@ class Closure:
         self._affected: set[Key] | None = None
         self._holding: list[tuple[Literal, ...] | None] = [None, None]
         self._entries: list[list[tuple[str, tuple[Literal, ...]]] | None] = [None, None]
-        self._flat: list[tuple[tuple[Literal, ...], dict[str, tuple[int, int]]] | None] = [
+        self._flat: list[tuple[tuple[Literal, ...], dict[str, tuple[int, int, int]]] | None] = [
             None,
             None,
         ]
@@ -194,7 +194,7 @@ class Closure:
                 if name in spans
             )
             position = 0
-            for start, end, name in replaced:
+            for _index, start, end, name in replaced:
                 result.extend(flat[position:start])
                 if name not in own:
                     result.extend(self.resolve(namespace, name).literals)
@@ -223,15 +223,15 @@ class Closure:
 
     def flat_entries(
         self, namespace: int
-    ) -> tuple[tuple[Literal, ...], dict[str, tuple[int, int]]]:
-        """``holding`` as one tuple, with the span each name occupies in it."""
+    ) -> tuple[tuple[Literal, ...], dict[str, tuple[int, int, int]]]:
+        """``holding`` as one tuple, with each name's entry number and span in it."""
         cached = self._flat[namespace]
         if cached is not None:
             return cached
         flat: list[Literal] = []
-        spans: dict[str, tuple[int, int]] = {}
-        for name, literals in self.entries(namespace):
-            spans[name] = (len(flat), len(flat) + len(literals))
+        spans: dict[str, tuple[int, int, int]] = {}
+        for index, (name, literals) in enumerate(self.entries(namespace)):
+            spans[name] = (index, len(flat), len(flat) + len(literals))
             flat.extend(literals)
         self._flat[namespace] = (tuple(flat), spans)
         return self._flat[namespace]
@@ -299,7 +299,9 @@ class Closure:
     def _derive(self, key: Key, in_progress: set[Key]) -> Resolution:
         namespace, name = key
         facts = self.facts(namespace, name)
-        for rule in self._groups[namespace][name]:
+        if facts.decisive:  # a plain statement beats every preference
+            return facts
+        for rule in self._groups[namespace].get(name, ()):
             binding: Value | None = None
             holds = True
             for antecedent in rule.preference.antecedents:

@@ -155,13 +155,13 @@ class TermParser:
                 self.expect(")", "',' or ')'")
                 return Compound(token, tuple(args))
             return token
-        if first == "'":
+        if first == "'" and len(token) > 1 and token.endswith("'"):
             self.index += 1
             return unquote(token)
         if first == "-" and token == "-":
             self.index += 1
             return ANY
-        if first in _NUMBER_START and first != "":
+        if first in _NUMBER_START and token != "-":
             self.index += 1
             return float(token) if ("." in token or "e" in token or "E" in token) else int(token)
         if token == "[":

@@ -47,7 +47,8 @@ class _YamlReader:
 
     def __init__(self, text: str, source: str) -> None:
         self.source = source
-        self.loader = yaml.SafeLoader(text)
+        self.text = text
+        self.loader: yaml.SafeLoader | None = None
         self.where: dict[tuple[str, Kind | None, int | None, str | None], _Mark] = {}
 
     def fail(self, node: yaml.Node | None, message: str) -> KnowledgeError:
@@ -92,6 +93,7 @@ class _YamlReader:
 
     def read(self) -> Taxonomy:
         try:
+            self.loader = yaml.SafeLoader(self.text)
             root = self.loader.get_single_node()
         except yaml.YAMLError as error:
             mark = getattr(error, "problem_mark", None)
@@ -102,7 +104,8 @@ class _YamlReader:
                 f"{self.source}, line {mark.line + 1}, column {mark.column + 1}: {problem}"
             ) from None
         finally:
-            self.loader.dispose()
+            if self.loader is not None:
+                self.loader.dispose()
         if root is None:
             raise KnowledgeError(f"{self.source}: expected a mapping with 'classes', found nothing")
         top = self.mapping(root, "the KB", {"classes"})
@@ -169,7 +172,7 @@ class _YamlReader:
                 weight_node = fields.get("weight")
                 if text_node is None or weight_node is None:
                     raise self.fail(item, "expected both statement: and weight:")
-                weight = self.loader.construct_object(weight_node, deep=True)
+                weight = _scalar(weight_node)
                 if isinstance(weight, bool) or not isinstance(weight, int) or weight < 0:
                     raise self.fail(
                         weight_node, f"expected a whole-number weight, found {weight!r}"
@@ -196,6 +199,16 @@ class _YamlReader:
             node.start_mark.line + 1,
             node.start_mark.column + 1,
         )
+
+
+def _scalar(node: yaml.Node) -> object:
+    """The Python value of a scalar node (None for anything else)."""
+    if not isinstance(node, yaml.ScalarNode):
+        return None
+    try:
+        return yaml.safe_load(node.value) if node.style is None else node.value
+    except yaml.YAMLError:
+        return node.value
 
 
 def _describe(node: yaml.Node | None) -> str:
