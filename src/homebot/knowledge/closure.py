@@ -85,7 +85,9 @@ class Closure:
         self.inherited = inherited
         self._own_levels = own_levels(own) if own is not None else ({}, {})
         own_rules = []
-        if own is not None and any(type(s) is not Literal for s in (*own[0], *own[1])):
+        if own is not None and not all(
+            type(s) is Literal for statements in own for s in statements
+        ):
             own_rules = sort_rules(
                 [
                     (statement, namespace)

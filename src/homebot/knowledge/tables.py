@@ -90,6 +90,10 @@ def resolve_levels(levels: Levels) -> Resolution:
     ``not(p=>v)`` only excludes ``v`` and lets less specific levels speak; ``p``,
     ``not(p)`` and ``p=>w`` (``w`` not excluded) settle the key.
     """
+    if levels and len(levels[0]) == 1:  # the common case: one literal settles it
+        only = levels[0][0]
+        if not (only.negated and only.value is not None):
+            return Resolution(levels[0], True)
     exclusions: list[Literal] = []
     for level in levels:
         decided = []
@@ -248,16 +252,18 @@ class ClassTable:
         for namespace in NAMESPACES:
             inherited_levels = mother.levels[namespace] if mother else {}
             inherited_facts = mother.facts[namespace] if mother else {}
-            levels = self.levels[namespace]
-            facts = self.facts[namespace]
-            for literal_name, level in own[namespace].items():
-                chain = (level, *inherited_levels.get(literal_name, ()))
-                levels[literal_name] = chain
-                facts[literal_name] = resolve_levels(chain)
-            for literal_name, chain in inherited_levels.items():
-                if literal_name not in levels:
-                    levels[literal_name] = chain
-                    facts[literal_name] = inherited_facts[literal_name]
+            own_chains = {
+                literal_name: (level, *inherited_levels.get(literal_name, ()))
+                for literal_name, level in own[namespace].items()
+            }
+            own_facts = {name: resolve_levels(chain) for name, chain in own_chains.items()}
+            # Own names first (most specific first), then the inherited ones, in C.
+            levels = {**own_chains, **inherited_levels}
+            levels.update(own_chains)
+            facts = {**own_facts, **inherited_facts}
+            facts.update(own_facts)
+            self.levels[namespace].update(levels)
+            self.facts[namespace].update(facts)
         own_rules = sort_rules(_preferences(properties, relations), name)
         self.rules: tuple[Rule, ...] = (*own_rules, *(mother.rules if mother else ()))
         self.groups = group_rules(own_rules, mother.groups if mother else ({}, {}))
