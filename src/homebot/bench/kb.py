@@ -222,15 +222,18 @@ def _updates(kb: KnowledgeBase, props: list[str]) -> dict[str, Any]:
 
 
 def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, Any]:
-    """Measure and print; never asserts timing."""
-    console = console or Console()
+    """Measure and print on ``console`` (``None``: print nothing, for ``--json``).
+
+    Never asserts timing.
+    """
     figures: dict[str, Any] = {"chained_defaults": _chains(args)}
     shared = _shared_directory(args)
     if (shared / "tools" / "kb_generator.py").is_file():
         figures["generated"] = _generated(args, shared)
     else:
         figures["generated"] = "skipped: ../shared/tools/kb_generator.py not found"
-    _print(console, figures)
+    if console is not None:
+        _print(console, figures)
     return figures
 
 
