@@ -130,3 +130,17 @@ def test_do_refuses_the_impossible_with_a_reason(capsys: pytest.CaptureFixture[s
     assert main(["do", "fetch the kitchen", "--json"]) == 1
     said = json.loads(capsys.readouterr().out)["speech"][0]
     assert "kitchen" in said and "room" in said
+
+
+def test_scenario_json_summary(capsys: pytest.CaptureFixture[str]) -> None:
+    status = main(["scenario", "fetch", "--seed", "3", "--json"])
+    summary = json.loads(capsys.readouterr().out)
+    assert {"scenario", "success", "actions", "speech"} <= set(summary)
+    assert summary["scenario"] == "fetch"
+    assert status == (0 if summary["success"] else 1)
+
+
+def test_unknown_scenario_is_a_usage_error(capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit) as exit_info:
+        main(["scenario", "moonwalk"])
+    assert exit_info.value.code == 2

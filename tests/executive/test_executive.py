@@ -141,3 +141,35 @@ def test_delivered_reads_ground_truth(apartment: World, apartment_navigator: Nav
     fetch = fetch_tasks(apartment, 1, 0)[0]
     run = _run(apartment, apartment_navigator)
     assert not delivered(run.simulation, fetch)
+
+
+def test_inference_is_asked_when_an_object_is_not_where_expected(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    asked = []
+
+    def inference(context, skill, args, outcome, run):
+        asked.append((skill, outcome.error))
+        found = run("find_object", {"object": args["object"], "placement": "coffee table"})
+        return found if skill == "find_object" else True
+
+    run = SimulatedRun.create(apartment, navigator=apartment_navigator, inference=inference)
+    run.simulation.object_location["cola"] = "coffee table"
+    report = run.run(_bring("cola", "fridge"))
+    assert report.success
+    assert asked == [("find_object", ErrorCode.NOT_FOUND)]
+    assert not any("look elsewhere" in text for text in report.speech)
+
+
+def test_inference_gets_a_turn_when_the_protocols_give_up(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    asked = []
+
+    def inference(context, skill, args, outcome, run):
+        asked.append(outcome.error)
+        return False
+
+    run = SimulatedRun.create(apartment, navigator=apartment_navigator, inference=inference)
+    run.simulation.door_state["bedroom door"] = DoorState.LOCKED
+    report = run.run(Task((Step("navigate", {"to": "bed"}),)))
+    assert not report.success
+    assert asked == [ErrorCode.DOOR_CLOSED]

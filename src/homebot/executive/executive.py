@@ -5,9 +5,17 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from homebot.executive.recovery import PROTOCOLS
+from homebot.executive.recovery import PROTOCOLS, Protocol
 from homebot.executive.report import StepReport, TaskReport
-from homebot.skills import OPERATOR, Outcome, SkillContext, Status, skill_named, speak
+from homebot.skills import (
+    OPERATOR,
+    ErrorCode,
+    Outcome,
+    SkillContext,
+    Status,
+    skill_named,
+    speak,
+)
 from homebot.task import Step, Task
 
 __all__ = ["Executive"]
@@ -25,11 +33,19 @@ class Executive:
     robot stops safely, goes back to the operator and says what failed and why.
     With monitoring off in the context, it is a plain sequence, as in the
     monolithic state machines the Care-O-bot paper replaced.
+
+    ``inference`` is the daily-life inference cycle (Golem-III §7), called with
+    the protocol signature when no recovery protocol applies or the protocols
+    gave up; when an object is not where it was expected (a find or pick ends
+    ``not_found``) it is called instead of the blind search protocol, since
+    diagnosing where it went is what it is for.
     """
 
-    def __init__(self, context: SkillContext, *, recovery: bool = True) -> None:
+    def __init__(self, context: SkillContext, *, recovery: bool = True,
+                 inference: Protocol | None = None) -> None:
         self.context = context
         self.recovery = recovery and context.monitoring
+        self.inference = inference if self.recovery else None
 
     def run(self, task: Task) -> TaskReport:
         """Run every step in order; the report says whether all ended as expected."""
@@ -71,20 +87,41 @@ class Executive:
                 return skill_named(name).run(self.context, nested_args)
             return self._run_step(name, nested_args, depth + 1)[0]
 
-        while (self.recovery and not outcome and outcome.error in PROTOCOLS
-               and len(recoveries) < _MAX_RECOVERIES):
-            protocol = PROTOCOLS[outcome.error]
-            recoveries.append(outcome.error.value)
-            self.context.events.record("recovery", skill=skill, error=outcome.error.value)
+        # Inference serves the task's own steps, not the steps a protocol runs.
+        inference = self.inference if depth == 0 else None
+        inferred = gave_up = False
+        while self.recovery and not outcome and len(recoveries) < _MAX_RECOVERIES:
+            protocol = self._protocol_for(skill, outcome, inference, inferred, gave_up)
+            if protocol is None:
+                break
+            inferred = inferred or protocol is inference
+            recoveries.append(outcome.error.value if outcome.error else outcome.status.value)
+            self.context.events.record("recovery", skill=skill, error=recoveries[-1],
+                                       inference=protocol is inference)
             recovered = protocol(self.context, skill, args, outcome, nested)
             if isinstance(recovered, Outcome):
                 outcome = recovered
                 continue
             if not recovered:
+                if inference is not None and not inferred:
+                    gave_up = True  # the protocols gave up: let inference try once
+                    continue
                 break
             args = self._bind(args)
             outcome = skill_named(skill).run(self.context, args)
         return outcome, recoveries
+
+    @staticmethod
+    def _protocol_for(skill: str, outcome: Outcome, inference: Protocol | None,
+                      inferred: bool, gave_up: bool) -> Protocol | None:
+        """The recovery protocol for a failed outcome, or the inference cycle, or None."""
+        misplaced = outcome.error is ErrorCode.NOT_FOUND and skill in {"find_object", "pick"}
+        if inference is not None and not inferred and (
+                misplaced or gave_up or outcome.error not in PROTOCOLS):
+            return inference
+        if outcome.error in PROTOCOLS and not (misplaced and inferred):
+            return PROTOCOLS[outcome.error]
+        return None
 
     def _bind(self, args: Mapping[str, Any]) -> dict[str, Any]:
         """Replace a requested object or category by the object actually found for it."""

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 from homebot.beliefs import Beliefs
 from homebot.executive import Executive, TaskReport
+from homebot.executive.recovery import Protocol
 from homebot.navigation import Navigator
 from homebot.sim import Responder, SimRobot, Simulation
 from homebot.skills import SkillContext
@@ -45,8 +46,12 @@ class SimulatedRun:
                disturbances: DisturbanceModel | None = None, monitoring: bool = True,
                recovery: bool = True, responder: Responder | None = None,
                navigator: Navigator | None = None,
-               retries: Mapping[str, int] | None = None) -> SimulatedRun:
-        """Build a run. Pass a shared ``navigator`` to skip rasterising the world again."""
+               retries: Mapping[str, int] | None = None,
+               inference: Protocol | None = None) -> SimulatedRun:
+        """Build a run. Pass a shared ``navigator`` to skip rasterising the world again.
+
+        ``inference`` plugs the daily-life inference cycle into the executive.
+        """
         navigator = navigator or Navigator(world)
         simulation = Simulation(world, seed=seed, disturbances=disturbances,
                                 responder=responder, navigator=navigator)
@@ -55,7 +60,8 @@ class SimulatedRun:
         context = SkillContext(robot=robot, world=world, navigator=navigator, beliefs=beliefs,
                                events=simulation.events, monitoring=monitoring,
                                retries=dict(retries or {}))
-        return cls(world, simulation, robot, context, Executive(context, recovery=recovery))
+        executive = Executive(context, recovery=recovery, inference=inference)
+        return cls(world, simulation, robot, context, executive)
 
     def run(self, task: Task) -> TaskReport:
         """Run a task in this home."""
