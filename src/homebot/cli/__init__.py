@@ -20,7 +20,9 @@ from homebot.errors import HomebotError
 __all__ = ["COMMAND_GROUPS", "command_line_argument_parser", "main"]
 
 # Modules of this package that register command groups, in help order.
-COMMAND_GROUPS: tuple[str, ...] = ("demo", "do", "run_task", "parse", "world", "bench", "kb")
+COMMAND_GROUPS: tuple[str, ...] = (
+    "demo", "do", "run_task", "parse", "scenario", "world", "bench", "kb",
+)
 
 
 def command_line_argument_parser() -> argparse.ArgumentParser:
