@@ -69,6 +69,7 @@ class Follow(Skill):
 
     name = "follow"
     optional = ("to", "person")
+    retries = 1  # a person missed by one look is usually seen by the next
 
     def execute(self, context: SkillContext, args: Mapping[str, Any]) -> Outcome:
         person = person_name(context, args.get("person"))

@@ -1,0 +1,146 @@
+"""GPSR end to end: generated commands the world can satisfy, parsed and carried out."""
+
+from __future__ import annotations
+
+import argparse
+import statistics
+import time
+from collections import Counter
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+from rich.console import Console
+
+from homebot.language import Vocabulary, parse_command
+from homebot.language.generator import generate_commands
+from homebot.navigation import Navigator
+from homebot.scenarios import SimulatedRun, disturbed
+from homebot.task import Step
+from homebot.world import World
+
+__all__ = ["ExecutionResult", "add_arguments", "execute_commands", "feasible", "run"]
+
+
+def _person_fits(world: World, description: Mapping[str, Any], room: str | None) -> bool:
+    for person in world.people.values():
+        if room is not None and person.room != room:
+            continue
+        if "name" in description and person.name.lower() != str(description["name"]).lower():
+            continue
+        if "posture" in description and person.posture.value != description["posture"]:
+            continue
+        if "gesture" in description and not person.gesture.value.startswith(
+                str(description["gesture"])):
+            continue
+        if "clothes" in description and not any(
+                str(description["clothes"]) in item for item in person.clothes):
+            continue
+        return True
+    return False
+
+
+def _object_fits(world: World, wanted: str, placement: str | None, room: str | None) -> bool:
+    for obj in world.objects.values():
+        if wanted not in (obj.name, obj.category, world.plural_of(obj.category), "object"):
+            continue
+        where = world.placements[obj.placement]
+        if placement is not None and where.name != placement:
+            continue
+        if room is not None and where.room != room:
+            continue
+        return True
+    return False
+
+
+def feasible(world: World, steps: list[Step]) -> bool:
+    """Whether the home as the world file describes it can satisfy every step.
+
+    A generated command may ask for the waving person in a room where nobody
+    waves, or the biggest fruit on a shelf that holds none; those are commands
+    to refuse or report on, not to carry out, and are left out here.
+    """
+    for step in steps:
+        args = step.args
+        room = args.get("room")
+        if "placement" in args and step.skill in {"find_person"}:
+            room = world.placements[args["placement"]].room
+        if step.skill == "find_person" and not _person_fits(world, args.get("person") or {},
+                                                            room):
+            return False
+        if step.skill == "find_object" and not _object_fits(
+                world, str(args["object"]), args.get("placement"), room):
+            return False
+        if step.skill == "describe" and "property" in args and not _object_fits(
+                world, str(args.get("object", "object")), args.get("placement"), None):
+            return False
+    return True
+
+
+@dataclass
+class ExecutionResult:
+    """How generated commands fared: parsed as expected, and carried out."""
+
+    commands: int = 0
+    parsed_as_expected: int = 0
+    succeeded: int = 0
+    failures: Counter[str] = field(default_factory=Counter)
+    wall_times: list[float] = field(default_factory=list)
+
+
+def execute_commands(world: World, count: int, seed: int, level: float = 0.0) -> ExecutionResult:
+    """Generate feasible commands for ``world``, parse each and run it in a fresh home."""
+    navigator = Navigator(world)
+    vocabulary = Vocabulary.from_world(world)
+    result = ExecutionResult()
+    candidates = generate_commands(world, count * 20, seed)
+    chosen = [(text, steps) for text, steps in candidates if feasible(world, steps)][:count]
+    for index, (text, expected) in enumerate(chosen):
+        parsed = parse_command(text, vocabulary)
+        result.commands += 1
+        result.parsed_as_expected += [s.to_dict() for s in parsed.steps] == [
+            s.to_dict() for s in expected]
+        if not parsed:
+            result.failures[f"parse {parsed.status}"] += 1
+            continue
+        simulated = SimulatedRun.create(world, seed=seed * 10_007 + index, navigator=navigator,
+                                        disturbances=disturbed(level) if level else None)
+        began = time.perf_counter()
+        report = simulated.run(parsed.to_task())
+        result.wall_times.append(time.perf_counter() - began)
+        if report.success:
+            result.succeeded += 1
+        else:
+            last = report.steps[-1]
+            result.failures[f"{last.skill}: {last.error}"] += 1
+    return result
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--commands", type=int, default=200, help="commands to carry out")
+    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--world", default="apartment", help="world file or shipped name")
+    parser.add_argument("--level", type=float, default=0.0,
+                        help="disturbance level (0: none, 1: the robustness benchmark's)")
+
+
+def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, Any]:
+    """Carry out generated commands and print how many succeeded."""
+    world = World.load(args.world)
+    result = execute_commands(world, args.commands, args.seed, args.level)
+    figures = {
+        "benchmark": "gpsr", "world": world.name, "commands": result.commands,
+        "disturbance_level": args.level,
+        "parsed_as_expected": result.parsed_as_expected,
+        "success_rate": round(result.succeeded / max(result.commands, 1), 4),
+        "failures": dict(result.failures),
+        "median_wall_ms": round(1000 * statistics.median(result.wall_times or [0.0]), 3),
+    }
+    if console is not None:
+        console.print(f"{result.succeeded}/{result.commands} generated commands carried out "
+                      f"in the {world.name} ({100 * figures['success_rate']:.1f} %); "
+                      f"{result.parsed_as_expected} parsed exactly as generated; "
+                      f"median {figures['median_wall_ms']} ms per command")
+        for reason, times in result.failures.most_common():
+            console.print(f"  failed {times}×: {reason}")
+    return figures
