@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 from typing import Any
 
 from homebot.robot import Blocker, MoveReport, Pose
-from homebot.skills.places import near, person_name, resolve_target
+from homebot.skills.places import near, person_name, resolve_target, sees_person_nearby
 from homebot.skills.skill import ErrorCode, Outcome, Skill, SkillContext, Status, speak
 
 __all__ = ["Follow", "Guide", "Navigate", "OpenDoor", "drive"]
@@ -117,11 +116,8 @@ class Guide(Skill):
 
 
 def _person_nearby(context: SkillContext, person: str, verb: str) -> Outcome:
-    here = context.robot.pose().xy()
-    for seen in context.robot.perceive_people():
-        if seen.name == person and math.dist(seen.position, here) <= 2.0:
-            context.beliefs.saw_person(person, seen.position)
-            return Outcome.verified(f"{verb} {person}", person=person)
+    if sees_person_nearby(context, person):
+        return Outcome.verified(f"{verb} {person}", person=person)
     return Outcome.aborted(ErrorCode.LOST_PERSON, f"I lost {person} on the way")
 
 

@@ -8,7 +8,7 @@ from typing import Any
 
 from homebot.robot import Detection, PersonPercept, Pose
 from homebot.skills.motion import drive
-from homebot.skills.places import near, resolve_target
+from homebot.skills.places import near, resolve_target, sees_person_nearby
 from homebot.skills.skill import ErrorCode, Outcome, Skill, SkillContext, Status
 
 __all__ = [
@@ -32,6 +32,8 @@ def matches_object(context: SkillContext, wanted: str, detection: Detection) -> 
 
 def go_and_look(context: SkillContext, placement: str) -> tuple[Outcome, list[Detection]]:
     """Drive to a placement unless already there, then look at it; beliefs follow."""
+    if placement not in context.world.placements:
+        return Outcome.failed(ErrorCode.UNKNOWN_TARGET, f"I do not know the {placement}"), []
     x, y, theta = context.world.placements[placement].approach
     goal = Pose(x, y, theta)
     if not near(context, goal):
@@ -89,10 +91,7 @@ class Look(Skill):
     required = ("placement",)
 
     def execute(self, context: SkillContext, args: Mapping[str, Any]) -> Outcome:
-        placement = str(args["placement"])
-        if placement not in context.world.placements:
-            return Outcome.failed(ErrorCode.UNKNOWN_TARGET, f"I do not know the {placement}")
-        outcome, detections = go_and_look(context, placement)
+        outcome, detections = go_and_look(context, str(args["placement"]))
         if outcome.status is not Status.FINISHED:
             return outcome
         return Outcome.finished(objects=[d.label for d in detections])
@@ -215,18 +214,10 @@ class FindPerson(Skill):
     def monitor(self, context: SkillContext, args: Mapping[str, Any],
                 finished: Outcome) -> Outcome:
         person = finished.data["person"]
-        outcome = _seen_nearby(context, person)
-        if outcome:
+        if sees_person_nearby(context, person):
             context.bindings["person"] = person
-        return outcome
-
-
-def _seen_nearby(context: SkillContext, person: str) -> Outcome:
-    here = context.robot.pose().xy()
-    for seen in context.robot.perceive_people():
-        if seen.name == person and math.dist(seen.position, here) <= 2.0:
             return Outcome.verified(f"I am with {person}", person=person)
-    return Outcome.aborted(ErrorCode.NOT_FOUND, f"{person} is no longer here")
+        return Outcome.aborted(ErrorCode.NOT_FOUND, f"{person} is no longer here")
 
 
 def _describe(description: Mapping[str, Any]) -> str:
@@ -255,10 +246,7 @@ class Count(Skill):
 
     def _count(self, context: SkillContext, args: Mapping[str, Any]) -> int | Outcome:
         if args.get("placement"):
-            placement = str(args["placement"])
-            if placement not in context.world.placements:
-                return Outcome.failed(ErrorCode.UNKNOWN_TARGET, f"I do not know the {placement}")
-            outcome, detections = go_and_look(context, placement)
+            outcome, detections = go_and_look(context, str(args["placement"]))
             if outcome.status is not Status.FINISHED:
                 return outcome
             wanted = str(args.get("object", ""))
@@ -324,8 +312,6 @@ class Describe(Skill):
 
     def _object_property(self, context: SkillContext, args: Mapping[str, Any]) -> Outcome:
         placement = str(args.get("placement", ""))
-        if placement not in context.world.placements:
-            return Outcome.failed(ErrorCode.UNKNOWN_TARGET, f"I do not know the {placement}")
         outcome, detections = go_and_look(context, placement)
         if outcome.status is not Status.FINISHED:
             return outcome

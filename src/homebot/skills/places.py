@@ -7,7 +7,14 @@ import math
 from homebot.robot import Pose
 from homebot.skills.skill import SkillContext
 
-__all__ = ["OPERATOR", "near", "person_name", "pose_near_point", "resolve_target"]
+__all__ = [
+    "OPERATOR",
+    "near",
+    "person_name",
+    "pose_near_point",
+    "resolve_target",
+    "sees_person_nearby",
+]
 
 OPERATOR = "operator"  #: how a task names the person who gave the command
 
@@ -72,3 +79,13 @@ def resolve_target(context: SkillContext, target: str) -> Pose | None:
 def near(context: SkillContext, pose: Pose, tolerance: float = 0.3) -> bool:
     """Whether the robot (as it localises itself) is within ``tolerance`` of ``pose``."""
     return math.dist(context.robot.pose().xy(), pose.xy()) <= tolerance
+
+
+def sees_person_nearby(context: SkillContext, person: str, reach: float = 2.0) -> bool:
+    """Look around: is ``person`` seen within ``reach`` metres? Beliefs follow what is seen."""
+    here = context.robot.pose().xy()
+    for seen in context.robot.perceive_people():
+        if seen.name == person and math.dist(seen.position, here) <= reach:
+            context.beliefs.saw_person(person, seen.position)
+            return True
+    return False
