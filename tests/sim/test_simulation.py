@@ -91,3 +91,22 @@ def test_people_answer_from_the_world_and_the_script(apartment: World) -> None:
     assert responder(alex, "what is your favourite drink") == "tea"
     assert responder(alex, "What is your name?") == "Alex"
     assert responder(alex, "How is the weather on Mars?") is None
+
+
+def test_interactive_people_answer_what_is_typed(apartment: World) -> None:
+    from homebot.sim import InteractiveResponder
+
+    prompts: list[str] = []
+
+    def typed(prompt: str) -> str:
+        prompts.append(prompt)
+        return "  lemonade  "
+
+    responder = InteractiveResponder(typed)
+    assert responder(apartment.person("Maria"), "What would you like?") == "lemonade"
+    assert "Maria" in prompts[0]
+
+    def closed(prompt: str) -> str:
+        raise EOFError
+
+    assert InteractiveResponder(closed)(apartment.person("Maria"), "Anything?") is None
