@@ -119,7 +119,8 @@ class Executive:
         if inference is not None and not inferred and (
                 misplaced or gave_up or outcome.error not in PROTOCOLS):
             return inference
-        if outcome.error in PROTOCOLS and not (misplaced and inferred):
+        if outcome.error is not None and outcome.error in PROTOCOLS and not (
+                misplaced and inferred):
             return PROTOCOLS[outcome.error]
         return None
 

@@ -266,9 +266,11 @@ class Count(Skill):
     def monitor(self, context: SkillContext, args: Mapping[str, Any],
                 finished: Outcome) -> Outcome:
         again = self._count(context, args)
+        if isinstance(again, Outcome):
+            return Outcome.aborted(again.error or ErrorCode.NOT_FOUND, again.message)
         if again != finished.data["count"]:
             return Outcome.aborted(ErrorCode.NOT_FOUND, "my two counts disagree")
-        text = _count_sentence(context, args, int(again))
+        text = _count_sentence(context, args, again)
         context.bindings["result"] = text
         return Outcome.verified(text, count=again, result=text)
 

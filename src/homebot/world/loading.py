@@ -51,7 +51,8 @@ class LocatedDocument:
 
 
 def _key_line(pair: tuple[yaml.Node, yaml.Node]) -> int:
-    return pair[0].start_mark.line + 1
+    line: int = pair[0].start_mark.line
+    return line + 1
 
 
 def _child_node(
