@@ -25,3 +25,10 @@ def apartment_navigator(apartment: World) -> Navigator:
 @pytest.fixture(scope="session")
 def supermarket() -> World:
     return World.load("supermarket")
+
+
+@pytest.fixture(autouse=True)
+def _private_cache(tmp_path_factory: pytest.TempPathFactory,
+                   monkeypatch: pytest.MonkeyPatch) -> None:
+    """Runs remember their event log in the user's cache; tests keep theirs private."""
+    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path_factory.mktemp("cache")))

@@ -8,6 +8,7 @@ from pathlib import Path
 import pytest
 
 from homebot.cli import main
+from homebot.cli.world import last_run_path
 
 TASK = """\
 description: bring the cola
@@ -97,13 +98,20 @@ def test_world_show_png_draws_the_last_path(tmp_path: Path,
     assert any('"robot.path"' in line for line in events.read_text().splitlines())
 
 
-def test_demo_runs_and_ends_with_a_table(capsys: pytest.CaptureFixture[str],
-                                         tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path))
+def test_demo_runs_and_ends_with_a_table(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["demo", "--quiet"]) == 0
     out = capsys.readouterr().out
     assert "outcomes and simulated durations" in out
-    assert (tmp_path / "homebot" / "last-run.jsonl").exists()
+    assert last_run_path().exists()
+
+
+def test_world_show_draws_the_last_run_by_default(tmp_path: Path,
+                                                   capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["run-task", str(_file(tmp_path, "task.yaml", TASK)), "--json"]) == 0
+    assert '"robot.path"' in last_run_path().read_text()
+    png = tmp_path / "map.png"
+    assert main(["world", "show", "--png", str(png)]) == 0
+    assert png.exists()
 
 
 def test_bench_robustness_json(capsys: pytest.CaptureFixture[str]) -> None:

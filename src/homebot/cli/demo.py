@@ -8,7 +8,7 @@ from typing import Any
 from rich.console import Console
 from rich.table import Table
 
-from homebot.cli.world import last_run_path
+from homebot.cli.world import remember_last_run
 from homebot.events import Event
 from homebot.scenarios.demo import DemoTask, run_demo
 from homebot.world import World
@@ -58,10 +58,5 @@ def demo(args: argparse.Namespace) -> int:
         outcome = "[green]done[/]" if report.success else f"[red]failed[/]: {report.reason}"
         table.add_row(task.title, outcome, str(recoveries), f"{report.sim_time:.0f} s")
     console.print(table)
-    last = last_run_path()
-    try:
-        last.parent.mkdir(parents=True, exist_ok=True)
-        results[-1][2].simulation.events.write(last)
-    except OSError:
-        pass  # the map of the last run is a convenience, not part of the demo
+    remember_last_run(results[-1][2].simulation.events)
     return 0

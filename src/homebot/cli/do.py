@@ -10,6 +10,7 @@ from rich.console import Console
 
 from homebot.cli.options import add_world_options, load_world
 from homebot.cli.run_task import print_report
+from homebot.cli.world import remember_last_run
 from homebot.language import Vocabulary, parse_command
 from homebot.scenarios import SimulatedRun, disturbed
 from homebot.sim import InteractiveResponder
@@ -44,6 +45,7 @@ def do(args: argparse.Namespace) -> int:
         world, seed=args.seed, disturbances=disturbed(args.disturb) if args.disturb else None,
         responder=InteractiveResponder() if args.interactive else None)
     report = run.run(parsed.to_task())
+    remember_last_run(run.simulation.events)
     if args.json:
         print(json.dumps(report.to_dict()))
     else:

@@ -10,6 +10,7 @@ from typing import Any
 from rich.console import Console
 
 from homebot.cli.options import add_world_options, load_world
+from homebot.cli.world import remember_last_run
 from homebot.executive import TaskReport
 from homebot.executive.taskfile import load_task
 from homebot.scenarios import SimulatedRun, disturbed
@@ -42,6 +43,7 @@ def run_task(args: argparse.Namespace) -> int:
         monitoring=not args.no_monitoring,
         responder=InteractiveResponder() if args.interactive else None)
     report = run.run(task)
+    remember_last_run(run.simulation.events)
     if args.events:
         run.simulation.events.write(args.events)
     if args.json:

@@ -14,15 +14,26 @@ from rich.table import Table
 
 from homebot.cli.options import load_world
 from homebot.errors import WorldError
+from homebot.events import EventLog
 from homebot.world import World
 
-__all__ = ["last_run_path", "register", "world_summary"]
+__all__ = ["last_run_path", "register", "remember_last_run", "world_summary"]
 
 
 def last_run_path() -> Path:
     """Where the event log of the last simulated run is kept (for ``world show``)."""
     cache = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache"))
     return cache / "homebot" / "last-run.jsonl"
+
+
+def remember_last_run(events: EventLog) -> None:
+    """Keep a run's event log so ``world show --png`` can draw its path."""
+    path = last_run_path()
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        events.write(path)
+    except OSError:
+        pass  # the map of the last run is a convenience, never a reason to fail a task
 
 
 def register(subparsers: Any) -> None:
