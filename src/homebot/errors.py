@@ -7,7 +7,8 @@ Hierarchy::
     ├── TaskError                a task file or task step is invalid
     ├── NavigationError          no route exists (bad target, unreachable place)
     ├── KnowledgeError           a knowledge-base file, query or update is invalid
-    └── LanguageError            a command cannot be understood
+    ├── LanguageError            a command cannot be understood
+    └── DialogueError            a SitLog dialogue model is malformed or cannot go on
 
 Every message says what is wrong and how to fix it; the CLI prints it without a
 traceback and exits with status 2. Expected failures while acting in the world
@@ -18,6 +19,7 @@ traceback and exits with status 2. Expected failures while acting in the world
 from __future__ import annotations
 
 __all__ = [
+    "DialogueError",
     "HomebotError",
     "KnowledgeError",
     "LanguageError",
@@ -49,3 +51,7 @@ class KnowledgeError(HomebotError):
 
 class LanguageError(HomebotError):
     """A command cannot be parsed at all."""
+
+
+class DialogueError(HomebotError):
+    """A SitLog dialogue model is malformed (with its place), or its run cannot go on."""
