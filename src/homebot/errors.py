@@ -7,6 +7,7 @@ Hierarchy::
     ├── TaskError                a task file or task step is invalid
     ├── NavigationError          no route exists (bad target, unreachable place)
     ├── KnowledgeError           a knowledge-base file, query or update is invalid
+    ├── GologError               a Golog program or action theory is malformed
     ├── LanguageError            a command cannot be understood
     └── DialogueError            a SitLog dialogue model is malformed or cannot go on
 
@@ -20,6 +21,7 @@ from __future__ import annotations
 
 __all__ = [
     "DialogueError",
+    "GologError",
     "HomebotError",
     "KnowledgeError",
     "LanguageError",
@@ -55,3 +57,7 @@ class LanguageError(HomebotError):
 
 class DialogueError(HomebotError):
     """A SitLog dialogue model is malformed (with its place), or its run cannot go on."""
+
+
+class GologError(HomebotError):
+    """A Golog program (text or Python) or its basic action theory is malformed."""
