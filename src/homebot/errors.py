@@ -8,6 +8,7 @@ Hierarchy::
     ├── NavigationError          no route exists (bad target, unreachable place)
     ├── KnowledgeError           a knowledge-base file, query or update is invalid
     ├── GologError               a Golog program or action theory is malformed
+    ├── PlanningError            an HTN domain, problem or planning goal is malformed
     ├── LanguageError            a command cannot be understood
     └── DialogueError            a SitLog dialogue model is malformed or cannot go on
 
@@ -26,6 +27,7 @@ __all__ = [
     "KnowledgeError",
     "LanguageError",
     "NavigationError",
+    "PlanningError",
     "TaskError",
     "WorldError",
 ]
@@ -61,3 +63,7 @@ class DialogueError(HomebotError):
 
 class GologError(HomebotError):
     """A Golog program (text or Python) or its basic action theory is malformed."""
+
+
+class PlanningError(HomebotError):
+    """An HTN domain or problem (file or Python) or a planning goal is malformed."""
