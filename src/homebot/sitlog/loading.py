@@ -1,0 +1,315 @@
+"""Reading dialogue models from YAML: terms with their place, user functions, includes.
+
+The YAML form mirrors Listing A1: a file holds ``dialogue_models`` (each with an
+``id``, ``situations`` and ``locals``), ``globals``, ``functions`` (Python modules
+or ``.py`` files next to the YAML that define ``user_functions()``), ``include``
+(other YAML files) and ``main``. Values are terms in SitLog's notation; an arc is
+``"Expectation : Action => Next"`` or ``{expect, action, next}``. Every error names
+the file, line and column; ``validation.check_program`` runs before a program is
+returned.
+"""
+
+from __future__ import annotations
+
+import difflib
+import importlib
+import importlib.util
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any
+
+import yaml
+
+from homebot.errors import DialogueError
+from homebot.sitlog.model import Arc, DialogueModel, Program, Situation, UserFunction, functor_of
+from homebot.sitlog.terms import EMPTY, Struct, Term, Var, parse_term
+from homebot.sitlog.validation import check_program
+
+__all__ = ["load_program", "load_program_text", "shipped_dialogue_path"]
+
+_DATA_TOKEN = "$DATA"
+_TOP_KEYS = ("dialogue_models", "globals", "functions", "include", "main", "recovery", "types")
+_MODEL_KEYS = ("id", "situations", "locals")
+_SITUATION_KEYS = ("id", "type", "in_arg", "out_arg", "prog", "arcs", "embedded_dm", "input",
+                   "interpreter", "diag_mod", "recovery", "repeat")
+_ARC_KEYS = ("expect", "action", "next")
+
+
+def _data_directory() -> Path:
+    return Path(__file__).resolve().parent.parent / "data" / "dialogue"
+
+
+def shipped_dialogue_path(spec: str | Path) -> Path:
+    """The file a dialogue argument names: a path, ``$DATA/...`` or a shipped model's name."""
+    text = str(spec)
+    if text.startswith(_DATA_TOKEN):
+        return _data_directory().parent / text[len(_DATA_TOKEN):].lstrip("/")
+    path = Path(text)
+    if path.exists():
+        return path
+    shipped = _data_directory() / f"{text}.yaml"
+    if "/" not in text and shipped.is_file():
+        return shipped
+    names = ", ".join(sorted(p.stem for p in _data_directory().glob("*.yaml")))
+    raise DialogueError(f"no dialogue file '{text}'; give a path or a shipped name ({names})")
+
+
+def load_program(spec: str | Path) -> Program:
+    """Load and validate a program from a YAML file (or a shipped name such as ``appendix_a``)."""
+    path = shipped_dialogue_path(spec)
+    reader = _Reader()
+    reader.read_file(path)
+    return reader.program(str(path))
+
+
+def load_program_text(text: str, source: str = "<text>", base: Path | None = None) -> Program:
+    """Load and validate a program from YAML text; ``base`` resolves relative includes."""
+    reader = _Reader()
+    reader.read_text(text, source, base or Path.cwd())
+    return reader.program(source)
+
+
+class _Reader:
+    """Collects models, globals and functions from one file and its includes."""
+
+    def __init__(self) -> None:
+        self.models: dict[tuple[str, int], DialogueModel] = {}
+        self.globals: dict[str, Term] = {}
+        self.functions: dict[str, UserFunction] = {}
+        self.main: tuple[str, int] | None = None
+        self.recovery: Term | None = None
+        self.types: set[str] = set()
+        self.seen: set[Path] = set()
+
+    def program(self, source: str) -> Program:
+        if not self.models:
+            raise DialogueError(f"{source}: no dialogue_models; add at least one")
+        main = self.main or (("main", 0) if ("main", 0) in self.models else next(
+            iter(self.models)))
+        program = Program(self.models, main, self.globals, self.functions, self.recovery,
+                          source, {"types": frozenset(self.types)})
+        check_program(program)
+        return program
+
+    def read_file(self, path: Path) -> None:
+        path = path.resolve()
+        if path in self.seen:
+            return
+        self.seen.add(path)
+        try:
+            text = path.read_text(encoding="utf-8")
+        except OSError as error:
+            raise DialogueError(f"{path}: cannot read it ({error.strerror}); check the path") \
+                from None
+        self.read_text(text, str(path), path.parent)
+
+    def read_text(self, text: str, source: str, base: Path) -> None:
+        try:
+            loader = yaml.SafeLoader(text)
+            try:
+                root = loader.get_single_node()
+            finally:
+                loader.dispose()
+        except yaml.YAMLError as error:
+            mark = getattr(error, "problem_mark", None)
+            where = f", line {mark.line + 1}, column {mark.column + 1}" if mark else ""
+            problem = getattr(error, "problem", None) or str(error)
+            raise DialogueError(f"{source}{where}: not valid YAML ({problem}); "
+                                "quote arcs written as \"E : A => N\"") from None
+        if root is None:
+            raise DialogueError(f"{source}: the file is empty; add dialogue_models")
+        file = _File(source, base)
+        top = file.mapping(root, _TOP_KEYS, "the file")
+        for node in file.sequence(top.get("include"), "include"):
+            self.read_file(base / file.string(node, "an include"))
+        for node in file.sequence(top.get("functions"), "functions"):
+            self._functions(file, node)
+        for name, node in file.pairs(top.get("globals"), "globals"):
+            self.globals[name] = file.term(node, {})
+        for node in file.sequence(top.get("types"), "types"):
+            self.types.add(file.string(node, "a situation type"))
+        if "recovery" in top:
+            self.recovery = file.term(top["recovery"], {})
+        for node in file.sequence(top.get("dialogue_models"), "dialogue_models"):
+            model = file.model(node)
+            if model.key in self.models:
+                raise DialogueError(f"{model.place}: dialogue model {model.name}/{model.key[1]} "
+                                    "is defined twice; rename one")
+            self.models[model.key] = model
+        if "main" in top:
+            main = functor_of(file.term(top["main"], {}))
+            if main not in self.models:
+                raise DialogueError(f"{file.place(top['main'])}: main names no dialogue model "
+                                    f"here; models: {_names(self.models)}")
+            self.main = main
+
+    def _functions(self, file: _File, node: yaml.Node) -> None:
+        spec = file.string(node, "a module or .py file")
+        try:
+            if spec.endswith(".py"):
+                path = (file.base / spec).resolve()
+                module_spec = importlib.util.spec_from_file_location(f"sitlog_user_{path.stem}",
+                                                                     path)
+                if module_spec is None or module_spec.loader is None or not path.is_file():
+                    raise ImportError(f"no file {path}")
+                module = importlib.util.module_from_spec(module_spec)
+                module_spec.loader.exec_module(module)
+            else:
+                module = importlib.import_module(spec)
+        except ImportError as error:
+            raise DialogueError(f"{file.place(node)}: cannot import functions '{spec}' "
+                                f"({error}); give a module path or a .py file") from None
+        provider = getattr(module, "user_functions", None)
+        if not callable(provider):
+            raise DialogueError(f"{file.place(node)}: '{spec}' has no user_functions(); define "
+                                "one returning {name: function}")
+        functions = provider()
+        if not isinstance(functions, Mapping):
+            raise DialogueError(f"{file.place(node)}: user_functions() of '{spec}' must return "
+                                "a mapping of names to functions")
+        self.functions.update(functions)
+
+
+class _File:
+    """Turns the nodes of one YAML file into model objects, keeping places."""
+
+    def __init__(self, source: str, base: Path) -> None:
+        self.source = source
+        self.base = base
+        self.constructor = yaml.SafeLoader("")
+
+    def place(self, node: yaml.Node) -> str:
+        mark = node.start_mark
+        return f"{self.source}, line {mark.line + 1}, column {mark.column + 1}"
+
+    def mapping(self, node: yaml.Node | None, keys: tuple[str, ...],
+                what: str) -> dict[str, yaml.Node]:
+        if not isinstance(node, yaml.MappingNode):
+            where = self.place(node) if node is not None else self.source
+            raise DialogueError(f"{where}: {what} must be a mapping with keys {', '.join(keys)}")
+        result: dict[str, yaml.Node] = {}
+        for key, value in node.value:
+            name = str(key.value)
+            if name not in keys:
+                guess = difflib.get_close_matches(name, keys, n=1)
+                hint = f"did you mean '{guess[0]}'?" if guess else f"keys: {', '.join(keys)}"
+                raise DialogueError(f"{self.place(key)}: unknown key '{name}' in {what}; {hint}")
+            result[name] = value
+        return result
+
+    def sequence(self, node: yaml.Node | None, what: str) -> list[yaml.Node]:
+        if node is None or (isinstance(node, yaml.ScalarNode) and node.value in ("", "~")):
+            return []
+        if not isinstance(node, yaml.SequenceNode):
+            raise DialogueError(f"{self.place(node)}: {what} must be a list")
+        return list(node.value)
+
+    def pairs(self, node: yaml.Node | None, what: str) -> list[tuple[str, yaml.Node]]:
+        if node is None:
+            return []
+        if not isinstance(node, yaml.MappingNode):
+            raise DialogueError(f"{self.place(node)}: {what} must map names to values")
+        return [(str(key.value), value) for key, value in node.value]
+
+    def string(self, node: yaml.Node, what: str) -> str:
+        if not isinstance(node, yaml.ScalarNode):
+            raise DialogueError(f"{self.place(node)}: expected {what}")
+        return str(node.value)
+
+    def term(self, node: yaml.Node, variables: dict[str, Var]) -> Term:
+        """A term from a scalar (parsed in SitLog notation) or a YAML list of terms."""
+        if isinstance(node, yaml.SequenceNode):
+            return tuple(self.term(item, variables) for item in node.value)
+        if not isinstance(node, yaml.ScalarNode):
+            raise DialogueError(f"{self.place(node)}: expected a term, not a mapping")
+        if node.style is None:
+            value = self.constructor.construct_object(node)
+            if isinstance(value, bool):
+                return "true" if value else "false"
+            if isinstance(value, int | float):
+                return value
+            if value is None:
+                return EMPTY
+        mark = node.start_mark
+        offset = mark.column + (1 if node.style in ("'", '"') else 0)
+        where = f"{self.source}, line {mark.line + 1}"
+        return parse_term(str(node.value), where, variables, offset)
+
+    def model(self, node: yaml.Node) -> DialogueModel:
+        fields = self.mapping(node, _MODEL_KEYS, "a dialogue model")
+        if "id" not in fields:
+            raise DialogueError(f"{self.place(node)}: a dialogue model needs an id")
+        head_variables: dict[str, Var] = {}
+        head = self.term(fields["id"], head_variables)
+        if functor_of(head) is None:
+            raise DialogueError(f"{self.place(fields['id'])}: a dialogue model's id is a name "
+                                "or name(Args)")
+        situations = tuple(self.situation(item, head_variables)
+                           for item in self.sequence(fields.get("situations"), "situations"))
+        if not situations:
+            raise DialogueError(f"{self.place(node)}: dialogue model {_show(head)} has no "
+                                "situations; add them under situations:")
+        local_values = {name: self.term(value, {})
+                        for name, value in self.pairs(fields.get("locals"), "locals")}
+        return DialogueModel(head, situations, local_values, self.place(node))
+
+    def situation(self, node: yaml.Node, head_variables: dict[str, Var]) -> Situation:
+        fields = self.mapping(node, _SITUATION_KEYS, "a situation")
+        for needed in ("id", "type"):
+            if needed not in fields:
+                raise DialogueError(f"{self.place(node)}: a situation needs '{needed}'")
+        shared = dict(head_variables)
+        values: dict[str, Any] = {}
+        for name in ("id", "in_arg", "out_arg", "embedded_dm", "input", "diag_mod", "recovery"):
+            if name in fields:
+                values[name] = self.term(fields[name], shared)
+        if functor_of(values["id"]) is None:
+            raise DialogueError(f"{self.place(fields['id'])}: a situation's id is a name or "
+                                "name(Args)")
+        kind = self.string(fields["type"], "a situation type")
+        prog: tuple[Term, ...] = ()
+        if "prog" in fields:
+            body = self.term(fields["prog"], dict(shared))
+            prog = body if isinstance(body, tuple) else (body,)
+        arcs = tuple(self.arc(item, shared) for item in self.sequence(fields.get("arcs"), "arcs"))
+        repeat = 3
+        if "repeat" in fields:
+            repeat_value = self.term(fields["repeat"], {})
+            if not isinstance(repeat_value, int) or repeat_value < 1:
+                raise DialogueError(f"{self.place(fields['repeat'])}: repeat is a whole number "
+                                    "of tries, 1 or more")
+            repeat = repeat_value
+        interpreter = self.string(fields["interpreter"], "a function name") if (
+            "interpreter" in fields) else None
+        return Situation(values["id"], kind, arcs, values.get("in_arg"), values.get("out_arg"),
+                         prog, values.get("embedded_dm"), values.get("input"), interpreter,
+                         values.get("diag_mod"), values.get("recovery"), repeat, self.place(node))
+
+    def arc(self, node: yaml.Node, shared: dict[str, Var]) -> Arc:
+        variables = dict(shared)
+        if isinstance(node, yaml.MappingNode):
+            fields = self.mapping(node, _ARC_KEYS, "an arc")
+            if "next" not in fields:
+                raise DialogueError(f"{self.place(node)}: an arc needs 'next'")
+            expectation = self.term(fields["expect"], variables) if "expect" in fields else EMPTY
+            action = self.term(fields["action"], variables) if "action" in fields else EMPTY
+            return Arc(expectation, action, self.term(fields["next"], variables),
+                       self.place(node))
+        term = self.term(node, variables)
+        if not (isinstance(term, Struct) and term.functor == "=>" and term.arity == 2):
+            raise DialogueError(f"{self.place(node)}: an arc is written 'Expectation : Action => "
+                                "Next' (quote it in YAML)")
+        left, following = term.args
+        if isinstance(left, Struct) and left.functor == ":" and left.arity == 2:
+            return Arc(left.args[0], left.args[1], following, self.place(node))
+        return Arc(left, EMPTY, following, self.place(node))
+
+
+def _show(term: Term) -> str:
+    from homebot.sitlog.terms import format_term
+
+    return format_term(term)
+
+
+def _names(models: Mapping[tuple[str, int], DialogueModel]) -> str:
+    return ", ".join(f"{name}/{arity}" for name, arity in models)

@@ -1,0 +1,96 @@
+"""Perceptual interpreters and the robot's output: what a situation hears, sees and says.
+
+A perceptual interpreter receives the situation's type, its ``input`` (the question
+to ask, the placement to look at, the skill to run) and the expectations (top
+down), and returns the datum perceived (bottom up), which the interpreter then
+matches against the expectations. ``ScriptedPerception`` reads data from a list or
+a prompt; ``homebot.sitlog.robot`` feeds them from the skills' outcomes.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Callable, Iterable, Sequence
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Protocol
+
+from homebot.errors import DialogueError
+from homebot.sitlog.terms import Term, Text, parse_term
+
+if TYPE_CHECKING:
+    from homebot.sitlog.interpreter import Environment
+
+__all__ = ["Body", "Perception", "RecordingBody", "ScriptedPerception", "utterance_term"]
+
+
+class Perception(Protocol):
+    """Delivers what a grounded situation perceived (None: nothing was perceived)."""
+
+    def perceive(self, kind: str, request: Term | None, expectations: Sequence[Term],
+                 env: Environment) -> Term | None:
+        """The datum for a situation of type ``kind``; ``request`` is its evaluated ``input``."""
+
+
+class Body(Protocol):
+    """What the interpreter's basic actions (``say``, ``screen``) do with the robot."""
+
+    def say(self, text: str) -> None:
+        """Render ``text`` through speech (or a screen)."""
+
+
+@dataclass
+class RecordingBody:
+    """A body that only remembers what it said (tests, ``sitlog run`` without a robot)."""
+
+    said: list[str] = field(default_factory=list)
+    echo: Callable[[str], None] | None = None
+
+    def say(self, text: str) -> None:
+        self.said.append(text)
+        if self.echo is not None:
+            self.echo(text)
+
+
+def utterance_term(text: str) -> Term:
+    """A typed or heard line as a term: SitLog notation if it parses, else an atom."""
+    stripped = text.strip().rstrip(".")
+    try:
+        return parse_term(stripped, "<input>")
+    except DialogueError:
+        return " ".join(re.sub(r"[^\w\s']", " ", stripped.lower()).split())
+
+
+@dataclass
+class ScriptedPerception:
+    """Every datum comes from a list of lines (or terms), in order, whatever the type.
+
+    ``read_line`` (e.g. ``input``) is asked once the list is used up; without it a
+    run that needs more input stops with ``DialogueError``.
+    """
+
+    inputs: Iterable[str | Term] = ()
+    read_line: Callable[[str], str] | None = None
+    consumed: list[Term] = field(default_factory=list)
+
+    def __post_init__(self) -> None:
+        self._pending = iter(list(self.inputs))
+
+    def perceive(self, kind: str, request: Term | None, expectations: Sequence[Term],
+                 env: Environment) -> Term | None:
+        item = next(self._pending, None)
+        if item is None and self.read_line is not None:
+            try:
+                item = self.read_line(f"[{kind}] > ")
+            except EOFError:
+                item = None
+        if item is None:
+            raise DialogueError(f"no more input for the {kind} situation "
+                                f"{env.situation_name}; give more inputs")
+        datum = utterance_term(item) if isinstance(item, str) else item
+        self.consumed.append(datum)
+        return datum
+
+
+def heard(text: str | None) -> Text | None:
+    """What speech recognition delivered, as a text term."""
+    return None if text is None else Text(text)
