@@ -1,0 +1,241 @@
+"""The online interpreter (IndiGolog style) with a pluggable executor.
+
+Each cycle takes in the exogenous actions the executor reports, stops if the
+program may end, else takes the first transition the program offers: an action
+goes to the executor, whose report (nature's outcome of a stochastic action,
+sensed fluent values) progresses the robot's model; a ``solve`` plans a policy
+whose markers are checked as it runs, and a marker whose value changed sends
+the program back to that ``solve`` (re-planning). When no transition is
+possible the interpreter waits for the executor to report something new.
+"""
+
+from __future__ import annotations
+
+import random
+from abc import ABC, abstractmethod
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+from homebot.golog.policy import Result, policy_actions
+from homebot.golog.program import Program
+from homebot.golog.semantics import (
+    ActionStep,
+    ChanceStep,
+    PlanStep,
+    ReplanStep,
+    SenseStep,
+    TestStep,
+    final,
+    transitions,
+)
+from homebot.golog.theory import GroundAction, State, Theory, action_text
+
+__all__ = ["Executor", "Interpreter", "Report", "Run", "SimulatedExecutor"]
+
+ExogenousSource = Callable[[int, State], list[GroundAction]]
+
+
+@dataclass(frozen=True)
+class Report:
+    """What an executor tells after an action: done or not, nature's outcome, sensed values."""
+
+    ok: bool = True
+    outcome: GroundAction | None = None
+    sensed: Mapping[tuple[Any, ...], Any] = field(default_factory=dict)
+    message: str = ""
+
+    def __bool__(self) -> bool:
+        return self.ok
+
+
+class Executor(ABC):
+    """Carries out primitive actions in some world and reports what happened."""
+
+    @abstractmethod
+    def execute(self, action: GroundAction, state: State) -> Report:
+        """Do ``action`` (``state`` is what the robot believes); report the result."""
+
+    def exogenous(self, state: State) -> list[GroundAction]:
+        """Exogenous actions that happened since the last call (none by default)."""
+        return []
+
+    def wait(self, state: State) -> list[GroundAction] | None:
+        """The program is blocked: wait; exogenous actions meanwhile, or None if nothing
+        will ever happen."""
+        return None
+
+
+class SimulatedExecutor(Executor):
+    """A pure simulation of the theory: true state apart from beliefs, seeded outcomes.
+
+    ``events(clock, truth)`` scripts exogenous actions: the clock counts executed
+    actions and waits, and each clock value is asked once.
+    """
+
+    def __init__(self, theory: Theory, *, seed: int = 0, truth: State | None = None,
+                 events: ExogenousSource | None = None, patience: int = 20) -> None:
+        self.theory = theory
+        self.truth = truth if truth is not None else theory.initial
+        self.rng = random.Random(seed)
+        self.events = events
+        self.clock = 0
+        self.patience = patience
+        self._asked = -1
+
+    def execute(self, action: GroundAction, state: State) -> Report:
+        theory = self.theory
+        if not theory.possible(action, self.truth):
+            self.clock += 1
+            return Report(False, message=f"{action_text(action)} is not possible")
+        outcome = None
+        chosen = action
+        if theory.schema(action).stochastic:
+            outcomes = [(nature, chance) for nature, chance in theory.outcomes(action, self.truth)
+                        if theory.possible(nature, self.truth)]
+            draw, total = self.rng.random(), 0.0
+            chosen = outcomes[-1][0]
+            for nature, chance in outcomes:
+                total += chance
+                if draw < total:
+                    chosen = nature
+                    break
+            outcome = chosen
+        self.truth = theory.do(chosen, self.truth)
+        sensed: dict[tuple[Any, ...], Any] = {}
+        schema = theory.schema(action)
+        if schema.senses is not None:
+            for key in schema.senses(*action[1:]):
+                fluent = theory.fluents[key[0]]
+                sensed[key] = self.truth.get(key, fluent.default)
+        self.clock += 1
+        return Report(True, outcome, sensed)
+
+    def exogenous(self, state: State) -> list[GroundAction]:
+        if self.events is None or self._asked >= self.clock:
+            return []
+        self._asked = self.clock
+        happened = list(self.events(self.clock, self.truth))
+        for action in happened:
+            self.truth = self.theory.do(action, self.truth)
+        return happened
+
+    def wait(self, state: State) -> list[GroundAction] | None:
+        if self.patience <= 0:
+            return None
+        self.patience -= 1
+        self.clock += 1
+        return self.exogenous(state)
+
+
+@dataclass
+class Run:
+    """How an online execution went."""
+
+    success: bool
+    state: State
+    history: list[GroundAction]
+    log: list[dict[str, Any]]
+    plans: list[Result]
+    replans: int
+    reason: str = ""
+
+    def __bool__(self) -> bool:
+        return self.success
+
+    @property
+    def actions(self) -> list[str]:
+        """The executed actions as text."""
+        return [action_text(action) for action in self.history]
+
+
+class Interpreter:
+    """Runs programs online over one theory and one executor; seeded for ``prob``."""
+
+    def __init__(self, theory: Theory, executor: Executor, *, seed: int = 0,
+                 max_steps: int = 2000, max_replans: int = 25) -> None:
+        self.theory = theory
+        self.executor = executor
+        self.rng = random.Random(seed)
+        self.max_steps = max_steps
+        self.max_replans = max_replans
+
+    def run(self, program: Program, state: State | None = None) -> Run:
+        """Execute ``program`` from ``state`` (the theory's initial state by default)."""
+        theory = self.theory
+        state = state if state is not None else theory.initial
+        run = Run(False, state, [], [], [], 0)
+        configuration = program
+        for _ in range(self.max_steps):
+            for action in self.executor.exogenous(state):
+                state = self._exogenous(run, action, state)
+            if final(configuration, state, theory):
+                run.success, run.state = True, state
+                return run
+            found = transitions(configuration, state, theory)
+            if not found:
+                happened = self.executor.wait(state)
+                if happened is None:
+                    return self._failed(run, state, "the program is blocked and nothing "
+                                                    "more will happen")
+                run.log.append({"kind": "wait"})
+                for action in happened:
+                    state = self._exogenous(run, action, state)
+                continue
+            step, configuration = self._pick(found)
+            if isinstance(step, ActionStep):
+                report = self.executor.execute(step.action, state)
+                run.log.append({"kind": "action", "action": action_text(step.action),
+                                "ok": report.ok, "message": report.message})
+                if not report:
+                    return self._failed(run, state, f"{action_text(step.action)} failed: "
+                                                    f"{report.message}")
+                state = self._progress(step.action, report, state)
+                run.history.append(step.action)
+            elif isinstance(step, PlanStep):
+                run.plans.append(step.result)
+                run.log.append({"kind": "plan", "value": step.result.value,
+                                "probability": step.result.probability,
+                                "actions": [action_text(a)
+                                            for a in policy_actions(step.result.policy)]})
+            elif isinstance(step, ReplanStep):
+                run.replans += 1
+                run.log.append({"kind": "replan", "marker": str(step.condition),
+                                "expected": step.expected})
+                if run.replans > self.max_replans:
+                    return self._failed(run, state, "too many re-plans")
+            elif isinstance(step, SenseStep):
+                run.log.append({"kind": "sensed", "outcome": action_text(step.nature)})
+            elif isinstance(step, TestStep):
+                continue
+        return self._failed(run, state, f"no end after {self.max_steps} steps")
+
+    def _pick(self, found: list[tuple[Any, Program]]) -> tuple[Any, Program]:
+        step, remaining = found[0]
+        if not isinstance(step, ChanceStep):
+            return step, remaining
+        chances = [(s, rest) for s, rest in found if isinstance(s, ChanceStep)]
+        draw, total = self.rng.random(), 0.0
+        for chance, rest in chances:
+            total += chance.probability
+            if draw < total:
+                return chance, rest
+        return chances[-1]
+
+    def _progress(self, action: GroundAction, report: Report, state: State) -> State:
+        theory = self.theory
+        if theory.schema(action).stochastic:
+            if report.outcome is not None:
+                state = theory.do(report.outcome, state)
+        else:
+            state = theory.do(action, state)
+        return state.progressed(report.sensed) if report.sensed else state
+
+    def _exogenous(self, run: Run, action: GroundAction, state: State) -> State:
+        run.log.append({"kind": "exogenous", "action": action_text(action)})
+        return self.theory.do(action, state)
+
+    @staticmethod
+    def _failed(run: Run, state: State, reason: str) -> Run:
+        run.success, run.state, run.reason = False, state, reason
+        return run
