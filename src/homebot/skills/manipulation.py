@@ -17,21 +17,24 @@ __all__ = ["Give", "Pick", "Place"]
 class Pick(Skill):
     """Grasp an object from where the robot believes it is.
 
-    Preconditions: a free hand; the object's placement is believed. Effects: the
+    Preconditions: a free hand (``hand`` names one, else the first free); the
+    object's placement is believed. Effects: the
     object is in a hand. Monitor: the hand camera sees the object in the hand
     (an empty hand or a different object is ``aborted``, and retried).
     """
 
     name = "pick"
     required = ("object",)
+    optional = ("hand",)
     retries = 2
     retry_on = frozenset({ErrorCode.NOT_FOUND})
 
     def execute(self, context: SkillContext, args: Mapping[str, Any]) -> Outcome:
         wanted = str(args["object"])
-        hand = context.beliefs.free_hand()
-        if hand is None:
-            return Outcome.failed(ErrorCode.HANDS_FULL, "both my hands are full")
+        hand = str(args["hand"]) if args.get("hand") else context.beliefs.free_hand()
+        if hand is None or context.beliefs.holding.get(hand, "") is not None:
+            return Outcome.failed(ErrorCode.HANDS_FULL, "both my hands are full" if hand is None
+                                  else f"my {hand} hand is not free")
         placement = context.bindings.get(f"placement:{wanted}") or context.beliefs.object_at.get(
             wanted)
         if placement not in context.world.placements:
