@@ -1,0 +1,278 @@
+"""The actor: runs a plan operator by operator through the monitored skills, and replans.
+
+Care-O-bot §4: each operator runs as its skill, whose state machine executes,
+monitors and reports ``finished`` / ``verified`` / ``failed`` / ``aborted`` /
+``retrying`` (the skill layer logs every one). Retries are per operator, with
+counts the user gives (``retries={"!grasp": 3}``). A verified operator's
+declared effects are checked against what the robot now believes. When an
+operator ends failed or aborted, a door or a person in the way first goes
+through the executive's recovery protocols; otherwise (or if they do not help)
+the robot replans from what it now believes, at most ``max_replans`` times,
+before it gives up and says why. The planner model stays apart from execution:
+``!grasp`` is planned, the ``pick`` skill runs it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+from homebot.executive.recovery import PROTOCOLS
+from homebot.htn.domain import Domain
+from homebot.htn.home import Goal, Names, home_domain, state_from_beliefs
+from homebot.htn.planner import Plan, Planner, PlanStep
+from homebot.htn.state import Atom
+from homebot.skills import ErrorCode, Outcome, SkillContext, Status, skill_named, speak
+from homebot.task import Step
+
+__all__ = ["OPERATOR_SKILLS", "HtnRun", "OperatorReport", "PlanActor", "step_for"]
+
+# Predicates the actor remembers from verified operators across replanning (no sensor
+# shows them: what the robot has told whom).
+_MEMORY = frozenset({"told", "reported"})
+# Predicates of declared effects the actor checks against the beliefs after an operator.
+_CHECKED = frozenset({"holding", "has", "object-at", "door-closed"})
+# Failures the executive's protocols mend (a door, someone in the way); the rest replan.
+_PROTOCOL_ERRORS = frozenset({ErrorCode.DOOR_CLOSED, ErrorCode.PATH_BLOCKED})
+# How many doors or blocked ways one operator may mend before the robot replans.
+_MAX_RECOVERIES = 4
+
+
+def _announce(what: str, thing: str, who: str) -> Step:
+    text = {"bring": f"I will bring the {thing} to {who}.",
+            "guide": f"I will take {thing} to the {who}."}.get(what, f"I will {what} {thing}.")
+    return Step("say", {"text": text})
+
+
+def _report(what: str, thing: str, who: str) -> Step:
+    text = {"bring": f"I have brought the {thing} to {who}.",
+            "guide": f"{thing}, we have arrived at the {who}."}.get(what, f"I did {what}.")
+    return Step("say", {"text": text})
+
+
+#: How each operator of the home domain runs: a function of its arguments (robot first,
+#: world names) to the skill step that carries it out.
+OPERATOR_SKILLS: Mapping[str, Callable[..., Step]] = {
+    "!announce": lambda r, what, thing, who: _announce(what, thing, who),
+    "!report": lambda r, what, thing, who: _report(what, thing, who),
+    "!move_base": lambda r, source, target: Step("navigate", {"to": target}),
+    "!open_door": lambda r, door: Step("open_door", {"door": door}),
+    "!find_object": lambda r, o, p: Step("find_object", {"object": o, "placement": p}),
+    "!search_object": lambda r, o: Step("find_object", {"object": o}),
+    "!grasp": lambda r, o, p: Step("pick", {"object": o}),
+    "!find_person": lambda r, who: Step("find_person", {"person": {"name": who}}),
+    "!hand_over": lambda r, o, who: Step("give", {"person": who, "object": o}),
+    "!guide": lambda r, who, place: Step("guide", {"to": place, "person": who}),
+    "!put_down": lambda r, o, p: Step("place", {"placement": p, "object": o}),
+}
+
+
+def step_for(step: PlanStep, names: Names) -> Step:
+    """The skill step that runs a plan step; an operator no skill runs raises ``PlanningError``."""
+    from homebot.errors import PlanningError
+
+    make = OPERATOR_SKILLS.get(step.operator)
+    if make is None:
+        raise PlanningError(f"no skill runs operator '{step.operator}'; the actor knows "
+                            f"{', '.join(OPERATOR_SKILLS)} (plan it with 'homebot plan')")
+    try:
+        return make(*(names.name(arg) for arg in step.args))
+    except TypeError:
+        raise PlanningError(f"operator '{step.operator}' has {len(step.args)} arguments, not "
+                            "the number its skill needs") from None
+
+
+@dataclass(frozen=True, slots=True)
+class OperatorReport:
+    """How one operator ended: its skill's status (§4.1), error, attempts and message."""
+
+    operator: str
+    args: tuple[Any, ...]
+    skill: str
+    status: str
+    error: str | None = None
+    attempts: int = 1
+    message: str = ""
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"operator": self.operator, "args": list(self.args), "skill": self.skill,
+                "status": self.status, "error": self.error, "attempts": self.attempts}
+
+
+@dataclass
+class HtnRun:
+    """A goal carried out: success, every plan made, every operator run, and what was said."""
+
+    success: bool
+    plans: list[Plan] = field(default_factory=list)
+    operators: list[OperatorReport] = field(default_factory=list)
+    replans: int = 0
+    speech: list[str] = field(default_factory=list)
+    reason: str = ""
+    sim_time: float = 0.0
+
+    def __bool__(self) -> bool:
+        return self.success
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"success": self.success, "replans": self.replans,
+                "plans": [plan.to_dicts() for plan in self.plans],
+                "operators": [report.to_dict() for report in self.operators],
+                "speech": list(self.speech), "reason": self.reason,
+                "sim_time": round(self.sim_time, 2)}
+
+
+class PlanActor:
+    """Plans a goal from the robot's beliefs and carries the plan out, replanning within a bound.
+
+    Args:
+        context: the skills' context (robot, map, beliefs, event log).
+        domain: the HTN domain (the home domain unless given).
+        retries: extra attempts per operator name, e.g. ``{"!grasp": 3}``.
+        max_replans: how many times to replan after a failed or aborted operator.
+        recovery: let the executive's protocols mend a closed door or a blocked way first.
+        planner: bounds for each search (``Planner`` keyword arguments).
+    """
+
+    def __init__(self, context: SkillContext, domain: Domain | None = None, *,
+                 retries: Mapping[str, int] | None = None, max_replans: int = 3,
+                 recovery: bool = True, **planner: Any) -> None:
+        self.context = context
+        self.domain = domain or home_domain()
+        self.planner = Planner(self.domain, **planner)
+        self.retries = dict(retries or {})
+        self.max_replans = max_replans
+        self.recovery = recovery
+
+    def _state(self, goal: Goal, names: Names, memory: set[Atom]) -> Any:
+        context = self.context
+        state, _ = state_from_beliefs(context.world, context.beliefs,
+                                      context.robot.pose().xy(), names,
+                                      extra=[*goal.atoms, *memory])
+        return state
+
+    def run(self, goal: Goal, names: Names | None = None) -> HtnRun:
+        """Plan, act, monitor, replan; the robot says how it ended."""
+        context = self.context
+        names = names or Names()
+        started = context.robot.now()
+        first_speech = len(list(context.events.of_kind("speech")))
+        context.events.record("htn.goal", task=list(goal.task))
+        run = HtnRun(False)
+        memory: set[Atom] = set()
+        while True:
+            result = self.planner.search(self._state(goal, names, memory), [goal.task])
+            if result.plan is None:
+                run.reason = ("I found no plan from what I now believe"
+                              if not result.stopped else f"planning stopped ({result.stopped})")
+                break
+            plan = result.plan
+            run.plans.append(plan)
+            context.events.record("htn.plan", replan=run.replans, plan=plan.to_dicts())
+            failure = self._execute(plan, names, memory, goal, run)
+            if failure is None:
+                run.success = True
+                break
+            run.replans += 1
+            if run.replans > self.max_replans:
+                run.reason = f"{failure} (and {self.max_replans} new plans did not help)"
+                break
+            context.events.record("htn.replan", replan=run.replans, reason=failure)
+        if run.success and not any(s.operator == "!report" for s in run.plans[-1].steps):
+            speak(context, "I have done what you asked.")
+        elif not run.success:
+            speak(context, f"I am sorry, I could not do it: {run.reason}.")
+        context.events.record("htn.end", success=run.success, replans=run.replans,
+                              reason=run.reason)
+        run.speech = [event.data["text"] for event in
+                      list(context.events.of_kind("speech"))[first_speech:]]
+        run.sim_time = context.robot.now() - started
+        return run
+
+    def _execute(self, plan: Plan, names: Names, memory: set[Atom], goal: Goal,
+                 run: HtnRun) -> str | None:
+        """Run the plan's operators in order; the reason of the first failure, or None."""
+        for step in plan.steps:
+            operator = self.domain.operators[step.operator]
+            if operator.internal:
+                continue
+            skill_step = step_for(step, names)
+            outcome, attempts = self._run_operator(step, skill_step)
+            run.operators.append(OperatorReport(
+                step.operator, tuple(names.name(a) for a in step.args), skill_step.skill,
+                outcome.status.value, outcome.error.value if outcome.error else None,
+                attempts, outcome.message))
+            self.context.events.record("htn.operator", operator=step.operator,
+                                       args=[names.name(a) for a in step.args],
+                                       status=outcome.status.value, attempts=attempts,
+                                       error=outcome.error.value if outcome.error else None)
+            if outcome.status is not Status.VERIFIED:
+                return outcome.message or (outcome.error.value if outcome.error else "failed")
+            bindings = operator.bind((step.operator, *step.args)) or {}
+            deletes, adds = operator.effects(bindings)
+            memory.update(atom for atom in adds if atom[0] in _MEMORY)
+            missing = self._unexpected(deletes, adds, goal, names, memory)
+            if missing:
+                self.context.events.record("htn.effects", operator=step.operator,
+                                           missing=[list(atom) for atom in missing])
+                return f"after {step.operator[1:]} I do not believe {missing[0]}"
+        return None
+
+    def _run_operator(self, step: PlanStep, skill_step: Step) -> tuple[Outcome, int]:
+        context = self.context
+        events = context.events.events
+        first = len(events)
+        previous = context.retries.get(skill_step.skill)
+        if step.operator in self.retries:
+            context.retries[skill_step.skill] = self.retries[step.operator]
+        try:
+            outcome = skill_named(skill_step.skill).run(context, skill_step.args)
+            mended = 0
+            while (self.recovery and not outcome and outcome.error in _PROTOCOL_ERRORS
+                   and mended < _MAX_RECOVERIES):
+                mended += 1
+                outcome = self._recover(skill_step, outcome)
+        finally:
+            if previous is None:
+                context.retries.pop(skill_step.skill, None)
+            else:
+                context.retries[skill_step.skill] = previous
+        attempts = 1 + sum(1 for event in events[first:] if event.kind == "skill.status"
+                           and event.data.get("status") == Status.RETRYING.value
+                           and event.data.get("skill") == skill_step.skill)
+        return outcome, attempts
+
+    def _recover(self, skill_step: Step, outcome: Outcome) -> Outcome:
+        context = self.context
+        assert outcome.error is not None
+        context.events.record("recovery", skill=skill_step.skill, error=outcome.error.value,
+                              inference=False)
+        mended = PROTOCOLS[outcome.error](
+            context, skill_step.skill, skill_step.args, outcome,
+            lambda name, args: skill_named(name).run(context, args))
+        if isinstance(mended, Outcome):
+            return mended
+        if mended:
+            return skill_named(skill_step.skill).run(context, skill_step.args)
+        return outcome
+
+    def _unexpected(self, deletes: list[Atom], adds: list[Atom], goal: Goal, names: Names,
+                    memory: set[Atom]) -> list[str]:
+        """Declared effects the beliefs do not show (hands ignored: the skill picks the hand)."""
+        checked = [atom for atom in (*deletes, *adds) if atom[0] in _CHECKED]
+        if not checked:
+            return []
+        believed = self._state(goal, names, memory)
+        held = {atom[2] for atom in believed.atoms("holding")}
+        missing = []
+        for atom in adds:
+            if atom[0] == "holding":
+                if atom[2] not in held:
+                    missing.append(f"I hold the {names.name(atom[2])}")
+            elif atom[0] in _CHECKED and atom not in believed:
+                missing.append(" ".join(str(names.name(item)) for item in atom))
+        for atom in deletes:
+            if atom[0] in _CHECKED - {"holding"} and atom in believed:
+                missing.append("not " + " ".join(str(names.name(item)) for item in atom))
+        return missing

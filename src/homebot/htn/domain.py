@@ -1,0 +1,275 @@
+"""``Domain``: operators, methods and axioms of an HTN domain, declared as data.
+
+####  The model, as in SHOP2/JSHOP2
+
+An operator ``(!name ?p...)`` has a precondition, a delete list, an add list and
+a cost, all declared, so the executive can predict every effect and check it.
+Operators whose names start with ``!!`` are internal (bookkeeping): planned but
+not executed. A method for a task has one or more branches, each a precondition
+and an ordered list of subtasks; the branches of one method are if-then-else
+(a later branch is tried only when no earlier precondition holds), while the
+several methods of one task are alternatives tried in order with backtracking.
+An axiom derives a predicate from the state.
+"""
+
+from __future__ import annotations
+
+import difflib
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+from homebot.errors import PlanningError
+from homebot.htn.logic import Axiom, Call, Expression, expression, ground, template, term
+from homebot.htn.state import Atom, Term, is_variable
+
+__all__ = ["Branch", "Domain", "Method", "Operator", "Problem", "task_data"]
+
+
+def _name_and_params(head: Sequence[Any], what: str) -> tuple[str, tuple[Term, ...]]:
+    items = list(head) if not isinstance(head, str) else head.split()
+    if not items or not isinstance(items[0], str):
+        raise PlanningError(f"a {what} head is (NAME ?param ...), got '{head}'")
+    for item in items[1:]:
+        if not isinstance(item, str | int | float):
+            raise PlanningError(f"the parameters of {what} '{items[0]}' must be variables or "
+                                f"names, got '{item}'")
+    return items[0], tuple(items[1:])
+
+
+def _positions(patterns: tuple[tuple[Term, ...], ...]) -> tuple[tuple[int, ...], ...]:
+    return tuple(template(pattern)[1] for pattern in patterns)
+
+
+def _bind_head(params: tuple[Term, ...], variables: tuple[bool, ...],
+               task: Atom) -> dict[str, Term] | None:
+    """Bindings that make a head with ``params`` match the ground task, or None."""
+    if len(params) != len(task) - 1:
+        return None
+    bindings: dict[str, Term] = {}
+    for param, variable, value in zip(params, variables, task[1:], strict=True):
+        if variable:
+            previous = bindings.get(param)
+            if previous is None:
+                bindings[param] = value
+            elif previous != value:
+                return None
+        elif param != value:
+            return None
+    return bindings
+
+
+def task_data(task: Sequence[Any]) -> tuple[Term, ...]:
+    """A task or atom from plain data, its items checked to be names, numbers or variables."""
+    items = tuple(task.split()) if isinstance(task, str) else tuple(task)
+    if not items or not isinstance(items[0], str):
+        raise PlanningError(f"a task is (NAME ARG...), got '{task}'")
+    for item in items[1:]:
+        if not isinstance(item, str | int | float):
+            raise PlanningError(f"the arguments of '{items[0]}' must be names, numbers or "
+                                f"variables, got '{item}'")
+    return items
+
+
+@dataclass(frozen=True)
+class Operator:
+    """A primitive task: precondition, delete and add lists (atoms with variables), cost.
+
+    Preconditions: ``precondition``. Effects: ``delete`` then ``add``.
+    """
+
+    name: str
+    params: tuple[Term, ...]
+    precondition: Expression
+    delete: tuple[tuple[Term, ...], ...] = ()
+    add: tuple[tuple[Term, ...], ...] = ()
+    cost: Term = 1.0
+    _delete_variables: tuple[tuple[int, ...], ...] = field(init=False, repr=False,
+                                                            compare=False)
+    _add_variables: tuple[tuple[int, ...], ...] = field(init=False, repr=False, compare=False)
+    _param_variables: tuple[bool, ...] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "_delete_variables", _positions(self.delete))
+        object.__setattr__(self, "_add_variables", _positions(self.add))
+        object.__setattr__(self, "_param_variables", tuple(map(is_variable, self.params)))
+
+    def effects(self, bindings: dict[str, Term]) -> tuple[list[Atom], list[Atom]]:
+        """The ground delete and add lists under ``bindings``."""
+        return ([ground(atom, bindings, positions)
+                 for atom, positions in zip(self.delete, self._delete_variables, strict=True)],
+                [ground(atom, bindings, positions)
+                 for atom, positions in zip(self.add, self._add_variables, strict=True)])
+
+    @classmethod
+    def declare(cls, head: Sequence[Any], precondition: Any = (), delete: Iterable[Any] = (),
+                add: Iterable[Any] = (), cost: Any = 1.0) -> Operator:
+        """An operator from plain data: ``Operator.declare(("!pickup", "?o"), [...], ...)``."""
+        name, params = _name_and_params(head, "operator")
+        if not name.startswith("!"):
+            raise PlanningError(f"operator '{name}' must start with '!' (e.g. '!{name}')")
+        cost_term: Term = cost
+        if isinstance(cost, Sequence) and not isinstance(cost, str):
+            made = expression(cost)
+            if not isinstance(made, Call):
+                raise PlanningError(f"the cost of '{name}' must be a number, a variable or "
+                                    "(call ...)")
+            cost_term = made
+        elif not isinstance(cost, int | float) and not is_variable(cost):
+            raise PlanningError(f"the cost of '{name}' must be a number, got '{cost}'")
+        return cls(name, params, expression(precondition),
+                   tuple(task_data(atom) for atom in _atoms(delete)),
+                   tuple(task_data(atom) for atom in _atoms(add)), cost_term)
+
+    @property
+    def internal(self) -> bool:
+        """Internal (``!!``) operators are planned for bookkeeping and never executed."""
+        return self.name.startswith("!!")
+
+    def bind(self, task: Atom) -> dict[str, Term] | None:
+        return _bind_head(self.params, self._param_variables, task)
+
+    def cost_of(self, bindings: dict[str, Term]) -> float:
+        value = term(self.cost, bindings)
+        if not isinstance(value, int | float):
+            raise PlanningError(f"the cost of '{self.name}' is not a number: '{value}'")
+        return float(value)
+
+
+def _atoms(data: Iterable[Any]) -> list[Any]:
+    if data is None or data == "nil":
+        return []
+    return list(data)
+
+
+@dataclass(frozen=True)
+class Branch:
+    """One branch of a method: a name, a precondition and ordered subtasks."""
+
+    name: str
+    precondition: Expression
+    subtasks: tuple[tuple[Term, ...], ...]
+    _variables: tuple[tuple[int, ...], ...] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "_variables", _positions(self.subtasks))
+
+    def ground_subtasks(self, bindings: dict[str, Term]) -> list[tuple[Term, ...]]:
+        """The subtasks under ``bindings``."""
+        return [ground(task, bindings, positions)
+                for task, positions in zip(self.subtasks, self._variables, strict=True)]
+
+
+@dataclass(frozen=True)
+class Method:
+    """A way to decompose ``task``: if-then-else branches tried in order."""
+
+    task: str
+    params: tuple[Term, ...]
+    branches: tuple[Branch, ...]
+    _param_variables: tuple[bool, ...] = field(init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "_param_variables", tuple(map(is_variable, self.params)))
+
+    @classmethod
+    def declare(cls, head: Sequence[Any], *branches: tuple[str, Any, Iterable[Any]]) -> Method:
+        """A method from plain data: ``Method.declare(("bring", "?o"), (name, pre, tasks))``."""
+        task, params = _name_and_params(head, "method")
+        if task.startswith("!"):
+            raise PlanningError(f"method head '{task}' names an operator; methods decompose "
+                                "compound tasks (names without '!')")
+        if not branches:
+            raise PlanningError(f"method '{task}' needs at least one branch: "
+                                "a precondition and a list of subtasks")
+        built = []
+        for index, (name, precondition, subtasks) in enumerate(branches):
+            built.append(Branch(name or f"{task}-{index + 1}", expression(precondition),
+                                tuple(task_data(sub) for sub in _atoms(subtasks))))
+        return cls(task, params, tuple(built))
+
+    def bind(self, task: Atom) -> dict[str, Term] | None:
+        return _bind_head(self.params, self._param_variables, task)
+
+
+@dataclass
+class Domain:
+    """A named set of operators, methods (per task, in order) and axioms (per predicate)."""
+
+    name: str
+    operators: dict[str, Operator] = field(default_factory=dict)
+    methods: dict[str, list[Method]] = field(default_factory=dict)
+    axioms: dict[tuple[str, int], list[Axiom]] = field(default_factory=dict)
+
+    #### declare
+
+    def declare_operator(self, operator: Operator) -> Operator:
+        """Add an operator; a second one with the same name raises ``PlanningError``."""
+        if operator.name in self.operators:
+            raise PlanningError(f"operator '{operator.name}' is declared twice; rename one")
+        self.operators[operator.name] = operator
+        return operator
+
+    def declare_method(self, method: Method) -> Method:
+        """Add a method after the task's other methods (tried in declaration order)."""
+        self.methods.setdefault(method.task, []).append(method)
+        return method
+
+    def declare_axiom(self, head: Sequence[Any], *branches: tuple[str, Any]) -> Axiom:
+        """Add an axiom: ``declare_axiom(("same", "?x", "?x"), ("", ()))``."""
+        predicate, params = _name_and_params(head, "axiom")
+        axiom = Axiom(predicate, params, tuple(
+            (name or f"{predicate}-{index + 1}", expression(tail))
+            for index, (name, tail) in enumerate(branches or (("", ()),))))
+        self.axioms.setdefault((predicate, len(params)), []).append(axiom)
+        return axiom
+
+    def operator(self, head: Sequence[Any], precondition: Any = (), delete: Iterable[Any] = (),
+                 add: Iterable[Any] = (), cost: Any = 1.0) -> Operator:
+        """Declare an operator from plain data (see ``Operator.declare``)."""
+        return self.declare_operator(Operator.declare(head, precondition, delete, add, cost))
+
+    def method(self, head: Sequence[Any], *branches: tuple[str, Any, Iterable[Any]]) -> Method:
+        """Declare a method from plain data (see ``Method.declare``)."""
+        return self.declare_method(Method.declare(head, *branches))
+
+    #### checks
+
+    def is_task(self, name: str) -> bool:
+        return name in self.operators or name in self.methods
+
+    def check_task(self, task: Sequence[Any], where: str = "") -> None:
+        """Raise ``PlanningError`` when ``task`` names neither an operator nor a method."""
+        name = task[0] if task else ""
+        if isinstance(name, str) and self.is_task(name):
+            return
+        known = sorted({*self.operators, *self.methods})
+        guess = difflib.get_close_matches(str(name), known, n=1)
+        hint = f"did you mean '{guess[0]}'?" if guess else (
+            f"tasks of domain '{self.name}': {', '.join(known) or 'none'}")
+        prefix = f"{where}: " if where else ""
+        raise PlanningError(f"{prefix}'{name}' is neither an operator nor a method of domain "
+                            f"'{self.name}'; {hint}")
+
+    def check(self) -> None:
+        """Every subtask of every method names a declared operator or method."""
+        for methods in self.methods.values():
+            for method in methods:
+                for branch in method.branches:
+                    for subtask in branch.subtasks:
+                        self.check_task(subtask, f"method '{method.task}' branch '{branch.name}'")
+
+    def __repr__(self) -> str:
+        count = sum(len(m) for m in self.methods.values())
+        return (f"Domain({self.name!r}: {len(self.operators)} operators, {count} methods, "
+                f"{sum(len(a) for a in self.axioms.values())} axioms)")
+
+
+@dataclass(frozen=True)
+class Problem:
+    """A planning problem: a name, its domain's name, initial atoms and the tasks to do."""
+
+    name: str
+    domain: str
+    atoms: tuple[Atom, ...]
+    tasks: tuple[tuple[Term, ...], ...]

@@ -1,0 +1,103 @@
+"""An S-expression reader that remembers where every form starts (line and column).
+
+Symbols are kept as written (case-sensitive); numbers become ``int`` or
+``float``; ``"strings"`` become ``Text``; ``;`` starts a comment to the end of
+the line. ``#'name`` (Lisp's function quote) reads as the symbol ``#'name``.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from typing import Any
+
+from homebot.errors import PlanningError
+
+__all__ = ["Form", "Text", "plain", "read_forms"]
+
+_TOKEN = re.compile(r"""\s+|;[^\n]*|(?P<open>\()|(?P<close>\))|(?P<string>"(?:[^"\\]|\\.)*")"""
+                    r"""|(?P<bad>["'`,])|(?P<atom>[^\s()";]+)""")
+
+
+class Text(str):
+    """A string literal (in double quotes), told apart from a symbol."""
+
+    __slots__ = ()
+
+
+@dataclass(frozen=True, slots=True)
+class Form:
+    """A parenthesised list with the line and column (from 1) of its ``(``."""
+
+    items: tuple[Any, ...]
+    line: int
+    column: int
+
+    def where(self, source: str) -> str:
+        return f"{source}:{self.line}:{self.column}"
+
+
+def _location(text: str, offset: int) -> tuple[int, int]:
+    line = text.count("\n", 0, offset) + 1
+    column = offset - (text.rfind("\n", 0, offset) + 1) + 1
+    return line, column
+
+
+def _atom(token: str) -> Any:
+    try:
+        return int(token)
+    except ValueError:
+        pass
+    try:
+        if token not in {"+", "-", "."} and any(ch.isdigit() for ch in token):
+            return float(token)
+    except ValueError:
+        pass
+    return token
+
+
+def read_forms(text: str, source: str = "<text>") -> list[Any]:
+    """Every top-level form of ``text``; malformed text raises ``PlanningError`` with its place."""
+    stack: list[tuple[list[Any], int]] = []
+    top: list[Any] = []
+    position = 0
+    for match in _TOKEN.finditer(text):
+        if match.start() != position:  # pragma: no cover - the pattern matches every character
+            break
+        position = match.end()
+        kind = match.lastgroup
+        if kind is None:
+            continue
+        if kind == "open":
+            stack.append(([], match.start()))
+        elif kind == "close":
+            if not stack:
+                line, column = _location(text, match.start())
+                raise PlanningError(f"{source}:{line}:{column}: ')' without a matching '('; "
+                                    "remove it or add the '(' it closes")
+            items, start = stack.pop()
+            line, column = _location(text, start)
+            form = Form(tuple(items), line, column)
+            (stack[-1][0] if stack else top).append(form)
+        elif kind == "bad":
+            line, column = _location(text, match.start())
+            character = match.group()
+            hint = ("close the string with '\"'" if character == '"'
+                    else f"'{character}' (Lisp quoting) is not supported; write the name plainly")
+            raise PlanningError(f"{source}:{line}:{column}: unexpected '{character}'; {hint}")
+        else:
+            token = match.group()
+            value = Text(token[1:-1]) if kind == "string" else _atom(token)
+            (stack[-1][0] if stack else top).append(value)
+    if stack:
+        line, column = _location(text, stack[-1][1])
+        raise PlanningError(f"{source}:{line}:{column}: this '(' is never closed; add the "
+                            "missing ')'")
+    return top
+
+
+def plain(value: Any) -> Any:
+    """A form as plain nested lists (what the domain builders take)."""
+    if isinstance(value, Form):
+        return [plain(item) for item in value.items]
+    return value
