@@ -3,7 +3,7 @@
 from homebot.inference.cycle import CycleRecord, InferenceCycle
 from homebot.inference.decision import Decision, Rewards, decide
 from homebot.inference.diagnosis import AssistantAction, Diagnosis, diagnose
-from homebot.inference.inventory import CUSTOMER, Inventory, KbChange
+from homebot.inference.inventory import CUSTOMER, ROBOT, Inventory, KbChange
 from homebot.inference.observation import (
     Observation,
     PutBack,
@@ -24,6 +24,7 @@ from homebot.inference.service import age_in_words, fetch_task, requested_produc
 __all__ = [
     "CUSTOMER",
     "HAND",
+    "ROBOT",
     "USER",
     "ActionModel",
     "AssistantAction",

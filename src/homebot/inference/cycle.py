@@ -10,7 +10,7 @@ from typing import Any
 from homebot.executive.recovery import StepRunner
 from homebot.inference.decision import Decision, Rewards, decide
 from homebot.inference.diagnosis import Diagnosis, diagnose
-from homebot.inference.inventory import CUSTOMER, Inventory
+from homebot.inference.inventory import CUSTOMER, ROBOT, Inventory
 from homebot.inference.observation import (
     Observation,
     PutBack,
@@ -141,9 +141,10 @@ class InferenceCycle:
             return None
         observation = observe(self.inventory, shelf, list(looked.data["objects"]),
                               context.robot.now())
-        seen = listing(sorted(observation.seen)) or "nothing"
         if sought is not None and sought not in observation.seen:
-            speak(context, f"I see {seen}, but I do not see the {sought}.")
+            seen = listing(sorted(observation.seen))
+            speak(context, f"I see {seen}, but I do not see the {sought}." if seen
+                  else f"I do not see the {sought}.")
         notes = fulfil_cognitive_obligations(self.inventory, observation)
         for change in notes.said:
             speak(context, change)
@@ -170,8 +171,8 @@ class InferenceCycle:
                               assumed={p: diagnosis.location[p] for p in diagnosis.assumed},
                               ran_out=sorted(diagnosis.ran_out),
                               assistant=[list(a) for a in diagnosis.actions])
-        for product in sorted(diagnosis.revised):
-            speak(context, f"I was wrong about the {product}; it must be on "
+        for product in sorted(diagnosis.revised & {goal}):
+            speak(context, f"I was wrong about the {product}; {_pronoun(product)} must be on "
                            f"{self.inventory.shelf_name(diagnosis.location[product])}.")
         if goal in diagnosis.assumed and goal not in diagnosis.revised:
             speak(context, f"The {goal} must have been placed on "
@@ -247,6 +248,7 @@ class InferenceCycle:
         if taken:
             self.robot_moved.setdefault(product, shelf)
             self.previous_shelves.get(shelf, set()).discard(product)
+            self.inventory.believe_at(product, ROBOT, "")
             speak(context, f"I took the {product}.")
             return taken
         if taken.error is ErrorCode.NOT_FOUND:
@@ -262,10 +264,13 @@ class InferenceCycle:
             return False
         self.objects_placed.append(product)
         self.pending.pop(product, None)
-        self.previous_shelves.setdefault(shelf, set()).add(product)
         text = f"I put the {product} back on {self.inventory.shelf_name(shelf)}."
         self.inventory.believe_home(product, text)
         speak(context, text)
+        if shelf in self.previous_shelves:
+            self.previous_shelves[shelf].add(product)
+        else:
+            self.inspect(context, shelf)  # standing there anyway: see the whole shelf
         return True
 
     def _ran_out(self, context: SkillContext, goal: str, diagnosis: Diagnosis) -> None:
@@ -399,6 +404,10 @@ class InferenceCycle:
                     points[a], points[b], closed)
             return cache[(a, b)]
         return distance
+
+
+def _pronoun(product: str) -> str:
+    return "they" if product.endswith("s") else "it"
 
 
 def _model_from(inventory: Inventory) -> ActionModel:

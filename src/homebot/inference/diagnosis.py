@@ -6,7 +6,7 @@ import random
 from collections.abc import Callable, Collection, Mapping
 from dataclasses import dataclass, field
 
-from homebot.inference.inventory import CUSTOMER, Inventory
+from homebot.inference.inventory import CUSTOMER, ROBOT, Inventory
 
 __all__ = ["AssistantAction", "Diagnosis", "diagnose"]
 
@@ -83,10 +83,12 @@ def diagnose(inventory: Inventory, known: Mapping[str, Collection[str]], here: s
     refuted: list[str] = []
     ran_out: set[str] = set()
     for product in inventory.products:
-        if product in location or product in carried:
+        if product in location:
             continue
         belief = inventory.believed_at(product)
-        if belief == CUSTOMER:
+        if belief == CUSTOMER and product == sought:
+            ran_out.add(product)  # sold: no shelf holds it any more
+        if belief in (CUSTOMER, ROBOT) or product in carried:
             continue
         if inventory.out_of_stock(product):
             ran_out.add(product)

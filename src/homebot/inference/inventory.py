@@ -15,10 +15,12 @@ from homebot.knowledge import (
     Update,
 )
 
-__all__ = ["CUSTOMER", "Inventory", "KbChange"]
+__all__ = ["CUSTOMER", "ROBOT", "Inventory", "KbChange"]
 
 #: Where a delivered product is believed to be: with the client.
 CUSTOMER = "customer"
+#: Where a product the robot carries is believed to be.
+ROBOT = "robot"
 
 _LOC = "loc"
 _OUT = "out_of_stock"

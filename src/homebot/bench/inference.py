@@ -1,0 +1,240 @@
+"""The inference cycle over seeded supermarkets with misplaced and missing products."""
+
+from __future__ import annotations
+
+import argparse
+import random
+import statistics
+import time
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+from rich.console import Console
+
+from homebot.executive.recovery import Protocol, StepRunner
+from homebot.inference import InferenceCycle, Inventory, fetch_task
+from homebot.knowledge import KnowledgeBase
+from homebot.navigation import Navigator
+from homebot.robot import MoveReport, Pose
+from homebot.scenarios.runtime import SimulatedRun
+from homebot.sim import SimRobot, Simulation
+from homebot.skills import ErrorCode, Outcome, SkillContext, skill_named
+from homebot.task import Step, Task
+from homebot.world import PersonModel, World
+
+__all__ = ["add_arguments", "random_supermarket", "run", "run_world"]
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--worlds", type=int, default=300, help="seeded supermarkets")
+    parser.add_argument("--requests", type=int, default=3, help="client requests per world")
+    parser.add_argument("--misplaced", type=float, default=0.3,
+                        help="chance that the assistant put a product on a wrong shelf")
+    parser.add_argument("--missing", type=float, default=0.1,
+                        help="chance that a product ran out")
+    parser.add_argument("--r-max", type=float, default=240.0, help="decision budget (s)")
+    parser.add_argument("--seed", type=int, default=0, help="first world's seed")
+
+
+class ShelfVisitCounter(SimRobot):
+    """A simulated robot that counts its visits to shelves (arrive, then look)."""
+
+    def __init__(self, simulation: Simulation, shelves: set[str]) -> None:
+        super().__init__(simulation)
+        self.shelves = shelves
+        self.visits: list[str] = []
+        self._arrived = True
+
+    def move_to(self, goal: Pose, avoid_doors: frozenset[str] = frozenset(),
+                escort: str | None = None) -> MoveReport:
+        self._arrived = True
+        return super().move_to(goal, avoid_doors, escort)
+
+    def perceive_objects(self, placement: str) -> list[Any]:
+        if self._arrived and placement in self.shelves:
+            self.visits.append(placement)
+            self._arrived = False
+        return super().perceive_objects(placement)
+
+
+def random_supermarket(world: World, inventory: Inventory, seed: int, misplaced: float,
+                       missing: float) -> dict[str, str | None]:
+    """Where the assistant left each product (None: ran out), drawn from ``seed``."""
+    rng = random.Random(seed)
+    shelves = [inventory.place(s) for s in inventory.shelves]
+    truth: dict[str, str | None] = {}
+    for product in sorted(world.objects):
+        home = world.objects[product].placement
+        draw = rng.random()
+        if draw < missing:
+            truth[product] = None
+        elif draw < missing + misplaced:
+            truth[product] = rng.choice([s for s in shelves if s != home])
+        else:
+            truth[product] = home
+    return truth
+
+
+def _agreeable(person: PersonModel, question: str) -> str | None:
+    return "yes please" if "instead" in question.lower() else None
+
+
+def fixed_order_search(order: list[str]) -> Protocol:
+    """The baseline: on a failed take, look on every shelf in a fixed order."""
+    def protocol(context: SkillContext, skill: str, args: Mapping[str, Any], outcome: Outcome,
+                 run: StepRunner) -> bool | Outcome:
+        wanted = str(args.get("object", ""))
+        if skill != "pick" or outcome.error is not ErrorCode.NOT_FOUND:
+            return False
+        for place in order:
+            context.bindings[f"placement:{wanted}"] = place
+            taken = skill_named("pick").run(context, {"object": wanted})
+            if taken:
+                return taken
+        return Outcome.failed(ErrorCode.NOT_FOUND, f"no shelf has the {wanted}")
+    return protocol
+
+
+@dataclass
+class WorldResult:
+    """What happened in one world, for both robots."""
+
+    right: int = 0  #: requests ending as they should (delivered, or the right alternative)
+    requests: int = 0
+    absent: int = 0  #: requests for products that had run out
+    kb_consistent: bool = True
+    visits: list[int] = field(default_factory=list)  #: shelf visits per request, inference
+    search_visits: list[int] = field(default_factory=list)  #: the same, r_max = 0
+    baseline_visits: list[int] = field(default_factory=list)
+    baseline_right: int = 0
+    sim_time: float = 0.0
+    put_back: int = 0
+
+
+def run_world(world: World, navigator: Navigator, seed: int, args: argparse.Namespace,
+              kb_text: str) -> WorldResult:
+    """One seeded supermarket: the same requests served with the cycle and with the baseline."""
+    inventory = Inventory(KnowledgeBase.from_text(kb_text))
+    truth = random_supermarket(world, inventory, seed, args.misplaced, args.missing)
+    requests = random.Random(seed + 1).sample(sorted(world.objects), args.requests)
+    result = WorldResult(requests=len(requests))
+    shelves = {inventory.place(s) for s in inventory.shelves}
+
+    cycle = InferenceCycle(inventory, r_max=args.r_max, seed=seed)
+    simulated, robot = _simulated(world, navigator, seed, truth, cycle, shelves)
+    for product in requests:
+        present = _available(simulated.simulation.object_location.get(product), shelves)
+        substitute = inventory.substitute(product)
+        substitute_there = _available(
+            simulated.simulation.object_location.get(substitute or ""), shelves)
+        result.absent += not present
+        before = len(robot.visits)
+        report = simulated.run(fetch_task(inventory, product))
+        result.visits.append(len(robot.visits) - before)
+        given = [str(s.args["object"]) for s in report.steps
+                 if s.skill == "give" and s.status == "verified"]
+        for name in given:
+            cycle.handed_over(name)
+        with_client = simulated.simulation.object_location
+        if present:
+            result.right += given == [product] and with_client[product] == "person:customer"
+        elif substitute is not None and substitute_there:
+            result.right += given == [substitute]
+        else:
+            result.right += not given and inventory.out_of_stock(product)
+        result.put_back += len(cycle.tidy_up(simulated.context))  # idle time
+    result.kb_consistent = _kb_agrees(inventory, cycle, simulated.simulation, shelves)
+    result.sim_time = simulated.robot.now()
+
+    quiet = InferenceCycle(Inventory(KnowledgeBase.from_text(kb_text)), r_max=0.0,
+                           seed=seed)  # no put-backs while a client waits
+    searching, searcher = _simulated(world, navigator, seed, truth, quiet, shelves)
+    for product in requests:
+        before = len(searcher.visits)
+        report = searching.run(fetch_task(quiet.inventory, product))
+        result.search_visits.append(len(searcher.visits) - before)
+        for step in report.steps:
+            if step.skill == "give" and step.status == "verified":
+                quiet.handed_over(str(step.args["object"]))
+
+    baseline, counter = _simulated(world, navigator, seed, truth,
+                                   fixed_order_search(sorted(shelves)), shelves)
+    for product in requests:
+        present = _available(baseline.simulation.object_location.get(product), shelves)
+        before = len(counter.visits)
+        report = baseline.run(Task((Step("pick", {"object": product}),
+                                    Step("navigate", {"to": "operator"}),
+                                    Step("give", {"person": "operator", "object": product}))))
+        result.baseline_visits.append(len(counter.visits) - before)
+        result.baseline_right += report.success == present
+    return result
+
+
+def _available(where: str | None, shelves: set[str]) -> bool:
+    return where is not None and (where in shelves or where.startswith("hand:"))
+
+
+def _simulated(world: World, navigator: Navigator, seed: int, truth: Mapping[str, str | None],
+               protocol: Protocol, shelves: set[str]) -> tuple[SimulatedRun, ShelfVisitCounter]:
+    simulated = SimulatedRun.create(world, seed=seed, navigator=navigator, inference=protocol,
+                                    responder=_agreeable)
+    simulated.simulation.object_location.update(truth)
+    robot = ShelfVisitCounter(simulated.simulation, shelves)
+    simulated.robot = robot
+    simulated.context.robot = robot
+    return simulated, robot
+
+
+def _kb_agrees(inventory: Inventory, cycle: InferenceCycle, simulation: Simulation,
+               shelves: set[str]) -> bool:
+    """Every shelf the robot saw holds what the KB says; what ran out is gone; sold is sold."""
+    truth = simulation.object_location
+    for shelf in cycle.previous_shelves:
+        place = inventory.place(shelf)
+        really = {p for p, where in truth.items() if where == place}
+        believed = {p for p in inventory.products if inventory.believed_at(p) == shelf}
+        if really != believed:
+            return False
+    for product in inventory.products:
+        if inventory.out_of_stock(product) and truth.get(product) in shelves:
+            return False
+        if inventory.believed_at(product) == "customer" and (
+                truth.get(product) != "person:customer"):
+            return False
+    return True
+
+
+def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, Any]:
+    """Figures over ``--worlds`` seeded supermarkets."""
+    world = World.load("supermarket")
+    navigator = Navigator(world)
+    kb_text = Inventory.load("supermarket").kb.to_text()
+    began = time.perf_counter()
+    results = [run_world(world, navigator, args.seed + index, args, kb_text)
+               for index in range(args.worlds)]
+    wall = time.perf_counter() - began
+    requests = sum(r.requests for r in results)
+    visits = [v for r in results for v in r.visits]
+    baseline = [v for r in results for v in r.baseline_visits]
+    searching = [v for r in results for v in r.search_visits]
+    figures = {
+        "benchmark": "inference", "worlds": args.worlds, "requests": requests,
+        "absent_requests": sum(r.absent for r in results),
+        "right_outcomes": sum(r.right for r in results),
+        "kb_consistent_worlds": sum(r.kb_consistent for r in results),
+        "shelf_visits_per_request": round(statistics.fmean(visits), 3) if visits else 0.0,
+        "shelf_visits_per_request_without_put_backs": round(statistics.fmean(searching), 3)
+        if searching else 0.0,
+        "baseline_shelf_visits_per_request": round(statistics.fmean(baseline), 3)
+        if baseline else 0.0,
+        "baseline_right_outcomes": sum(r.baseline_right for r in results),
+        "products_put_back_after_requests": sum(r.put_back for r in results),
+        "sim_seconds_per_world": round(statistics.fmean(r.sim_time for r in results), 1)
+        if results else 0.0,
+        "wall_ms_per_world": round(1000 * wall / max(1, args.worlds), 1),
+    }
+    if console is not None:
+        for name, value in figures.items():
+            console.print(f"{name}: {value}")
+    return figures
