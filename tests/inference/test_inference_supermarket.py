@@ -1,0 +1,106 @@
+"""The cycle in the simulated supermarket: the Fig. 1 story, a declined failure, the bench."""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+import pytest
+
+from homebot.bench import inference as bench
+from homebot.cli import scenario
+from homebot.inference import InferenceCycle, Inventory, fetch_task
+from homebot.navigation import Navigator
+from homebot.scenarios.library import supermarket as story
+from homebot.scenarios.runtime import SimulatedRun
+from homebot.skills import ErrorCode, Outcome
+from homebot.world import World
+
+
+@pytest.fixture(scope="module")
+def supermarket_navigator(supermarket: World) -> Navigator:
+    return Navigator(supermarket)
+
+
+def _story(seed: int = 0) -> dict:
+    parser = argparse.ArgumentParser()
+    story.add_arguments(parser)
+    args = parser.parse_args([])
+    args.seed = seed
+    return story.run(args, None)
+
+
+def test_the_fig1_story_ends_with_malz_and_a_message_to_the_manager() -> None:
+    summary = _story()
+    assert summary["success"]
+    assert summary["delivered"] == ["malz"]
+    speech = summary["speech"]
+    assert "Beer contains alcohol. How old are you?" in speech
+    assert "I see coke, malz and noodles, but I do not see the heineken." in speech
+    assert "The heineken must have been placed on the shelf of food." in speech
+    assert any("we ran out of heineken" in text for text in speech)
+    assert "We ran out of heineken. Would you like malz instead?" in speech
+    assert any("heineken is out of stock" in m for m in summary["messages"])
+    assert summary["put_back"] == ["noodles", "baguette"]
+    first, second = summary["cycles"][:2]
+    assert first["assumed"]["heineken"] == "shelf_food"
+    assert first["decision"] == ["heineken", "noodles"]
+    assert second["ended"] == "ran_out"
+
+
+def test_the_story_is_the_same_for_the_same_seed() -> None:
+    assert _story(3) == _story(3)
+
+
+def test_homebot_scenario_supermarket_json(capsys: pytest.CaptureFixture[str]) -> None:
+    parser = argparse.ArgumentParser(prog="homebot")
+    scenario.register(parser.add_subparsers(dest="command"))
+    args = parser.parse_args(["scenario", "supermarket", "--json"])
+    assert args.handler(args) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["scenario"] == "supermarket" and summary["success"]
+
+
+def test_a_product_on_its_shelf_needs_no_inference(
+        supermarket: World, supermarket_navigator: Navigator) -> None:
+    inventory = Inventory.load("supermarket")
+    cycle = InferenceCycle(inventory)
+    run = SimulatedRun.create(supermarket, navigator=supermarket_navigator, inference=cycle)
+    report = run.run(fetch_task(inventory, "coke"))
+    assert report.success
+    assert cycle.records == []
+    assert run.simulation.object_location["coke"] == "person:customer"
+
+
+def test_a_misplaced_product_is_found_where_the_diagnosis_sends_the_robot(
+        supermarket: World, supermarket_navigator: Navigator) -> None:
+    inventory = Inventory.load("supermarket")
+    cycle = InferenceCycle(inventory)
+    run = SimulatedRun.create(supermarket, navigator=supermarket_navigator, inference=cycle)
+    run.simulation.object_location["coke"] = "shelf food"
+    report = run.run(fetch_task(inventory, "coke"))
+    assert report.success
+    assert run.simulation.object_location["coke"] == "person:customer"
+    assert cycle.records[0].diagnosis.location["coke"] == "shelf_food"
+    assert inventory.believed_at("coke") == "robot"  # until the client has it
+    cycle.handed_over("coke")
+    assert inventory.believed_at("coke") == "customer"
+
+
+def test_other_failures_are_left_to_the_protocols(supermarket: World,
+                                                  supermarket_navigator: Navigator) -> None:
+    cycle = InferenceCycle(Inventory.load("supermarket"))
+    run = SimulatedRun.create(supermarket, navigator=supermarket_navigator)
+    failed = Outcome.failed(ErrorCode.DOOR_CLOSED, "shut")
+    assert cycle(run.context, "navigate", {"to": "shelf food"}, failed, lambda *a: failed) is False
+    missing = Outcome.failed(ErrorCode.NOT_FOUND, "gone")
+    assert cycle(run.context, "pick", {"object": "bicycle"}, missing, lambda *a: missing) is False
+
+
+def test_the_bench_serves_every_request_and_keeps_the_kb_consistent() -> None:
+    parser = argparse.ArgumentParser()
+    bench.add_arguments(parser)
+    figures = bench.run(parser.parse_args(["--worlds", "12"]), None)
+    assert figures["right_outcomes"] == figures["requests"] == 36
+    assert figures["kb_consistent_worlds"] == 12
+    assert figures["baseline_right_outcomes"] == 36
