@@ -1,0 +1,301 @@
+"""HTN planning speed: our planner beside GTPyhop on the bring-object domain, and tidy-up scaling.
+
+GTPyhop (``gtpyhop-core``, a dev dependency) gets the same decomposition as
+``data/domains/home.jshop`` (announce, fetch from where the object was seen /
+told / belongs, deliver, report), written the way GTPyhop domains are: state
+variables in dicts, actions and methods as Python functions, over the same
+beliefs. Both find their first plan; each is timed in the same run. Then the
+paper's Table 1 figures, and tidy-ups of growing numbers of misplaced objects.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import io
+import statistics
+import time
+from collections.abc import Callable
+from typing import Any
+
+from rich.console import Console
+
+from homebot.beliefs import Beliefs
+from homebot.htn import Goal, Planner, State, home_domain, state_from_beliefs
+from homebot.world import World
+
+__all__ = ["add_arguments", "run"]
+
+#### GTPyhop's version of the bring-object domain
+
+
+def _gtpyhop() -> Any:
+    # GTPyhop prints a banner when imported; keep the benchmark's output clean.
+    with contextlib.redirect_stdout(io.StringIO()):
+        import gtpyhop
+    return gtpyhop
+
+
+def _gtpyhop_available() -> bool:
+    """Whether ``gtpyhop-core`` is installed (it is a dev dependency)."""
+    try:
+        _gtpyhop()
+    except ImportError:
+        return False
+    return True
+
+
+def _gtpyhop_state(gtpyhop: Any, state: State) -> Any:
+    """Our planning state as GTPyhop state variables."""
+    holds: dict[str, set[str]] = {}
+    for _, placement, category in state.atoms("holds"):
+        holds.setdefault(placement, set()).add(category)
+    return gtpyhop.State(
+        "home",
+        at={atom[1]: atom[2] for atom in state.atoms("at")},
+        free_hands={"robot": [atom[2] for atom in state.atoms("free-hand")]},
+        holding={},
+        object_at={atom[1]: atom[2] for atom in state.atoms("object-at")},
+        told_at={atom[1]: atom[2] for atom in state.atoms("told-at")},
+        category={atom[1]: atom[2] for atom in state.atoms("category")},
+        holds=holds,
+        placements={atom[1] for atom in state.atoms("placement")},
+        rooms={atom[1] for atom in state.atoms("room")},
+        room_of={atom[1]: atom[2] for atom in state.atoms("room-of")},
+        person_in={atom[1]: atom[2] for atom in state.atoms("person-in")},
+        ruled_out={(atom[1], atom[2]) for atom in state.atoms("ruled-out")},
+        closed={atom[1] for atom in state.atoms("door-closed")},
+        only_door={atom[2]: atom[1] for atom in state.atoms("only-door")},
+        has=set(), told=set(), reported=set(), found=set(), with_person=set(),
+    )
+
+
+def _declare(gtpyhop: Any) -> None:
+    """Declare the actions and methods in GTPyhop's current domain."""
+
+    def announce(s: Any, r: str, what: str, thing: str, who: str) -> Any:
+        s.told.add((who, what, thing))
+        return s
+
+    def report(s: Any, r: str, what: str, thing: str, who: str) -> Any:
+        s.reported.add((who, what, thing))  # GTPyhop leaves out actions that change nothing
+        return s
+
+    def move_base(s: Any, r: str, source: str, target: str) -> Any:
+        if s.at[r] == source:
+            s.at[r] = target
+            return s
+        return None
+
+    def open_door(s: Any, r: str, door: str) -> Any:
+        if door in s.closed:
+            s.closed.discard(door)
+            return s
+        return None
+
+    def find_object(s: Any, r: str, o: str, p: str) -> Any:
+        if s.at[r] == p:
+            s.found.add((o, p))
+            return s
+        return None
+
+    def grasp(s: Any, r: str, o: str, p: str) -> Any:
+        if s.at[r] == p and (o, p) in s.found and s.free_hands[r]:
+            hand = s.free_hands[r].pop(0)
+            s.holding[o] = hand
+            s.object_at.pop(o, None)
+            s.found.discard((o, p))
+            return s
+        return None
+
+    def find_person(s: Any, r: str, who: str) -> Any:
+        if s.room_of.get(s.at[r]) == s.person_in.get(who):
+            s.at[r] = who
+            s.with_person.add(who)
+            return s
+        return None
+
+    def hand_over(s: Any, r: str, o: str, who: str) -> Any:
+        if s.at[r] == who and o in s.holding:
+            s.free_hands[r].append(s.holding.pop(o))
+            s.has.add((who, o))
+            return s
+        return None
+
+    gtpyhop.declare_actions(announce, report, move_base, open_door, find_object, grasp,
+                            find_person, hand_over)
+
+    def excluded(s: Any, o: str, p: str) -> bool:
+        return (o in s.object_at and s.object_at[o] != p) or (o, p) in s.ruled_out or (
+            o in s.holding)
+
+    def m_bring_delivered(s: Any, r: str, o: str, who: str) -> Any:
+        return [] if (who, o) in s.has else False
+
+    def m_bring_held(s: Any, r: str, o: str, who: str) -> Any:
+        if o in s.holding:
+            return [("announce_task", r, "bring", o, who), ("deliver", r, o, who),
+                    ("report", r, "bring", o, who)]
+        return False
+
+    def m_bring_fetch(s: Any, r: str, o: str, who: str) -> Any:
+        return [("announce_task", r, "bring", o, who), ("fetch", r, o),
+                ("deliver", r, o, who), ("report", r, "bring", o, who)]
+
+    def m_fetch_seen(s: Any, r: str, o: str) -> Any:
+        p = s.object_at.get(o)
+        if p in s.placements:
+            return [("go_to", r, p), ("find_object", r, o, p), ("grasp", r, o, p)]
+        return False
+
+    def m_fetch_told(s: Any, r: str, o: str) -> Any:
+        p = s.told_at.get(o)
+        if p is not None and not excluded(s, o, p):
+            return [("go_to", r, p), ("find_object", r, o, p), ("grasp", r, o, p)]
+        return False
+
+    def m_fetch_belongs(s: Any, r: str, o: str) -> Any:
+        category = s.category.get(o)
+        for p, categories in s.holds.items():
+            if category in categories and not excluded(s, o, p):
+                return [("go_to", r, p), ("find_object", r, o, p), ("grasp", r, o, p)]
+        return False
+
+    def m_deliver_with(s: Any, r: str, o: str, who: str) -> Any:
+        return [("hand_over", r, o, who)] if s.at[r] == who else False
+
+    def m_deliver_go(s: Any, r: str, o: str, who: str) -> Any:
+        room = s.person_in.get(who)
+        if room is None:
+            return False
+        return [("go_to", r, room), ("find_person", r, who), ("hand_over", r, o, who)]
+
+    def m_go_there(s: Any, r: str, place: str) -> Any:
+        return [] if s.at[r] == place else False
+
+    def m_go_in_room(s: Any, r: str, place: str) -> Any:
+        return [] if place in s.rooms and s.room_of.get(s.at[r]) == place else False
+
+    def m_go_door(s: Any, r: str, place: str) -> Any:
+        room = s.room_of.get(place)
+        door = s.only_door.get(room)
+        if door in s.closed and s.room_of.get(s.at[r]) != room:
+            return [("open_door", r, door), ("move_base", r, s.at[r], place)]
+        return False
+
+    def m_go_drive(s: Any, r: str, place: str) -> Any:
+        return [("move_base", r, s.at[r], place)]
+
+    def m_announce_told(s: Any, r: str, what: str, thing: str, who: str) -> Any:
+        return [] if (who, what, thing) in s.told else False
+
+    def m_announce(s: Any, r: str, what: str, thing: str, who: str) -> Any:
+        return [("announce", r, what, thing, who)]
+
+    gtpyhop.declare_task_methods("bring_object", m_bring_delivered, m_bring_held, m_bring_fetch)
+    gtpyhop.declare_task_methods("fetch", m_fetch_seen, m_fetch_told, m_fetch_belongs)
+    gtpyhop.declare_task_methods("deliver", m_deliver_with, m_deliver_go)
+    gtpyhop.declare_task_methods("go_to", m_go_there, m_go_in_room, m_go_door, m_go_drive)
+    gtpyhop.declare_task_methods("announce_task", m_announce_told, m_announce)
+
+
+def _gtpyhop_bring_object(state: State) -> tuple[Any, Any, Any]:
+    """GTPyhop's module, its state for ``state`` and a fresh bring-object domain (made current)."""
+    gtpyhop = _gtpyhop()
+    with contextlib.redirect_stdout(io.StringIO()):
+        gtpyhop.Domain("homebot_bring_object")
+        gtpyhop.set_verbose_level(0)
+        gtpyhop.set_recursive_planning(True)
+        _declare(gtpyhop)
+    return gtpyhop, _gtpyhop_state(gtpyhop, state), gtpyhop.current_domain
+
+
+#### timing
+
+
+def _median_ms(action: Callable[[], Any], repeats: int) -> tuple[float, Any]:
+    """The median wall time of ``action`` in milliseconds, and its last result."""
+    samples = []
+    result = None
+    for _ in range(repeats):
+        began = time.perf_counter()
+        result = action()
+        samples.append(time.perf_counter() - began)
+    return 1000 * statistics.median(samples), result
+
+
+def _tidy_world(base: World, misplaced: int) -> World:
+    """``base``'s map with ``misplaced`` objects, each on a placement not meant for it."""
+    data = base.to_dict()
+    categories = [c.name for c in base.categories.values() if base.placements_holding(c.name)]
+    placements = list(base.placements.values())
+    objects = []
+    for index in range(misplaced):
+        category = categories[index % len(categories)]
+        wrong = [p.name for p in placements if category not in p.holds]
+        objects.append({"name": f"item {index + 1:03d}", "category": category,
+                        "placement": wrong[(index * 7) % len(wrong)]})
+    data["objects"] = objects
+    return World.from_dict(data, f"<{base.name} with {misplaced} misplaced objects>")
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--repeats", type=int, default=300, help="plans timed per planner")
+    parser.add_argument("--sizes", type=int, nargs="+", default=[25, 50, 100, 200],
+                        help="numbers of misplaced objects to tidy up")
+
+
+def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, Any]:
+    """Table 1 figures, our median beside GTPyhop's on bring-object, and tidy-up scaling."""
+    world = World.load("apartment")
+    domain = home_domain()
+    state, names = state_from_beliefs(world, Beliefs.from_world(world), world.robot.pose[:2])
+    planner = Planner(domain)
+    bring = Goal.of("bring_object", ["pringles", "Alex"], world, names, domain)
+    guide = Goal.of("guide_person", ["Alex", "bedroom"], world, names, domain)
+    figures: dict[str, Any] = {}
+    table: dict[str, Any] = {}
+    for label, goal in (("bring object", bring), ("guide robot", guide)):
+        every_ms, every = _median_ms(lambda g=goal: planner.search(state, [g.task], limit=None),
+                                     max(1, args.repeats // 10))
+        table[label] = {"plans": len(every.plans),
+                        "shortest": min(len(p) for p in every.plans),
+                        "identical_sequences": len({tuple(p.actions()) for p in every.plans}) == 1,
+                        "all_plans_ms": round(every_ms, 4)}
+    figures["table1"] = table
+    ours_ms, ours = _median_ms(lambda: planner.search(state, [bring.task]), args.repeats)
+    comparison: dict[str, Any] = {"homebot_median_ms": round(ours_ms, 4)}
+    try:
+        gtpyhop, gt_state, _ = _gtpyhop_bring_object(state)
+    except ImportError:
+        comparison["gtpyhop"] = "not installed (pip install gtpyhop-core, the dev extra)"
+    else:
+        task = [("bring_object", *bring.task[1:])]
+        with contextlib.redirect_stdout(io.StringIO()):
+            gt_ms, gt_plan = _median_ms(lambda: gtpyhop.find_plan(gt_state, task), args.repeats)
+        comparison.update(
+            gtpyhop_median_ms=round(gt_ms, 4), speedup=round(gt_ms / ours_ms, 2),
+            same_plan=[tuple(a) for a in gt_plan] == [
+                (s.operator[1:], *s.args) for s in ours.plan.steps])
+    figures["bring_object_first_plan"] = comparison
+    tidy: list[dict[str, Any]] = []
+    for size in args.sizes:
+        messy = _tidy_world(world, size)
+        messy_state, messy_names = state_from_beliefs(messy, Beliefs.from_world(messy),
+                                                      messy.robot.pose[:2])
+        goal = Goal.of("tidy", [], messy, messy_names, domain)
+        tidy_ms, result = _median_ms(lambda s=messy_state, g=goal: planner.search(s, [g.task]),
+                                     3)
+        moved = sum(1 for step in result.plan.steps if step.operator == "!put_down")
+        tidy.append({"misplaced": size, "put_away": moved, "plan_length": len(result.plan),
+                     "ms": round(tidy_ms, 2), "ms_per_object": round(tidy_ms / size, 3)})
+    figures["tidy"] = tidy
+    if console is not None:
+        for label, row in table.items():
+            console.print(f"Table 1, {label}: {row['plans']} plans, shortest {row['shortest']}, "
+                          f"identical action sequences: {row['identical_sequences']}, every "
+                          f"plan in {row['all_plans_ms']} ms (JSHOP2 in the paper: 3 s / 1.5 s)")
+        console.print(f"bring_object, first plan: {comparison}")
+        for row in tidy:
+            console.print(f"tidy-up: {row}")
+    return {"benchmark": "htn", "figures": figures}

@@ -1,0 +1,131 @@
+"""``homebot plan TASK ARG...``: plan a task with the HTN planner and print the task network."""
+
+from __future__ import annotations
+
+import argparse
+import json
+from pathlib import Path
+from typing import Any
+
+from rich.console import Console
+
+from homebot.beliefs import Beliefs
+from homebot.cli.options import add_world_options, load_world
+from homebot.errors import PlanningError
+from homebot.htn import (
+    HOME_TASKS,
+    Domain,
+    Goal,
+    Names,
+    Planner,
+    Problem,
+    State,
+    load_domain,
+    plan_dot,
+    plans_json,
+    read_problems,
+    state_from_beliefs,
+    task_network_text,
+)
+from homebot.htn.domain import task_data
+from homebot.world import World
+
+__all__ = ["register"]
+
+
+def register(subparsers: Any) -> None:
+    tasks = ", ".join(f"{name} {' '.join(args)}".strip() for name, args in HOME_TASKS.items())
+    parser = subparsers.add_parser(
+        "plan", help="plan a task with the HTN planner and print the task network",
+        description=f"Plan a task from the robot's beliefs in a world. Home tasks: {tasks}.")
+    parser.add_argument("task", nargs="?", help="the task, e.g. bring_object (omit with "
+                                                "--problem to plan the problem's tasks)")
+    parser.add_argument("args", nargs="*", help="its arguments, e.g. pringles Alex")
+    add_world_options(parser)
+    parser.add_argument("--domain", type=Path,
+                        help="a domain file (JSHOP2 syntax, or .py defining domain()) instead "
+                             "of the home domain")
+    parser.add_argument("--problem", type=Path,
+                        help="a JSHOP2 (defproblem ...) file: its atoms are the initial state")
+    parser.add_argument("--all", action="store_true", help="every plan (one per task network)")
+    parser.add_argument("--cheapest", action="store_true", help="the plan of least cost")
+    parser.add_argument("--limit", type=int, default=1000, help="most plans with --all")
+    parser.add_argument("--max-depth", type=int, default=100_000, help="deepest decomposition")
+    parser.add_argument("--max-expansions", type=int, default=1_000_000,
+                        help="most task refinements")
+    parser.add_argument("--json", action="store_true",
+                        help='print {"plans": [[{"operator": NAME, "args": [...]}, ...], ...]}')
+    parser.add_argument("--dot", action="store_true", help="print the task network as Graphviz")
+    parser.set_defaults(handler=plan)
+
+
+def _problem(args: argparse.Namespace, domain: Domain) -> Problem | None:
+    if args.problem is None:
+        return None
+    problems = read_problems(args.problem)
+    if not problems:
+        raise PlanningError(f"{args.problem}: no (defproblem NAME DOMAIN (ATOMS) (TASKS)) found")
+    return problems[0]
+
+
+def _goal(args: argparse.Namespace, domain: Domain, world: World, names: Names,
+          problem: Problem | None) -> tuple[list[tuple[Any, ...]], list[tuple[Any, ...]]]:
+    """The tasks to plan and the atoms they add to the state."""
+    if args.task is None:
+        if problem is None:
+            raise PlanningError("give a TASK (e.g. 'homebot plan bring_object pringles Alex') "
+                                "or a --problem file")
+        return list(problem.tasks), []
+    if args.task in HOME_TASKS and args.task in domain.methods:
+        goal = Goal.of(args.task, args.args, world, names, domain)
+        return [goal.task], list(goal.atoms)
+    task = task_data([args.task, *args.args])
+    domain.check_task(task, "task")
+    return [task], []
+
+
+def plan(args: argparse.Namespace) -> int:
+    world = load_world(args)
+    domain = load_domain(args.domain)
+    problem = _problem(args, domain)
+    names = Names()
+    if problem is not None:
+        state = State(problem.atoms)
+    else:
+        state, _ = state_from_beliefs(world, Beliefs.from_world(world), world.robot.pose[:2],
+                                      names)
+    tasks, atoms = _goal(args, domain, world, names, problem)
+    for atom in atoms:
+        state.add(atom)
+    planner = Planner(domain, max_depth=args.max_depth, max_expansions=args.max_expansions)
+    if args.cheapest:
+        result = planner.search(state, tasks, limit=None, cheapest=True)
+    else:
+        result = planner.search(state, tasks, limit=args.limit if args.all else 1)
+    if args.json:
+        print(json.dumps(plans_json(result.plans, names.name)))
+    elif args.dot:
+        print(plan_dot(result.plans, " ".join(str(item) for item in tasks[0])), end="")
+    else:
+        _print(Console(), result.plans, result.expansions, result.stopped, tasks)
+    return 0 if result else 1
+
+
+def _print(console: Console, plans: list[Any], expansions: int, stopped: str | None,
+           tasks: list[tuple[Any, ...]]) -> None:
+    goal = " ".join("(" + " ".join(str(item) for item in task) + ")" for task in tasks)
+    if not plans:
+        why = f" (search stopped: {stopped} bound)" if stopped else ""
+        console.print(f"[red]no plan[/] for {goal}{why}", highlight=False)
+        return
+    lengths = sorted(len(plan) for plan in plans)
+    stop = f"; stopped by the {stopped} bound" if stopped else ""
+    console.print(f"[bold]{len(plans)} plan{'s' * (len(plans) != 1)}[/] for {goal}; "
+                  f"shortest {lengths[0]} operators; {expansions} refinements{stop}",
+                  highlight=False)
+    for number, found in enumerate(plans, start=1):
+        console.print(f"\n[bold]task network {number}[/] (cost {found.cost:g})", highlight=False)
+        console.print(task_network_text(found), highlight=False, markup=False)
+        console.print(f"[bold]plan {number}[/]", highlight=False)
+        for index, step in enumerate(found.steps, start=1):
+            console.print(f"  {index:2}. {step}", highlight=False, markup=False)
