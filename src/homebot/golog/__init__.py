@@ -11,6 +11,7 @@ from homebot.golog.interpreter import Executor, Interpreter, Report, Run, Simula
 from homebot.golog.planner import Planner, plan, project
 from homebot.golog.policy import Policy, Result, policy_actions, policy_text
 from homebot.golog.program import Procedure, Program
+from homebot.golog.skill_executor import SkillExecutor
 from homebot.golog.syntax import parse_procedures, parse_program
 from homebot.golog.theory import ActionSchema, Fluent, GroundAction, Situation, State, Theory
 
@@ -29,6 +30,7 @@ __all__ = [
     "Run",
     "SimulatedExecutor",
     "Situation",
+    "SkillExecutor",
     "State",
     "Theory",
     "parse_procedures",

@@ -100,7 +100,9 @@ class Const(Expr):
         return self
 
     def __str__(self) -> str:
-        return repr(self.value) if isinstance(self.value, str) else str(self.value)
+        if isinstance(self.value, bool):
+            return str(self.value).lower()
+        return f'"{self.value}"' if isinstance(self.value, str) else str(self.value)
 
 
 @dataclass(frozen=True, slots=True)

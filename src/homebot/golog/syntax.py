@@ -76,6 +76,9 @@ _SYMBOL_ALIASES = {"∧": "&", "∨": "|", "¬": "!", "≠": "!=", "and": "&", "
 _END_OF_SEQUENCE = {"endproc", "endwhile", "endif", "else", "endwithCtrl", ")", "|", "||",
                     "<end>"}
 
+_KEYWORDS = {"proc", "endproc", "while", "do", "endwhile", "if", "then", "else", "endif",
+             "withCtrl", "endwithCtrl", "in"}
+
 
 @dataclass(frozen=True, slots=True)
 class _Token:
@@ -167,7 +170,7 @@ class _Parser:
             self.advance()
             name = self.name("the procedure's name")
             parameters: list[str] = []
-            if self.at("("):
+            if self.at("(") and self._parameter_list_follows():
                 self.advance()
                 if not self.at(")"):
                     parameters.append(self.name("a parameter"))
@@ -181,6 +184,11 @@ class _Parser:
             self.expect("endproc", f"end procedure '{name}' with 'endproc'")
             found.append(Procedure(name, tuple(parameters), body))
         return found
+
+    def _parameter_list_follows(self) -> bool:
+        after = self.tokens[self.index + 1: self.index + 3]
+        return len(after) == 2 and (after[0].text == ")" or (
+            after[0].kind == "name" and after[1].text in (",", ")")))
 
     def program(self, *, commas: bool) -> Program:
         options = [self.concurrent(commas)]
@@ -414,7 +422,7 @@ class _Parser:
                     items.append(self.expr())
             self.expect("}", "close the set with '}'")
             return SetOf(tuple(items))
-        if token.kind != "name":
+        if token.kind != "name" or token.text in _KEYWORDS:
             raise self.fail(f"expected a term but found '{token.text}'",
                             "write a name, a number, a quoted string or (formula)")
         self.advance()

@@ -1,0 +1,75 @@
+"""A person moves a cup mid-execution; the policy's marker notices and the robot re-plans."""
+
+from __future__ import annotations
+
+import argparse
+from typing import Any
+
+from rich.console import Console
+
+from homebot.golog import Interpreter, SimulatedExecutor, State
+from homebot.golog.build import do
+from homebot.golog.domains import CUPS, POSITIONS, cups_theory, minimum_moves
+from homebot.scenarios.summary import scenario_summary
+
+__all__ = ["add_arguments", "run"]
+
+#: the cups' start (a 3-cycle: four moves) and the goal order
+START = {"red": "p2", "green": "p3", "blue": "p1"}
+GOAL = ("red", "green", "blue")
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--after", type=int, default=1,
+                        help="how many robot actions before the person moves a cup")
+
+
+def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
+    """The person puts the red cup into the free position after the robot's first move."""
+    after = getattr(args, "after", 1)
+    theory = cups_theory(START)
+    moved: list[tuple[Any, ...]] = []
+
+    def person(clock: int, truth: State) -> list[tuple[Any, ...]]:
+        if clock != after or moved:
+            return []
+        free = [p for p in POSITIONS if p not in {truth.get(("pos", c)) for c in CUPS}]
+        cup = "red" if truth.get(("pos", "red")) != POSITIONS[0] else "green"
+        moved.append(("person_moves_cup", cup, free[0]))
+        return list(moved)
+
+    executor = SimulatedExecutor(theory, seed=args.seed, events=person)
+    outcome = Interpreter(theory, executor, seed=args.seed).run(
+        do("sort_cups", *GOAL, 4))
+    replans = [entry for entry in outcome.log if entry["kind"] == "replan"]
+    in_order = all(executor.truth.get(("pos", cup)) == position
+                   for cup, position in zip(GOAL, POSITIONS, strict=False))
+    if console is not None:
+        for entry in outcome.log:
+            if entry["kind"] == "plan":
+                console.print(f"plan: {', '.join(entry['actions'])}", highlight=False)
+            elif entry["kind"] == "action":
+                console.print(f"  {entry['action']}", highlight=False)
+            elif entry["kind"] == "exogenous":
+                console.print(f"  (a person: {entry['action']})", highlight=False)
+            elif entry["kind"] == "replan":
+                console.print(f"  marker {entry['marker']} is no longer "
+                              f"{str(entry['expected']).lower()}: re-planning",
+                              highlight=False)
+        console.print("the cups are in order" if in_order else "the cups are not in order")
+    return scenario_summary("cup_moved", outcome.success and in_order and bool(replans),
+                            outcome.actions, [], exogenous=[" ".join(map(str, m)) for m in moved],
+                            replans=len(replans), markers=[entry["marker"] for entry in replans],
+                            moves_after_disturbance=len(outcome.history) - after,
+                            fewest_after_disturbance=_fewest_after(moved, after, outcome.history))
+
+
+def _fewest_after(moved: list[tuple[Any, ...]], after: int,
+                  history: list[tuple[Any, ...]]) -> int | None:
+    if not moved:
+        return None
+    positions = dict(START)
+    for action in history[:after]:
+        positions[action[1]] = action[3]
+    positions[moved[0][1]] = moved[0][2]
+    return minimum_moves(positions, GOAL)
