@@ -45,7 +45,7 @@ def task_network_text(plan: Plan) -> str:
 
 
 def _quote(text: str) -> str:
-    return '"' + text.replace("\\", "\\\\").replace('"', '\\"') + '"'
+    return '"' + text.replace("\\", "\\\\").replace('"', '\\"').replace("\n", "\\n") + '"'
 
 
 def plan_dot(plans: Sequence[Plan], name: str = "task_network") -> str:
@@ -56,7 +56,7 @@ def plan_dot(plans: Sequence[Plan], name: str = "task_network") -> str:
         lines.append(f"  subgraph {_quote('cluster_' + str(number))} {{")
         lines.append(f"    label={_quote(f'plan {number} (cost {plan.cost:g})')};")
         for index, node in enumerate(plan.network):
-            label = _text(node.task) + (f"\\n[{node.how}]" if node.how else "")
+            label = _text(node.task) + (f"\n[{node.how}]" if node.how else "")
             shape = "box" if node.how is None else "ellipse"
             lines.append(f"    {prefix}{index} [label={_quote(label)}, shape={shape}];")
             if node.parent >= 0:
