@@ -7,8 +7,8 @@ Situation types and what their ``input`` names:
 - ``vision``: a placement; the datum is the list of objects seen on it.
 - ``people``: a person's name, or ``find(Person, Room)``; the datum is
   ``found(Name)`` or ``error(Code)``.
-- ``skill``: a skill call ``name([arg=value, ...])``; the datum is
-  ``verified([key=value, ...])``, ``failed(Code)`` or ``aborted(Code)``.
+- ``skill``: a skill call ``name([arg==>value, ...])``; the datum is
+  ``verified([key==>value, ...])``, ``failed(Code, Data)`` or ``aborted(Code, Data)``.
 
 A failed look or search is ``error(Code)``, so a dialogue model can branch on it.
 """
@@ -46,7 +46,7 @@ def python_value(term: Term) -> Any:
 
 
 def term_value(value: Any) -> Term:
-    """Skill data as a term: str becomes an atom, mappings lists of ``key=value``."""
+    """Skill data as a term: str becomes an atom, mappings lists of ``key==>value``."""
     if value is None:
         return "empty"
     if isinstance(value, bool):
@@ -54,7 +54,7 @@ def term_value(value: Any) -> Term:
     if isinstance(value, str | int | float):
         return value
     if isinstance(value, Mapping):
-        return tuple(Struct("=", (str(k), term_value(v))) for k, v in value.items())
+        return tuple(Struct("==>", (str(k), term_value(v))) for k, v in value.items())
     if isinstance(value, list | tuple | set | frozenset):
         items = sorted(value) if isinstance(value, set | frozenset) else value
         return tuple(term_value(item) for item in items)
@@ -62,27 +62,27 @@ def term_value(value: Any) -> Term:
 
 
 def outcome_term(outcome: Outcome) -> Term:
-    """``verified(Data)``, ``failed(Code)`` or ``aborted(Code)``."""
+    """``verified(Data)``, ``failed(Code, Data)`` or ``aborted(Code, Data)``."""
     if outcome.status is Status.VERIFIED:
         return Struct("verified", (term_value(dict(outcome.data)),))
     code = outcome.error.value if outcome.error else "unknown"
-    return Struct(outcome.status.value, (code,))
+    return Struct(outcome.status.value, (code, term_value(dict(outcome.data))))
 
 
 def skill_arguments(call: Term) -> tuple[str, dict[str, Any]]:
-    """``pick([object=malz, hand=left])`` as ``("pick", {"object": "malz", "hand": "left"})``."""
+    """``pick([object==>malz, hand==>left])`` as ``("pick", {"object": "malz", "hand": ...})``."""
     call = resolve(call)
     if isinstance(call, str):
         return call, {}
     if not isinstance(call, Struct) or call.arity > 1:
-        raise DialogueError(f"a skill call is name([arg=value, ...]), not {format_term(call)}")
+        raise DialogueError(f"a skill call is name([arg==>value, ...]), not {format_term(call)}")
     arguments: dict[str, Any] = {}
     pairs = deref(call.args[0]) if call.args else ()
     for pair in pairs if isinstance(pairs, tuple) else (pairs,):
         pair = deref(pair)
-        if not (isinstance(pair, Struct) and pair.functor == "=" and pair.arity == 2
+        if not (isinstance(pair, Struct) and pair.functor == "==>" and pair.arity == 2
                 and isinstance(deref(pair.args[0]), str)):
-            raise DialogueError(f"skill {call.functor}: arguments are arg=value, not "
+            raise DialogueError(f"skill {call.functor}: arguments are arg==>value, not "
                                 f"{format_term(pair)}")
         arguments[str(deref(pair.args[0]))] = python_value(pair.args[1])
     return call.functor, arguments
