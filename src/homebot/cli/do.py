@@ -27,6 +27,9 @@ def register(subparsers: Any) -> None:
     parser.add_argument("--interactive", action="store_true",
                         help="type the answers of the people the robot talks to")
     parser.add_argument("--json", action="store_true", help="print the report as JSON")
+    parser.add_argument("--planner", choices=("gpsr", "htn"), default="gpsr",
+                        help="gpsr: run the parsed skill steps (default); htn: make the parse's "
+                             "intent an HTN goal and plan it from the robot's beliefs")
     parser.set_defaults(handler=do)
 
 
@@ -44,6 +47,13 @@ def do(args: argparse.Namespace) -> int:
     run = SimulatedRun.create(
         world, seed=args.seed, disturbances=disturbed(args.disturb) if args.disturb else None,
         responder=InteractiveResponder() if args.interactive else None)
+    if args.planner == "htn":
+        from homebot.cli.plan import carry_out_with_htn
+
+        status = carry_out_with_htn(args, world, run, parsed.steps)
+        if status is not None:
+            remember_last_run(run.simulation.events)
+            return status
     report = run.run(parsed.to_task())
     remember_last_run(run.simulation.events)
     if args.json:

@@ -16,10 +16,13 @@ from homebot.htn import (
     HOME_TASKS,
     Domain,
     Goal,
+    HtnRun,
     Names,
+    PlanActor,
     Planner,
     Problem,
     State,
+    goals_from_steps,
     load_domain,
     plan_dot,
     plans_json,
@@ -30,7 +33,7 @@ from homebot.htn import (
 from homebot.htn.domain import task_data
 from homebot.world import World
 
-__all__ = ["register"]
+__all__ = ["carry_out_with_htn", "print_htn_run", "register"]
 
 
 def register(subparsers: Any) -> None:
@@ -129,3 +132,45 @@ def _print(console: Console, plans: list[Any], expansions: int, stopped: str | N
         console.print(f"[bold]plan {number}[/]", highlight=False)
         for index, step in enumerate(found.steps, start=1):
             console.print(f"  {index:2}. {step}", highlight=False, markup=False)
+
+
+def carry_out_with_htn(args: argparse.Namespace, world: World, run: Any,
+                       steps: list[Any]) -> int | None:
+    """``homebot do --planner htn``: plan and act on the parse's goals; None if it has none.
+
+    ``run`` is a ``SimulatedRun``; with no home task for the parse, a note goes to
+    stderr and the caller runs the parsed steps as usual.
+    """
+    names = Names()
+    goals = goals_from_steps(steps, world, names)
+    if goals is None:
+        Console(stderr=True).print("note: the HTN planner has no task for this command; "
+                                   "running the parsed steps", highlight=False)
+        return None
+    actor = PlanActor(run.context)
+    runs = [actor.run(goal, names) for goal in goals]
+    if args.json:
+        print(json.dumps({"success": all(runs), "goals": [list(g.task) for g in goals],
+                          "runs": [r.to_dict() for r in runs]}))
+    else:
+        console = Console()
+        for goal, done in zip(goals, runs, strict=True):
+            print_htn_run(console, goal, done)
+    return 0 if all(runs) else 1
+
+
+def print_htn_run(console: Console, goal: Goal, done: HtnRun) -> None:
+    """Each operator with its skill's final status and attempts, and what the robot said."""
+    task = "(" + " ".join(str(item) for item in goal.task) + ")"
+    replans = f", {done.replans} replan{'s' * (done.replans != 1)}" if done.replans else ""
+    console.print(f"[bold]{task}[/]: {len(done.plans)} plan{'s' * (len(done.plans) != 1)}"
+                  f"{replans}", highlight=False)
+    for report in done.operators:
+        colour = "green" if report.status == "verified" else "red"
+        tries = f" after {report.attempts} attempts" if report.attempts > 1 else ""
+        error = f" ({report.error})" if report.error else ""
+        args = " ".join(str(arg) for arg in report.args)
+        console.print(f"  [{colour}]{report.status:9}[/] ({report.operator} {args}) -> "
+                      f"{report.skill}{error}{tries}", highlight=False, markup=True)
+    for text in done.speech:
+        console.print(f"  [cyan]robot:[/] {text}", highlight=False)

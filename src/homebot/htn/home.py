@@ -20,10 +20,11 @@ from homebot.errors import PlanningError
 from homebot.htn.domain import Domain
 from homebot.htn.jshop import read_domain, read_domain_text
 from homebot.htn.state import Atom, State
+from homebot.task import Step
 from homebot.world import World
 
-__all__ = ["HOME_TASKS", "ROBOT", "Goal", "Names", "home_domain", "home_domain_path",
-           "load_domain", "state_from_beliefs", "symbol"]
+__all__ = ["HOME_TASKS", "ROBOT", "Goal", "Names", "goals_from_steps", "home_domain",
+           "home_domain_path", "load_domain", "state_from_beliefs", "symbol"]
 
 ROBOT = "robot"  #: the robot's symbol in plans (the paper's ``Jenny``)
 
@@ -33,6 +34,7 @@ HOME_TASKS: Mapping[str, tuple[str, ...]] = {
     "bring_objects": ("PERSON", "OBJECT..."),
     "guide_person": ("PERSON", "PLACE"),
     "put_away": ("OBJECT",),
+    "place_object": ("OBJECT", "PLACEMENT"),
     "tidy": (),
     "serve": ("OBJECT-OR-CATEGORY", "PERSON"),
 }
@@ -216,3 +218,38 @@ def _known(text: str, world: World, names: Names) -> str:
     hint = f"did you mean '{lookup[guess[0]]}'?" if guess else "check the world's names"
     raise PlanningError(f"'{text}' is not an object, person, place or category of world "
                         f"'{world.name}'; {hint}")
+
+
+def goals_from_steps(steps: Sequence[Step], world: World,
+                     names: Names | None = None) -> list[Goal] | None:
+    """HTN goals for what a GPSR parse means, or None when a step has no home task.
+
+    A pick later given to a person is ``serve`` (an object or a category); a pick
+    later placed is ``place_object``; a person found and then guided is
+    ``guide_person``. Steps that only lead up to these (navigate, find) are left
+    to the planner.
+    """
+    names = names or Names()
+    goals: list[Goal] = []
+    wanted: str | None = None
+    person: str | None = None
+    for step in steps:
+        args = step.args
+        if step.skill == "pick":
+            wanted = str(args["object"])
+        elif step.skill == "give" and wanted is not None:
+            who = args.get("person") or person or "operator"
+            goals.append(Goal.of("serve", [wanted, str(who)], world, names))
+            wanted = None
+        elif step.skill == "place" and wanted is not None:
+            goals.append(Goal.of("place_object", [wanted, str(args["placement"])], world, names))
+            wanted = None
+        elif step.skill == "find_person":
+            description = args.get("person") or {}
+            person = description.get("name") if isinstance(description, Mapping) else None
+        elif step.skill == "guide" and (args.get("person") or person):
+            goals.append(Goal.of("guide_person", [str(args.get("person") or person),
+                                                  str(args["to"])], world, names))
+        elif step.skill not in {"navigate", "find_object", "say"}:
+            return None
+    return goals if goals and wanted is None else None
