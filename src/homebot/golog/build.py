@@ -169,6 +169,10 @@ def do(name: str, *args: Any) -> Call:
 
 
 def _program(part: Program | str) -> Program:
+    if part == "nil":
+        return nil
+    if part == "fail":
+        return fail
     return do(part) if isinstance(part, str) else part
 
 
