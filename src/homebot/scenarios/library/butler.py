@@ -20,7 +20,7 @@ from typing import Any
 from rich.console import Console
 
 from homebot.errors import KnowledgeError
-from homebot.knowledge import AddStatement, KnowledgeBase, Kind, parse_statement
+from homebot.knowledge import AddStatement, Kind, KnowledgeBase, parse_statement
 from homebot.knowledge.store import KnowledgeStore
 from homebot.scenarios.runtime import SimulatedRun
 from homebot.scenarios.summary import scenario_summary
@@ -179,7 +179,8 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
                       f"{summary['situations']} situations; "
                       f"{summary['sim_time']:.0f} s simulated", highlight=False)
         for update in summary["kb_updates"]:
-            console.print(f"  - {update['why']}: {_describe(update['what'])}", highlight=False)
+            console.print(f"  - {update['why']}: {_describe(update['what'])}", highlight=False,
+                          markup=False)
     return summary
 
 

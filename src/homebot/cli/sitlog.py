@@ -1,0 +1,147 @@
+"""``homebot sitlog run|show``: interpret a SitLog program, or draw it (§4.3) as dot."""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from rich.console import Console
+
+from homebot.errors import DialogueError
+from homebot.sitlog import (
+    Environment,
+    Interpreter,
+    Program,
+    RecordingBody,
+    ScriptedPerception,
+    Term,
+    dot_diagram,
+    format_term,
+    load_program,
+    render_globals,
+    render_history,
+)
+from homebot.sitlog.model import FINAL, RECURSIVE
+
+__all__ = ["register"]
+
+_SPOKEN = frozenset({"speech", "keyboard"})
+
+
+def register(subparsers: Any) -> None:
+    parser = subparsers.add_parser("sitlog", help="run or draw a SitLog dialogue model")
+    commands = parser.add_subparsers(dest="sitlog_command", metavar="COMMAND")
+    run = commands.add_parser(
+        "run", help="interpret a SitLog program",
+        description="Run a program's main dialogue model (or --call one). Speech input comes "
+        "from --input lines, then from --input-file, then from the keyboard; with --world, "
+        "vision, people and skill situations run the skills on the simulated robot.")
+    run.add_argument("file", help="a dialogue YAML file, or a shipped one (appendix_a, butler, "
+                     "behaviours)")
+    run.add_argument("--input", action="append", default=[], metavar="TERM",
+                     help="one perceived input (SitLog notation or words); repeat in order")
+    run.add_argument("--input-file", type=Path, help="inputs, one per line")
+    run.add_argument("--call", help="the dialogue model to run, e.g. \"find(cola, [fridge], W)\"")
+    run.add_argument("--world", help="run skills on a simulated robot in this world")
+    run.add_argument("--seed", type=int, default=0, help="seed for the simulated world")
+    run.add_argument("--json", action="store_true", help="print the result as JSON")
+    run.set_defaults(handler=_run)
+    show = commands.add_parser("show", help="list a program's models, or draw them as dot")
+    show.add_argument("file", help="a dialogue YAML file, or a shipped one")
+    show.add_argument("--dot", action="store_true", help="print the Graphviz diagram (§4.3)")
+    show.set_defaults(handler=_show)
+    parser.set_defaults(handler=_no_command)
+
+
+def _no_command(args: argparse.Namespace) -> int:
+    raise DialogueError("name a sitlog command: run FILE or show FILE [--dot]")
+
+
+@dataclass
+class _Mixed:
+    """Speech from the script or keyboard; everything else from the robot's skills."""
+
+    spoken: ScriptedPerception
+    robot: Any
+
+    def perceive(self, kind: str, request: Term | None, expectations: Sequence[Term],
+                 env: Environment) -> Term | None:
+        if kind in _SPOKEN:
+            return self.spoken.perceive(kind, request, expectations, env)
+        result: Term | None = self.robot.perceive(kind, request, expectations, env)
+        return result
+
+
+def _run(args: argparse.Namespace) -> int:
+    program = load_program(args.file)
+    inputs = list(args.input)
+    if args.input_file is not None:
+        try:
+            inputs += [line for line in args.input_file.read_text().splitlines() if line.strip()]
+        except OSError as error:
+            raise DialogueError(f"{args.input_file}: cannot read it ({error.strerror})") from None
+    console = None if args.json else Console(highlight=False, markup=False)
+    keyboard = _prompt if sys.stdin.isatty() and not args.json else None
+    spoken = ScriptedPerception(inputs, read_line=keyboard)
+    body = RecordingBody(echo=(lambda text: console.print(f"robot: {text}")) if console else None)
+    perception: Any = spoken
+    application = None
+    if args.world:
+        perception, body_on_robot, application = _on_robot(args, spoken)
+        body = body_on_robot
+    result = Interpreter(program, perception, body=body, application=application).run(args.call)
+    history = render_history(result.history)
+    if args.json:
+        print(json.dumps({"final": format_term(result.final), "out_arg": format_term(
+            result.out_arg), "globals": {k: format_term(v) for k, v in result.globals.items()},
+            "history": history.split("\n"), "situations": result.steps}))
+        return 0
+    assert console is not None
+    console.print(history)
+    console.print(f"\nOut Arg: {format_term(result.out_arg)}")
+    console.print(f"Out Global Vars: {render_globals(result.globals)}")
+    return 0
+
+
+def _prompt(text: str) -> str:
+    return input(text)
+
+
+def _on_robot(args: argparse.Namespace, spoken: ScriptedPerception) -> tuple[Any, Any, Any]:
+    from homebot.scenarios.runtime import SimulatedRun
+    from homebot.sitlog.robot import SkillBody, SkillPerception
+    from homebot.world import World
+
+    run = SimulatedRun.create(World.load(args.world), seed=args.seed)
+    return _Mixed(spoken, SkillPerception(run.context)), SkillBody(run.context), run.context
+
+
+def _show(args: argparse.Namespace) -> int:
+    program = load_program(args.file)
+    if args.dot:
+        sys.stdout.write(dot_diagram(program))
+        return 0
+    Console(highlight=False, markup=False).print(_outline(program))
+    return 0
+
+
+def _outline(program: Program) -> str:
+    lines = [f"{program.source}: main {program.main[0]}"]
+    for model in program.models.values():
+        lines.append(f"{format_term(model.head)}  ({len(model.situations)} situations)")
+        for situation in model.situations:
+            extra = f" -> {format_term(situation.embedded_dm)}" if (
+                situation.type == RECURSIVE) else ""
+            lines.append(f"  {format_term(situation.id)} [{situation.type}]{extra}")
+            if situation.type == FINAL:
+                continue
+            for arc in situation.arcs:
+                lines.append(f"    {format_term(arc.expectation, operand=True)} : "
+                             f"{format_term(arc.action, operand=True)} => "
+                             f"{format_term(arc.next)}")
+    return "\n".join(lines)
