@@ -16,8 +16,8 @@ from homebot.executive.recovery import Protocol, StepRunner
 from homebot.inference import InferenceCycle, Inventory, fetch_task
 from homebot.knowledge import KnowledgeBase
 from homebot.navigation import Navigator
-from homebot.robot import MoveReport, Pose
-from homebot.scenarios.runtime import SimulatedRun
+from homebot.robot import Detection, MoveReport, Pose
+from homebot.scenarios.runtime import SimulatedRun, disturbed
 from homebot.sim import SimRobot, Simulation
 from homebot.skills import ErrorCode, Outcome, SkillContext, skill_named
 from homebot.task import Step, Task
@@ -35,21 +35,52 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="chance that a product ran out")
     parser.add_argument("--r-max", type=float, default=240.0, help="decision budget (s)")
     parser.add_argument("--seed", type=int, default=0, help="first world's seed")
+    parser.add_argument("--noise", type=float, default=0.0,
+                        help="disturbance level (0: only the assistant's misplacements)")
 
 
 class ShelfVisitCounter(SimRobot):
-    """A simulated robot that counts its visits to shelves (arrive, then look)."""
+    """A simulated robot that counts its visits to shelves.
+
+    A search visit is an arrival at a shelf followed first by a look; an arrival
+    followed first by putting something down is a put-back visit.
+    """
 
     def __init__(self, simulation: Simulation, shelves: set[str]) -> None:
         super().__init__(simulation)
         self.shelves = shelves
         self.visits: list[str] = []
+        self.put_back_visits = 0
         self._arrived = True
+        self.expect()
 
     def move_to(self, goal: Pose, avoid_doors: frozenset[str] = frozenset(),
                 escort: str | None = None) -> MoveReport:
         self._arrived = True
         return super().move_to(goal, avoid_doors, escort)
+
+    def expect(self, *products: str | None) -> None:
+        """Count the visits until one of ``products`` is grasped (a new request)."""
+        self.wanted = {p for p in products if p}
+        self.until_grasp: int | None = None
+        self._start = len(self.visits)
+
+    def visits_until_grasp(self) -> int:
+        """Shelves visited for the current request until the product was in hand."""
+        last = self.until_grasp if self.until_grasp is not None else len(self.visits)
+        return last - self._start
+
+    def grasp(self, detection: Detection, hand: str) -> None:
+        super().grasp(detection, hand)
+        if (self.until_grasp is None and detection.label in self.wanted
+                and self.held(hand) is not None):
+            self.until_grasp = len(self.visits)
+
+    def release(self, hand: str, placement: str) -> None:
+        if self._arrived and placement in self.shelves:
+            self.put_back_visits += 1
+            self._arrived = False
+        super().release(hand, placement)
 
     def perceive_objects(self, placement: str) -> list[Any]:
         if self._arrived and placement in self.shelves:
@@ -106,6 +137,9 @@ class WorldResult:
     kb_consistent: bool = True
     visits: list[int] = field(default_factory=list)  #: shelf visits per request, inference
     search_visits: list[int] = field(default_factory=list)  #: the same, r_max = 0
+    visits_to_grasp: list[int] = field(default_factory=list)  #: until the product is in hand
+    baseline_to_grasp: list[int] = field(default_factory=list)
+    put_back_visits: int = 0  #: visits to shelves to put something back (requests only)
     baseline_visits: list[int] = field(default_factory=list)
     baseline_right: int = 0
     sim_time: float = 0.0
@@ -122,7 +156,7 @@ def run_world(world: World, navigator: Navigator, seed: int, args: argparse.Name
     shelves = {inventory.place(s) for s in inventory.shelves}
 
     cycle = InferenceCycle(inventory, r_max=args.r_max, seed=seed)
-    simulated, robot = _simulated(world, navigator, seed, truth, cycle, shelves)
+    simulated, robot = _simulated(world, navigator, seed, truth, cycle, shelves, args.noise)
     for product in requests:
         present = _available(simulated.simulation.object_location.get(product), shelves)
         substitute = inventory.substitute(product)
@@ -130,8 +164,11 @@ def run_world(world: World, navigator: Navigator, seed: int, args: argparse.Name
             simulated.simulation.object_location.get(substitute or ""), shelves)
         result.absent += not present
         before = len(robot.visits)
+        robot.expect(product, substitute)
         report = simulated.run(fetch_task(inventory, product))
         result.visits.append(len(robot.visits) - before)
+        result.visits_to_grasp.append(robot.visits_until_grasp())
+        result.put_back_visits = robot.put_back_visits
         given = [str(s.args["object"]) for s in report.steps
                  if s.skill == "give" and s.status == "verified"]
         for name in given:
@@ -149,7 +186,8 @@ def run_world(world: World, navigator: Navigator, seed: int, args: argparse.Name
 
     quiet = InferenceCycle(Inventory(KnowledgeBase.from_text(kb_text)), r_max=0.0,
                            seed=seed)  # no put-backs while a client waits
-    searching, searcher = _simulated(world, navigator, seed, truth, quiet, shelves)
+    searching, searcher = _simulated(world, navigator, seed, truth, quiet, shelves,
+                                      args.noise)
     for product in requests:
         before = len(searcher.visits)
         report = searching.run(fetch_task(quiet.inventory, product))
@@ -159,16 +197,22 @@ def run_world(world: World, navigator: Navigator, seed: int, args: argparse.Name
                 quiet.handed_over(str(step.args["object"]))
 
     baseline, counter = _simulated(world, navigator, seed, truth,
-                                   fixed_order_search(sorted(shelves)), shelves)
+                                   fixed_order_search(sorted(shelves)), shelves, args.noise)
     for product in requests:
         present = _available(baseline.simulation.object_location.get(product), shelves)
         before = len(counter.visits)
+        counter.expect(product)
         report = baseline.run(Task((Step("pick", {"object": product}),
                                     Step("navigate", {"to": "operator"}),
                                     Step("give", {"person": "operator", "object": product}))))
         result.baseline_visits.append(len(counter.visits) - before)
+        result.baseline_to_grasp.append(counter.visits_until_grasp())
         result.baseline_right += report.success == present
     return result
+
+
+def _mean(values: list[int]) -> float:
+    return round(statistics.fmean(values), 3) if values else 0.0
 
 
 def _available(where: str | None, shelves: set[str]) -> bool:
@@ -176,9 +220,11 @@ def _available(where: str | None, shelves: set[str]) -> bool:
 
 
 def _simulated(world: World, navigator: Navigator, seed: int, truth: Mapping[str, str | None],
-               protocol: Protocol, shelves: set[str]) -> tuple[SimulatedRun, ShelfVisitCounter]:
+               protocol: Protocol, shelves: set[str],
+               noise: float = 0.0) -> tuple[SimulatedRun, ShelfVisitCounter]:
     simulated = SimulatedRun.create(world, seed=seed, navigator=navigator, inference=protocol,
-                                    responder=_agreeable)
+                                    responder=_agreeable,
+                                    disturbances=disturbed(noise) if noise > 0 else None)
     simulated.simulation.object_location.update(truth)
     robot = ShelfVisitCounter(simulated.simulation, shelves)
     simulated.robot = robot
@@ -218,12 +264,18 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
     visits = [v for r in results for v in r.visits]
     baseline = [v for r in results for v in r.baseline_visits]
     searching = [v for r in results for v in r.search_visits]
+    to_grasp = [v for r in results for v in r.visits_to_grasp]
+    baseline_to_grasp = [v for r in results for v in r.baseline_to_grasp]
     figures = {
         "benchmark": "inference", "worlds": args.worlds, "requests": requests,
         "absent_requests": sum(r.absent for r in results),
         "right_outcomes": sum(r.right for r in results),
         "kb_consistent_worlds": sum(r.kb_consistent for r in results),
+        "shelf_visits_until_in_hand": _mean(to_grasp),
+        "baseline_shelf_visits_until_in_hand": _mean(baseline_to_grasp),
         "shelf_visits_per_request": round(statistics.fmean(visits), 3) if visits else 0.0,
+        "put_back_visits_per_request": round(
+            sum(r.put_back_visits for r in results) / max(1, requests), 3),
         "shelf_visits_per_request_without_put_backs": round(statistics.fmean(searching), 3)
         if searching else 0.0,
         "baseline_shelf_visits_per_request": round(statistics.fmean(baseline), 3)

@@ -105,7 +105,7 @@ class InferenceCycle:
             if goal in self._held(context):
                 return self._taken(context, wanted, goal, offering, run)
             diagnosis = self._diagnose(context, goal)
-            if goal in diagnosis.ran_out:
+            if goal in diagnosis.ran_out or goal not in diagnosis.location:
                 self._ran_out(context, goal, diagnosis)
                 alternative = self.inventory.substitute(goal)
                 if (self.offer_alternatives and not offering and alternative is not None
@@ -139,8 +139,12 @@ class InferenceCycle:
         looked = skill_named("look").run(context, {"placement": place})
         if not looked:
             return None
-        observation = observe(self.inventory, shelf, list(looked.data["objects"]),
-                              context.robot.now())
+        labels = set(looked.data["objects"])
+        if sought is not None and sought not in labels:
+            # A missed detection rarely repeats: look once more before believing the absence.
+            again = skill_named("look").run(context, {"placement": place})
+            labels |= set(again.data.get("objects", ()))
+        observation = observe(self.inventory, shelf, sorted(labels), context.robot.now())
         if sought is not None and sought not in observation.seen:
             seen = listing(sorted(observation.seen))
             speak(context, f"I see {seen}, but I do not see the {sought}." if seen

@@ -88,8 +88,10 @@ def diagnose(inventory: Inventory, known: Mapping[str, Collection[str]], here: s
         belief = inventory.believed_at(product)
         if belief == CUSTOMER and product == sought:
             ran_out.add(product)  # sold: no shelf holds it any more
-        if belief in (CUSTOMER, ROBOT) or product in carried:
+        if belief == CUSTOMER or product in carried:
             continue
+        if belief == ROBOT:
+            belief = None  # thought to be in hand, but it is not: where it is, is unknown
         if inventory.out_of_stock(product):
             ran_out.add(product)
         elif belief in unseen:
