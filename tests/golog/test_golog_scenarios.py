@@ -1,0 +1,71 @@
+"""``homebot scenario rips|order_cups|maze|cup_moved`` and ``homebot bench golog``, in-process."""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+import pytest
+
+from homebot.bench import golog as golog_bench
+from homebot.cli import main
+from homebot.scenarios.library import cup_moved, maze, order_cups, rips
+
+SUMMARY_KEYS = {"scenario", "success", "actions", "speech"}
+
+
+def test_rips_registers_through_the_skills_in_the_simulated_home() -> None:
+    summary = rips.run(argparse.Namespace(seed=0, disturb=0.0), None)
+    assert summary["success"] and summary["handed_over"]
+    skills = [step["skill"] for step in summary["actions"]]
+    assert skills[0] == "pick" and "give" in skills and skills[-1] == "navigate"
+    assert all(step["status"] == "verified" for step in summary["actions"])
+    assert summary["golog_actions"][:2] == ["grasp(Registration Sheet)", "park_arm"]
+    assert "If you want, you can now test my emergency stop button." in summary["speech"]
+    assert summary["speech"][0] == "I am ready. Please press my start button."
+
+
+def test_rips_is_the_same_run_for_the_same_seed() -> None:
+    first = rips.run(argparse.Namespace(seed=4, disturb=1.0), None)
+    second = rips.run(argparse.Namespace(seed=4, disturb=1.0), None)
+    assert first == second
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_order_cups_uses_the_fewest_moves(seed: int) -> None:
+    summary = order_cups.run(argparse.Namespace(seed=seed, goal="blue,green,red", horizon=4),
+                             None)
+    assert summary["success"]
+    assert summary["moves"] == summary["fewest_moves"]
+    assert summary["speech"] == ["That is it. I am done."]
+
+
+def test_cup_moved_is_detected_by_a_marker_and_replanned() -> None:
+    summary = cup_moved.run(argparse.Namespace(seed=0, after=1), None)
+    assert summary["success"] and summary["replans"] == 1
+    assert summary["markers"][0].startswith("poss(move_cup(")
+    assert summary["moves_after_disturbance"] == summary["fewest_after_disturbance"]
+
+
+def test_maze_reaches_the_goal() -> None:
+    summary = maze.run(argparse.Namespace(seed=0, horizon=8), None)
+    assert summary["success"] and summary["end"] == [5, 1]
+    assert 0 < summary["success_probability"] < 1
+
+
+def test_scenario_json_through_the_command_line(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["scenario", "cup_moved", "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert set(summary) >= SUMMARY_KEYS and summary["scenario"] == "cup_moved"
+
+
+def test_a_bad_goal_order_exits_2_with_a_hint(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["scenario", "order_cups", "--goal", "red,red,blue"]) == 2
+    assert "--goal blue,red,green" in capsys.readouterr().err.replace("\n", " ")
+
+
+def test_the_benchmark_reports_nodes_and_time() -> None:
+    report = golog_bench.run(argparse.Namespace(repeats=1, cups_horizon=3, maze_horizon=4),
+                             None)
+    for figures in report["figures"].values():
+        assert figures["nodes"] > 0 and figures["nodes_per_second"] > 0
