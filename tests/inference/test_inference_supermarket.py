@@ -13,6 +13,7 @@ from homebot.inference import InferenceCycle, Inventory, fetch_task
 from homebot.navigation import Navigator
 from homebot.scenarios.library import supermarket as story
 from homebot.scenarios.runtime import SimulatedRun
+from homebot.sim import ScriptedResponder
 from homebot.skills import ErrorCode, Outcome
 from homebot.world import World
 
@@ -104,3 +105,21 @@ def test_the_bench_serves_every_request_and_keeps_the_kb_consistent() -> None:
     assert figures["right_outcomes"] == figures["requests"] == 36
     assert figures["kb_consistent_worlds"] == 12
     assert figures["baseline_right_outcomes"] == 36
+    assert figures["shelf_visits_until_in_hand"] < figures["baseline_shelf_visits_until_in_hand"]
+
+
+def test_a_declined_alternative_is_put_back_and_the_request_fails(
+        supermarket: World, supermarket_navigator: Navigator) -> None:
+    inventory = Inventory.load("supermarket")
+    cycle = InferenceCycle(inventory)
+    run = SimulatedRun.create(
+        supermarket, navigator=supermarket_navigator, inference=cycle,
+        responder=ScriptedResponder({"customer": {
+            "We ran out of heineken. Would you like malz instead?": "No, thanks."}}))
+    run.simulation.object_location["heineken"] = None
+    report = run.run(fetch_task(inventory, "heineken"))
+    assert not report.success
+    assert "ran out of heineken" in report.reason
+    assert inventory.out_of_stock("heineken")
+    assert run.simulation.object_location["malz"] == "shelf drinks"
+    assert [r.ended for r in cycle.records][-1] == "taken"

@@ -120,3 +120,26 @@ def test_with_every_shelf_seen_the_supermarket_ran_out(
     diagnosis = diagnose(three_shelves, known, "s3", distance, sought="coke")
     assert "coke" in diagnosis.ran_out
     assert not diagnosis.assumed
+
+
+def test_other_missing_products_go_to_the_remaining_unseen_shelves_by_seed(
+        three_shelves: Inventory, distance: Distance) -> None:
+    known: dict[str, set[str]] = {}
+    _look(three_shelves, "s1", set(), known)
+    first = diagnose(three_shelves, known, "s1", distance, sought="coke", rng=random.Random(7))
+    again = diagnose(three_shelves, known, "s1", distance, sought="coke", rng=random.Random(7))
+    assert first == again
+    assert first.location["coke"] == "s2"
+    assert first.location["heineken"] == "s3"
+    assert first.explain(three_shelves).startswith("The assistant moved to shelf 2, placed")
+
+
+def test_a_hypothesis_stands_until_a_look_refutes_it(
+        three_shelves: Inventory, distance: Distance) -> None:
+    known: dict[str, set[str]] = {}
+    _look(three_shelves, "s1", set(), known)
+    first = diagnose(three_shelves, known, "s1", distance, sought="coke")
+    _look(three_shelves, "s3", {"bisquits", "heineken"}, known)
+    second = diagnose(three_shelves, known, "s3", distance, sought="coke", previous=first)
+    assert second.location["heineken"] == "s3" and "heineken" not in second.assumed
+    assert second.location["coke"] == "s2" and not second.revised

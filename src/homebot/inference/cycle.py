@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import random
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -386,7 +386,7 @@ class InferenceCycle:
                 return shelf
         return _ROBOT
 
-    def _distance(self, context: SkillContext) -> Any:
+    def _distance(self, context: SkillContext) -> Callable[[str, str], float]:
         points: dict[str, tuple[float, float]] = {_ROBOT: context.robot.pose().xy()}
         for shelf in self.inventory.shelves:
             pose = resolve_target(context, self.inventory.place(shelf))

@@ -48,14 +48,14 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     simulated = SimulatedRun.create(
         world, seed=args.seed, inference=cycle,
         responder=ScriptedResponder({"customer": _CUSTOMER_SAYS}))
-    for product, where in STORY_TRUTH.items():
-        simulated.simulation.object_location[product] = where
+    simulated.simulation.object_location.update(STORY_TRUTH)
     context = simulated.context
 
     cycle.inspect(context, "shelf_bread")  # the robot's round by the entrance
     skill_named("navigate").run(context, {"to": "operator"})
     heard = skill_named("ask").run(context, {"question": GREETING, "person": "operator"})
-    product = requested_product(inventory, str(heard.data.get("answer", "")))
+    request = str(heard.data.get("answer", ""))
+    product = requested_product(inventory, request)
     report = None
     if product is None:
         speak(context, "I am sorry, we do not sell that.")
