@@ -27,6 +27,8 @@ __all__ = ["Branch", "Domain", "Method", "Operator", "Problem", "task_data"]
 
 
 def _name_and_params(head: Sequence[Any], what: str) -> tuple[str, tuple[Term, ...]]:
+    if not isinstance(head, str | Sequence):
+        raise PlanningError(f"a {what} head is (NAME ?param ...), got '{head}'")
     items = list(head) if not isinstance(head, str) else head.split()
     if not items or not isinstance(items[0], str):
         raise PlanningError(f"a {what} head is (NAME ?param ...), got '{head}'")
@@ -61,6 +63,8 @@ def _bind_head(params: tuple[Term, ...], variables: tuple[bool, ...],
 
 def task_data(task: Sequence[Any]) -> tuple[Term, ...]:
     """A task or atom from plain data, its items checked to be names, numbers or variables."""
+    if not isinstance(task, str | Sequence):
+        raise PlanningError(f"a task is (NAME ARG...), got '{task}'")
     items = tuple(task.split()) if isinstance(task, str) else tuple(task)
     if not items or not isinstance(items[0], str):
         raise PlanningError(f"a task is (NAME ARG...), got '{task}'")
@@ -139,6 +143,8 @@ class Operator:
 def _atoms(data: Iterable[Any]) -> list[Any]:
     if data is None or data == "nil":
         return []
+    if isinstance(data, str) or not isinstance(data, Sequence):
+        raise PlanningError(f"expected a list of atoms or tasks, got '{data}'")
     return list(data)
 
 

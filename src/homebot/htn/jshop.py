@@ -124,6 +124,7 @@ def _domain(form: Form, source: str) -> Domain:
         raise PlanningError(f"{form.where(source)}: write (defdomain NAME (ITEM ...)) with "
                             ":operator, :method and :- items")
     domain = Domain(items[1])
+    methods: list[tuple[Method, Form]] = []
     for item in items[2].items:
         if not isinstance(item, Form) or not item.items or not isinstance(item.items[0], str):
             where = item.where(source) if isinstance(item, Form) else form.where(source)
@@ -135,13 +136,17 @@ def _domain(form: Form, source: str) -> Domain:
             operator = _operator(item, source)
             _at(item, source, lambda o=operator: domain.declare_operator(o))
         elif keyword == ":method":
-            domain.declare_method(_method(item, source))
+            methods.append((domain.declare_method(_method(item, source)), item))
         elif keyword == ":-":
             _axiom(item, source, domain)
         else:
             raise PlanningError(f"{item.where(source)}: unknown domain item '{item.items[0]}';"
                                 " use :operator, :method or :-")
-    _at(form, source, domain.check)
+    for method, where in methods:
+        for branch in method.branches:
+            for subtask in branch.subtasks:
+                _at(where, source, lambda t=subtask, m=method.task, b=branch.name: (
+                    domain.check_task(t, f"method '{m}' branch '{b}'")))
     return domain
 
 

@@ -1,0 +1,115 @@
+"""JSHOP2 / SHOP2 files: domains and problems load, and malformed files give placed errors."""
+
+from __future__ import annotations
+
+import contextlib
+from pathlib import Path
+
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from homebot.errors import PlanningError
+from homebot.htn import State, find_plans, read_domain, read_domain_text, read_problem_text
+from homebot.htn.sexpr import read_forms
+
+DOMAIN = """\
+; a small JSHOP2 domain: move boxes between rooms with a robot
+(defdomain boxes
+  ((:operator (!pickup ?b ?r) ((box-at ?b ?r) (robot-at ?r) (hand-empty))
+              ((box-at ?b ?r) (hand-empty)) ((holding ?b)))
+   (:operator (!drop ?b ?r) ((holding ?b) (robot-at ?r))
+              ((holding ?b)) ((box-at ?b ?r) (hand-empty)))
+   (:operator (!go ?from ?to) ((robot-at ?from)) ((robot-at ?from)) ((robot-at ?to))
+              (call + 1 1))
+   (:- (same ?x ?x) nil)
+   (:- (elsewhere ?b ?r) ((box-at ?b ?q) (not (same ?q ?r))))
+   (:method (move ?b ?to)
+            already ((box-at ?b ?to)) nil
+            carry ((elsewhere ?b ?to) (box-at ?b ?from))
+            (:ordered (goto ?from) (!pickup ?b ?from) (goto ?to) (!drop ?b ?to)))
+   (:method (goto ?r)
+            here ((robot-at ?r)) ()
+            walk ((robot-at ?x)) ((!go ?x ?r)))))
+"""
+
+PROBLEM = """\
+(defproblem tidy boxes
+  ((robot-at hall) (hand-empty) (box-at red kitchen) (box-at blue hall))
+  ((move red hall) (move blue hall)))
+"""
+
+
+def test_domain_and_problem_plan() -> None:
+    domain = read_domain_text(DOMAIN, "boxes.jshop")
+    problem = read_problem_text(PROBLEM, "tidy.jshop")[0]
+    assert (problem.name, problem.domain) == ("tidy", "boxes")
+    result = find_plans(domain, State(problem.atoms), problem.tasks)
+    assert [plan.actions() for plan in result.plans] == [[
+        ("!go", "hall", "kitchen"), ("!pickup", "red", "kitchen"), ("!go", "kitchen", "hall"),
+        ("!drop", "red", "hall")]]
+    assert result.plans[0].cost == 6
+
+
+def test_reading_from_a_file(tmp_path: Path) -> None:
+    path = tmp_path / "boxes.jshop"
+    path.write_text(DOMAIN, encoding="utf-8")
+    assert read_domain(path).name == "boxes"
+    with pytest.raises(PlanningError, match="cannot read"):
+        read_domain(tmp_path / "missing.jshop")
+
+
+@pytest.mark.parametrize(("text", "place", "words"), [
+    ("(defdomain d ((:operator (!a) () () ())", "1:1", "never closed"),
+    ("(defdomain d ())) ", "1:17", "without a matching"),
+    ("(defdomain d (\n  (:operator (!a) () ())))", "2:3", "4 or 5 parts"),
+    ("(defdomain d (\n  (:method (t) () ((!missing)))))", "2:3", "'!missing' is neither"),
+    ("(defdomain d (\n  (:method (t)\n     (:unordered (a) (b)) nil)))", "3:6", ":unordered"),
+    ("(defdomain d ((:operator (!a) ((p ?x (q))) () ())))", "1:15", "must be names"),
+    ("(defdomain d ((:operator (!a) ((call frob 1)) () ())))", "1:15", "unknown function"),
+    ("(defdomain d ((:bogus)))", "1:15", "unknown domain item"),
+    ("(defdomain d ((:operator (!a) () () ()) 'x))", "1:41", "Lisp quoting"),
+    ("(defdomain d ((:operator (a) () () ())))", "1:15", "must start with '!'"),
+    ("(defdomain d ((:method (t) name-only)))", "1:15", "needs a precondition"),
+    ('(defdomain d ((:operator (!a) () () ("x))))', "1:38", "close the string"),
+])
+def test_errors_name_line_and_column(text: str, place: str, words: str) -> None:
+    with pytest.raises(PlanningError) as caught:
+        read_domain_text(text, "bad.jshop")
+    message = str(caught.value)
+    assert message.startswith(f"bad.jshop:{place}") or f"bad.jshop:{place}" in message
+    assert words in message
+
+
+def test_reader_keeps_places_and_values() -> None:
+    forms = read_forms('(a 1 2.5 "two words")\n  (b)', "x")
+    assert [(form.line, form.column) for form in forms] == [(1, 1), (2, 3)]
+    assert forms[0].items == ("a", 1, 2.5, "two words")
+
+
+ALPHABET = st.sampled_from([*"()  ?!:;-\n\"'", "defdomain", "defproblem", ":operator",
+                            ":method", ":-", "not", "or", "call", "forall", ":first", "nil",
+                            "p", "?x", "1"])
+
+
+@settings(max_examples=300, deadline=None)
+@given(st.lists(ALPHABET, max_size=60))
+def test_fuzzed_files_give_errors_never_crashes(tokens: list[str]) -> None:
+    text = " ".join(tokens)
+    for read in (read_domain_text, read_problem_text):
+        with contextlib.suppress(PlanningError):
+            read(text, "fuzz.jshop")
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.integers(min_value=0, max_value=len(DOMAIN) - 1),
+       st.integers(min_value=1, max_value=40), st.text(max_size=6))
+def test_mutated_domain_gives_errors_never_crashes(start: int, length: int, insert: str) -> None:
+    text = DOMAIN[:start] + insert + DOMAIN[start + length:]
+    try:
+        domain = read_domain_text(text, "mutated.jshop")
+    except PlanningError:
+        return
+    problem = read_problem_text(PROBLEM)[0]
+    with contextlib.suppress(PlanningError):
+        find_plans(domain, State(problem.atoms), problem.tasks, max_expansions=2000)
