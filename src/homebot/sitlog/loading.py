@@ -54,17 +54,24 @@ def shipped_dialogue_path(spec: str | Path) -> Path:
     raise DialogueError(f"no dialogue file '{text}'; give a path or a shipped name ({names})")
 
 
-def load_program(spec: str | Path) -> Program:
-    """Load and validate a program from a YAML file (or a shipped name such as ``appendix_a``)."""
+def load_program(spec: str | Path,
+                 functions: Mapping[str, UserFunction] | None = None) -> Program:
+    """Load and validate a program from a YAML file (or a shipped name such as ``appendix_a``).
+
+    ``functions`` adds user functions given in Python to those the file names.
+    """
     path = shipped_dialogue_path(spec)
     reader = _Reader()
+    reader.functions.update(functions or {})
     reader.read_file(path)
     return reader.program(str(path))
 
 
-def load_program_text(text: str, source: str = "<text>", base: Path | None = None) -> Program:
+def load_program_text(text: str, source: str = "<text>", base: Path | None = None,
+                      functions: Mapping[str, UserFunction] | None = None) -> Program:
     """Load and validate a program from YAML text; ``base`` resolves relative includes."""
     reader = _Reader()
+    reader.functions.update(functions or {})
     reader.read_text(text, source, base or Path.cwd())
     return reader.program(source)
 
@@ -288,6 +295,12 @@ class _File:
     def arc(self, node: yaml.Node, shared: dict[str, Var]) -> Arc:
         variables = dict(shared)
         if isinstance(node, yaml.MappingNode):
+            for key, _ in node.value:
+                if str(key.value) not in _ARC_KEYS:
+                    raise DialogueError(
+                        f"{self.place(key)}: '{key.value}' is no key of an arc; write an arc "
+                        "as \"Expectation : Action => Next\" (quoted, since YAML reads "
+                        "'a: b' as a mapping) or as {expect, action, next}")
             fields = self.mapping(node, _ARC_KEYS, "an arc")
             if "next" not in fields:
                 raise DialogueError(f"{self.place(node)}: an arc needs 'next'")

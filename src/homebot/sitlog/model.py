@@ -50,6 +50,20 @@ class Arc:
     next: Term
     place: str = ""  #: where it was written (``file:line:column``)
 
+    @classmethod
+    def from_text(cls, text: str, variables: dict[str, Var] | None = None) -> Arc:
+        """An arc from ``"Expectation : Action => Next"`` (``variables`` shares names)."""
+        from homebot.errors import DialogueError
+        from homebot.sitlog.terms import parse_term
+
+        term = deref(parse_term(text, "<arc>", variables))
+        if not (isinstance(term, Struct) and term.functor == "=>" and term.arity == 2):
+            raise DialogueError(f"an arc is written 'Expectation : Action => Next', not {text!r}")
+        left, following = term.args
+        if isinstance(left, Struct) and left.functor == ":" and left.arity == 2:
+            return cls(left.args[0], left.args[1], following)
+        return cls(left, "empty", following)
+
 
 @dataclass(frozen=True, slots=True)
 class Situation:
