@@ -109,59 +109,51 @@ class Planner:
 
     def _best(self, stack: Stack, state: State, horizon: int) -> Result:
         self.nodes += 1
-        theory = self.theory
         if not stack:
             return Result(self.reward_of(state), 1.0, _NIL)
         head, rest = stack[0], stack[1:]
-        kind = type(head)
-        if kind is Seq:
-            return self.best(head.parts + rest, state, horizon)  # type: ignore[attr-defined]
-        if kind is Nil:
-            return self.best(rest, state, horizon)
-        if kind is Call:
-            call: Call = head  # type: ignore[assignment]
-            if call.name in theory.procedures:
-                return self.best((unfold(call, theory, state), *rest), state, horizon)
-            return self._action(ground(call, theory, state), rest, state, horizon)
-        if kind is Test:
-            condition = head.condition  # type: ignore[attr-defined]
-            if condition.holds(theory, state):
-                result = self.best(rest, state, horizon)
-                return Result(result.value, result.probability,
-                              PMarker(condition, True, result.policy))
-            return Result(self.reward_of(state), 0.0, PMarker(condition, False, _STOP))
-        if kind is If:
-            condition = head.condition  # type: ignore[attr-defined]
-            value = condition.holds(theory, state)
-            branch = head.then if value else head.otherwise  # type: ignore[attr-defined]
-            return self._marked(condition, value, self.best((branch, *rest), state, horizon))
-        if kind is While:
-            condition = head.condition  # type: ignore[attr-defined]
-            value = condition.holds(theory, state)
-            following = (head.body, head, *rest) if value else rest  # type: ignore[attr-defined]
-            return self._marked(condition, value, self.best(following, state, horizon))
-        if kind is Choice:
-            return self._best_of([(option, *rest) for option in head.options],  # type: ignore
-                                 state, horizon)
-        if kind is Pi or kind is PickBest:
-            values = domain_values(head.domain, theory, state)  # type: ignore[attr-defined]
-            if not values:
-                return Result(self.reward_of(state), 0.0, _STOP)
-            return self._best_of(
-                [(head.body.substitute({head.variable: Const(value)}), *rest)  # type: ignore
-                 for value in values], state, horizon)
-        if kind is Star:
-            return self._best_of([rest, (head.body, head, *rest)],  # type: ignore[attr-defined]
-                                 state, horizon)
-        if kind is Prob:
-            chance = float(head.probability.evaluate(theory, state))  # type: ignore[attr-defined]
-            first = self.best((head.first, *rest), state, horizon)  # type: ignore[attr-defined]
-            second = self.best((head.second, *rest), state, horizon)  # type: ignore[attr-defined]
-            return Result(chance * first.value + (1.0 - chance) * second.value,
-                          chance * first.probability + (1.0 - chance) * second.probability,
-                          PChance(chance, first.policy, second.policy))
-        if kind is Solve:
-            return self.best((head.body, *rest), state, horizon)  # type: ignore[attr-defined]
+        theory = self.theory
+        match head:
+            case Seq(parts=parts):
+                return self.best(parts + rest, state, horizon)
+            case Nil():
+                return self.best(rest, state, horizon)
+            case Call(name=name) if name in theory.procedures:
+                return self.best((unfold(head, theory, state), *rest), state, horizon)
+            case Call():
+                return self._action(ground(head, theory, state), rest, state, horizon)
+            case Test(condition=condition):
+                if condition.holds(theory, state):
+                    return self._marked(condition, True, self.best(rest, state, horizon))
+                return Result(self.reward_of(state), 0.0, PMarker(condition, False, _STOP))
+            case If(condition=condition, then=then, otherwise=otherwise):
+                value = condition.holds(theory, state)
+                following = ((then if value else otherwise), *rest)
+                return self._marked(condition, value, self.best(following, state, horizon))
+            case While(condition=condition, body=body):
+                value = condition.holds(theory, state)
+                following = (body, head, *rest) if value else rest
+                return self._marked(condition, value, self.best(following, state, horizon))
+            case Choice(options=options):
+                return self._best_of([(option, *rest) for option in options], state, horizon)
+            case Pi(variable=variable, domain=domain, body=body) | PickBest(
+                    variable=variable, domain=domain, body=body):
+                values = domain_values(domain, theory, state)
+                if not values:
+                    return Result(self.reward_of(state), 0.0, _STOP)
+                return self._best_of([(body.substitute({variable: Const(value)}), *rest)
+                                      for value in values], state, horizon)
+            case Star(body=body):
+                return self._best_of([rest, (body, head, *rest)], state, horizon)
+            case Prob(probability=probability, first=first, second=second):
+                chance = float(probability.evaluate(theory, state))
+                one = self.best((first, *rest), state, horizon)
+                other = self.best((second, *rest), state, horizon)
+                return Result(chance * one.value + (1.0 - chance) * other.value,
+                              chance * one.probability + (1.0 - chance) * other.probability,
+                              PChance(chance, one.policy, other.policy))
+            case Solve(body=body):
+                return self.best((body, *rest), state, horizon)
         return self._by_transitions(head, rest, state, horizon)
 
     # ------------------------------------------------------------------ pieces

@@ -156,76 +156,68 @@ def transitions(program: Program, state: State, theory: Theory,
     if depth > _MAX_UNFOLD:
         raise GologError("a procedure recurses without ever acting; put an action or a test "
                          "that fails before the recursive call")
-    kind = type(program)
-    if kind is Call:
-        call: Call = program  # type: ignore[assignment]
-        if call.name in theory.procedures:
-            return transitions(unfold(call, theory, state), state, theory, depth + 1)
-        action = ground(call, theory, state)
-        return [(ActionStep(action), Nil())] if theory.possible(action, state) else []
-    if kind is Seq:
-        parts = program.parts  # type: ignore[attr-defined]
-        if not parts:
+    match program:
+        case Call(name=name) if name in theory.procedures:
+            return transitions(unfold(program, theory, state), state, theory, depth + 1)
+        case Call():
+            action = ground(program, theory, state)
+            return [(ActionStep(action), Nil())] if theory.possible(action, state) else []
+        case Seq(parts=()):
             return []
-        rest = Seq(parts[1:]) if len(parts) > 2 else (parts[1] if len(parts) == 2 else Nil())
-        found = [(step, sequence(remaining, rest))
-                 for step, remaining in transitions(parts[0], state, theory, depth)]
-        if final(parts[0], state, theory):
-            found += transitions(rest, state, theory, depth)
-        return found
-    if kind is Test:
-        condition = program.condition  # type: ignore[attr-defined]
-        return [(TestStep(condition), Nil())] if condition.holds(theory, state) else []
-    if kind is If:
-        branch = program.then if program.condition.holds(  # type: ignore[attr-defined]
-            theory, state) else program.otherwise  # type: ignore[attr-defined]
-        return transitions(branch, state, theory, depth)
-    if kind is While:
-        if not program.condition.holds(theory, state):  # type: ignore[attr-defined]
-            return []
-        return [(step, sequence(remaining, program)) for step, remaining in
-                transitions(program.body, state, theory, depth)]  # type: ignore[attr-defined]
-    if kind is Choice:
-        return [found for option in program.options  # type: ignore[attr-defined]
-                for found in transitions(option, state, theory, depth)]
-    if kind is Star:
-        return [(step, sequence(remaining, program)) for step, remaining in
-                transitions(program.body, state, theory, depth)]  # type: ignore[attr-defined]
-    if kind is Pi:
-        return [found for value in domain_values(program.domain, theory, state)  # type: ignore
-                for found in transitions(program.body.substitute(  # type: ignore[attr-defined]
-                    {program.variable: Const(value)}), state, theory, depth)]  # type: ignore
-    if kind is PickBest:
-        planned = Solve(Const(DEFAULT_HORIZON), Fn("reward"), program)
-        return transitions(planned, state, theory, depth)
-    if kind is Conc:
-        high = transitions(program.high, state, theory, depth)  # type: ignore[attr-defined]
-        if high:
-            return [(step, Conc(remaining, program.low))  # type: ignore[attr-defined]
-                    for step, remaining in high]
-        return [(step, Conc(program.high, remaining))  # type: ignore[attr-defined]
-                for step, remaining in transitions(program.low, state, theory, depth)]  # type: ignore
-    if kind is WithPol:
-        return transitions(_with_pol(program), state, theory, depth)  # type: ignore[arg-type]
-    if kind is WithCtrl:
-        if not program.condition.holds(theory, state):  # type: ignore[attr-defined]
-            return []
-        return [(step, WithCtrl(program.condition, remaining))  # type: ignore[attr-defined]
-                for step, remaining in transitions(program.body, state, theory, depth)]  # type: ignore
-    if kind is WaitFor:
-        condition = program.condition  # type: ignore[attr-defined]
-        return [(TestStep(condition), Nil())] if condition.holds(theory, state) else []
-    if kind is Prob:
-        chance = float(program.probability.evaluate(theory, state))  # type: ignore[attr-defined]
-        return [(ChanceStep(chance), program.first),  # type: ignore[attr-defined]
-                (ChanceStep(1.0 - chance), program.second)]  # type: ignore[attr-defined]
-    if kind is Solve:
-        from homebot.golog.planner import plan
+        case Seq(parts=(first, *others)):
+            rest = Seq(tuple(others)) if len(others) > 1 else (others[0] if others else Nil())
+            found: list[tuple[Step, Program]] = [
+                (step, sequence(remaining, rest))
+                for step, remaining in transitions(first, state, theory, depth)]
+            if final(first, state, theory):
+                found += transitions(rest, state, theory, depth)
+            return found
+        case Test(condition=condition) | WaitFor(condition=condition):
+            return [(TestStep(condition), Nil())] if condition.holds(theory, state) else []
+        case If(condition=condition, then=then, otherwise=otherwise):
+            branch = then if condition.holds(theory, state) else otherwise
+            return transitions(branch, state, theory, depth)
+        case While(condition=condition, body=body):
+            if not condition.holds(theory, state):
+                return []
+            return [(step, sequence(remaining, program))
+                    for step, remaining in transitions(body, state, theory, depth)]
+        case Star(body=body):
+            return [(step, sequence(remaining, program))
+                    for step, remaining in transitions(body, state, theory, depth)]
+        case Choice(options=options):
+            return [found for option in options
+                    for found in transitions(option, state, theory, depth)]
+        case Pi(variable=variable, domain=domain, body=body):
+            return [found for value in domain_values(domain, theory, state)
+                    for found in transitions(body.substitute({variable: Const(value)}),
+                                             state, theory, depth)]
+        case PickBest():
+            planned = Solve(Const(DEFAULT_HORIZON), Fn("reward"), program)
+            return transitions(planned, state, theory, depth)
+        case Conc(high=high, low=low):
+            first_choice = transitions(high, state, theory, depth)
+            if first_choice:
+                return [(step, Conc(remaining, low)) for step, remaining in first_choice]
+            return [(step, Conc(high, remaining))
+                    for step, remaining in transitions(low, state, theory, depth)]
+        case WithPol():
+            return transitions(_with_pol(program), state, theory, depth)
+        case WithCtrl(condition=condition, body=body):
+            if not condition.holds(theory, state):
+                return []
+            return [(step, WithCtrl(condition, remaining))
+                    for step, remaining in transitions(body, state, theory, depth)]
+        case Prob(probability=probability, first=first, second=second):
+            chance = float(probability.evaluate(theory, state))
+            return [(ChanceStep(chance), first), (ChanceStep(1.0 - chance), second)]
+        case Solve():
+            from homebot.golog.planner import plan
 
-        result = plan(theory, program, state)  # type: ignore[arg-type]
-        return [(PlanStep(result), Running(result.policy, program))]  # type: ignore[arg-type]
-    if kind is Running:
-        return _policy_transitions(program, state, theory)  # type: ignore[arg-type]
+            result = plan(theory, program, state)
+            return [(PlanStep(result), Running(result.policy, program))]
+        case Running():
+            return _policy_transitions(program, state, theory)
     return []
 
 
@@ -257,38 +249,29 @@ def _policy_transitions(running: Running, state: State,
 
 def final(program: Program, state: State, theory: Theory, depth: int = 0) -> bool:
     """Whether ``program`` may legally stop in ``state``."""
-    kind = type(program)
-    if kind is Nil or kind is Star:
-        return True
-    if kind is Call:
-        call: Call = program  # type: ignore[assignment]
-        if call.name in theory.procedures and depth <= _MAX_UNFOLD:
-            return final(unfold(call, theory, state), state, theory, depth + 1)
-        return False
-    if kind is Seq:
-        return all(final(part, state, theory, depth)
-                   for part in program.parts)  # type: ignore[attr-defined]
-    if kind is If:
-        branch = program.then if program.condition.holds(  # type: ignore[attr-defined]
-            theory, state) else program.otherwise  # type: ignore[attr-defined]
-        return final(branch, state, theory, depth)
-    if kind is While:
-        return (not program.condition.holds(theory, state)  # type: ignore[attr-defined]
-                or final(program.body, state, theory, depth))  # type: ignore[attr-defined]
-    if kind is Choice:
-        return any(final(option, state, theory, depth)
-                   for option in program.options)  # type: ignore[attr-defined]
-    if kind is Pi:
-        return any(final(program.body.substitute(  # type: ignore[attr-defined]
-            {program.variable: Const(value)}), state, theory, depth)  # type: ignore[attr-defined]
-            for value in domain_values(program.domain, theory, state))  # type: ignore
-    if kind is Conc:
-        return (final(program.high, state, theory, depth)  # type: ignore[attr-defined]
-                or final(program.low, state, theory, depth))  # type: ignore[attr-defined]
-    if kind is WithPol:
-        return final(_with_pol(program), state, theory, depth)  # type: ignore[arg-type]
-    if kind is WithCtrl:
-        return final(program.body, state, theory, depth)  # type: ignore[attr-defined]
-    if kind is Running:
-        return isinstance(program.policy, PNil)  # type: ignore[attr-defined]
+    match program:
+        case Nil() | Star():
+            return True
+        case Call(name=name) if name in theory.procedures and depth <= _MAX_UNFOLD:
+            return final(unfold(program, theory, state), state, theory, depth + 1)
+        case Seq(parts=parts):
+            return all(final(part, state, theory, depth) for part in parts)
+        case If(condition=condition, then=then, otherwise=otherwise):
+            branch = then if condition.holds(theory, state) else otherwise
+            return final(branch, state, theory, depth)
+        case While(condition=condition, body=body):
+            return not condition.holds(theory, state) or final(body, state, theory, depth)
+        case Choice(options=options):
+            return any(final(option, state, theory, depth) for option in options)
+        case Pi(variable=variable, domain=domain, body=body):
+            return any(final(body.substitute({variable: Const(value)}), state, theory, depth)
+                       for value in domain_values(domain, theory, state))
+        case Conc(high=high, low=low):
+            return final(high, state, theory, depth) or final(low, state, theory, depth)
+        case WithPol():
+            return final(_with_pol(program), state, theory, depth)
+        case WithCtrl(body=body):
+            return final(body, state, theory, depth)
+        case Running(policy=policy):
+            return isinstance(policy, PNil)
     return False
