@@ -62,7 +62,7 @@ class SkillExecutor(Executor):
             protocol = PROTOCOLS.get(outcome.error) if outcome.error else None
             if outcome or protocol is None:
                 break
-            context.events.record("recovery", skill=step.skill, error=outcome.error.value,
+            context.events.record("recovery", skill=step.skill, error=str(outcome.error),
                                   inference=False)
             recovered = protocol(context, step.skill, step.args, outcome,
                                  lambda name, args: skill_named(name).run(context, args))

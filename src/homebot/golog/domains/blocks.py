@@ -32,7 +32,8 @@ def blocks_theory(initial: Mapping[str, str] | None = None) -> Theory:
                                     or_(equal("y", TABLE), ne("y", TABLE))),
                   effects=lambda state, x, y: {("on", x): y})
     theory.define(*shipped_procedures("blocks"))
-    theory.initially(dict(initial or {("on", "c"): "a"}))
+    start = initial if initial is not None else {"c": "a"}
+    theory.initially({("on", block): below for block, below in start.items()})
     return theory
 
 
