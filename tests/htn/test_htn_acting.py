@@ -1,0 +1,121 @@
+"""Plans carried out through the monitored skills: retry, abort, replan and give up, by seed."""
+
+from __future__ import annotations
+
+from homebot.events import EventLog
+from homebot.htn import Goal, HtnRun, Names, PlanActor, home_domain
+from homebot.navigation import Navigator
+from homebot.scenarios import SimulatedRun
+from homebot.world import DisturbanceModel, World
+
+
+def _carry_out(world: World, navigator: Navigator, task: str, args: list[str], *, seed: int = 0,
+               disturbances: DisturbanceModel | None = None,
+               **actor: object) -> tuple[HtnRun, EventLog]:
+    run = SimulatedRun.create(world, seed=seed, disturbances=disturbances, navigator=navigator)
+    names = Names()
+    domain = home_domain()
+    done = PlanActor(run.context, domain, **actor).run(Goal.of(task, args, world, names, domain),
+                                                       names)
+    return done, run.simulation.events
+
+
+def _statuses(events: EventLog, skill: str) -> list[str]:
+    return [event.data["status"] for event in events.of_kind("skill.status")
+            if event.data["skill"] == skill]
+
+
+def test_bring_object_verified_operator_by_operator(apartment: World,
+                                                    apartment_navigator: Navigator) -> None:
+    done, events = _carry_out(apartment, apartment_navigator, "bring_object", ["pringles", "Alex"])
+    assert done and done.replans == 0 and len(done.plans) == 1
+    assert [r.status for r in done.operators] == ["verified"] * 8
+    assert [r.skill for r in done.operators] == ["say", "navigate", "find_object", "pick",
+                                                 "navigate", "find_person", "give", "say"]
+    # Each operator's state machine: executed (finished), then monitored (verified).
+    assert _statuses(events, "pick") == ["finished", "verified"]
+    assert done.speech[-1] == "I have brought the pringles to Alex."
+    kinds = [event.kind for event in events.events]
+    assert kinds.count("htn.operator") == 8 and kinds[-1] == "htn.end"
+
+
+def test_guide_person(apartment: World, apartment_navigator: Navigator) -> None:
+    done, _ = _carry_out(apartment, apartment_navigator, "guide_person", ["Alex", "bedroom"])
+    assert done and [r.operator for r in done.operators][3] == "!guide"
+
+
+def test_a_slipping_grasp_is_retried(apartment: World, apartment_navigator: Navigator) -> None:
+    done, events = _carry_out(apartment, apartment_navigator, "bring_object",
+                              ["pringles", "Alex"], seed=2,
+                              disturbances=DisturbanceModel(grasp_slip=0.5))
+    grasp = next(r for r in done.operators if r.operator == "!grasp")
+    assert done and done.replans == 0 and grasp.attempts == 3 and grasp.status == "verified"
+    assert _statuses(events, "pick") == ["finished", "aborted", "retrying", "finished",
+                                         "aborted", "retrying", "finished", "verified"]
+
+
+def test_an_aborted_grasp_leads_to_a_new_plan(apartment: World,
+                                              apartment_navigator: Navigator) -> None:
+    done, events = _carry_out(apartment, apartment_navigator, "bring_object",
+                              ["pringles", "Alex"], seed=4,
+                              disturbances=DisturbanceModel(grasp_slip=0.5))
+    assert done and done.replans == 1 and len(done.plans) == 2
+    aborted = [r for r in done.operators if r.status == "aborted"]
+    assert [(r.operator, r.error, r.attempts) for r in aborted] == [
+        ("!grasp", "not_grasped", 3)]
+    # The new plan starts from what the robot believes: at the pantry, not yet announced again.
+    assert [step.operator for step in done.plans[1]][:2] == ["!find_object", "!grasp"]
+    assert [event.data["reason"] for event in events.of_kind("htn.replan")] == [
+        "the pringles slipped from my hand"]
+
+
+def test_per_operator_retries_are_the_users(apartment: World,
+                                            apartment_navigator: Navigator) -> None:
+    done, _ = _carry_out(apartment, apartment_navigator, "bring_object", ["pringles", "Alex"],
+                         seed=2, disturbances=DisturbanceModel(grasp_slip=0.5),
+                         retries={"!grasp": 0})
+    grasps = [r for r in done.operators if r.operator == "!grasp"]
+    assert grasps[0].attempts == 1 and grasps[0].status == "aborted" and done.replans >= 1
+
+
+def test_an_object_moved_away_is_searched_for(apartment: World,
+                                             apartment_navigator: Navigator) -> None:
+    done, events = _carry_out(apartment, apartment_navigator, "bring_object",
+                              ["pringles", "Alex"], seed=2,
+                              disturbances=DisturbanceModel(object_moved=1.0))
+    assert done and done.replans == 2
+    failed = [(r.operator, r.args[2], r.status, r.error) for r in done.operators
+              if r.status != "verified"]
+    assert failed == [("!find_object", "pantry", "failed", "not_found"),
+                      ("!find_object", "coffee table", "failed", "not_found")]
+    assert ("!search_object", ("robot", "pringles")) in [(r.operator, r.args)
+                                                          for r in done.operators]
+    assert "failed" in _statuses(events, "find_object")
+
+
+def test_closed_doors_are_opened_on_the_way(apartment: World,
+                                            apartment_navigator: Navigator) -> None:
+    done, events = _carry_out(apartment, apartment_navigator, "guide_person",
+                              ["Alex", "bedroom"], seed=2,
+                              disturbances=DisturbanceModel(door_closed=1.0))
+    assert done
+    assert [e.data["error"] for e in events.of_kind("recovery")] == ["door_closed"] * 3
+    assert "verified" in _statuses(events, "open_door")
+
+
+def test_giving_up_after_the_replanning_bound(apartment: World,
+                                              apartment_navigator: Navigator) -> None:
+    done, events = _carry_out(apartment, apartment_navigator, "bring_object",
+                              ["pringles", "Alex"], seed=1,
+                              disturbances=DisturbanceModel(grasp_slip=1.0), max_replans=2)
+    assert not done and done.replans == 3 and len(done.plans) == 3
+    assert "2 new plans did not help" in done.reason
+    assert done.speech[-1].startswith("I am sorry, I could not do it: the pringles slipped")
+    assert next(iter(events.of_kind("htn.end"))).data["success"] is False
+
+
+def test_same_seed_same_log(apartment: World, apartment_navigator: Navigator) -> None:
+    logs = [_carry_out(apartment, apartment_navigator, "bring_object", ["pringles", "Alex"],
+                       seed=4, disturbances=DisturbanceModel(grasp_slip=0.5))[1].to_json_lines()
+            for _ in range(2)]
+    assert logs[0] == logs[1]
