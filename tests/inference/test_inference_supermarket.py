@@ -23,10 +23,10 @@ def supermarket_navigator(supermarket: World) -> Navigator:
     return Navigator(supermarket)
 
 
-def _story(seed: int = 0) -> dict:
+def _story(seed: int = 0, *options: str) -> dict:
     parser = argparse.ArgumentParser()
     story.add_arguments(parser)
-    args = parser.parse_args([])
+    args = parser.parse_args(list(options))
     args.seed = seed
     return story.run(args, None)
 
@@ -47,6 +47,13 @@ def test_the_fig1_story_ends_with_malz_and_a_message_to_the_manager() -> None:
     assert first["assumed"]["heineken"] == "shelf_food"
     assert first["decision"] == ["heineken", "noodles"]
     assert second["ended"] == "ran_out"
+
+
+def test_with_little_to_spare_nothing_is_put_back_and_the_manager_hears_of_it() -> None:
+    summary = _story(0, "--r-max", "30")
+    assert summary["success"] and summary["delivered"] == ["malz"]
+    assert summary["put_back"] == []
+    assert "still misplaced: baguette, noodles" in summary["messages"][-1]
 
 
 def test_the_story_is_the_same_for_the_same_seed() -> None:

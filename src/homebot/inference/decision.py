@@ -82,8 +82,8 @@ def decide(request: Carry | None, pending: Sequence[Carry], here: str,
                 best = (value, plan.score, chosen, plan)
     if best is not None:
         return Decision(best[2], best[3], best[0], tuple(weighed), True)
-    if cheapest is None:
-        return None
+    if cheapest is None or len(cheapest[1]) > len(base) + len(forced):
+        return None  # over budget: only what must be done (the request, the hands) goes ahead
     _cost, chosen, plan = cheapest
     value = sum(rewards.request if carry is request else rewards.put_back for carry in chosen)
     return Decision(chosen, plan, value, tuple(weighed), False)
