@@ -15,6 +15,7 @@ from homebot.scenarios.library import supermarket as story
 from homebot.scenarios.runtime import SimulatedRun
 from homebot.sim import ScriptedResponder
 from homebot.skills import ErrorCode, Outcome
+from homebot.task import Step, Task
 from homebot.world import World
 
 
@@ -130,3 +131,18 @@ def test_a_declined_alternative_is_put_back_and_the_request_fails(
     assert inventory.out_of_stock("heineken")
     assert run.simulation.object_location["malz"] == "shelf drinks"
     assert [r.ended for r in cycle.records][-1] == "taken"
+
+
+def test_a_failed_find_ends_when_the_product_is_seen(
+        supermarket: World, supermarket_navigator: Navigator) -> None:
+    inventory = Inventory.load("supermarket")
+    cycle = InferenceCycle(inventory)
+    run = SimulatedRun.create(supermarket, navigator=supermarket_navigator, inference=cycle)
+    run.simulation.object_location["noodles"] = "shelf bread"
+    task = Task((Step("find_object", {"object": "noodles", "placement": "shelf food"}),
+                 Step("pick", {"object": "noodles"}), Step("navigate", {"to": "operator"}),
+                 Step("give", {"person": "operator", "object": "noodles"})))
+    report = run.run(task)
+    assert report.success
+    assert report.steps[0].status == "verified"
+    assert run.simulation.object_location["noodles"] == "person:customer"

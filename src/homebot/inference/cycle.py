@@ -96,19 +96,24 @@ class InferenceCycle:
             shelf = self._location(context)  # a retried take forgets where it looked
         if shelf is not None:
             self.inspect(context, shelf, sought=goal)
-        return self.pursue(context, goal, run)
+        return self.pursue(context, goal, run, take=skill == "pick")
 
-    def pursue(self, context: SkillContext, goal: str, run: StepRunner) -> Outcome:
-        """Recur diagnosis → decision → plan → execution until ``goal`` is in hand or impossible."""
+    def pursue(self, context: SkillContext, goal: str, run: StepRunner, *,
+               take: bool = True) -> Outcome:
+        """Recur diagnosis → decision → plan → execution until ``goal`` is in hand or impossible.
+
+        With ``take`` off (a failed find), the cycle ends when the robot sees the
+        product, and offers no alternative.
+        """
         wanted, offering = goal, False
         for _turn in range(self.max_turns):
-            if goal in self._held(context):
+            if take and goal in self._held(context):
                 return self._taken(context, wanted, goal, offering, run)
             diagnosis = self._diagnose(context, goal)
             if goal in diagnosis.ran_out or goal not in diagnosis.location:
                 self._ran_out(context, goal, diagnosis)
                 alternative = self.inventory.substitute(goal)
-                if (self.offer_alternatives and not offering and alternative is not None
+                if (take and self.offer_alternatives and not offering and alternative is not None
                         and alternative not in self.delivered
                         and not self.inventory.out_of_stock(alternative)):
                     goal, offering = alternative, True
@@ -119,13 +124,13 @@ class InferenceCycle:
             if decision is None:
                 self.records.append(CycleRecord(goal, diagnosis, None, "failed"))
                 return Outcome.failed(ErrorCode.NO_PATH, f"I cannot plan how to get the {goal}")
-            ended = self._execute(context, decision.plan, goal)
+            ended = self._execute(context, decision.plan, goal, take)
             self.records.append(CycleRecord(goal, diagnosis, decision,
                                             "surprise" if ended is None else (
                                                 "taken" if ended else "failed")))
             if ended is None:
                 continue
-            if not ended:
+            if not ended or not take:
                 return ended
             return self._taken(context, wanted, goal, offering, run)
         return Outcome.failed(ErrorCode.NOT_FOUND, f"I gave up looking for the {wanted}")
@@ -212,7 +217,8 @@ class InferenceCycle:
 
     # -- execution -----------------------------------------------------------------------------
 
-    def _execute(self, context: SkillContext, plan: Plan, goal: str) -> Outcome | None:
+    def _execute(self, context: SkillContext, plan: Plan, goal: str,
+                 take: bool = True) -> Outcome | None:
         """Run the plan up to going to the client: the outcome of taking ``goal``, or None.
 
         None means the world surprised the robot (a look or a take refuted the
@@ -232,6 +238,8 @@ class InferenceCycle:
                 observation = self.inspect(context, action.where, sought=action.product)
                 if observation is None or action.product not in observation.seen:
                     return None
+            elif action.kind == "take" and action.product == goal and not take:
+                return self._see(context, action.where, goal)
             elif action.kind == "take":
                 outcome = self._take(context, action)
                 if action.product == goal:
@@ -243,6 +251,14 @@ class InferenceCycle:
             elif not self._put_back(context, action):
                 return None
         return taken
+
+    def _see(self, context: SkillContext, shelf: str, goal: str) -> Outcome | None:
+        """A find's end: the product seen on the shelf (None: it is not there)."""
+        observation = self.inspect(context, shelf, sought=goal)
+        if observation is None or goal not in observation.seen:
+            return None
+        place = self.inventory.place(shelf)
+        return Outcome.verified(f"I see the {goal} on the {place}", object=goal, placement=place)
 
     def _take(self, context: SkillContext, action: BasicAction) -> Outcome | None:
         product, shelf = action.product, action.where
