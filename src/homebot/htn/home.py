@@ -160,10 +160,11 @@ def state_from_beliefs(world: World, beliefs: Beliefs, robot_pose: tuple[float, 
             atoms.append(("has", of(where[len("person:"):]), of(name)))
         atoms += [("ruled-out", of(name), of(p)) for p in sorted(beliefs.not_at.get(name, ()))]
     for person, position in beliefs.person_at.items():
-        room = world.room_at(*position)
+        person_room = world.room_at(*position)
         atoms.append(("person", of(person)))
-        if room is not None:
-            atoms += [("person-in", of(person), of(room)), ("room-of", of(person), of(room))]
+        if person_room is not None:
+            atoms += [("person-in", of(person), of(person_room)),
+                      ("room-of", of(person), of(person_room))]
     if world.model.operator:
         atoms.append(("operator", of(world.model.operator)))
     atoms += list(extra)
@@ -238,8 +239,8 @@ def goals_from_steps(steps: Sequence[Step], world: World,
         if step.skill == "pick":
             wanted = str(args["object"])
         elif step.skill == "give" and wanted is not None:
-            who = args.get("person") or person or "operator"
-            goals.append(Goal.of("serve", [wanted, str(who)], world, names))
+            who = str(args.get("person") or person or "operator")
+            goals.append(Goal.of("serve", [wanted, who], world, names))
             wanted = None
         elif step.skill == "place" and wanted is not None:
             goals.append(Goal.of("place_object", [wanted, str(args["placement"])], world, names))

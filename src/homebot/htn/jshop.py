@@ -28,10 +28,10 @@ _UNSUPPORTED = {":unordered": "this planner is total-order; list the subtasks in
 T = TypeVar("T")
 
 
-def _at(form: Any, source: str, build: Callable[[], T]) -> T:
-    """Run ``build``; a ``PlanningError`` it raises is prefixed by the form's place."""
+def _at(form: Any, source: str, build: Callable[..., T], *args: Any) -> T:
+    """Run ``build(*args)``; a ``PlanningError`` it raises is prefixed by the form's place."""
     try:
-        return build()
+        return build(*args)
     except PlanningError as error:
         if isinstance(form, Form) and not str(error).startswith(source):
             raise PlanningError(f"{form.where(source)}: {error}") from None
@@ -78,9 +78,9 @@ def _operator(form: Form, source: str) -> Operator:
             raise PlanningError(f"{form.where(source)}: the precondition, delete and add lists "
                                 f"of an operator are lists or nil, got '{part}'")
     cost = plain(items[5]) if len(items) == 6 else 1.0
-    return _at(form, source, lambda: Operator.declare(
-        plain(head), plain(items[2]), plain(items[3]) if items[3] != "nil" else [],
-        plain(items[4]) if items[4] != "nil" else [], cost))
+    return _at(form, source, Operator.declare,
+               plain(head), plain(items[2]), plain(items[3]) if items[3] != "nil" else [],
+               plain(items[4]) if items[4] != "nil" else [], cost)
 
 
 def _method(form: Form, source: str) -> Method:
@@ -96,12 +96,12 @@ def _method(form: Form, source: str) -> Method:
                                 f"{name or len(branches) + 1} needs a precondition and a task "
                                 "list")
         precondition, tasks = rest.pop(0), rest.pop(0)
-        branches.append((name, _at(precondition, source, lambda p=precondition: plain(p)),
-                         _at(tasks, source, lambda t=tasks: _tasks(t))))
+        branches.append((name, _at(precondition, source, plain, precondition),
+                         _at(tasks, source, _tasks, tasks)))
     if not branches:
         raise PlanningError(f"{form.where(source)}: (:method HEAD [NAME] PRECONDITION TASKS ...)"
                             " needs at least one precondition and task list")
-    return _at(form, source, lambda: Method.declare(plain(head), *branches))
+    return _at(form, source, Method.declare, plain(head), *branches)
 
 
 def _axiom(form: Form, source: str, domain: Domain) -> None:
@@ -115,7 +115,7 @@ def _axiom(form: Form, source: str, domain: Domain) -> None:
             if not rest:
                 raise PlanningError(f"{form.where(source)}: axiom branch '{name}' has no tail")
         branches.append((name, plain(rest.pop(0))))
-    _at(form, source, lambda: domain.declare_axiom(plain(head), *branches))
+    _at(form, source, domain.declare_axiom, plain(head), *branches)
 
 
 def _domain(form: Form, source: str) -> Domain:
@@ -134,7 +134,7 @@ def _domain(form: Form, source: str) -> Domain:
         keyword = item.items[0].lower()
         if keyword == ":operator":
             operator = _operator(item, source)
-            _at(item, source, lambda o=operator: domain.declare_operator(o))
+            _at(item, source, domain.declare_operator, operator)
         elif keyword == ":method":
             methods.append((domain.declare_method(_method(item, source)), item))
         elif keyword == ":-":
@@ -142,11 +142,11 @@ def _domain(form: Form, source: str) -> Domain:
         else:
             raise PlanningError(f"{item.where(source)}: unknown domain item '{item.items[0]}';"
                                 " use :operator, :method or :-")
-    for method, where in methods:
+    for method, method_form in methods:
         for branch in method.branches:
             for subtask in branch.subtasks:
-                _at(where, source, lambda t=subtask, m=method.task, b=branch.name: (
-                    domain.check_task(t, f"method '{m}' branch '{b}'")))
+                _at(method_form, source, domain.check_task, subtask,
+                    f"method '{method.task}' branch '{branch.name}'")
     return domain
 
 
@@ -161,9 +161,9 @@ def _problem(form: Form, source: str) -> Problem:
     if not isinstance(atoms, list):
         raise PlanningError(f"{form.where(source)}: the initial state is a list of atoms")
     return Problem(items[1], items[2],
-                   tuple(_at(atoms_form, source, lambda a=a: task_data(a)) for a in atoms),
-                   tuple(_at(tasks_form, source, lambda t=t: task_data(t))
-                         for t in _at(tasks_form, source, lambda: _tasks(tasks_form))))
+                   tuple(_at(atoms_form, source, task_data, atom) for atom in atoms),
+                   tuple(_at(tasks_form, source, task_data, task)
+                         for task in _at(tasks_form, source, _tasks, tasks_form)))
 
 
 def _forms(text: str, source: str) -> list[Form]:

@@ -149,10 +149,10 @@ class AtomPattern(Expression):
                 bound.append((i + 1, value))
         state = proof.state
         if not free:
-            atom = [self.predicate, *self.args]
+            wanted = [self.predicate, *self.args]
             for position, value in bound:
-                atom[position] = value
-            if tuple(atom) in state:
+                wanted[position] = value
+            if tuple(wanted) in state:
                 yield bindings
             return
         for atom in state.candidates(self.predicate, len(self.args), bound):

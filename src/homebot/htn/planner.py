@@ -12,7 +12,7 @@ place and undone on backtracking.
 from __future__ import annotations
 
 import time
-from collections.abc import Callable, Iterator, Sequence
+from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -110,7 +110,8 @@ class _Proof:
 
     __slots__ = ("axioms", "state")
 
-    def __init__(self, state: State, axioms: dict[tuple[str, int], list[Axiom]]) -> None:
+    def __init__(self, state: State,
+                 axioms: Mapping[tuple[str, int], Sequence[Axiom]]) -> None:
         self.state = state
         self.axioms = axioms
 
