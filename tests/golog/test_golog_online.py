@@ -7,7 +7,14 @@ from typing import Any
 import pytest
 
 from homebot.errors import GologError
-from homebot.golog import Interpreter, SimulatedExecutor, State, Theory, parse_procedures
+from homebot.golog import (
+    Interpreter,
+    SimulatedExecutor,
+    State,
+    Theory,
+    parse_procedures,
+    parse_program,
+)
 from homebot.golog.build import (
     conc,
     do,
@@ -138,11 +145,25 @@ def test_prob_is_resolved_by_the_seeded_generator() -> None:
     assert set(runs[0]) == {"tick", "toggle"}
 
 
-def test_an_action_the_world_refuses_fails_the_run() -> None:
+def test_an_action_the_world_refuses_fails_the_run_with_the_reason() -> None:
     theory = _switch()
-    theory.action("jump", precondition=lambda s: True)
-    truth_refuses = Theory("refuses")
-    executor = SimulatedExecutor(theory)
-    executor.theory = truth_refuses  # the world does not know how to jump
-    with pytest.raises(GologError):
-        Interpreter(theory, executor).run(do("jump"))
+    theory.action("enter", precondition=f("light"))
+    believed_on = State({("light",): True})
+    executor = SimulatedExecutor(theory, truth=State())  # in truth the light is off
+    run = Interpreter(theory, executor).run(seq("tick", "enter", "tick"), believed_on)
+    assert not run.success and run.reason == "enter failed: enter is not possible"
+    assert run.situation.history == (("tick",),)
+
+
+@pytest.mark.parametrize(("text", "words"), [
+    ("tick; tock", "'tock' is neither an action"),
+    ("tick(3)", "tick(3) has 1 argument(s); 'tick' takes 0"),
+    ("?(lihgt(1))", "did you mean 'light'?"),
+    ("?(light(1))", "the fluent light(1) has 1 argument(s); 'light' takes 0"),
+])
+def test_programs_are_checked_against_the_theory_before_they_run(text: str,
+                                                                 words: str) -> None:
+    theory = _switch()
+    with pytest.raises(GologError) as raised:
+        Interpreter(theory, SimulatedExecutor(theory)).run(parse_program(text))
+    assert words in str(raised.value)

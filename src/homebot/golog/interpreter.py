@@ -17,6 +17,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
+from homebot.golog.checking import check_program, check_theory
 from homebot.golog.policy import Result, policy_actions
 from homebot.golog.program import Program
 from homebot.golog.semantics import (
@@ -29,7 +30,7 @@ from homebot.golog.semantics import (
     final,
     transitions,
 )
-from homebot.golog.theory import GroundAction, State, Theory, action_text
+from homebot.golog.theory import GroundAction, Situation, State, Theory, action_text
 
 __all__ = ["Executor", "Interpreter", "Report", "Run", "SimulatedExecutor"]
 
@@ -144,6 +145,11 @@ class Run:
         return self.success
 
     @property
+    def situation(self) -> Situation:
+        """The situation reached: the state with the history of actions that led to it."""
+        return Situation(self.state, tuple(self.history))
+
+    @property
     def actions(self) -> list[str]:
         """The executed actions as text."""
         return [action_text(action) for action in self.history]
@@ -161,8 +167,14 @@ class Interpreter:
         self.max_replans = max_replans
 
     def run(self, program: Program, state: State | None = None) -> Run:
-        """Execute ``program`` from ``state`` (the theory's initial state by default)."""
+        """Execute ``program`` from ``state`` (the theory's initial state by default).
+
+        The program and the theory's procedures are checked first: an unknown
+        name or a wrong number of arguments raises ``GologError``.
+        """
         theory = self.theory
+        check_theory(theory)
+        check_program(theory, program)
         state = state if state is not None else theory.initial
         run = Run(False, state, [], [], [], 0)
         configuration = program

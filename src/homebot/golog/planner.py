@@ -233,7 +233,11 @@ def plan(theory: Theory, solve: Solve, state: State, *, memo: bool = True) -> Re
     horizon = solve.horizon.evaluate(theory, state)
     if not isinstance(horizon, int) or isinstance(horizon, bool):
         raise GologError(f"the horizon of {solve} must be a whole number, not {horizon!r}")
-    return Planner(theory, solve.reward, memo=memo).solve(solve.body, state, horizon)
+    try:
+        return Planner(theory, solve.reward, memo=memo).solve(solve.body, state, horizon)
+    except RecursionError:
+        raise GologError(f"the search of solve at horizon {horizon} is too deep for this "
+                         f"interpreter; lower the horizon") from None
 
 
 def project(theory: Theory, program: Program, state: State, condition: Expr,

@@ -57,10 +57,12 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
                               f"{str(entry['expected']).lower()}: re-planning",
                               highlight=False)
         console.print("the cups are in order" if in_order else "the cups are not in order")
-    return scenario_summary("cup_moved", outcome.success and in_order and bool(replans),
+    noticed = bool(replans) or not moved
+    return scenario_summary("cup_moved", outcome.success and in_order and noticed,
                             outcome.actions, [], exogenous=[" ".join(map(str, m)) for m in moved],
                             replans=len(replans), markers=[entry["marker"] for entry in replans],
-                            moves_after_disturbance=len(outcome.history) - after,
+                            moves_after_disturbance=len(outcome.history) - after if moved
+                            else None,
                             fewest_after_disturbance=_fewest_after(moved, after, outcome.history))
 
 
