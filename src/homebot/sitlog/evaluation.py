@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+from types import MappingProxyType
 from typing import TYPE_CHECKING, Any
 
 from homebot.errors import DialogueError
@@ -12,15 +14,15 @@ if TYPE_CHECKING:
 
 __all__ = ["as_term", "evaluate", "spoken", "truthy"]
 
-_COMPARISONS = {
+_COMPARISONS: Mapping[str, Any] = MappingProxyType({
     "<": lambda a, b: a < b, ">": lambda a, b: a > b,
     "=<": lambda a, b: a <= b, ">=": lambda a, b: a >= b,
     "=:=": lambda a, b: a == b, "=\\=": lambda a, b: a != b,
-}
-_ARITHMETIC = {
+})
+_ARITHMETIC: Mapping[str, Any] = MappingProxyType({
     "+": lambda a, b: a + b, "-": lambda a, b: a - b,
     "*": lambda a, b: a * b, "/": lambda a, b: a / b,
-}
+})
 
 
 def truthy(term: Term) -> bool:
@@ -189,10 +191,10 @@ def _unify_or_fail(left: Term, right: Term, env: Environment, where: Struct) -> 
                             f"{format_term(left)} does not match {format_term(right)}")
 
 
-_OPERATORS: dict[tuple[str, int], Any] = {
+_OPERATORS: Mapping[tuple[str, int], Any] = MappingProxyType({
     ("get", 1): _get, ("get", 2): _get, ("set", 2): _set,
     ("inc", 1): _step(1), ("inc", 2): _step(1), ("dec", 1): _step(-1), ("dec", 2): _step(-1),
     ("assign", 2): _assign, ("apply", 2): _apply, ("when", 3): _when,
     ("==", 2): _equal, ("\\==", 2): _equal, ("=", 2): _unifies, ("\\=", 2): _unifies,
     ("say", 1): _say, ("screen", 1): _say, ("history", 1): _history,
-}
+})

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from homebot.errors import DialogueError
-from homebot.sitlog.evaluation import evaluate, spoken
+from homebot.sitlog.evaluation import evaluate
 from homebot.sitlog.history import History, Transition, last_transition, transitions
 from homebot.sitlog.model import FINAL, RECURSIVE, DialogueModel, Program, Situation, functor_of
 from homebot.sitlog.perception import Body, Perception, RecordingBody, utterance_term
@@ -338,21 +338,3 @@ class _Copier:
         mapping = dict(self.own)
         return (copy_term(arc.expectation, mapping), copy_term(arc.action, mapping),
                 copy_term(arc.next, mapping))
-
-
-def said(result: RunResult) -> list[str]:
-    """Every text rendered by ``say``/``screen`` in the history, in order."""
-    texts = []
-    for transition in result.transitions():
-        for term in _actions(transition.action):
-            texts.append(spoken(term.args[0]))
-    return texts
-
-
-def _actions(term: Term) -> list[Struct]:
-    term = deref(term)
-    if isinstance(term, Struct) and term.functor in ("say", "screen") and term.arity == 1:
-        return [term]
-    if isinstance(term, tuple):
-        return [found for item in term for found in _actions(item)]
-    return []

@@ -10,9 +10,9 @@ logic variable bound in place (``bind`` records it on a ``Trail`` for undo).
 from __future__ import annotations
 
 import re
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
-from itertools import count
+from types import MappingProxyType
 
 from homebot.errors import DialogueError
 
@@ -62,21 +62,17 @@ class Struct:
         return format_term(self)
 
 
-_SERIAL = count()
-
-
 class Var:
     """A logic variable; ``ref`` is what it is bound to (None while unbound)."""
 
-    __slots__ = ("name", "ref", "serial")
+    __slots__ = ("name", "ref")
 
     def __init__(self, name: str = "_") -> None:
         self.name = name
         self.ref: Term | None = None
-        self.serial = next(_SERIAL)
 
     def __repr__(self) -> str:
-        return f"Var({self.name}#{self.serial})"
+        return f"Var({self.name}@{id(self):x})"
 
 
 Term = str | int | float | Text | Struct | Var | tuple  # tuple: a list of terms
@@ -210,14 +206,14 @@ def format_term(term: Term, *, operand: bool = False) -> str:
 # ---------------------------------------------------------------------------- parsing
 
 # Infix operators: priority and type, as in SWI-Prolog and SitLog's operator table.
-_INFIX: dict[str, tuple[int, str]] = {
+_INFIX: Mapping[str, tuple[int, str]] = MappingProxyType({
     "=>": (800, "xfx"), "==>": (800, "xfx"), "=>>": (850, "xfx"),
     "=": (700, "xfx"), "==": (700, "xfx"), "\\==": (700, "xfx"), "\\=": (700, "xfx"),
     "<": (700, "xfx"), ">": (700, "xfx"), "=<": (700, "xfx"), ">=": (700, "xfx"),
     "=:=": (700, "xfx"), "=\\=": (700, "xfx"), "is": (700, "xfx"),
     "+": (500, "yfx"), "-": (500, "yfx"), "*": (400, "yfx"), "/": (400, "yfx"),
     "mod": (400, "yfx"), ":": (200, "xfy"),
-}
+})
 _TOKEN = re.compile(
     r"""(?P<space>\s+|%[^\n]*)
       | (?P<number>\d+(?:\.\d+)?(?:[eE][+-]?\d+)?)

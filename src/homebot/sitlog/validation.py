@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import difflib
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
+from types import MappingProxyType
 
 from homebot.errors import DialogueError
 from homebot.sitlog.model import (
@@ -23,10 +24,10 @@ __all__ = ["GROUNDED_TYPES", "OPERATORS", "check_program"]
 GROUNDED_TYPES = frozenset({"speech", "vision", "people", "skill", "keyboard"})
 
 #: Operators of the functional language: name -> allowed arities.
-OPERATORS: dict[str, tuple[int, ...]] = {
+OPERATORS: Mapping[str, tuple[int, ...]] = MappingProxyType({
     "get": (1, 2), "set": (2,), "inc": (1, 2), "dec": (1, 2), "assign": (2,),
     "apply": (2,), "when": (3,), "say": (1,), "screen": (1,), "history": (1,),
-}
+})
 _VARIABLE_OPERATORS = frozenset({"get", "set", "inc", "dec"})
 
 
@@ -162,6 +163,5 @@ def _structs(term: Term | None) -> Iterator[Struct]:
             yield from _structs(item)
 
 
-def _listed(functions: object) -> str:
-    names = sorted(functions) if isinstance(functions, dict | type({}.keys())) else []
-    return ", ".join(names) if names else "none"
+def _listed(functions: Mapping[str, object]) -> str:
+    return ", ".join(sorted(functions)) or "none"

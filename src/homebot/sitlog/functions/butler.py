@@ -2,98 +2,36 @@
 
 They read and update the knowledge base of Listing 3 through ``ButlerHome`` (every
 update persisted in its SQLite store, with the simulated time and the reason),
-word the robot's lines, and interpret what the user says. What the task has
+and word the robot's lines (``butler_home`` hears what the user says). What the task has
 gathered (the order, what the robot carries, what it saw) lives in SitLog
 variables declared in ``butler.yaml``.
 """
 
 from __future__ import annotations
 
-import re
-from dataclasses import dataclass, field
-
 from homebot.knowledge import (
-    ANY,
     AddStatement,
     ChangeValue,
     Kind,
     Literal,
     RemoveStatement,
-    Update,
     parse_statement,
 )
-from homebot.knowledge.store import KnowledgeStore
 from homebot.sitlog.functions.behaviours import member
+from homebot.sitlog.functions.butler_home import (
+    ButlerHome,
+    hear_choice,
+    hear_mood,
+    hear_request,
+    hear_yes_no,
+    home_of,
+    items_of,
+)
 from homebot.sitlog.interpreter import Environment
 from homebot.sitlog.model import UserFunction
 from homebot.sitlog.terms import Struct, Term, Text, deref, resolve
-from homebot.skills import SkillContext
 
 __all__ = ["ButlerHome", "user_functions"]
-
-_YES = {"yes", "yeah", "yep", "sure", "ok", "okay", "please", "right"}
-_NO = {"no", "nope", "not"}
-_CLASS_WORDS = {"drink": "drink", "drinks": "drink", "eat": "food", "food": "food"}
-
-
-@dataclass
-class ButlerHome:
-    """What the butler's functions work with: the KB store, the skills, who the user is."""
-
-    store: KnowledgeStore
-    context: SkillContext
-    user_name: str = "Luis"
-    user_id: str = "user"
-    spoken_names: dict[str, str] = field(default_factory=lambda: {"bisquits": "biscuits"})
-    updates: list[str] = field(default_factory=list)
-
-    @property
-    def kb(self):  # type: ignore[no-untyped-def]
-        return self.store.kb
-
-    def update(self, update: Update, why: str) -> None:
-        """Apply and persist one KB update (simulated time, reason)."""
-        self.store.apply(update, when=self.context.robot.now(), why=why)
-        self.updates.append(f"{update} ({why})")
-
-    def spoken(self, entity: str) -> str:
-        """How the robot names an object or place: the KB's ``name``, else its id."""
-        if entity in self.spoken_names:
-            return self.spoken_names[entity]
-        if entity in self.kb.taxonomy.individuals:
-            name = self.kb.value(entity, "name")
-            if isinstance(name, str) and name not in ("unknown", "yes", "no"):
-                return name
-        return entity.replace("_", " ")
-
-    def stated_location(self, entity: str) -> str | None:
-        """Where the KB says an object belongs: its first unconditional ``loc`` default."""
-        for preference in self.kb.preferences(entity):
-            consequent = preference.consequent
-            if consequent.name == "loc" and not preference.antecedents and (
-                    isinstance(consequent.value, str) and consequent.value != ANY):
-                return consequent.value
-        return None
-
-    def comestibles(self) -> list[str]:
-        return list(self.kb.class_extension("comestible"))
-
-
-def _home(env: Environment) -> ButlerHome:
-    home = env.application
-    assert isinstance(home, ButlerHome), "the butler's models run with a ButlerHome"
-    return home
-
-
-def _words(text: Term) -> list[str]:
-    return re.findall(r"[a-z']+", str(resolve(text)).lower())
-
-
-def _mentioned(home: ButlerHome, words: list[str]) -> list[str]:
-    """Objects named in the words, in order (spoken names and ids both count)."""
-    names = {home.spoken(entity): entity for entity in home.comestibles()}
-    names.update({entity: entity for entity in home.comestibles()})
-    return [names[word] for word in words if word in names]
 
 
 def _capital(text: str) -> str:
@@ -101,67 +39,19 @@ def _capital(text: str) -> str:
 
 
 def _append(env: Environment, variable: str, item: Term) -> None:
-    env.set(variable, (*_items(env, variable), item))
-
-
-def _items(env: Environment, variable: str) -> tuple[Term, ...]:
-    value = resolve(env.get(variable))
-    return value if isinstance(value, tuple) else ()
-
-
-# ---------------------------------------------------------------- interpreters of speech
-
-def hear_yes_no(env: Environment, heard: Term, expectations: tuple[Term, ...]) -> Term:
-    """``yes`` or ``no`` from the first word that says it."""
-    for word in _words(heard):
-        if word in _YES:
-            return "yes"
-        if word in _NO:
-            return "no"
-    return Struct("unclear", (Text(str(resolve(heard))),))
-
-
-def hear_choice(env: Environment, heard: Term, expectations: tuple[Term, ...]) -> Term:
-    """``chose(Object)``: the object the user says they like."""
-    mentioned = _mentioned(_home(env), _words(heard))
-    return Struct("chose", (mentioned[-1],)) if mentioned else hear_yes_no(env, heard, ())
-
-
-def hear_mood(env: Environment, heard: Term, expectations: tuple[Term, ...]) -> Term:
-    """``mood(bad)`` or ``mood(good)`` from how the user says their day was."""
-    words = set(_words(heard))
-    if words & {"bad", "awful", "terrible", "horrible", "tiring"}:
-        return Struct("mood", ("bad",))
-    return Struct("mood", ("good",))
-
-
-def hear_request(env: Environment, heard: Term, expectations: tuple[Term, ...]) -> Term:
-    """``request([...])``: named objects and ``something(Class)`` for vague ones."""
-    home = _home(env)
-    text = str(resolve(heard)).lower()
-    items: list[Term] = []
-    for part in re.split(r",|\band\b", text):
-        words = _words(part)
-        named = _mentioned(home, words)
-        if named:
-            items.extend(named)
-            continue
-        classes = [_CLASS_WORDS[w] for w in words if w in _CLASS_WORDS]
-        if classes:
-            items.append(Struct("something", (classes[0],)))
-    return Struct("request", (tuple(items),)) if items else hear_yes_no(env, heard, ())
+    env.set(variable, (*items_of(env, variable), item))
 
 
 # ---------------------------------------------------------------- preferences (lines 1-10)
 
 def hello(env: Environment) -> Term:
-    return Text(f"Hi, {_home(env).user_name}.")
+    return Text(f"Hi, {home_of(env).user_name}.")
 
 
 def next_choice(env: Environment) -> Term:
     """``choice(Class, A, B)`` for the next class to ask about, healthier option first."""
-    home = _home(env)
-    pending = _items(env, "ask_about")
+    home = home_of(env)
+    pending = items_of(env, "ask_about")
     if not pending:
         return "none"
     env.set("ask_about", pending[1:])
@@ -176,7 +66,7 @@ def next_choice(env: Environment) -> Term:
 
 
 def choice_question(env: Environment, first: str, second: str) -> Term:
-    home = _home(env)
+    home = home_of(env)
     opening = "What" if resolve(env.get("asked")) == "true" else "Please tell me what"
     env.set("asked", "true")
     return Text(f"{opening} do you like best: {home.spoken(first)} or {home.spoken(second)}?")
@@ -184,7 +74,7 @@ def choice_question(env: Environment, first: str, second: str) -> Term:
 
 def record_choice(env: Environment, kind: str, chosen: str, first: str, second: str) -> Term:
     """Store the user's preference in the KB (``to_serve``) and comment on it (lines 4, 7)."""
-    home = _home(env)
+    home = home_of(env)
     other = second if chosen == first else first
     for weight, entity in ((1, chosen), (2, other)):
         statement = parse_statement(f"'-'=>>to_serve=>{entity}", weight)
@@ -200,13 +90,13 @@ def record_choice(env: Environment, kind: str, chosen: str, first: str, second: 
 
 
 def thank_user(env: Environment) -> Term:
-    return Text(f"Thank you, {_home(env).user_name}.")
+    return Text(f"Thank you, {home_of(env).user_name}.")
 
 
 # ---------------------------------------------------------------- the order (lines 11-19)
 
 def how_was_your_day(env: Environment) -> Term:
-    home = _home(env)
+    home = home_of(env)
     home.update(AddStatement(owner=home.user_id, kind=Kind.PROPERTY,
                              statement=parse_statement("back_from_work")),
                 f"{home.user_name} is back from work")
@@ -214,7 +104,7 @@ def how_was_your_day(env: Environment) -> Term:
 
 
 def note_mood(env: Environment, mood: str) -> Term:
-    home = _home(env)
+    home = home_of(env)
     if mood == "bad":
         home.update(AddStatement(owner=home.user_id, kind=Kind.PROPERTY,
                                  statement=parse_statement("bad_day")),
@@ -228,7 +118,7 @@ def offer_help(env: Environment, mood: str) -> Term:
 
 
 def note_request(env: Environment, items: tuple[Term, ...]) -> Term:
-    home = _home(env)
+    home = home_of(env)
     home.update(AddStatement(owner=home.user_id, kind=Kind.PROPERTY,
                              statement=parse_statement("asked_comestible")),
                 f"{home.user_name} asked for something to eat or drink")
@@ -244,8 +134,8 @@ def preferred_member(home: ButlerHome, kind: str) -> str | None:
 
 def next_request(env: Environment) -> Term:
     """What to make of the next requested item: ``vague``, ``named`` or ``preferred``."""
-    home = _home(env)
-    pending = _items(env, "requests")
+    home = home_of(env)
+    pending = items_of(env, "requests")
     if not pending:
         return "none"
     env.set("requests", pending[1:])
@@ -263,11 +153,11 @@ def next_request(env: Environment) -> Term:
 
 
 def favourite_offer(env: Environment, kind: str, favourite: str) -> Term:
-    return Text(f"Ok. I will bring you {_home(env).spoken(favourite)}, your favorite {kind}.")
+    return Text(f"Ok. I will bring you {home_of(env).spoken(favourite)}, your favorite {kind}.")
 
 
 def counter_offer(env: Environment, asked: str, better: str) -> Term:
-    home = _home(env)
+    home = home_of(env)
     return Text(f"But you like {home.spoken(better)} better than {home.spoken(asked)}! "
                 f"Shall I bring you the {home.spoken(asked)}?")
 
@@ -280,8 +170,8 @@ def add_to_order(env: Environment, entity: str) -> Term:
 
 def order_summary(env: Environment) -> Term:
     """Line 19: what will be brought, and the first thing to get."""
-    home = _home(env)
-    order = [home.spoken(str(item)) for item in _items(env, "order")]
+    home = home_of(env)
+    order = [home.spoken(str(item)) for item in items_of(env, "order")]
     listed = " and ".join(f"the {name}" for name in order)
     return Text(f"Ok. I will bring you {listed}. I will get the {order[0]}.")
 
@@ -290,21 +180,21 @@ def order_summary(env: Environment) -> Term:
 
 def next_to_fetch(env: Environment) -> Term:
     """``bring(Object)`` while something is left and a hand is free; says "I will get ..."."""
-    home = _home(env)
-    pending = _items(env, "to_fetch")
+    home = home_of(env)
+    pending = items_of(env, "to_fetch")
     if not pending or free_arm(env) == "none":
         return "none"
     env.set("to_fetch", pending[1:])
     entity = str(pending[0])
-    if entity != str(_items(env, "order")[0]):
+    if entity != str(items_of(env, "order")[0]):
         env.say(f"I will get the {home.spoken(entity)}.")
     return Struct("bring", (entity,))
 
 
 def next_location(env: Environment, entity: str) -> Term:
     """``at(Shelf)``: the next preferred location not yet searched (Appendix B.2)."""
-    home = _home(env)
-    tried = _items(env, "tried")
+    home = home_of(env)
+    tried = items_of(env, "tried")
     for location in home.kb.values(entity, "loc"):
         if location not in tried and location in home.context.world.placements:
             _append(env, "tried", location)
@@ -314,7 +204,7 @@ def next_location(env: Environment, entity: str) -> Term:
 
 def observe(env: Environment, shelf: str, seen: tuple[Term, ...], wanted: str) -> Term:
     """Note in the KB where each seen object was last seen; report a missing wanted one."""
-    home = _home(env)
+    home = home_of(env)
     for label in (str(item) for item in seen):
         if label not in home.kb.taxonomy.individuals:
             continue
@@ -322,7 +212,7 @@ def observe(env: Environment, shelf: str, seen: tuple[Term, ...], wanted: str) -
             home.update(ChangeValue(owner=label, kind=Kind.PROPERTY,
                                     statement=parse_statement(f"last_seen=>{shelf}")),
                         f"saw the {label} on {shelf}")
-        if label not in _items(env, "seen"):
+        if label not in items_of(env, "seen"):
             _append(env, "seen", label)
     if wanted not in [str(item) for item in seen]:
         verb = "are" if home.spoken(wanted).endswith("s") else "is"
@@ -332,33 +222,33 @@ def observe(env: Environment, shelf: str, seen: tuple[Term, ...], wanted: str) -
 
 def free_arm(env: Environment) -> Term:
     """The hand that has been free longest (``none`` when both hold something)."""
-    holding = _home(env).context.beliefs.holding
-    for hand in _items(env, "freed"):
+    holding = home_of(env).context.beliefs.holding
+    for hand in items_of(env, "freed"):
         if holding.get(str(hand), "") is None:
             return str(hand)
     return "none"
 
 
 def attempt_grab(env: Environment, entity: str, arm: str) -> Term:
-    return Text(f"Attempting to grab the {_home(env).spoken(entity)} with my {arm} arm.")
+    return Text(f"Attempting to grab the {home_of(env).spoken(entity)} with my {arm} arm.")
 
 
 def took(env: Environment, entity: str, shelf: str, arm: str) -> Term:
-    env.set("freed", tuple(h for h in _items(env, "freed") if str(h) != arm))
+    env.set("freed", tuple(h for h in items_of(env, "freed") if str(h) != arm))
     _append(env, "carried", Struct("carried", (entity, shelf, arm)))
-    return Text(f"I took the {_home(env).spoken(entity)}.")
+    return Text(f"I took the {home_of(env).spoken(entity)}.")
 
 
 # ---------------------------------------------------------------- delivering (lines 26-27)
 
 def user_name(env: Environment) -> Term:
-    return _home(env).user_name
+    return home_of(env).user_name
 
 
 def next_user_place(env: Environment) -> Term:
     """``room(Room)``: where the user most likely is, by the KB's preferences (B.2)."""
-    home = _home(env)
-    tried = _items(env, "tried")
+    home = home_of(env)
+    tried = items_of(env, "tried")
     for point in home.kb.values(home.user_id, "found_in"):
         room = home.spoken(str(point))
         if room not in tried and room in home.context.world.rooms:
@@ -370,7 +260,7 @@ def next_user_place(env: Environment) -> Term:
 
 def next_carried(env: Environment) -> Term:
     """``give(Object)`` for what was taken last, ``none`` when the hands are empty."""
-    carried = _items(env, "carried")
+    carried = items_of(env, "carried")
     if not carried:
         return "none"
     entity, shelf, arm = (deref(a) for a in deref(carried[-1]).args)  # type: ignore[union-attr]
@@ -381,15 +271,15 @@ def next_carried(env: Environment) -> Term:
 
 
 def after_delivery(env: Environment) -> Term:
-    return "fetch" if _items(env, "to_fetch") else "review"
+    return "fetch" if items_of(env, "to_fetch") else "review"
 
 
 # ---------------------------------------------------------------- the KB put right (lines 28-41)
 
 def next_relocated(env: Environment) -> Term:
     """``relocated(O, Found, Stated)`` for a delivered object taken off its stated shelf."""
-    home = _home(env)
-    pending = _items(env, "delivered")
+    home = home_of(env)
+    pending = items_of(env, "delivered")
     while pending:
         entity, shelf = (str(deref(a)) for a in deref(pending[0]).args)  # type: ignore[union-attr]
         pending = pending[1:]
@@ -401,7 +291,7 @@ def next_relocated(env: Environment) -> Term:
 
 
 def update_question(env: Environment, entity: str, found: str, stated: str) -> Term:
-    home = _home(env)
+    home = home_of(env)
     env.set("noticed", "true")
     name = home.spoken(entity)
     return Text(f"I found the {name} on {home.spoken(found)}, but it should be on "
@@ -410,7 +300,7 @@ def update_question(env: Environment, entity: str, found: str, stated: str) -> T
 
 
 def update_location(env: Environment, entity: str, found: str) -> Term:
-    home = _home(env)
+    home = home_of(env)
     statement = parse_statement(f"'-'=>>loc=>{found}", 1)
     home.update(AddStatement(owner=entity, kind=Kind.PROPERTY, statement=statement),
                 f"{home.user_name} agreed that the {entity} belong on {found}")
@@ -418,18 +308,18 @@ def update_location(env: Environment, entity: str, found: str) -> Term:
 
 
 def keep_location(env: Environment, entity: str, stated: str) -> Term:
-    home = _home(env)
+    home = home_of(env)
     return Text(f"Ok. I will keep {home.spoken(stated)} as the preferred location of "
                 f"{home.spoken(entity)}.")
 
 
 def next_misplaced(env: Environment) -> Term:
     """``misplaced(O, Where, Right)`` for an object seen off its shelf; marks it in the KB."""
-    home = _home(env)
-    ordered = {str(item) for item in _items(env, "order")}
-    pending = [str(item) for item in _items(env, "seen") if str(item) not in ordered]
+    home = home_of(env)
+    ordered = {str(item) for item in items_of(env, "order")}
+    pending = [str(item) for item in items_of(env, "seen") if str(item) not in ordered]
     for entity in pending:
-        env.set("seen", tuple(item for item in _items(env, "seen") if str(item) != entity))
+        env.set("seen", tuple(item for item in items_of(env, "seen") if str(item) != entity))
         where = home.kb.value(entity, "last_seen")
         right = home.stated_location(entity)
         if isinstance(where, str) and right is not None and where != right:
@@ -444,12 +334,13 @@ def next_misplaced(env: Environment) -> Term:
 def noticed(env: Environment, entity: str) -> Term:
     also = " also" if resolve(env.get("noticed")) == "true" else ""
     env.set("noticed", "true")
-    return Text(f"I{also} noticed that the {_home(env).spoken(entity)} is not in its right place.")
+    name = home_of(env).spoken(entity)
+    return Text(f"I{also} noticed that the {name} is not in its right place.")
 
 
 def explain(env: Environment, entity: str) -> Term:
     """Line 32: the most preferred explanation of ``misplaced`` by abduction (B.3)."""
-    home = _home(env)
+    home = home_of(env)
     name = home.spoken(entity)
     for explanation in home.kb.explanations(entity):
         if explanation.consequent == Literal("misplaced") and explanation.antecedents:
@@ -461,11 +352,11 @@ def explain(env: Environment, entity: str) -> Term:
 
 
 def will_take_back(env: Environment, right: str) -> Term:
-    return Text(f"Ok. I will take it to {_home(env).spoken(right)}.")
+    return Text(f"Ok. I will take it to {home_of(env).spoken(right)}.")
 
 
 def placed(env: Environment, entity: str, shelf: str, arm: str) -> Term:
-    home = _home(env)
+    home = home_of(env)
     home.update(ChangeValue(owner=entity, kind=Kind.PROPERTY,
                             statement=parse_statement(f"last_seen=>{shelf}")),
                 f"put the {entity} on {shelf}")
@@ -473,14 +364,14 @@ def placed(env: Environment, entity: str, shelf: str, arm: str) -> Term:
         home.update(RemoveStatement(owner=entity, kind=Kind.PROPERTY,
                                     statement=parse_statement("misplaced")),
                     f"the {entity} is back on {shelf}")
-    env.set("carried", tuple(c for c in _items(env, "carried")
+    env.set("carried", tuple(c for c in items_of(env, "carried")
                              if str(deref(deref(c).args[0])) != entity))  # type: ignore[union-attr]
     _append(env, "freed", arm)
     return Struct("placed", (entity, shelf))
 
 
 def put_back_line(env: Environment, entity: str) -> Term:
-    return Text(f"I put the {_home(env).spoken(entity)} on its right shelf.")
+    return Text(f"I put the {home_of(env).spoken(entity)} on its right shelf.")
 
 
 def left_there(env: Environment, entity: str) -> Term:
