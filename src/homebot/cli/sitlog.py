@@ -136,7 +136,7 @@ def _outline(program: Program) -> str:
         lines.append(f"{format_term(model.head)}  ({len(model.situations)} situations)")
         for situation in model.situations:
             extra = f" -> {format_term(situation.embedded_dm)}" if (
-                situation.type == RECURSIVE) else ""
+                situation.embedded_dm is not None) else ""
             lines.append(f"  {format_term(situation.id)} [{situation.type}]{extra}")
             if situation.type == FINAL:
                 continue

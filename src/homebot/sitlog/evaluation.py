@@ -63,7 +63,8 @@ def evaluate(term: Term, env: Environment) -> Term:
         return term
     handler = _OPERATORS.get((term.functor, term.arity))
     if handler is not None:
-        return handler(term, env)
+        value: Term = handler(term, env)
+        return value
     if term.arity == 2 and term.functor in _COMPARISONS:
         left, right = (resolve(evaluate(arg, env)) for arg in term.args)
         if isinstance(left, int | float) and isinstance(right, int | float):

@@ -75,7 +75,7 @@ class Var:
         return f"Var({self.name}@{id(self):x})"
 
 
-Term = str | int | float | Text | Struct | Var | tuple  # tuple: a list of terms
+Term = str | int | float | Text | Struct | Var | tuple["Term", ...]  # tuple: a list of terms
 
 
 @dataclass

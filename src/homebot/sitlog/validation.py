@@ -96,7 +96,7 @@ def _check_situation(program: Program, model: DialogueModel, situation: Situatio
 
 def _embedded(program: Program, situation: Situation) -> DialogueModel | None:
     key = _constant_key(situation.embedded_dm)
-    if key is None:
+    if key is None or situation.embedded_dm is None:
         return None
     if key not in program.models:
         known = ", ".join(f"{n}/{a}" for n, a in program.models)

@@ -139,7 +139,8 @@ def run_butler(*, prefers: str = "malz", refuse_update: bool = False, tidy: bool
         persisted = reopened.kb.to_text() == home.kb.to_text()
         reopened.close()
     truth = run.simulation.object_location
-    order = [str(item) for item in result.globals.get("order", ())]
+    ordered = result.globals.get("order", ())
+    order = [str(item) for item in ordered] if isinstance(ordered, tuple) else []
     delivered = all(truth.get(item) == "person:Luis" for item in order)
     transcript = _transcript(run)
     return scenario_summary(

@@ -20,7 +20,8 @@ def member(env: Environment, item: Term, items: Term, then: Term, otherwise: Ter
 
 def datum(env: Environment, data: Term, key: str) -> Term:
     """The value under ``key`` in a skill's data list ``[key==>value, ...]`` (``empty``)."""
-    for pair in resolve(data) if isinstance(resolve(data), tuple) else ():
+    values = resolve(data)
+    for pair in values if isinstance(values, tuple) else ():
         if isinstance(pair, Struct) and pair.functor == "==>" and pair.args[0] == key:
             return pair.args[1]
     return EMPTY

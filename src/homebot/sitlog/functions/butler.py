@@ -145,10 +145,9 @@ def next_request(env: Environment) -> Term:
         favourite = preferred_member(home, kind) or next(iter(home.kb.class_extension(kind)))
         return Struct("vague", (kind, favourite))
     entity = str(item)
-    kind = home.kb.classes_of_individual(entity)[0]
-    favourite = preferred_member(home, kind)
-    if favourite is not None and favourite != entity:
-        return Struct("named", (entity, favourite))
+    preferred = preferred_member(home, home.kb.classes_of_individual(entity)[0])
+    if preferred is not None and preferred != entity:
+        return Struct("named", (entity, preferred))
     return Struct("preferred", (entity,))
 
 
