@@ -26,7 +26,7 @@ from homebot.sitlog import (
     render_globals,
     render_history,
 )
-from homebot.sitlog.model import FINAL, RECURSIVE
+from homebot.sitlog.model import FINAL
 
 __all__ = ["register"]
 
