@@ -67,7 +67,7 @@ def _gtpyhop_state(gtpyhop: Any, state: State) -> Any:
         ruled_out={(atom[1], atom[2]) for atom in state.atoms("ruled-out")},
         closed={atom[1] for atom in state.atoms("door-closed")},
         only_door={atom[2]: atom[1] for atom in state.atoms("only-door")},
-        has=set(), told=set(), reported=set(), found=set(), with_person=set(),
+        has=set(), told=set(), reported=set(), found=set(),
     )
 
 
@@ -112,7 +112,6 @@ def _declare(gtpyhop: Any) -> None:
     def find_person(s: Any, r: str, who: str) -> Any:
         if s.room_of.get(s.at[r]) == s.person_in.get(who):
             s.at[r] = who
-            s.with_person.add(who)
             return s
         return None
 
