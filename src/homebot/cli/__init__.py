@@ -22,6 +22,7 @@ __all__ = ["COMMAND_GROUPS", "command_line_argument_parser", "main"]
 # Modules of this package that register command groups, in help order.
 COMMAND_GROUPS: tuple[str, ...] = (
     "demo", "do", "run_task", "parse", "scenario", "world", "bench", "kb", "plan", "sitlog",
+    "golog",
 )
 
 

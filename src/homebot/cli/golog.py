@@ -1,0 +1,111 @@
+"""``homebot golog check|plan|run``: read Golog programs, show solve's policy, run programs."""
+
+from __future__ import annotations
+
+import argparse
+import json
+from typing import Any
+
+from rich.console import Console
+
+from homebot.errors import GologError
+from homebot.golog import Interpreter, SimulatedExecutor, parse_program, policy_text
+from homebot.golog.checking import check_theory
+from homebot.golog.domains import domain_names, domain_theory
+from homebot.golog.library import load_procedures
+from homebot.golog.planner import Planner
+from homebot.golog.program import Call, Program, Solve
+from homebot.golog.semantics import unfold
+from homebot.golog.theory import Theory
+
+__all__ = ["register"]
+
+
+def register(subparsers: Any) -> None:
+    parser = subparsers.add_parser("golog", help="check, plan and run Golog programs")
+    commands = parser.add_subparsers(dest="golog_command", metavar="COMMAND")
+    check = commands.add_parser("check", help="read a program file and report problems")
+    check.add_argument("file", help="a .golog file of 'proc NAME ... endproc'")
+    check.add_argument("--domain", choices=domain_names(),
+                       help="also check names and arities against this domain's theory")
+    check.set_defaults(handler=_check)
+    for name, text in (("plan", "print the policy solve plans, with its markers"),
+                       ("run", "run a program on a pure simulation of the domain")):
+        sub = commands.add_parser(name, help=text)
+        sub.add_argument("program", help="a program, e.g. 'sort_cups(red, green, blue, 4)'")
+        sub.add_argument("--domain", required=True, choices=domain_names())
+        sub.add_argument("--file", help="a .golog file whose procedures to add to the domain")
+        sub.add_argument("--seed", type=int, default=0, help="seed for every random choice")
+        sub.add_argument("--json", action="store_true", help="print the result as JSON")
+        sub.set_defaults(handler=_plan if name == "plan" else _run)
+    parser.set_defaults(handler=_no_command)
+
+
+def _no_command(args: argparse.Namespace) -> int:
+    raise GologError("name a golog command: check, plan or run")
+
+
+def _theory(args: argparse.Namespace) -> Theory:
+    theory = domain_theory(args.domain)
+    if getattr(args, "file", None):
+        theory.define(*load_procedures(args.file))
+    check_theory(theory)
+    return theory
+
+
+def _check(args: argparse.Namespace) -> int:
+    procedures = load_procedures(args.file)
+    if args.domain:
+        theory = domain_theory(args.domain)
+        theory.define(*procedures)
+        check_theory(theory)
+    names = ", ".join(procedure.name for procedure in procedures) or "none"
+    print(f"{args.file}: {len(procedures)} procedure(s) ({names}); no problems found")
+    return 0
+
+
+def _solve_in(program: Program, theory: Theory) -> Solve:
+    for _ in range(50):
+        if isinstance(program, Solve):
+            return program
+        if isinstance(program, Call) and program.name in theory.procedures:
+            program = unfold(program, theory, theory.initial)
+            continue
+        break
+    raise GologError(f"'{program}' does not begin with solve(...); plan a procedure whose "
+                     f"body is a solve, such as sort_cups or navigate")
+
+
+def _plan(args: argparse.Namespace) -> int:
+    theory = _theory(args)
+    solve = _solve_in(parse_program(args.program, "<command line>"), theory)
+    horizon = solve.horizon.evaluate(theory, theory.initial)
+    planner = Planner(theory, solve.reward)
+    result = planner.solve(solve.body, theory.initial, int(horizon))
+    if args.json:
+        print(json.dumps({"value": result.value, "probability": result.probability,
+                          "nodes": planner.nodes, "policy": policy_text(result.policy)}))
+    else:
+        console = Console(highlight=False)
+        console.print(policy_text(result.policy))
+        console.print(f"value {result.value:g}, success probability {result.probability:g}, "
+                      f"{planner.nodes} nodes expanded")
+    return 0
+
+
+def _run(args: argparse.Namespace) -> int:
+    theory = _theory(args)
+    program = parse_program(args.program, "<command line>")
+    run = Interpreter(theory, SimulatedExecutor(theory, seed=args.seed),
+                      seed=args.seed).run(program)
+    if args.json:
+        print(json.dumps({"success": run.success, "actions": run.actions, "log": run.log,
+                          "replans": run.replans, "reason": run.reason}))
+    else:
+        console = Console(highlight=False)
+        for entry in run.log:
+            if entry["kind"] in ("action", "exogenous", "replan", "sensed"):
+                detail = entry.get("action") or entry.get("outcome") or entry.get("marker")
+                console.print(f"{entry['kind']}: {detail}")
+        console.print("done" if run.success else f"failed: {run.reason}")
+    return 0 if run.success else 1
