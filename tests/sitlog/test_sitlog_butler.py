@@ -157,3 +157,24 @@ def test_the_robot_lines_match_the_seed_paper(golem_paper: str,
     assert len(robot) == len(paper_run["speech"])
     for said, paper in zip(paper_run["speech"], robot, strict=True):
         assert _same(said, paper), (said, paper)
+
+
+def test_an_answer_not_understood_is_recovered_and_the_question_asked_again(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    from homebot.scenarios.library import butler
+
+    original = butler.LuisScript._answer
+    mumbled: list[str] = []
+
+    def mumbling(self: butler.LuisScript, question: str) -> str | None:
+        if "noodles or biscuits" in question and not mumbled:
+            mumbled.append(question)
+            return "Hmm, let me think."
+        return original(self, question)
+
+    monkeypatch.setattr(butler.LuisScript, "_answer", mumbling)
+    said = [_words(line) for line in run_butler()["speech"]]
+    asked = _words(PAPER_ROBOT_LINES[5])
+    at = said.index(asked)
+    assert said[at + 1: at + 3] == [_words("Sorry, I did not understand you."), asked]
+    assert said[at + 3] == _words(PAPER_ROBOT_LINES[7])

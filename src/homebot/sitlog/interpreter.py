@@ -39,6 +39,8 @@ from homebot.sitlog.terms import (
 
 __all__ = ["Environment", "Frame", "Interpreter", "RunResult"]
 
+_MAX_RECOVERIES = 3  #: recovery models run for one situation before the run gives up
+
 
 @dataclass
 class Frame:
@@ -142,15 +144,18 @@ class Interpreter:
         body: renders ``say``/``screen`` actions (default: remembers them).
         application: anything user functions need (``env.application``).
         max_steps: situations interpreted before the run is stopped as a loop.
+        on_transition: told of every transition as it is taken (an event log, a console).
     """
 
     def __init__(self, program: Program, perception: Perception, *, body: Body | None = None,
-                 application: Any = None, max_steps: int = 10_000) -> None:
+                 application: Any = None, max_steps: int = 10_000,
+                 on_transition: Callable[[Transition], None] | None = None) -> None:
         self.program = program
         self.perception = perception
         self.body: Body = body if body is not None else RecordingBody()
         self.application = application
         self.max_steps = max_steps
+        self.on_transition = on_transition
         self.trail = Trail()
         self.globals: dict[str, Term] = {k: resolve(v) for k, v in program.globals.items()}
         self.history: History = []
@@ -213,7 +218,7 @@ class Interpreter:
             raise DialogueError(f"{situation.place}: diag_mod does not match the call "
                                 f"{format_term(head)}")
         situation_id = resolve(copy_term(situation.id, own))
-        frame.history.append(Transition(frame.model.name, situation_id, EMPTY, EMPTY))
+        self._record(frame, Transition(frame.model.name, situation_id, EMPTY, EMPTY))
         if situation.out_arg is not None:
             env = Environment(self, frame)
             value = evaluate(copy_term(situation.out_arg, own), env)
@@ -231,7 +236,7 @@ class Interpreter:
             unify(copy(situation.in_arg), pipe, self.trail)
         for expression in situation.prog:
             evaluate(copy(expression), env)
-        tries = 0
+        tries = recoveries = 0
         while True:
             self._count_step(frame)
             arcs = [(arc, copy.fresh(arc)) for arc in situation.arcs]
@@ -254,6 +259,11 @@ class Interpreter:
                     f"{situation.place}: no expectation of {env.situation_name} was met "
                     f"{tries} times (last input {last}); expected one of: {expected}; add an "
                     "arc or a recovery model")
+            recoveries += 1
+            if recoveries > _MAX_RECOVERIES:
+                raise DialogueError(f"{situation.place}: {env.situation_name} was not recovered "
+                                    f"after {_MAX_RECOVERIES} tries of "
+                                    f"{format_term(recovery)}; the dialogue cannot go on")
             recovery_history: History = []
             frame.history.append(recovery_history)
             final, pipe = self._run_model(copy(recovery), pipe, recovery_history)
@@ -266,8 +276,8 @@ class Interpreter:
         _, action_term, next_term = arc_terms
         action = _action_value(action_term, env)
         following = evaluate(next_term, env)
-        frame.history.append(Transition(frame.model.name, resolve(copy(situation.id)),
-                                        resolve(expectation), resolve(action), resolve(following)))
+        self._record(frame, Transition(frame.model.name, resolve(copy(situation.id)),
+                                       resolve(expectation), resolve(action), resolve(following)))
         if situation.out_arg is not None:
             value = evaluate(copy(situation.out_arg), env)
             if not isinstance(deref(value), Var):
@@ -302,6 +312,11 @@ class Interpreter:
                 return arc_terms, expectation
             self.trail.undo(mark)
         return None
+
+    def _record(self, frame: Frame, transition: Transition) -> None:
+        frame.history.append(transition)
+        if self.on_transition is not None:
+            self.on_transition(transition)
 
     def _count_step(self, frame: Frame) -> None:
         self.steps += 1

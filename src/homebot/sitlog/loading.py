@@ -28,7 +28,8 @@ from homebot.sitlog.validation import check_program
 __all__ = ["load_program", "load_program_text", "shipped_dialogue_path"]
 
 _DATA_TOKEN = "$DATA"
-_TOP_KEYS = ("dialogue_models", "globals", "functions", "include", "main", "recovery", "types")
+_TOP_KEYS = ("dialogue_models", "globals", "functions", "include", "main", "recovery", "types",
+             "repeat")
 _MODEL_KEYS = ("id", "situations", "locals")
 _SITUATION_KEYS = ("id", "type", "in_arg", "out_arg", "prog", "arcs", "embedded_dm", "input",
                    "interpreter", "diag_mod", "recovery", "repeat")
@@ -127,6 +128,8 @@ class _Reader:
             raise DialogueError(f"{source}: the file is empty; add dialogue_models")
         file = _File(source, base)
         top = file.mapping(root, _TOP_KEYS, "the file")
+        if "repeat" in top:
+            file.default_repeat = file.repeat(top["repeat"])
         for node in file.sequence(top.get("include"), "include"):
             self.read_file(base / file.string(node, "an include"))
         for node in file.sequence(top.get("functions"), "functions"):
@@ -183,6 +186,7 @@ class _File:
     def __init__(self, source: str, base: Path) -> None:
         self.source = source
         self.base = base
+        self.default_repeat = 3
         self.constructor = yaml.SafeLoader("")
 
     def place(self, node: yaml.Node) -> str:
@@ -242,6 +246,13 @@ class _File:
         where = f"{self.source}, line {mark.line + 1}"
         return parse_term(str(node.value), where, variables, offset)
 
+    def repeat(self, node: yaml.Node) -> int:
+        value = self.term(node, {})
+        if not isinstance(value, int) or value < 1:
+            raise DialogueError(f"{self.place(node)}: repeat is a whole number of tries, 1 or "
+                                "more")
+        return value
+
     def model(self, node: yaml.Node) -> DialogueModel:
         fields = self.mapping(node, _MODEL_KEYS, "a dialogue model")
         if "id" not in fields:
@@ -279,13 +290,7 @@ class _File:
             body = self.term(fields["prog"], dict(shared))
             prog = body if isinstance(body, tuple) else (body,)
         arcs = tuple(self.arc(item, shared) for item in self.sequence(fields.get("arcs"), "arcs"))
-        repeat = 3
-        if "repeat" in fields:
-            repeat_value = self.term(fields["repeat"], {})
-            if not isinstance(repeat_value, int) or repeat_value < 1:
-                raise DialogueError(f"{self.place(fields['repeat'])}: repeat is a whole number "
-                                    "of tries, 1 or more")
-            repeat = repeat_value
+        repeat = self.repeat(fields["repeat"]) if "repeat" in fields else self.default_repeat
         interpreter = self.string(fields["interpreter"], "a function name") if (
             "interpreter" in fields) else None
         return Situation(values["id"], kind, arcs, values.get("in_arg"), values.get("out_arg"),

@@ -130,7 +130,9 @@ def run_butler(*, prefers: str = "malz", refuse_update: bool = False, tidy: bool
                         "a general health recommendation")
             interpreter = Interpreter(load_program("butler"),
                                       SkillPerception(run.context, person="Luis"),
-                                      body=SkillBody(run.context), application=home)
+                                      body=SkillBody(run.context), application=home,
+                                      on_transition=lambda step: run.context.events.record(
+                                          "sitlog.transition", transition=str(step)))
             result = interpreter.run()
             log = store.history()
         finally:

@@ -40,6 +40,7 @@ class ButlerHome:
         """Apply and persist one KB update (simulated time, reason)."""
         self.store.apply(update, when=self.context.robot.now(), why=why)
         self.updates.append(f"{update} ({why})")
+        self.context.events.record("kb.update", update=update.to_dict(), why=why)
 
     def spoken(self, entity: str) -> str:
         """How the robot names an object or place: the KB's ``name``, else its id."""
