@@ -14,7 +14,7 @@ from homebot.navigation import Navigator
 from homebot.scenarios.library import supermarket as story
 from homebot.scenarios.runtime import SimulatedRun
 from homebot.sim import ScriptedResponder
-from homebot.skills import ErrorCode, Outcome
+from homebot.skills import ErrorCode, Outcome, skill_named
 from homebot.task import Step, Task
 from homebot.world import World
 
@@ -146,3 +146,15 @@ def test_a_failed_find_ends_when_the_product_is_seen(
     assert report.success
     assert report.steps[0].status == "verified"
     assert run.simulation.object_location["noodles"] == "person:customer"
+
+
+def test_placing_a_named_product_never_puts_down_another(
+        supermarket: World, supermarket_navigator: Navigator) -> None:
+    run = SimulatedRun.create(supermarket, navigator=supermarket_navigator)
+    run.simulation.hands["left"] = "malz"
+    run.simulation.object_location["malz"] = "hand:left"
+    run.context.beliefs.took("malz", "left")
+    placed = skill_named("place").run(run.context, {"placement": "shelf food",
+                                                    "object": "noodles"})
+    assert placed.error is ErrorCode.NOT_HOLDING
+    assert run.simulation.hands["left"] == "malz"

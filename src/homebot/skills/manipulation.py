@@ -85,8 +85,9 @@ class Place(Skill):
         if placement not in context.world.placements:
             return Outcome.failed(ErrorCode.UNKNOWN_TARGET, f"I do not know the {placement}")
         wanted = args.get("object")
-        hand = context.beliefs.hand_holding(str(wanted) if wanted else None) or (
-            context.beliefs.hand_holding())
+        hand = context.beliefs.hand_holding(str(wanted) if wanted else None)
+        if hand is None and str(wanted) not in context.world.objects:
+            hand = context.beliefs.hand_holding()  # a category or pronoun: whatever is held
         if hand is None:
             return Outcome.failed(ErrorCode.NOT_HOLDING, "I am not holding anything to place")
         label = context.beliefs.holding[hand]
