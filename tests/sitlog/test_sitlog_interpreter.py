@@ -217,3 +217,27 @@ dialogue_models:
 """)
     assert _run(program, ["go(kitchen)"])[1] == ["cooking"]
     assert _run(program, ["go(garden)"])[1] == ["garden"]
+
+
+def test_higher_order_functions_yield_functions_to_apply() -> None:
+    def chooser(env: Environment, how: Term) -> Term:
+        return parse_term("double(_)") if how == "twice" else parse_term("negate(_)")
+
+    def double(env: Environment, value: Term) -> Term:
+        return value * 2 if isinstance(value, int) else 0
+
+    def negate(env: Environment, value: Term) -> Term:
+        return -value if isinstance(value, int) else 0
+
+    program = _program("""
+dialogue_models:
+  - id: main
+    situations:
+      - id: is
+        type: speech
+        arcs:
+          - "how(H) : say(apply(apply(chooser, [H]), [21])) => fs"
+      - {id: fs, type: final}
+""", {"chooser": chooser, "double": double, "negate": negate})
+    assert _run(program, ["how(twice)"])[1] == ["42"]
+    assert _run(program, ["how(other)"])[1] == ["-21"]
