@@ -62,3 +62,15 @@ def test_run_with_an_added_file(tmp_path: Path, capsys: pytest.CaptureFixture[st
 def test_run_reports_a_blocked_program_with_exit_1(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["golog", "run", "waitFor(alarm)", "--domain", "elevator"]) == 1
     assert "blocked" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(("argv", "words"), [
+    (["golog", "run", "pickBest(f, {1, 2}, up)", "--domain", "elevator"], "not a number"),
+    (["golog", "plan", "solve(x, reward, build_tower(3))", "--domain", "blocks"],
+     "must be a whole number"),
+    (["golog", "run", "up(", "--domain", "elevator"], "<command line>:1:4"),
+])
+def test_mistakes_on_the_command_line_exit_2(argv: list[str], words: str,
+                                             capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(argv) == 2
+    assert words in " ".join(capsys.readouterr().err.split())

@@ -13,7 +13,7 @@ from homebot.golog import Interpreter, SimulatedExecutor, parse_program, policy_
 from homebot.golog.checking import check_theory
 from homebot.golog.domains import domain_names, domain_theory
 from homebot.golog.library import load_procedures
-from homebot.golog.planner import Planner
+from homebot.golog.planner import Planner, horizon_of
 from homebot.golog.program import Call, Program, Solve
 from homebot.golog.semantics import unfold
 from homebot.golog.theory import Theory
@@ -79,9 +79,8 @@ def _solve_in(program: Program, theory: Theory) -> Solve:
 def _plan(args: argparse.Namespace) -> int:
     theory = _theory(args)
     solve = _solve_in(parse_program(args.program, "<command line>"), theory)
-    horizon = solve.horizon.evaluate(theory, theory.initial)
     planner = Planner(theory, solve.reward)
-    result = planner.solve(solve.body, theory.initial, int(horizon))
+    result = planner.solve(solve.body, theory.initial, horizon_of(theory, solve, theory.initial))
     if args.json:
         print(json.dumps({"value": result.value, "probability": result.probability,
                           "nodes": planner.nodes, "policy": policy_text(result.policy)}))

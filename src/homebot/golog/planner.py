@@ -61,7 +61,7 @@ from homebot.golog.semantics import (
 )
 from homebot.golog.theory import GroundAction, State, Theory
 
-__all__ = ["Planner", "better_second", "plan", "project"]
+__all__ = ["Planner", "better_second", "horizon_of", "plan", "project"]
 
 _NIL = PNil()
 _STOP = PStop()
@@ -85,7 +85,11 @@ class Planner:
         self.memo: dict[tuple[Stack, State, int], Result] | None = {} if memo else None
 
     def reward_of(self, state: State) -> float:
-        return float(self.reward.evaluate(self.theory, state))
+        value = self.reward.evaluate(self.theory, state)
+        if isinstance(value, bool) or not isinstance(value, int | float):
+            raise GologError(f"the reward {self.reward} is {value!r}, not a number; declare it "
+                             f"with theory.function('{self.reward}', lambda state: ...)")
+        return float(value)
 
     def solve(self, program: Program, state: State, horizon: int) -> Result:
         """The best policy for ``program`` from ``state`` within ``horizon`` actions."""
@@ -228,11 +232,17 @@ class Planner:
         return chosen
 
 
-def plan(theory: Theory, solve: Solve, state: State, *, memo: bool = True) -> Result:
-    """The policy ``solve(h, reward, σ)`` stands for in ``state``."""
+def horizon_of(theory: Theory, solve: Solve, state: State) -> int:
+    """The horizon of a ``solve``; anything but a whole number raises ``GologError``."""
     horizon = solve.horizon.evaluate(theory, state)
     if not isinstance(horizon, int) or isinstance(horizon, bool):
         raise GologError(f"the horizon of {solve} must be a whole number, not {horizon!r}")
+    return horizon
+
+
+def plan(theory: Theory, solve: Solve, state: State, *, memo: bool = True) -> Result:
+    """The policy ``solve(h, reward, σ)`` stands for in ``state``."""
+    horizon = horizon_of(theory, solve, state)
     try:
         return Planner(theory, solve.reward, memo=memo).solve(solve.body, state, horizon)
     except RecursionError:
