@@ -68,6 +68,10 @@ OPERATOR_SKILLS: Mapping[str, Callable[..., Step]] = {
 }
 
 
+def _searches_everywhere(step: Step) -> bool:
+    return step.skill == "find_object" and "placement" not in step.args
+
+
 def step_for(step: PlanStep, names: Names) -> Step:
     """The skill step that runs a plan step; an operator no skill runs raises ``PlanningError``."""
     from homebot.errors import PlanningError
@@ -111,6 +115,8 @@ class HtnRun:
     speech: list[str] = field(default_factory=list)
     reason: str = ""
     sim_time: float = 0.0
+    searched: set[str] = field(default_factory=set)  #: objects searched for everywhere in vain
+    forgotten: set[str] = field(default_factory=set)  #: objects whose misses were forgotten
 
     def __bool__(self) -> bool:
         return self.success
@@ -198,7 +204,7 @@ class PlanActor:
             if operator.internal:
                 continue
             skill_step = step_for(step, names)
-            outcome, attempts = self._run_operator(step, skill_step)
+            outcome, attempts = self._run_operator(step, skill_step, run)
             run.operators.append(OperatorReport(
                 step.operator, tuple(names.name(a) for a in step.args), skill_step.skill,
                 outcome.status.value, outcome.error.value if outcome.error else None,
@@ -207,6 +213,7 @@ class PlanActor:
                                        args=[names.name(a) for a in step.args],
                                        status=outcome.status.value, attempts=attempts,
                                        error=outcome.error.value if outcome.error else None)
+            self._remember(skill_step, outcome, run)
             if outcome.status is not Status.VERIFIED:
                 return outcome.message or (outcome.error.value if outcome.error else "failed")
             bindings = operator.bind((step.operator, *step.args)) or {}
@@ -219,8 +226,30 @@ class PlanActor:
                 return f"after {step.operator[1:]} I do not believe {missing[0]}"
         return None
 
-    def _run_operator(self, step: PlanStep, skill_step: Step) -> tuple[Outcome, int]:
+    def _remember(self, skill_step: Step, outcome: Outcome, run: HtnRun) -> None:
+        """What later skills need from this one, as the executive keeps it for GPSR steps.
+
+        A found object's placement is bound for the grasp (a missed second look must
+        not make the robot forget where it saw it). A whole-home search that found
+        nothing is noted: before searching for it again the robot forgets where it
+        did not see the object, since a detection may have missed it.
+        """
         context = self.context
+        if skill_step.skill == "find_object" and outcome:
+            found = outcome.data.get("object")
+            context.bindings[f"object:{skill_step.args['object']}"] = found
+            context.bindings[f"placement:{found}"] = outcome.data.get("placement")
+        if _searches_everywhere(skill_step) and outcome.error is ErrorCode.NOT_FOUND:
+            run.searched.add(str(skill_step.args["object"]))
+
+    def _run_operator(self, step: PlanStep, skill_step: Step,
+                      run: HtnRun) -> tuple[Outcome, int]:
+        context = self.context
+        wanted = str(skill_step.args.get("object"))
+        if _searches_everywhere(skill_step) and wanted in run.searched - run.forgotten:
+            run.forgotten.add(wanted)
+            context.beliefs.not_at.pop(wanted, None)
+            context.events.record("belief", what="forgot_not_at", object=wanted)
         events = context.events.events
         first = len(events)
         previous = context.retries.get(skill_step.skill)
