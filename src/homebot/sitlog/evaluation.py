@@ -123,7 +123,7 @@ def _assign(term: Struct, env: Environment) -> Term:
 
 def _apply(term: Struct, env: Environment) -> Term:
     function = deref(term.args[0])
-    if isinstance(function, Struct) and function.functor in ("apply", "get", "when"):
+    if isinstance(function, Struct) and function.functor in ("apply", "get"):
         function = deref(evaluate(function, env))  # a function that yields a function
     arguments = deref(evaluate(term.args[1], env))
     if not isinstance(arguments, tuple):
