@@ -5,7 +5,7 @@ from __future__ import annotations
 from homebot.events import EventLog
 from homebot.htn import Goal, HtnRun, Names, PlanActor, home_domain
 from homebot.navigation import Navigator
-from homebot.scenarios import SimulatedRun
+from homebot.scenarios import SimulatedRun, disturbed
 from homebot.world import DisturbanceModel, World
 
 
@@ -119,3 +119,21 @@ def test_same_seed_same_log(apartment: World, apartment_navigator: Navigator) ->
                        seed=4, disturbances=DisturbanceModel(grasp_slip=0.5))[1].to_json_lines()
             for _ in range(2)]
     assert logs[0] == logs[1]
+
+
+def test_a_missed_second_look_keeps_the_found_placement(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    done, _ = _carry_out(apartment, apartment_navigator, "place_object",
+                              ["cup", "dishwasher"], seed=1, disturbances=disturbed(1.0))
+    grasp = next(r for r in done.operators if r.operator == "!grasp")
+    assert done and done.replans == 0 and (grasp.status, grasp.attempts) == ("verified", 2)
+
+
+def test_a_vain_search_is_repeated_after_forgetting_the_misses(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    done, events = _carry_out(apartment, apartment_navigator, "place_object",
+                              ["cup", "dishwasher"], seed=5, disturbances=disturbed(1.0))
+    searches = [r.status for r in done.operators if r.operator == "!search_object"]
+    assert done and searches == ["failed", "verified"]
+    assert [e.data["object"] for e in events.of_kind("belief")
+            if e.data["what"] == "forgot_not_at"] == ["cup"]
