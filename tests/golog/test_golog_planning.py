@@ -6,7 +6,21 @@ import pytest
 
 from homebot.errors import GologError
 from homebot.golog import State, Theory, parse_program, plan, policy_actions, policy_text
-from homebot.golog.build import choice, const, do, eq, f, pi, pproj, prob, seq, solve, star
+from homebot.golog.build import (
+    choice,
+    conc,
+    const,
+    do,
+    eq,
+    f,
+    pi,
+    pproj,
+    prob,
+    seq,
+    solve,
+    star,
+    wait_for,
+)
 from homebot.golog.build import test as guard
 from homebot.golog.domains import blocks_theory
 from homebot.golog.planner import Planner, better_second, project
@@ -140,3 +154,20 @@ def test_an_unknown_action_is_named() -> None:
     theory = _counter()
     with pytest.raises(GologError, match="'jump' is not an action"):
         Planner(theory, f("reward")).solve(do("jump"), State(), 2)
+
+
+def test_concurrency_and_waiting_inside_solve_follow_the_transition_semantics() -> None:
+    theory = _counter()
+    result = Planner(theory, f("reward")).solve(
+        conc(seq("bump", "bump"), "reset"), State(), 5)
+    assert policy_actions(result.policy)[:2] == [("bump",), ("bump",)]  # priority goes first
+    blocked = Planner(theory, f("reward")).solve(wait_for(f("heads")), State(), 5)
+    assert blocked.probability == 0.0 and isinstance(blocked.policy, PStop)
+
+
+def test_progression_changes_only_what_an_action_affects() -> None:
+    theory = _counter()
+    start = State({("heads",): True, ("n",): 4})
+    after = theory.do(("reset",), start)
+    assert after.get(("n",)) == 0 and after.get(("heads",)) is True
+    assert start.get(("n",)) == 4  # states are values: the old one is unchanged
