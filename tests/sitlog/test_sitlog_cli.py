@@ -70,3 +70,22 @@ def test_a_malformed_file_exits_2_with_its_place(tmp_path: Path,
 
 def test_sitlog_without_a_command_exits_2(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["sitlog"]) == 2
+
+
+@pytest.mark.parametrize("name", ["appendix_a", "behaviours", "butler"])
+def test_every_edge_of_the_diagram_joins_declared_nodes(
+        name: str, capsys: pytest.CaptureFixture[str]) -> None:
+    import re
+
+    assert main(["sitlog", "show", name, "--dot"]) == 0
+    dot = capsys.readouterr().out
+    declared = set(re.findall(r'^\s*("[^"]+"|out_arg) \[', dot, re.M))
+    edges = re.findall(r'^\s*("[^"]+") -> ("[^"]+"|out_arg)', dot, re.M)
+    assert edges
+    assert {node for edge in edges for node in edge} <= declared
+    assert dot.count("{") == dot.count("}")
+
+
+def test_the_butler_needs_its_home(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["sitlog", "run", "butler"]) == 2
+    assert "homebot scenario butler" in " ".join(capsys.readouterr().err.split())

@@ -6,6 +6,7 @@ import re
 from dataclasses import dataclass, field
 from types import MappingProxyType
 
+from homebot.errors import DialogueError
 from homebot.knowledge import ANY, KnowledgeBase, Update
 from homebot.knowledge.store import KnowledgeStore
 from homebot.sitlog.interpreter import Environment
@@ -67,7 +68,9 @@ class ButlerHome:
 
 def home_of(env: Environment) -> ButlerHome:
     home = env.application
-    assert isinstance(home, ButlerHome), "the butler's models run with a ButlerHome"
+    if not isinstance(home, ButlerHome):
+        raise DialogueError(f"{env.place}: the butler's dialogue models need the butler's home "
+                            "(its KB and robot); run them with homebot scenario butler")
     return home
 
 
