@@ -97,6 +97,10 @@ class Result:
     probability: float
     policy: Policy
 
+    def __bool__(self) -> bool:
+        """True when the policy can succeed at all."""
+        return self.probability > 0.0
+
 
 def policy_actions(policy: Policy) -> list[GroundAction]:
     """The actions along the most likely path of a policy."""

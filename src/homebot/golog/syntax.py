@@ -73,11 +73,11 @@ _TOKEN = re.compile(r"""
   | (?P<symbol>\|\||!=|<=|>=|[|;,(){}?=<>&!+\-*/:∧∨¬≠])
 """, re.VERBOSE)
 _SYMBOL_ALIASES = {"∧": "&", "∨": "|", "¬": "!", "≠": "!=", "and": "&", "or": "|", "not": "!"}
-_END_OF_SEQUENCE = {"endproc", "endwhile", "endif", "else", "endwithCtrl", ")", "|", "||",
-                    "<end>"}
+_END_OF_SEQUENCE = frozenset({"endproc", "endwhile", "endif", "else", "endwithCtrl", ")", "|",
+                              "||", "<end>"})
 
-_KEYWORDS = {"proc", "endproc", "while", "do", "endwhile", "if", "then", "else", "endif",
-             "withCtrl", "endwithCtrl", "in"}
+_KEYWORDS = frozenset({"proc", "endproc", "while", "do", "endwhile", "if", "then", "else",
+                       "endif", "withCtrl", "endwithCtrl", "in"})
 
 
 @dataclass(frozen=True, slots=True)

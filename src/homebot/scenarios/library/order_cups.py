@@ -52,7 +52,8 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
         console.print(f"cups at {initial}; wanted at p1, p2, p3: {', '.join(goal)}")
         if outcome.plans:
             console.print(policy_text(outcome.plans[0].policy, markers=False), highlight=False)
-        console.print(f"{len(moves)} moves (fewest possible: {fewest}); "
+        console.print(f"{len(moves)} move{'' if len(moves) == 1 else 's'} (fewest possible: "
+                      f"{fewest}); "
                       f"{'in order' if in_order else 'not in order'}")
     return scenario_summary("order_cups", outcome.success and in_order and len(moves) == fewest,
                             outcome.actions, speech, initial=initial, goal=list(goal),
