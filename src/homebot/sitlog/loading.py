@@ -166,7 +166,7 @@ class _Reader:
                 module_spec.loader.exec_module(module)
             else:
                 module = importlib.import_module(spec)
-        except ImportError as error:
+        except Exception as error:  # any failure of the user's code is the file's problem
             raise DialogueError(f"{file.place(node)}: cannot import functions '{spec}' "
                                 f"({error}); give a module path or a .py file") from None
         provider = getattr(module, "user_functions", None)
