@@ -4,12 +4,14 @@ from __future__ import annotations
 
 import argparse
 import json
+from pathlib import Path
 
 import pytest
 
 from homebot.bench import inference as bench
 from homebot.cli import scenario
 from homebot.inference import InferenceCycle, Inventory, fetch_task
+from homebot.knowledge.store import KnowledgeStore
 from homebot.navigation import Navigator
 from homebot.scenarios.library import supermarket as story
 from homebot.scenarios.runtime import SimulatedRun
@@ -158,3 +160,15 @@ def test_placing_a_named_product_never_puts_down_another(
                                                     "object": "noodles"})
     assert placed.error is ErrorCode.NOT_HOLDING
     assert run.simulation.hands["left"] == "malz"
+
+
+def test_what_ran_out_is_remembered_in_the_kb_store(tmp_path: Path) -> None:
+    store = tmp_path / "supermarket.db"
+    first = _story(0, "--kb-store", str(store))
+    second = _story(0, "--kb-store", str(store))
+    assert first["success"] and second["success"]
+    assert second["cycles"][0]["ran_out"] == ["heineken"]
+    assert "We ran out of heineken." in second["speech"]
+    with KnowledgeStore.open(store) as kept:
+        assert kept.kb.value("heineken", "out_of_stock") == "yes"
+        assert any("ran out of heineken" in entry.why for entry in kept.history())

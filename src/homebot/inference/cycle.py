@@ -296,6 +296,7 @@ class InferenceCycle:
     def _ran_out(self, context: SkillContext, goal: str, diagnosis: Diagnosis) -> None:
         self.records.append(CycleRecord(goal, diagnosis, None, "ran_out"))
         if self.inventory.out_of_stock(goal):
+            speak(context, f"We ran out of {goal}.")  # known already: the manager knows too
             return
         text = f"We ran out of {goal}."
         self.inventory.believe_out_of_stock(goal, text)

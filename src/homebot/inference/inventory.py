@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from homebot.errors import KnowledgeError
@@ -14,6 +15,7 @@ from homebot.knowledge import (
     RemoveStatement,
     Update,
 )
+from homebot.knowledge.store import KnowledgeStore
 
 __all__ = ["CUSTOMER", "ROBOT", "Inventory", "KbChange"]
 
@@ -42,24 +44,44 @@ class Inventory:
     individuals of class ``product``. Where a product is believed to be is the
     value of its ``loc`` relation: the class default, or the individual's own
     exception. Every update goes through ``KnowledgeBase.apply`` and is kept in
-    ``changes``.
+    ``changes``; with a ``store`` it is also saved (with ``clock()`` as its time).
     """
 
-    def __init__(self, kb: KnowledgeBase) -> None:
-        self.kb = kb
+    def __init__(self, kb: KnowledgeBase, *, store: KnowledgeStore | None = None,
+                 clock: Callable[[], float] | None = None) -> None:
+        self.kb = store.kb if store is not None else kb
+        self.store = store
+        self.clock = clock or (lambda: 0.0)
         self.changes: list[KbChange] = []
         for needed in ("shelf", "product"):
-            if needed not in kb.taxonomy.classes:
+            if needed not in self.kb.taxonomy.classes:
                 raise KnowledgeError(f"a supermarket KB needs the class '{needed}'; add "
                                      f"class({needed},entity,[],[],[...]) (see supermarket.kb)")
-        self.shelves: tuple[str, ...] = tuple(kb.class_extension("shelf"))
-        self.products: tuple[str, ...] = tuple(kb.class_extension("product"))
+        self.shelves: tuple[str, ...] = tuple(self.kb.class_extension("shelf"))
+        self.products: tuple[str, ...] = tuple(self.kb.class_extension("product"))
         self._home = {product: self._home_shelf(product) for product in self.products}
 
     @classmethod
     def load(cls, spec: str = "supermarket") -> Inventory:
         """The inventory of a shipped KB name or a KB file."""
         return cls(KnowledgeBase.load(spec))
+
+    @classmethod
+    def kept_in(cls, path: str, spec: str = "supermarket",
+                clock: Callable[[], float] | None = None) -> Inventory:
+        """An inventory saved in the SQLite store ``path``, made from ``spec`` the first time.
+
+        What the robot learnt in one session (what ran out, what is misplaced) is
+        what it believes at the start of the next.
+        """
+        from pathlib import Path
+
+        if Path(path).is_file():
+            store = KnowledgeStore.open(path)
+        else:
+            store = KnowledgeStore.create(path, KnowledgeBase.load(spec).taxonomy,
+                                          when=(clock or (lambda: 0.0))(), why=f"from {spec}")
+        return cls(store.kb, store=store, clock=clock)
 
     # -- shelves ------------------------------------------------------------------------------
 
@@ -189,5 +211,8 @@ class Inventory:
                                         statement=Literal(_OUT)), text)
 
     def _apply(self, update: Update, text: str) -> None:
-        self.kb.apply(update)
+        if self.store is not None:
+            self.store.apply(update, when=self.clock(), why=text or "the robot's own action")
+        else:
+            self.kb.apply(update)
         self.changes.append(KbChange(text, update))

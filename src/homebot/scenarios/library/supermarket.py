@@ -38,16 +38,20 @@ _CUSTOMER_SAYS = {
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--r-max", type=float, default=240.0,
                         help="the most (expected) seconds a decision may cost (r_max)")
+    parser.add_argument("--kb-store", metavar="FILE", default=None,
+                        help="keep the robot's KB in this SQLite store across runs")
 
 
 def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     """The Fig. 1 story; success is the Malz in the customer's hands and the KB up to date."""
     world = World.load("supermarket")
-    inventory = Inventory.load("supermarket")
+    inventory = Inventory.load("supermarket") if not args.kb_store else Inventory.kept_in(
+        args.kb_store)
     cycle = InferenceCycle(inventory, r_max=args.r_max, seed=args.seed)
     simulated = SimulatedRun.create(
         world, seed=args.seed, inference=cycle,
         responder=ScriptedResponder({"customer": _CUSTOMER_SAYS}))
+    inventory.clock = simulated.robot.now
     simulated.simulation.object_location.update(STORY_TRUTH)
     context = simulated.context
 
@@ -85,7 +89,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
         console.print(f"delivered: {', '.join(delivered) or 'nothing'}; put back: "
                       f"{', '.join(put_back) or 'nothing'}; "
                       f"{simulated.robot.now():.0f} s simulated")
-    return scenario_summary(
+    summary = scenario_summary(
         "supermarket", success, report_actions(report) if report else [],
         [text for who, text in dialogue if who == "robot"],
         dialogue=[{"who": who, "text": text} for who, text in dialogue],
@@ -93,6 +97,9 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
         cycles=[record.to_dict() for record in cycle.records],
         kb_changes=[change.text for change in inventory.changes if change.text],
         sim_time=round(simulated.robot.now(), 2))
+    if inventory.store is not None:
+        inventory.store.close()
+    return summary
 
 
 def _old_enough(context: Any, inventory: Inventory, product: str) -> bool:
