@@ -84,8 +84,15 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     if console is not None:
         for who, text in dialogue:
             console.print(f"  {who}: {text}", highlight=False)
+        for number, record in enumerate(cycle.records, 1):
+            facts = record.to_dict()
+            assumed = ", ".join(f"{p} on {s}" for p, s in facts["assumed"].items()) or "-"
+            console.print(f"  [inference {number}] goal {facts['goal']}; assumed: {assumed}; "
+                          f"ran out: {', '.join(facts['ran_out']) or '-'}; plan: "
+                          f"{' '.join(facts['plan']) or '-'} ({facts['ended']})",
+                          highlight=False, markup=False)
         for message in cycle.messages:
-            console.print(f"  [text to the manager] {message}", highlight=False)
+            console.print(f"  [text to the manager] {message}", highlight=False, markup=False)
         console.print(f"delivered: {', '.join(delivered) or 'nothing'}; put back: "
                       f"{', '.join(put_back) or 'nothing'}; "
                       f"{simulated.robot.now():.0f} s simulated")
