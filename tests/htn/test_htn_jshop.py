@@ -65,7 +65,7 @@ def test_reading_from_a_file(tmp_path: Path) -> None:
     ("(defdomain d (\n  (:operator (!a) () ())))", "2:3", "4 or 5 parts"),
     ("(defdomain d (\n  (:method (t) () ((!missing)))))", "2:3", "'!missing' is neither"),
     ("(defdomain d (\n  (:method (t)\n     (:unordered (a) (b)) nil)))", "3:6", ":unordered"),
-    ("(defdomain d ((:operator (!a) ((p ?x (q))) () ())))", "1:15", "must be names"),
+    ("(defdomain d ((:operator (!a) ((assign x 1)) () ())))", "1:15", "needs a variable"),
     ("(defdomain d ((:operator (!a) ((call frob 1)) () ())))", "1:15", "unknown function"),
     ("(defdomain d ((:bogus)))", "1:15", "unknown domain item"),
     ("(defdomain d ((:operator (!a) () () ()) 'x))", "1:41", "Lisp quoting"),
@@ -113,3 +113,39 @@ def test_mutated_domain_gives_errors_never_crashes(start: int, length: int, inse
     problem = read_problem_text(PROBLEM)[0]
     with contextlib.suppress(PlanningError):
         find_plans(domain, State(problem.atoms), problem.tasks, max_expansions=2000)
+
+
+ERRANDS = """\
+; list terms, dotted pairs and a variable add list, as SHOP2 domains use them
+(defdomain errands
+  ((:operator (!buy ?item) ((sells shop ?item)) () ((bought ?item)))
+   (:operator (!!remember ?facts) () () ?facts 0)
+   (:method (shop (?item . ?rest)) () ((!buy ?item) (shop ?rest)))
+   (:method (shop nil) () ((!!remember ((done shopping) (list (bought-all yes))))))
+   (:method (errands) ((wants (?first . ?others))) ((shop (?first . ?others))))))
+"""
+
+
+def test_list_terms_dotted_pairs_and_variable_effects() -> None:
+    domain = read_domain_text(ERRANDS, "errands.jshop")
+    state = State([("sells", "shop", item) for item in ("milk", "bread", "eggs")])
+    state.add(("wants", ("milk", "bread", "eggs")))
+    plan = find_plans(domain, state, [("errands",)]).plans[0]
+    assert plan.actions()[:3] == [("!buy", "milk"), ("!buy", "bread"), ("!buy", "eggs")]
+    assert plan.actions()[3] == ("!!remember", (("done", "shopping"), ("list", ("bought-all",
+                                                                                  "yes"))))
+    assert plan.cost == 3
+    state.remove(("sells", "shop", "eggs"))
+    assert not find_plans(domain, state, [("errands",)])
+    problem = read_problem_text("(defproblem p errands ((sells shop tea)) ((shop (tea))))")[0]
+    assert problem.tasks == (("shop", ("tea",)),)
+    assert find_plans(domain, State(problem.atoms), problem.tasks).plans[0].actions() == [
+        ("!buy", "tea"), ("!!remember", (("done", "shopping"), ("list", ("bought-all", "yes"))))]
+
+
+def test_a_variable_effect_must_hold_atoms() -> None:
+    domain = read_domain_text("(defdomain d ((:operator (!!note ?x) () () ?x)))")
+    with pytest.raises(PlanningError, match="list of atoms"):
+        find_plans(domain, State(), [("!!note", "oops")])
+    with pytest.raises(PlanningError, match="forall effects are not supported"):
+        read_domain_text("(defdomain d ((:operator (!a) () () ((forall (?x) ((p ?x)) ((q ?x)))))))")

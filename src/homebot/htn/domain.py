@@ -20,7 +20,18 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from homebot.errors import PlanningError
-from homebot.htn.logic import Axiom, Call, Expression, expression, ground, template, term
+from homebot.htn.logic import (
+    Axiom,
+    Call,
+    Expression,
+    expression,
+    ground,
+    is_ground,
+    list_term,
+    template,
+    term,
+    unify,
+)
 from homebot.htn.state import Atom, Term, is_variable
 
 __all__ = ["Branch", "Domain", "Method", "Operator", "Problem", "task_data"]
@@ -32,15 +43,12 @@ def _name_and_params(head: Sequence[Any], what: str) -> tuple[str, tuple[Term, .
     items = list(head) if not isinstance(head, str) else head.split()
     if not items or not isinstance(items[0], str):
         raise PlanningError(f"a {what} head is (NAME ?param ...), got '{head}'")
-    for item in items[1:]:
-        if not isinstance(item, str | int | float):
-            raise PlanningError(f"the parameters of {what} '{items[0]}' must be variables or "
-                                f"names, got '{item}'")
-    return items[0], tuple(items[1:])
+    return items[0], tuple(list_term(item) for item in items[1:])
 
 
-def _positions(patterns: tuple[tuple[Term, ...], ...]) -> tuple[tuple[int, ...], ...]:
-    return tuple(template(pattern)[1] for pattern in patterns)
+def _positions(patterns: tuple[Any, ...]) -> tuple[tuple[int, ...], ...]:
+    return tuple(() if isinstance(pattern, str) else template(pattern)[1]
+                 for pattern in patterns)
 
 
 def _bind_head(params: tuple[Term, ...], variables: tuple[bool, ...],
@@ -56,23 +64,22 @@ def _bind_head(params: tuple[Term, ...], variables: tuple[bool, ...],
                 bindings[param] = value
             elif previous != value:
                 return None
+        elif isinstance(param, tuple):
+            if not unify(param, value, bindings):
+                return None
         elif param != value:
             return None
     return bindings
 
 
 def task_data(task: Sequence[Any]) -> tuple[Term, ...]:
-    """A task or atom from plain data, its items checked to be names, numbers or variables."""
+    """A task or atom from plain data: names, numbers, variables, lists (``nil`` is ``()``)."""
     if not isinstance(task, str | Sequence):
         raise PlanningError(f"a task is (NAME ARG...), got '{task}'")
     items = tuple(task.split()) if isinstance(task, str) else tuple(task)
     if not items or not isinstance(items[0], str):
         raise PlanningError(f"a task is (NAME ARG...), got '{task}'")
-    for item in items[1:]:
-        if not isinstance(item, str | int | float):
-            raise PlanningError(f"the arguments of '{items[0]}' must be names, numbers or "
-                                f"variables, got '{item}'")
-    return items
+    return (items[0], *(list_term(item) for item in items[1:]))
 
 
 @dataclass(frozen=True)
@@ -85,8 +92,8 @@ class Operator:
     name: str
     params: tuple[Term, ...]
     precondition: Expression
-    delete: tuple[tuple[Term, ...], ...] = ()
-    add: tuple[tuple[Term, ...], ...] = ()
+    delete: tuple[Any, ...] = ()  #: atom patterns, or variables bound to lists of atoms
+    add: tuple[Any, ...] = ()
     cost: Term = 1.0
     _delete_variables: tuple[tuple[int, ...], ...] = field(init=False, repr=False,
                                                             compare=False)
@@ -100,10 +107,8 @@ class Operator:
 
     def effects(self, bindings: dict[str, Term]) -> tuple[list[Atom], list[Atom]]:
         """The ground delete and add lists under ``bindings``."""
-        return ([ground(atom, bindings, positions)
-                 for atom, positions in zip(self.delete, self._delete_variables, strict=True)],
-                [ground(atom, bindings, positions)
-                 for atom, positions in zip(self.add, self._add_variables, strict=True)])
+        return (_effect_atoms(self.name, self.delete, self._delete_variables, bindings),
+                _effect_atoms(self.name, self.add, self._add_variables, bindings))
 
     @classmethod
     def declare(cls, head: Sequence[Any], precondition: Any = (), delete: Iterable[Any] = (),
@@ -122,8 +127,7 @@ class Operator:
         elif not isinstance(cost, int | float) and not is_variable(cost):
             raise PlanningError(f"the cost of '{name}' must be a number, got '{cost}'")
         return cls(name, params, expression(precondition),
-                   tuple(task_data(atom) for atom in _atoms(delete)),
-                   tuple(task_data(atom) for atom in _atoms(add)), cost_term)
+                   _effect_list(name, delete), _effect_list(name, add), cost_term)
 
     @property
     def internal(self) -> bool:
@@ -138,6 +142,43 @@ class Operator:
         if not isinstance(value, int | float):
             raise PlanningError(f"the cost of '{self.name}' is not a number: '{value}'")
         return float(value)
+
+
+def _effect_list(operator: str, data: Any) -> tuple[Any, ...]:
+    """Effect atoms; a variable stands for a list of atoms bound by the time it applies."""
+    if is_variable(data):
+        return (data,)
+    effects = []
+    for atom in _atoms(data):
+        if is_variable(atom):
+            effects.append(atom)
+            continue
+        made = task_data(atom)
+        if made[0] == "forall":
+            raise PlanningError(f"operator '{operator}': forall effects are not supported; "
+                                "list the atoms, or bind a list variable in the precondition")
+        effects.append(made)
+    return tuple(effects)
+
+
+def _effect_atoms(operator: str, patterns: tuple[Any, ...], positions: tuple[tuple[int, ...], ...],
+                  bindings: dict[str, Term]) -> list[Atom]:
+    atoms: list[Atom] = []
+    for pattern, where in zip(patterns, positions, strict=True):
+        if isinstance(pattern, str):
+            value = bindings.get(pattern)
+            if not isinstance(value, tuple) or not all(
+                    isinstance(atom, tuple) and atom for atom in value):
+                raise PlanningError(f"operator '{operator}': {pattern} must be bound to a list "
+                                    f"of atoms, got '{value}'")
+            atoms.extend(value)
+        else:
+            atom = ground(pattern, bindings, where)
+            if not all(is_ground(atom[i]) for i in where):
+                raise PlanningError(f"operator '{operator}' has an effect {atom} with an unbound"
+                                    " variable; bind it in the head or the precondition")
+            atoms.append(atom)
+    return atoms
 
 
 def _atoms(data: Iterable[Any]) -> list[Any]:

@@ -1,11 +1,14 @@
 """JSHOP2 / SHOP2 domain and problem files: ``(defdomain ...)`` and ``(defproblem ...)``.
 
-Supported: ``(:operator HEAD PRE DEL ADD [COST])``, ``(:method HEAD [NAME] PRE
-TASKS ...)``, ``(:- HEAD [NAME] TAIL ...)``, preconditions with ``and``, ``or``,
-``not``, ``imply``, ``forall``, ``call``, ``assign`` and ``:first``, task lists
-with an optional ``:ordered``. Not supported (total-order planning only):
-``:unordered``, ``:sort-by``, ``:protection`` and ``:immediate``; each is
-reported with its line and column. Every error names file, line and column.
+Supported: ``(:operator HEAD PRE DEL ADD [COST])`` (a delete or add list may be
+a variable bound to a list of atoms, as SHOP2's ``!!assert ?g``), ``(:method HEAD
+[NAME] PRE TASKS ...)``, ``(:- HEAD [NAME] TAIL ...)``, preconditions with
+``and``, ``or``, ``not``, ``imply``, ``forall``, ``call``, ``assign`` and
+``:first``, list terms with dotted tails (``(?first . ?rest)``; ``nil`` is the
+empty list), task lists with an optional ``:ordered``. Not supported
+(total-order planning only): ``:unordered``, ``:sort-by``, ``:protection``,
+``:immediate`` and ``forall`` in effects; each is reported with its line and
+column. Every error names file, line and column. Symbols are case-sensitive.
 """
 
 from __future__ import annotations
@@ -74,13 +77,13 @@ def _operator(form: Form, source: str) -> Operator:
         raise PlanningError(f"{form.where(source)}: (:operator HEAD PRECONDITION DELETE ADD "
                             f"[COST]) has 4 or 5 parts after :operator, got {len(items) - 1}")
     for part in items[2:5]:
-        if not isinstance(part, Form) and part != "nil":
+        if not isinstance(part, Form) and part != "nil" and not (
+                isinstance(part, str) and part.startswith("?")):
             raise PlanningError(f"{form.where(source)}: the precondition, delete and add lists "
                                 f"of an operator are lists or nil, got '{part}'")
     cost = plain(items[5]) if len(items) == 6 else 1.0
     return _at(form, source, Operator.declare,
-               plain(head), plain(items[2]), plain(items[3]) if items[3] != "nil" else [],
-               plain(items[4]) if items[4] != "nil" else [], cost)
+               plain(head), plain(items[2]), plain(items[3]), plain(items[4]), cost)
 
 
 def _method(form: Form, source: str) -> Method:

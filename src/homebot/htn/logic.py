@@ -33,8 +33,12 @@ __all__ = [
     "Proof",
     "expression",
     "ground",
+    "is_ground",
+    "list_term",
+    "substitute",
     "template",
     "term",
+    "unify",
 ]
 
 Bindings = dict[str, Term]
@@ -83,10 +87,61 @@ def term(value: Term, bindings: Mapping[str, Term]) -> Term:
     return value
 
 
+def is_ground(value: Term) -> bool:
+    """Whether a term has no variables (list terms are looked into)."""
+    if isinstance(value, tuple):
+        for item in value:
+            if isinstance(item, str):
+                if item[:1] == "?":
+                    return False
+            elif isinstance(item, tuple) and not is_ground(item):
+                return False
+        return True
+    return not (isinstance(value, str) and value[:1] == "?")
+
+
+def substitute(value: Term, bindings: Mapping[str, Term]) -> Term:
+    """A term under ``bindings``, list terms included (``(?head . ?tail)`` is spliced)."""
+    if isinstance(value, str):
+        return bindings.get(value, value) if value[:1] == "?" else value
+    if isinstance(value, tuple):
+        if len(value) >= 2 and value[-2] == ".":
+            tail = substitute(value[-1], bindings)
+            head = tuple(substitute(item, bindings) for item in value[:-2])
+            return head + tail if isinstance(tail, tuple) else (*head, ".", tail)
+        return tuple(substitute(item, bindings) for item in value)
+    if isinstance(value, Call):
+        return value.evaluate(bindings)
+    return value
+
+
+def unify(pattern: Term, value: Term, bindings: Bindings) -> bool:
+    """Match a pattern against a ground value, extending ``bindings`` in place."""
+    if isinstance(pattern, str) and pattern[:1] == "?":
+        previous = bindings.get(pattern)
+        if previous is None:
+            bindings[pattern] = value
+            return True
+        return bool(previous == value)
+    if isinstance(pattern, tuple):
+        if not isinstance(value, tuple):
+            return False
+        if len(pattern) >= 2 and pattern[-2] == ".":
+            fixed = len(pattern) - 2
+            return len(value) >= fixed and all(
+                unify(p, v, bindings) for p, v in zip(pattern[:fixed], value, strict=False)
+            ) and unify(pattern[-1], value[fixed:], bindings)
+        return len(pattern) == len(value) and all(
+            unify(p, v, bindings) for p, v in zip(pattern, value, strict=True))
+    return bool(pattern == value)
+
+
 def template(items: Sequence[Term]) -> tuple[tuple[Term, ...], tuple[int, ...]]:
-    """A pattern and the positions of its variables, for ``ground``."""
+    """A pattern and the positions of its variables and list terms with variables."""
     pattern = tuple(items)
-    return pattern, tuple(i for i, item in enumerate(pattern) if is_variable(item))
+    return pattern, tuple(i for i, item in enumerate(pattern)
+                          if is_variable(item) or (isinstance(item, tuple)
+                                                   and not is_ground(item)))
 
 
 def ground(pattern: Sequence[Term], bindings: Mapping[str, Term],
@@ -103,7 +158,8 @@ def ground(pattern: Sequence[Term], bindings: Mapping[str, Term],
         return tuple(pattern)
     items = list(pattern)
     for i in positions:
-        items[i] = bindings.get(items[i], items[i])
+        item = items[i]
+        items[i] = bindings.get(item, item) if isinstance(item, str) else substitute(item, bindings)
     return tuple(items)
 
 
@@ -115,7 +171,9 @@ class AtomPattern(Expression):
     def __init__(self, predicate: str, args: tuple[Term, ...], computed: bool = False) -> None:
         self.predicate = predicate
         self.args = args
-        self.computed = computed  #: some argument is a ``(call ...)``
+        #: some argument is a ``(call ...)`` or a list term with variables
+        self.computed = computed or any(isinstance(a, tuple) and not is_ground(a)
+                                        for a in args)
         self._variables = tuple((i, a) for i, a in enumerate(args) if is_variable(a))
         self._constants = tuple((i + 1, a) for i, a in enumerate(args)
                                 if not is_variable(a) and not isinstance(a, Call))
@@ -133,7 +191,7 @@ class AtomPattern(Expression):
     def solve(self, proof: Proof, bindings: Bindings) -> Iterator[Bindings]:
         axioms = proof.axioms.get((self.predicate, len(self.args)))
         if self.computed or axioms:
-            resolved = tuple(term(a, bindings) for a in self.args)
+            resolved = tuple(substitute(a, bindings) for a in self.args)
             yield from _match_state(proof.state, self.predicate, resolved, bindings)
             for axiom in axioms or ():
                 yield from axiom.prove(proof, resolved, bindings)
@@ -176,24 +234,19 @@ class AtomPattern(Expression):
 
 def _match_state(state: State, predicate: str, resolved: tuple[Term, ...],
                  bindings: Bindings) -> Iterator[Bindings]:
-    free = [i for i, a in enumerate(resolved) if is_variable(a)]
-    if not free:
+    """The general matcher: any argument may be a variable or a list term with variables."""
+    open_positions = [i for i, a in enumerate(resolved) if not is_ground(a)]
+    if not open_positions:
         if (predicate, *resolved) in state:
             yield bindings
         return
-    bound = [(i + 1, a) for i, a in enumerate(resolved) if not is_variable(a)]
+    bound = [(i + 1, a) for i, a in enumerate(resolved) if i not in open_positions]
     for atom in state.candidates(predicate, len(resolved), bound):
+        if any(atom[position] != value for position, value in bound):
+            continue
         new = dict(bindings)
-        for i in free:
-            name, value = resolved[i], atom[i + 1]
-            previous = new.get(name)
-            if previous is None:
-                new[name] = value
-            elif previous != value:
-                break
-        else:
-            if all(atom[position] == value for position, value in bound):
-                yield new
+        if all(unify(resolved[i], atom[i + 1], new) for i in open_positions):
+            yield new
 
 
 @dataclass(frozen=True, slots=True)
@@ -315,17 +368,11 @@ class Axiom:
               bindings: Bindings) -> Iterator[Bindings]:
         """Bindings of the goal's free variables under which the head is derived."""
         local: Bindings = {}
-        links: list[tuple[str, Term]] = []
+        links: list[tuple[Term, Term]] = []
         for head, wanted in zip(self.args, goal, strict=True):
-            if is_variable(wanted):
+            if not is_ground(wanted):
                 links.append((wanted, head))
-            elif is_variable(head):
-                previous = local.get(head)
-                if previous is None:
-                    local[head] = wanted
-                elif previous != wanted:
-                    return
-            elif head != wanted:
+            elif not unify(head, wanted, local):
                 return
         for _, tail in self.branches:
             proved = False
@@ -335,14 +382,9 @@ class Axiom:
                     yield bindings
                     continue
                 result = dict(bindings)
-                for variable, head in links:
-                    value = solution.get(head) if is_variable(head) else head
-                    if value is None:
-                        continue
-                    previous = result.get(variable)
-                    if previous is None:
-                        result[variable] = value
-                    elif previous != value:
+                for wanted, head in links:
+                    value = substitute(head, solution)
+                    if is_ground(value) and not unify(wanted, value, result):
                         break
                 else:
                     yield result
@@ -421,17 +463,27 @@ def _arity(keyword: str, rest: Sequence[Any], count: int) -> None:
 
 
 def _check_term(item: Any, predicate: str) -> None:
-    if isinstance(item, str | int | float):
+    if isinstance(item, str | int | float | Sequence):
         return
-    if isinstance(item, Sequence) and item and item[0] == "call":
-        return
-    raise PlanningError(f"the arguments of ({predicate} ...) must be names, numbers or "
-                        f"variables, got '{item}'")
+    raise PlanningError(f"the arguments of ({predicate} ...) must be names, numbers, "
+                        f"variables or lists, got '{item}'")
 
 
 def _term_data(item: Any) -> Term:
     if isinstance(item, Sequence) and not isinstance(item, str) and item and item[0] == "call":
         return call(item[1:])
-    if isinstance(item, Sequence) and not isinstance(item, str):
-        raise PlanningError(f"expected a name, number, variable or (call ...), got '{item}'")
-    return item
+    return list_term(item)
+
+
+def list_term(item: Any) -> Term:
+    """A term from plain data: lists become tuples (list terms), ``nil`` the empty list."""
+    if item == "nil":
+        return ()
+    if isinstance(item, str | int | float):
+        return item
+    if isinstance(item, Sequence):
+        items = tuple(list_term(part) for part in item)
+        if "." in items[:-2] or (items[-1:] == (".",)):
+            raise PlanningError(f"a dotted list is (item ... . ?rest), got '{item}'")
+        return items
+    raise PlanningError(f"expected a name, number, variable or list, got '{item}'")

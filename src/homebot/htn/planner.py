@@ -19,7 +19,7 @@ from typing import Any
 from homebot.errors import PlanningError
 from homebot.htn.domain import Domain, task_data
 from homebot.htn.logic import Axiom
-from homebot.htn.state import Atom, State, Term, is_variable
+from homebot.htn.state import State, Term, is_variable
 
 __all__ = ["DecompositionNode", "Plan", "PlanStep", "Planner", "PlanningResult",
            "find_cheapest_plan", "find_plan", "find_plans"]
@@ -154,10 +154,8 @@ class Planner:
             for bindings in operator.precondition.solve(proof, start):
                 deletes, adds = operator.effects(bindings)
                 for atom in deletes:
-                    _check_ground(atom, name)
                     state.remove(atom)
                 for atom in adds:
-                    _check_ground(atom, name)
                     state.add(atom)
                 cost = operator.cost_of(bindings)
                 network.append(DecompositionNode(parent, task, None))
@@ -264,13 +262,6 @@ class Planner:
 
 
 _EXHAUSTED: Any = object()
-
-
-def _check_ground(atom: Atom, operator: str) -> None:
-    for item in atom:
-        if isinstance(item, str) and item[:1] == "?":
-            raise PlanningError(f"operator '{operator}' has an effect {atom} with an unbound "
-                                "variable; bind it in the head or the precondition")
 
 
 def find_plan(domain: Domain, state: State, tasks: Sequence[Sequence[Any]],
