@@ -87,7 +87,8 @@ def _run(args: argparse.Namespace) -> int:
             raise DialogueError(f"{args.input_file}: cannot read it ({error.strerror})") from None
     console = None if args.json else Console(highlight=False, markup=False)
     keyboard = _prompt if sys.stdin.isatty() and not args.json else None
-    spoken = ScriptedPerception(inputs, read_line=keyboard)
+    spoken = ScriptedPerception(inputs, read_line=keyboard, show=(
+        lambda text: console.print(f"robot asks ({text})")) if console else None)
     body = RecordingBody(echo=(lambda text: console.print(f"robot: {text}")) if console else None)
     perception: Any = spoken
     application = None

@@ -167,7 +167,7 @@ class Interpreter:
         if isinstance(call, str):
             call = parse_term(call, "<call>")
         call = call if call is not None else self.program.main_model.head
-        pipe = pipe if pipe is not None else Var("Pipe")
+        pipe = pipe if pipe is not None else Var("_Pipe")
         final, pipe = self._run_model(call, pipe, self.history)
         return RunResult(resolve(final), resolve(pipe), dict(self.globals), self.history,
                          self.steps)

@@ -70,6 +70,7 @@ class ScriptedPerception:
 
     inputs: Iterable[str | Term] = ()
     read_line: Callable[[str], str] | None = None
+    show: Callable[[str], None] | None = None  #: shown each situation's input (the question)
     consumed: list[Term] = field(default_factory=list)
 
     def __post_init__(self) -> None:
@@ -77,6 +78,10 @@ class ScriptedPerception:
 
     def perceive(self, kind: str, request: Term | None, expectations: Sequence[Term],
                  env: Environment) -> Term | None:
+        if self.show is not None and request is not None:
+            from homebot.sitlog.evaluation import spoken
+
+            self.show(f"{kind}: {spoken(request)}")
         item = next(self._pending, None)
         if item is None and self.read_line is not None:
             try:
