@@ -54,3 +54,16 @@ def test_find_scans_placements_in_order() -> None:
     variables, result, _ = _call(_home(), "find(noodles, [shelf_food], Where)")
     assert resolve(variables["Where"]) == "none"
     assert format_term(result.final) == "not_found"
+
+
+def test_move_asks_someone_in_the_doorway_to_let_it_through() -> None:
+    run = SimulatedRun.create(_home(), seed=1)
+    run.simulation.place_person_in_doorway("kids room door", "Tom")
+    variables: dict[str, Var] = {}
+    term = parse_term("move('toy box', Status)", "<test>", variables)
+    body = SkillBody(run.context)
+    Interpreter(load_program("behaviours"), SkillPerception(run.context), body=body,
+                application=run.context).run(term)
+    assert resolve(variables["Status"]) == "ok"
+    said = [event.data["text"] for event in run.simulation.events.of_kind("speech")]
+    assert said == ["Excuse me, Tom, could you please let me through?", "Thank you!"]

@@ -2,11 +2,13 @@
 
 from __future__ import annotations
 
+from homebot.robot import HelpRequest
 from homebot.sitlog.interpreter import Environment
 from homebot.sitlog.model import UserFunction
 from homebot.sitlog.terms import EMPTY, Struct, Term, resolve
+from homebot.skills import SkillContext, speak
 
-__all__ = ["datum", "first", "member", "rest", "user_functions"]
+__all__ = ["datum", "first", "let_me_through", "member", "rest", "user_functions"]
 
 
 def member(env: Environment, item: Term, items: Term, then: Term, otherwise: Term) -> Term:
@@ -39,5 +41,21 @@ def rest(env: Environment, items: Term) -> Term:
     return values[1:] if isinstance(values, tuple) else ()
 
 
+def let_me_through(env: Environment, person: Term, door: Term) -> Term:
+    """Ask the person standing in a doorway to step aside: ``yes`` if they did, else ``no``.
+
+    Works through the Robot port of the skill context the program runs with (the
+    application itself, or its ``context``).
+    """
+    context = env.application
+    context = context if isinstance(context, SkillContext) else getattr(context, "context", None)
+    if not isinstance(context, SkillContext) or not isinstance(person, str):
+        return "no"
+    speak(context, f"Excuse me, {person}, could you please let me through?")
+    stepped = context.robot.request(person, HelpRequest.STEP_ASIDE, str(door))
+    return "yes" if stepped else "no"
+
+
 def user_functions() -> dict[str, UserFunction]:
-    return {"member": member, "datum": datum, "first": first, "rest": rest}
+    return {"member": member, "datum": datum, "first": first, "rest": rest,
+            "let_me_through": let_me_through}
