@@ -149,7 +149,7 @@ class Interpreter:
 
     def __init__(self, program: Program, perception: Perception, *, body: Body | None = None,
                  application: Any = None, max_steps: int = 10_000,
-                 on_transition: Callable[[Transition], None] | None = None) -> None:
+                 on_transition: Callable[[Transition], object] | None = None) -> None:
         self.program = program
         self.perception = perception
         self.body: Body = body if body is not None else RecordingBody()
