@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from homebot.events import EventLog
-from homebot.htn import Goal, HtnRun, Names, PlanActor, home_domain
+from homebot.htn import Goal, HtnRun, Names, PlanActor, home_domain, read_domain_text
 from homebot.navigation import Navigator
 from homebot.scenarios import SimulatedRun, disturbed
 from homebot.world import DisturbanceModel, World
@@ -137,3 +137,24 @@ def test_a_vain_search_is_repeated_after_forgetting_the_misses(
     assert done and searches == ["failed", "verified"]
     assert [e.data["object"] for e in events.of_kind("belief")
             if e.data["what"] == "forgot_not_at"] == ["cup"]
+
+
+WRONG_MODEL = """\
+(defdomain wrong
+  ((:operator (!move_base ?r ?from ?to) ((at ?r ?from)) ((at ?r ?from))
+              ((at ?r ?to) (object-at cola ?to)))
+   (:method (go ?r ?to) there ((object-at cola ?to)) nil
+                        drive ((at ?r ?from)) ((!move_base ?r ?from ?to)))))
+"""
+
+
+def test_declared_effects_are_checked_against_the_beliefs(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    run = SimulatedRun.create(apartment, navigator=apartment_navigator)
+    domain = read_domain_text(WRONG_MODEL)
+    done = PlanActor(run.context, domain, max_replans=1).run(Goal(("go", "robot", "desk")))
+    # The robot got there (navigate verified), but the model's promise is not believed.
+    assert not done and [r.status for r in done.operators] == ["verified", "verified"]
+    missing = [e.data["missing"] for e in run.simulation.events.of_kind("htn.effects")]
+    assert missing == [["object-at cola desk"]] * 2
+    assert "after move_base I do not believe object-at cola desk" in done.reason

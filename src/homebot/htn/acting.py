@@ -216,13 +216,11 @@ class PlanActor:
             self._remember(skill_step, outcome, run)
             if outcome.status is not Status.VERIFIED:
                 return outcome.message or (outcome.error.value if outcome.error else "failed")
-            bindings = operator.bind((step.operator, *step.args)) or {}
-            deletes, adds = operator.effects(bindings)
-            memory.update(atom for atom in adds if atom[0] in _MEMORY)
-            missing = self._unexpected(deletes, adds, goal, names, memory)
+            memory.update(atom for atom in step.adds if atom[0] in _MEMORY)
+            missing = self._unexpected(list(step.deletes), list(step.adds), goal, names, memory)
             if missing:
                 self.context.events.record("htn.effects", operator=step.operator,
-                                           missing=[list(atom) for atom in missing])
+                                           missing=missing)
                 return f"after {step.operator[1:]} I do not believe {missing[0]}"
         return None
 

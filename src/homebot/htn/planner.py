@@ -19,7 +19,7 @@ from typing import Any
 from homebot.errors import PlanningError
 from homebot.htn.domain import Domain, task_data
 from homebot.htn.logic import Axiom
-from homebot.htn.state import State, Term, is_variable
+from homebot.htn.state import Atom, State, Term, is_variable
 
 __all__ = ["DecompositionNode", "Plan", "PlanStep", "Planner", "PlanningResult",
            "find_cheapest_plan", "find_plan", "find_plans"]
@@ -29,12 +29,15 @@ __all__ = ["DecompositionNode", "Plan", "PlanStep", "Planner", "PlanningResult",
 
 @dataclass(frozen=True, slots=True)
 class PlanStep:
-    """One ground operator of a plan, its cost, and its node in the decomposition tree."""
+    """One ground operator of a plan: its cost, its node in the decomposition tree, and the
+    ground effects the planner predicts (what the executive checks after running it)."""
 
     operator: str
     args: tuple[Term, ...]
     cost: float = 1.0
     node: int = -1
+    deletes: tuple[Atom, ...] = ()
+    adds: tuple[Atom, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         return {"operator": self.operator, "args": list(self.args)}
@@ -159,7 +162,8 @@ class Planner:
                     state.add(atom)
                 cost = operator.cost_of(bindings)
                 network.append(DecompositionNode(parent, task, None))
-                plan.append(PlanStep(name, task[1:], cost, len(network) - 1))
+                plan.append(PlanStep(name, task[1:], cost, len(network) - 1, tuple(deletes),
+                                     tuple(adds)))
                 costs.append(costs[-1] + cost)
                 yield rest
             return
