@@ -101,3 +101,33 @@ def test_a_cup_moved_by_a_person_breaks_a_marker_and_the_robot_replans() -> None
     assert len(run.history) - 1 == minimum_moves(after, ("red", "green", "blue"))
     assert [executor.truth.get(("pos", c)) for c in ("red", "green", "blue")] == [
         "p1", "p2", "p3"]
+
+
+def test_an_unseen_move_is_found_by_sensing_or_by_the_failed_action() -> None:
+    start = {"red": "p2", "green": "p3", "blue": "p1"}
+    theory = cups_theory(start)
+
+    def person(clock: int, truth: State) -> list[tuple[str, ...]]:
+        return [("person_moves_cup", "green", "p1")] if clock == 1 else []
+
+    executor = SimulatedExecutor(theory, events=person, observed=False)
+    run = Interpreter(theory, executor).run(do("sort_cups", "red", "green", "blue", 4))
+    assert run.success
+    assert not any(entry["kind"] == "exogenous" for entry in run.log)  # never seen happening
+    failed = [entry for entry in run.log if entry["kind"] == "action" and not entry["ok"]]
+    assert [entry["action"] for entry in failed] == ["move_cup(red, p2, p1)"]
+    replans = [entry for entry in run.log if entry["kind"] == "replan"]
+    assert [entry["marker"] for entry in replans] == ["done(move_cup(red, p2, p1))"]
+    assert [executor.truth.get(("pos", c)) for c in ("red", "green", "blue")] == [
+        "p1", "p2", "p3"]
+
+
+def test_a_move_that_keeps_failing_ends_the_run_after_the_replan_budget() -> None:
+    theory = cups_theory({"red": "p2", "green": "p3", "blue": "p1"})
+    glued = cups_theory({"red": "p2", "green": "p3", "blue": "p1"})
+    glued.action("move_cup", ("cup", "from", "to"), precondition=lambda *_: False)
+    executor = SimulatedExecutor(glued)  # the world refuses every move: the cups are glued
+    run = Interpreter(theory, executor, max_replans=3).run(
+        do("sort_cups", "red", "green", "blue", 4))
+    assert not run.success and "not possible" in run.reason
+    assert run.replans == 3

@@ -47,6 +47,11 @@ def test_cup_moved_is_detected_by_a_marker_and_replanned() -> None:
     assert summary["moves_after_disturbance"] == summary["fewest_after_disturbance"]
 
 
+def test_cup_moved_unseen_is_found_when_the_next_move_fails() -> None:
+    summary = cup_moved.run(argparse.Namespace(seed=0, after=1, unseen=True), None)
+    assert summary["success"] and summary["markers"] == ["done(move_cup(red, p2, p1))"]
+
+
 def test_maze_reaches_the_goal() -> None:
     summary = maze.run(argparse.Namespace(seed=0, horizon=8), None)
     assert summary["success"] and summary["end"] == [5, 1]

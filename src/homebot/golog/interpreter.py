@@ -71,12 +71,16 @@ class SimulatedExecutor(Executor):
     """A pure simulation of the theory: true state apart from beliefs, seeded outcomes.
 
     ``events(clock, truth)`` scripts exogenous actions: the clock counts executed
-    actions and waits, and each clock value is asked once.
+    actions and waits, and each clock value is asked once. With ``observed`` off
+    they change the truth unseen: the robot learns of them only by sensing, or
+    when an action they made impossible fails.
     """
 
     def __init__(self, theory: Theory, *, seed: int = 0, truth: State | None = None,
-                 events: ExogenousSource | None = None, patience: int = 20) -> None:
+                 events: ExogenousSource | None = None, patience: int = 20,
+                 observed: bool = True) -> None:
         self.theory = theory
+        self.observed = observed
         self.truth = truth if truth is not None else theory.initial
         self.rng = random.Random(seed)
         self.events = events
@@ -86,9 +90,10 @@ class SimulatedExecutor(Executor):
 
     def execute(self, action: GroundAction, state: State) -> Report:
         theory = self.theory
+        self.clock += 1
         if not theory.possible(action, self.truth):
-            self.clock += 1
-            return Report(False, message=f"{action_text(action)} is not possible")
+            return Report(False, sensed=self._sensed(action),
+                          message=f"{action_text(action)} is not possible")
         outcome = None
         chosen = action
         if theory.schema(action).stochastic:
@@ -103,14 +108,15 @@ class SimulatedExecutor(Executor):
                     break
             outcome = chosen
         self.truth = theory.do(chosen, self.truth)
-        sensed: dict[tuple[Any, ...], Any] = {}
-        schema = theory.schema(action)
-        if schema.senses is not None:
-            for key in schema.senses(*action[1:]):
-                fluent = theory.fluents[key[0]]
-                sensed[key] = self.truth.get(key, fluent.default)
-        self.clock += 1
-        return Report(True, outcome, sensed)
+        return Report(True, outcome, self._sensed(action))
+
+    def _sensed(self, action: GroundAction) -> dict[tuple[Any, ...], Any]:
+        """The true values of what a sensing action senses (after it, or after it failed)."""
+        schema = self.theory.schema(action)
+        if schema.senses is None:
+            return {}
+        return {key: self.truth.get(key, self.theory.fluents[key[0]].default)
+                for key in schema.senses(*action[1:])}
 
     def exogenous(self, state: State) -> list[GroundAction]:
         if self.events is None or self._asked >= self.clock:
@@ -119,7 +125,7 @@ class SimulatedExecutor(Executor):
         happened = list(self.events(self.clock, self.truth))
         for action in happened:
             self.truth = self.theory.do(action, self.truth)
-        return happened
+        return happened if self.observed else []
 
     def wait(self, state: State) -> list[GroundAction] | None:
         if self.patience <= 0:
@@ -200,8 +206,16 @@ class Interpreter:
                 run.log.append({"kind": "action", "action": action_text(step.action),
                                 "ok": report.ok, "message": report.message})
                 if not report:
-                    return self._failed(run, state, f"{action_text(step.action)} failed: "
-                                                    f"{report.message}")
+                    state = state.progressed(report.sensed) if report.sensed else state
+                    if step.fallback is None or run.replans >= self.max_replans:
+                        return self._failed(run, state, f"{action_text(step.action)} failed: "
+                                                        f"{report.message}")
+                    # A planned action failed: the policy's model was wrong; plan again.
+                    run.replans += 1
+                    run.log.append({"kind": "replan", "marker": f"done({action_text(step.action)})",
+                                    "expected": True, "message": report.message})
+                    configuration = step.fallback
+                    continue
                 state = self._progress(step.action, report, state)
                 run.history.append(step.action)
             elif isinstance(step, PlanStep):

@@ -9,6 +9,7 @@ a chance event (``prob``), a plan (``solve``), a sensing result, or a replan
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -59,9 +60,10 @@ _MAX_UNFOLD = 200
 
 @dataclass(frozen=True, slots=True)
 class ActionStep:
-    """Execute a primitive action."""
+    """Execute a primitive action; ``fallback`` is where to go if it fails (a policy's solve)."""
 
     action: GroundAction
+    fallback: Program | None = None
 
 
 @dataclass(frozen=True, slots=True)
@@ -166,9 +168,8 @@ def transitions(program: Program, state: State, theory: Theory,
             return []
         case Seq(parts=(first, *others)):
             rest = Seq(tuple(others)) if len(others) > 1 else (others[0] if others else Nil())
-            found: list[tuple[Step, Program]] = [
-                (step, sequence(remaining, rest))
-                for step, remaining in transitions(first, state, theory, depth)]
+            found = _mapped(transitions(first, state, theory, depth),
+                            lambda remaining: sequence(remaining, rest))
             if final(first, state, theory):
                 found += transitions(rest, state, theory, depth)
             return found
@@ -180,11 +181,11 @@ def transitions(program: Program, state: State, theory: Theory,
         case While(condition=condition, body=body):
             if not condition.holds(theory, state):
                 return []
-            return [(step, sequence(remaining, program))
-                    for step, remaining in transitions(body, state, theory, depth)]
+            return _mapped(transitions(body, state, theory, depth),
+                           lambda remaining: sequence(remaining, program))
         case Star(body=body):
-            return [(step, sequence(remaining, program))
-                    for step, remaining in transitions(body, state, theory, depth)]
+            return _mapped(transitions(body, state, theory, depth),
+                           lambda remaining: sequence(remaining, program))
         case Choice(options=options):
             return [found for option in options
                     for found in transitions(option, state, theory, depth)]
@@ -198,16 +199,16 @@ def transitions(program: Program, state: State, theory: Theory,
         case Conc(high=high, low=low):
             first_choice = transitions(high, state, theory, depth)
             if first_choice:
-                return [(step, Conc(remaining, low)) for step, remaining in first_choice]
-            return [(step, Conc(high, remaining))
-                    for step, remaining in transitions(low, state, theory, depth)]
+                return _mapped(first_choice, lambda remaining: Conc(remaining, low))
+            return _mapped(transitions(low, state, theory, depth),
+                           lambda remaining: Conc(high, remaining))
         case WithPol():
             return transitions(_with_pol(program), state, theory, depth)
         case WithCtrl(condition=condition, body=body):
             if not condition.holds(theory, state):
                 return []
-            return [(step, WithCtrl(condition, remaining))
-                    for step, remaining in transitions(body, state, theory, depth)]
+            return _mapped(transitions(body, state, theory, depth),
+                           lambda remaining: WithCtrl(condition, remaining))
         case Prob(probability=probability, first=first, second=second):
             chance = float(probability.evaluate(theory, state))
             return [(ChanceStep(chance), first), (ChanceStep(1.0 - chance), second)]
@@ -219,6 +220,17 @@ def transitions(program: Program, state: State, theory: Theory,
         case Running():
             return _policy_transitions(program, state, theory)
     return []
+
+
+def _mapped(found: list[tuple[Step, Program]],
+            wrap: Callable[[Program], Program]) -> list[tuple[Step, Program]]:
+    """Steps with what remains wrapped, an action's fallback wrapped the same way."""
+    wrapped: list[tuple[Step, Program]] = []
+    for step, remaining in found:
+        if isinstance(step, ActionStep) and step.fallback is not None:
+            step = ActionStep(step.action, wrap(step.fallback))
+        wrapped.append((step, wrap(remaining)))
+    return wrapped
 
 
 def _with_pol(program: WithPol) -> Conc:
@@ -234,7 +246,7 @@ def _policy_transitions(running: Running, state: State,
         return [(ReplanStep(policy.condition, policy.value), origin)]
     if isinstance(policy, PDo):
         if theory.possible(policy.action, state):
-            return [(ActionStep(policy.action), Running(policy.then, origin))]
+            return [(ActionStep(policy.action, origin), Running(policy.then, origin))]
         return [(ReplanStep(Possible(policy.action), True), origin)]
     if isinstance(policy, PSense):
         for branch in policy.branches:

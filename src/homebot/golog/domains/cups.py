@@ -22,7 +22,8 @@ def cups_theory(initial: Mapping[str, str] | None = None) -> Theory:
     """The theory with ``initial`` cup positions (unknown, hence to be perceived, if None).
 
     Fluent ``pos(cup)``. Actions: ``move_cup(cup, from, to)`` (precondition: the
-    cup is at ``from`` and no cup is at ``to``); ``perceive_cups`` (senses every
+    cup is at ``from`` and no cup is at ``to``; the robot sees where every cup is
+    as it moves one, even when the move fails); ``perceive_cups`` (senses every
     ``pos``); ``say(text)``; the exogenous ``person_moves_cup(cup, to)``.
     """
     theory = Theory("order_cups")
@@ -34,7 +35,9 @@ def cups_theory(initial: Mapping[str, str] | None = None) -> Theory:
                   precondition=and_(eq(f("pos", "cup"), "from"), ne("from", "to"),
                                     not_(exists("c", "cups", eq(f("pos", "c"), "to")))),
                   effects=lambda state, cup, _from, to: {("pos", cup): to},
-                  description="pick a cup up and put it down at a free position")
+                  senses=lambda cup, _from, to: [("pos", other) for other in CUPS],
+                  description="pick a cup up and put it down at a free position; the "
+                              "robot sees the table while it does")
     theory.action("person_moves_cup", ("cup", "to"), exogenous=True,
                   effects=lambda state, cup, to: {("pos", cup): to},
                   description="someone moved a cup")

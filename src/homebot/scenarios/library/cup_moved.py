@@ -22,10 +22,18 @@ GOAL = ("red", "green", "blue")
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--after", type=int, default=1,
                         help="how many robot actions before the person moves a cup")
+    parser.add_argument("--unseen", action="store_true",
+                        help="the robot does not see the person move the cup: it finds out "
+                             "by looking at the table as it moves the next one")
 
 
 def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
-    """The person puts the red cup into the free position after the robot's first move."""
+    """The person puts the red cup into the free position after the robot's first move.
+
+    Seen, the exogenous action updates the robot's model at once and the next
+    marker fails; unseen, the robot learns of it by sensing the table during its
+    next move (or that move fails), and the policy's markers fail then.
+    """
     after = getattr(args, "after", 1)
     theory = cups_theory(START)
     moved: list[tuple[Any, ...]] = []
@@ -38,7 +46,8 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
         moved.append(("person_moves_cup", cup, free[0]))
         return list(moved)
 
-    executor = SimulatedExecutor(theory, seed=args.seed, events=person)
+    executor = SimulatedExecutor(theory, seed=args.seed, events=person,
+                                 observed=not getattr(args, "unseen", False))
     outcome = Interpreter(theory, executor, seed=args.seed).run(
         do("sort_cups", *GOAL, 4))
     replans = [entry for entry in outcome.log if entry["kind"] == "replan"]
@@ -48,10 +57,13 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
         for entry in outcome.log:
             if entry["kind"] == "plan":
                 console.print(f"plan: {', '.join(entry['actions'])}", highlight=False)
-            elif entry["kind"] == "action":
+            elif entry["kind"] == "action" and entry["ok"]:
                 console.print(f"  {entry['action']}", highlight=False)
             elif entry["kind"] == "exogenous":
                 console.print(f"  (a person: {entry['action']})", highlight=False)
+            elif entry["kind"] == "replan" and entry["marker"].startswith("done("):
+                console.print(f"  {entry['marker'][5:-1]} failed ({entry['message']}): "
+                              f"re-planning", highlight=False)
             elif entry["kind"] == "replan":
                 console.print(f"  marker {entry['marker']} is no longer "
                               f"{str(entry['expected']).lower()}: re-planning",
