@@ -178,3 +178,21 @@ def test_an_answer_not_understood_is_recovered_and_the_question_asked_again(
     at = said.index(asked)
     assert said[at + 1: at + 3] == [_words("Sorry, I did not understand you."), asked]
     assert said[at + 3] == _words(PAPER_ROBOT_LINES[7])
+
+
+def test_after_a_good_day_luis_is_looked_for_in_the_dining_room_first(
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    from homebot.scenarios.library import butler
+
+    original = butler.LuisScript._answer
+
+    def cheerful(self: butler.LuisScript, question: str) -> str | None:
+        return "I had a great day!" if "how was your day" in question else original(
+            self, question)
+
+    monkeypatch.setattr(butler.LuisScript, "_answer", cheerful)
+    summary = run_butler()
+    said = [_words(line) for line in summary["speech"]]
+    assert _words("Glad to hear that; do you want me to do something for you?") in said
+    assert summary["success"]  # not in the dining room the KB prefers now: on the couch
+    assert not any("bad_day" in str(update["what"]) for update in summary["kb_updates"])

@@ -125,6 +125,11 @@ class Environment:
         """The last ``Expectation:Action`` of the task's top level (``empty`` at the start)."""
         return last_transition(self.interpreter.history)
 
+    @property
+    def models(self) -> list[str]:
+        """The dialogue models on the stack, the main one first, the current one last."""
+        return [frame.model.name for frame in self.interpreter.stack]
+
     def function(self, name: str) -> Callable[..., Term]:
         found = self.interpreter.program.functions.get(name)
         if found is None:

@@ -245,11 +245,14 @@ def user_name(env: Environment) -> Term:
 
 
 def next_user_place(env: Environment) -> Term:
-    """``room(Room)``: where the user most likely is, by the KB's preferences (B.2)."""
+    """``room(Room)``: where the user most likely is by the KB's preferences (B.2), then the
+    other rooms the KB knows."""
     home = home_of(env)
     tried = items_of(env, "tried")
-    for point in home.kb.values(home.user_id, "found_in"):
-        room = home.spoken(str(point))
+    likely = [str(point) for point in home.kb.values(home.user_id, "found_in")]
+    others = [str(point) for point in home.kb.class_extension("point") if point not in likely]
+    for point in likely + others:
+        room = home.spoken(point)
         if room not in tried and room in home.context.world.rooms:
             _append(env, "tried", room)
             env.set("user_room", room)
