@@ -195,4 +195,7 @@ def test_after_a_good_day_luis_is_looked_for_in_the_dining_room_first(
     said = [_words(line) for line in summary["speech"]]
     assert _words("Glad to hear that; do you want me to do something for you?") in said
     assert summary["success"]  # not in the dining room the KB prefers now: on the couch
+    searched = [a["situation"] for a in summary["actions"]
+                if a["model"] == "deliver" and a["situation"].startswith("find")]
+    assert searched == ["find('dining room')", "find('living room')"]
     assert not any("bad_day" in str(update["what"]) for update in summary["kb_updates"])
