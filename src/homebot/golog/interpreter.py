@@ -26,7 +26,7 @@ from homebot.golog.semantics import (
     PlanStep,
     ReplanStep,
     SenseStep,
-    TestStep,
+    Step,
     final,
     transitions,
 )
@@ -202,41 +202,51 @@ class Interpreter:
                 continue
             step, configuration = self._pick(found)
             if isinstance(step, ActionStep):
-                report = self.executor.execute(step.action, state)
-                run.log.append({"kind": "action", "action": action_text(step.action),
-                                "ok": report.ok, "message": report.message})
-                if not report:
-                    state = state.progressed(report.sensed) if report.sensed else state
-                    if step.fallback is None or run.replans >= self.max_replans:
-                        return self._failed(run, state, f"{action_text(step.action)} failed: "
-                                                        f"{report.message}")
-                    # A planned action failed: the policy's model was wrong; plan again.
-                    run.replans += 1
-                    run.log.append({"kind": "replan", "marker": f"done({action_text(step.action)})",
-                                    "expected": True, "message": report.message})
-                    configuration = step.fallback
-                    continue
-                state = self._progress(step.action, report, state)
-                run.history.append(step.action)
-            elif isinstance(step, PlanStep):
-                run.plans.append(step.result)
-                run.log.append({"kind": "plan", "value": step.result.value,
-                                "probability": step.result.probability,
-                                "actions": [action_text(a)
-                                            for a in policy_actions(step.result.policy)]})
-            elif isinstance(step, ReplanStep):
-                run.replans += 1
-                run.log.append({"kind": "replan", "marker": str(step.condition),
-                                "expected": step.expected})
-                if run.replans > self.max_replans:
-                    return self._failed(run, state, "too many re-plans")
-            elif isinstance(step, SenseStep):
-                run.log.append({"kind": "sensed", "outcome": action_text(step.nature)})
-            elif isinstance(step, TestStep):
-                continue
+                state, configuration, failure = self._execute(run, step, state, configuration)
+            else:
+                failure = self._note(run, step)
+            if failure:
+                return self._failed(run, state, failure)
         return self._failed(run, state, f"no end after {self.max_steps} steps")
 
-    def _pick(self, found: list[tuple[Any, Program]]) -> tuple[Any, Program]:
+    def _execute(self, run: Run, step: ActionStep, state: State,
+                 remaining: Program) -> tuple[State, Program, str]:
+        """Have the executor do an action; the new state, what remains, and any failure."""
+        report = self.executor.execute(step.action, state)
+        text = action_text(step.action)
+        run.log.append({"kind": "action", "action": text, "ok": report.ok,
+                        "message": report.message})
+        if report:
+            run.history.append(step.action)
+            return self._progress(step.action, report, state), remaining, ""
+        state = state.progressed(report.sensed) if report.sensed else state
+        if step.fallback is None or run.replans >= self.max_replans:
+            return state, remaining, f"{text} failed: {report.message}"
+        # A planned action failed: the policy's model of the world was wrong; plan again.
+        run.replans += 1
+        run.log.append({"kind": "replan", "marker": f"done({text})", "expected": True,
+                        "message": report.message})
+        return state, step.fallback, ""
+
+    def _note(self, run: Run, step: Step) -> str:
+        """Log a step that is not an action; the failure it means, if any."""
+        if isinstance(step, PlanStep):
+            run.plans.append(step.result)
+            run.log.append({"kind": "plan", "value": step.result.value,
+                            "probability": step.result.probability,
+                            "actions": [action_text(action)
+                                        for action in policy_actions(step.result.policy)]})
+        elif isinstance(step, ReplanStep):
+            run.replans += 1
+            run.log.append({"kind": "replan", "marker": str(step.condition),
+                            "expected": step.expected})
+            if run.replans > self.max_replans:
+                return "too many re-plans"
+        elif isinstance(step, SenseStep):
+            run.log.append({"kind": "sensed", "outcome": action_text(step.nature)})
+        return ""
+
+    def _pick(self, found: list[tuple[Step, Program]]) -> tuple[Step, Program]:
         step, remaining = found[0]
         if not isinstance(step, ChanceStep):
             return step, remaining
