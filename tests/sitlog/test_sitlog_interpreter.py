@@ -241,3 +241,20 @@ dialogue_models:
 """, {"chooser": chooser, "double": double, "negate": negate})
     assert _run(program, ["how(twice)"])[1] == ["42"]
     assert _run(program, ["how(other)"])[1] == ["-21"]
+
+
+def test_prog_runs_at_every_visit_of_a_situation_including_repeats() -> None:
+    program = _program("""
+globals: {visits: 0}
+dialogue_models:
+  - id: main
+    situations:
+      - id: is
+        type: speech
+        repeat: 5
+        prog: "[inc(visits, V)]"
+        arcs: ["yes : say(get(visits)) => fs"]
+      - {id: fs, type: final}
+""")
+    result, said = _run(program, ["no", "maybe", "yes"])
+    assert said == ["3"] and result.globals["visits"] == 3

@@ -239,17 +239,14 @@ class Interpreter:
         copy = _Copier(own)
         if situation.in_arg is not None:
             unify(copy(situation.in_arg), pipe, self.trail)
-        for expression in situation.prog:
-            evaluate(copy(expression), env)
         tries = recoveries = 0
-        while True:
+        while True:  # a situation whose expectations are not met is interpreted again
             self._count_step(frame)
+            for expression in situation.prog:
+                evaluate(copy.fresh_term(expression), env)
             arcs = [(arc, copy.fresh(arc)) for arc in situation.arcs]
             expectations = [evaluate(expectation, env) for _, (expectation, _, _) in arcs]
-            datum, embedded_history = self._perceive(frame, situation, copy, env, expectations,
-                                                     pipe)
-            if embedded_history is not None:
-                datum, pipe = datum
+            datum, pipe = self._perceive(frame, situation, copy, env, expectations, pipe)
             chosen = self._match(arcs, expectations, datum)
             if chosen is not None:
                 break
@@ -290,22 +287,23 @@ class Interpreter:
         return following, pipe
 
     def _perceive(self, frame: Frame, situation: Situation, copy: _Copier, env: Environment,
-                  expectations: list[Term], pipe: Term) -> tuple[Any, History | None]:
+                  expectations: list[Term], pipe: Term) -> tuple[Term | None, Term]:
+        """The datum to match (and the pipe, which an embedded model may change)."""
         if situation.type == RECURSIVE:
             assert situation.embedded_dm is not None
             embedded = evaluate(copy(situation.embedded_dm), env)
             embedded_history: History = []
             frame.history.append(embedded_history)
-            return self._run_model(embedded, pipe, embedded_history), embedded_history
+            return self._run_model(embedded, pipe, embedded_history)
         request = evaluate(copy(situation.input), env) if situation.input is not None else None
         if situation.type == "neutral":
-            return (request if request is not None else EMPTY), None
+            return (request if request is not None else EMPTY), pipe
         datum = self.perception.perceive(situation.type, request, expectations, env)
         if situation.interpreter is not None and datum is not None:
             datum = env.function(situation.interpreter)(env, datum, tuple(expectations))
         elif isinstance(datum, Text):
             datum = utterance_term(datum.text)
-        return datum, None
+        return datum, pipe
 
     def _match(self, arcs: list[tuple[Any, tuple[Term, Term, Term]]], expectations: list[Term],
                datum: Term | None) -> tuple[tuple[Term, Term, Term], Term] | None:
@@ -352,6 +350,10 @@ class _Copier:
 
     def __call__(self, term: Term) -> Term:
         return copy_term(term, self.own)
+
+    def fresh_term(self, term: Term) -> Term:
+        """A copy whose own variables are fresh on every visit (``prog`` has its own scope)."""
+        return copy_term(term, dict(self.own))
 
     def fresh(self, arc: Any) -> tuple[Term, Term, Term]:
         """An arc's expectation, action and next with fresh local variables (one try)."""
