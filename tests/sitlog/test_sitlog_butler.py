@@ -199,3 +199,12 @@ def test_after_a_good_day_luis_is_looked_for_in_the_dining_room_first(
                 if a["model"] == "deliver" and a["situation"].startswith("find")]
     assert searched == ["find('dining room')", "find('living room')"]
     assert not any("bad_day" in str(update["what"]) for update in summary["kb_updates"])
+
+
+def test_a_person_can_answer_for_luis() -> None:
+    answers = iter(["I like coke.", "Noodles.", "No.", "Fine, thanks.", "Bring me a drink.",
+                    "Yes.", "No."])
+    summary = run_butler(typed=lambda person, question: next(answers, None))
+    said = [_words(line) for line in summary["speech"]]
+    assert _words("Glad to hear that; do you want me to do something for you?") in said
+    assert summary["order"] == ["coke"] and summary["success"]

@@ -24,7 +24,7 @@ from homebot.knowledge import AddStatement, Kind, KnowledgeBase, parse_statement
 from homebot.knowledge.store import KnowledgeStore
 from homebot.scenarios.runtime import SimulatedRun
 from homebot.scenarios.summary import scenario_summary
-from homebot.sim import Simulation
+from homebot.sim import InteractiveResponder, Responder, Simulation
 from homebot.sim.people import normalise_question
 from homebot.sitlog import Interpreter, load_program
 from homebot.sitlog.functions.butler import ButlerHome
@@ -47,6 +47,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="the noodles and the coke are on their own shelves")
     parser.add_argument("--kb-store", metavar="FILE", default=None,
                         help="SQLite file (new) that keeps the KB and its updates")
+    parser.add_argument("--interactive", action="store_true",
+                        help="you answer for Luis at a prompt (his day goes on as scripted)")
 
 
 @dataclass
@@ -55,6 +57,7 @@ class LuisScript:
 
     prefers: str = "malz"
     refuse_update: bool = False
+    typed: Responder | None = None  #: a person typing Luis's answers instead of the script
     simulation: Simulation | None = None
     heard: list[str] = field(default_factory=list)
 
@@ -62,6 +65,8 @@ class LuisScript:
         if person.name != "Luis":
             return None
         answer = self._answer(normalise_question(question))
+        if self.typed is not None:
+            answer = self.typed(person, question)
         if answer is not None:
             self.heard.append(answer)
         return answer
@@ -111,10 +116,11 @@ def butler_world(tidy: bool = False) -> World:
 
 
 def run_butler(*, prefers: str = "malz", refuse_update: bool = False, tidy: bool = False,
-               kb_store: Path | None = None, seed: int = 0) -> dict[str, Any]:
+               kb_store: Path | None = None, seed: int = 0,
+               typed: Responder | None = None) -> dict[str, Any]:
     """Run the dialogue once; returns the summary (``transcript``, ``speech``, KB figures)."""
     world = butler_world(tidy)
-    luis = LuisScript(prefers=prefers, refuse_update=refuse_update)
+    luis = LuisScript(prefers=prefers, refuse_update=refuse_update, typed=typed)
     run = SimulatedRun.create(world, seed=seed, responder=luis)
     luis.simulation = run.simulation
     with tempfile.TemporaryDirectory() as scratch:
@@ -172,7 +178,8 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     """The dialogue of §9 with the variant the arguments choose."""
     summary = run_butler(prefers=args.prefers, refuse_update=args.refuse_update,
                          tidy=args.tidy, kb_store=Path(args.kb_store) if args.kb_store else None,
-                         seed=args.seed)
+                         seed=args.seed,
+                         typed=InteractiveResponder() if args.interactive else None)
     if console is not None:
         for number, line in enumerate(summary["transcript"], start=1):
             who = "Golem" if line["who"] == "robot" else line["who"]
