@@ -113,3 +113,9 @@ def test_do_falls_back_to_the_parsed_steps(capsys: pytest.CaptureFixture[str]) -
     assert main(["do", "tell me the time", "--planner", "htn"]) == 0
     captured = capsys.readouterr()
     assert "no task for this command" in captured.err and "robot:" in captured.out
+
+
+def test_plan_trace(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["plan", "guide_person", "Alex", "bedroom", "--trace"]) == 0
+    out = capsys.readouterr().out
+    assert "(go_to robot living_room): there does not apply" in out

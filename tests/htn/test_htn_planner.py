@@ -178,3 +178,17 @@ def test_package_exports_exactly_its_all() -> None:
               if not name.startswith("_") and not isinstance(value, types.ModuleType)
               and name != "annotations"}
     assert set(package.__all__) == public
+
+
+def test_an_opt_in_trace_explains_a_failure() -> None:
+    domain, state = travel_domain(), travel_state(cash=3)
+    quiet = Planner(domain).search(state, [("travel", "alice", "park")])
+    traced = Planner(domain, trace=True).search(state, [("travel", "alice", "park")])
+    assert quiet.trace is None and quiet.expansions == traced.expansions
+    assert traced.trace == [
+        "(travel alice park): there does not apply",
+        "(travel alice park): on-foot does not apply",
+        "(travel alice park): by-taxi",
+        "  (!call_taxi alice home): applied",
+        "  (!ride_taxi alice home park): precondition does not hold",
+    ]

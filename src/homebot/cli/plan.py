@@ -59,6 +59,8 @@ def register(subparsers: Any) -> None:
     parser.add_argument("--json", action="store_true",
                         help='print {"plans": [[{"operator": NAME, "args": [...]}, ...], ...]}')
     parser.add_argument("--dot", action="store_true", help="print the task network as Graphviz")
+    parser.add_argument("--trace", action="store_true",
+                        help="print every refinement the planner tried (why no plan was found)")
     parser.set_defaults(handler=plan)
 
 
@@ -100,7 +102,8 @@ def plan(args: argparse.Namespace) -> int:
     tasks, atoms = _goal(args, domain, world, names, problem)
     for atom in atoms:
         state.add(atom)
-    planner = Planner(domain, max_depth=args.max_depth, max_expansions=args.max_expansions)
+    planner = Planner(domain, max_depth=args.max_depth, max_expansions=args.max_expansions,
+                      trace=args.trace)
     if args.cheapest:
         result = planner.search(state, tasks, limit=None, cheapest=True)
     else:
@@ -110,7 +113,12 @@ def plan(args: argparse.Namespace) -> int:
     elif args.dot:
         print(plan_dot(result.plans, " ".join(str(item) for item in tasks[0])), end="")
     else:
-        _print(Console(), result.plans, result.expansions, result.stopped, tasks)
+        console = Console()
+        if result.trace is not None:
+            console.print("[bold]trace[/]", highlight=False)
+            for line in result.trace:
+                console.print(f"  {line}", highlight=False, markup=False)
+        _print(console, result.plans, result.expansions, result.stopped, tasks)
     return 0 if result else 1
 
 

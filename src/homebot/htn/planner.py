@@ -95,6 +95,7 @@ class PlanningResult:
     plans: list[Plan] = field(default_factory=list)
     expansions: int = 0
     stopped: str | None = None
+    trace: list[str] | None = None  #: every refinement tried, with ``Planner(trace=True)``
 
     def __bool__(self) -> bool:
         return bool(self.plans)
@@ -132,20 +133,24 @@ class Planner:
         max_expansions: most task refinements per search (deterministic budget).
         time_limit: seconds of computing per search (None: no limit).
         clock: the clock for ``time_limit`` (``time.perf_counter`` unless given).
+        trace: record every refinement tried in ``PlanningResult.trace`` (opt-in; it
+            explains why no plan was found and never changes the search).
     """
 
     def __init__(self, domain: Domain, *, max_depth: int = 100_000,
                  max_expansions: int = 1_000_000, time_limit: float | None = None,
-                 clock: Callable[[], float] = time.perf_counter) -> None:
+                 clock: Callable[[], float] = time.perf_counter, trace: bool = False) -> None:
         self.domain = domain
         self.max_depth = max_depth
         self.max_expansions = max_expansions
         self.time_limit = time_limit
         self.clock = clock
+        self.trace = trace
 
     def _refine(self, proof: _Proof, task: tuple[Term, ...], parent: int, depth: int,
                 rest: _Agenda, plan: list[PlanStep], costs: list[float],
-                network: list[DecompositionNode]) -> Iterator[_Agenda]:
+                network: list[DecompositionNode],
+                trace: list[str] | None) -> Iterator[_Agenda]:
         """Every way to refine ``task``, each applied when asked for (undone by the caller)."""
         name = task[0]
         operator = self.domain.operators.get(name)
@@ -154,7 +159,11 @@ class Planner:
             start = operator.bind(task)
             if start is None:
                 return
+            applied = False
             for bindings in operator.precondition.solve(proof, start):
+                applied = True
+                if trace is not None:
+                    trace.append(f"{'  ' * depth}{_text(task)}: applied")
                 deletes, adds = operator.effects(bindings)
                 for atom in deletes:
                     state.remove(atom)
@@ -166,6 +175,8 @@ class Planner:
                                      tuple(adds)))
                 costs.append(costs[-1] + cost)
                 yield rest
+            if trace is not None and not applied:
+                trace.append(f"{'  ' * depth}{_text(task)}: precondition does not hold")
             return
         methods = self.domain.methods.get(name)
         if methods is None:
@@ -178,6 +189,8 @@ class Planner:
                 applicable = False
                 for bindings in branch.precondition.solve(proof, start):
                     applicable = True
+                    if trace is not None:
+                        trace.append(f"{'  ' * depth}{_text(task)}: {branch.name}")
                     network.append(DecompositionNode(parent, task, branch.name))
                     node = len(network) - 1
                     agenda = rest
@@ -186,6 +199,8 @@ class Planner:
                     yield agenda
                 if applicable:
                     break
+                if trace is not None:
+                    trace.append(f"{'  ' * depth}{_text(task)}: {branch.name} does not apply")
 
     #### find_plan and seek_plan
 
@@ -201,7 +216,7 @@ class Planner:
             self.domain.check_task(task, "goal")
             if any(is_variable(arg) for arg in task[1:]):
                 raise PlanningError(f"goal task {task} has a variable; give every argument")
-        result = PlanningResult()
+        result = PlanningResult(trace=[] if self.trace else None)
         proof = _Proof(state, self.domain.axioms)
         mark = state.mark()
         try:
@@ -251,7 +266,7 @@ class Planner:
                         result.stopped = "time"
                         return
                     stack.append((self._refine(proof, task, parent, depth, rest, plan, costs,
-                                               network),
+                                               network, result.trace),
                                   state.mark(), len(plan), len(network)))
             while stack:
                 alternatives, mark, planned, noted = stack[-1]
@@ -266,6 +281,10 @@ class Planner:
 
 
 _EXHAUSTED: Any = object()
+
+
+def _text(task: Sequence[Any]) -> str:
+    return "(" + " ".join(str(item) for item in task) + ")"
 
 
 def find_plan(domain: Domain, state: State, tasks: Sequence[Sequence[Any]],
