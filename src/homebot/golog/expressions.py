@@ -217,7 +217,7 @@ class Compare(Expr):
         return Compare(self.op, self.left.substitute(bindings), self.right.substitute(bindings))
 
     def __str__(self) -> str:
-        return f"{self.left} {self.op} {self.right}"
+        return f"{_wrapped(self.left)} {self.op} {_wrapped(self.right)}"
 
 
 @dataclass(frozen=True, slots=True)
@@ -325,6 +325,6 @@ class PProj(Expr):
 
 
 def _wrapped(expr: Expr) -> str:
-    if isinstance(expr, And | Or | Compare):
+    if isinstance(expr, And | Or | Compare | Not | Exists | Forall):
         return f"({expr})"
     return str(expr)

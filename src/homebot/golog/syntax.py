@@ -67,7 +67,7 @@ __all__ = ["parse_procedures", "parse_program"]
 
 _TOKEN = re.compile(r"""
     (?P<space>[ \t\r\n]+) | (?P<comment>[%#][^\n]*)
-  | (?P<number>\d+\.\d+|\d+)
+  | (?P<number>\d+(?:\.\d+)?(?:[eE][-+]?\d+)?)
   | (?P<string>"[^"\n]*"|“[^”\n]*”)
   | (?P<name>[A-Za-z_][A-Za-z0-9_]*)
   | (?P<symbol>\|\||!=|<=|>=|[|;,(){}?=<>&!+\-*/:∧∨¬≠])
@@ -397,7 +397,8 @@ class _Parser:
         token = self.token
         if token.kind == "number":
             self.advance()
-            return Const(float(token.text) if "." in token.text else int(token.text))
+            whole = not any(mark in token.text for mark in ".eE")
+            return Const(int(token.text) if whole else float(token.text))
         if token.kind == "string":
             self.advance()
             return Const(token.text[1:-1])
