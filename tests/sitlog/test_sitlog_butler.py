@@ -203,8 +203,9 @@ def test_after_a_good_day_luis_is_looked_for_in_the_dining_room_first(
 
 def test_a_person_can_answer_for_luis() -> None:
     answers = iter(["I like coke.", "Noodles.", "No.", "Fine, thanks.", "Bring me a drink.",
-                    "Yes.", "No."])
+                    "Yes.", "No.", "No, leave them there."])
     summary = run_butler(typed=lambda person, question: next(answers, None))
     said = [_words(line) for line in summary["speech"]]
     assert _words("Glad to hear that; do you want me to do something for you?") in said
     assert summary["order"] == ["coke"] and summary["success"]
+    assert _words("Some objects are not on their right shelves.") in said  # the noodles
