@@ -123,3 +123,16 @@ def test_check_step_rejects_bad_steps(apartment: World) -> None:
         check_step(Step("place", {"placement": "fridg"}), apartment, "step 3")
     with pytest.raises(TaskError, match="has no argument 'where'"):
         check_step(Step("navigate", {"to": "fridge", "where": "x"}), apartment, "step 4")
+
+
+def test_a_missed_detection_is_retried_at_the_same_place(apartment: World,
+                                                          apartment_navigator: Navigator) -> None:
+    run = SimulatedRun.create(apartment, navigator=apartment_navigator, seed=0,
+                              disturbances=DisturbanceModel(detection_miss=1.0))
+    outcome = skill_named("pick").run(run.context, {"object": "cola"})
+    assert outcome.error is ErrorCode.NOT_FOUND
+    looks = [e for e in run.simulation.events.of_kind("skill.status")
+             if e.data["status"] == "retrying"]
+    assert len(looks) == 2
+    assert all("fridge" in e.data.get("message", "fridge") for e in looks)
+    assert outcome.data["placement"] == "fridge"

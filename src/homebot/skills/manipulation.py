@@ -39,6 +39,8 @@ class Pick(Skill):
             wanted)
         if placement not in context.world.placements:
             return Outcome.failed(ErrorCode.NOT_FOUND, f"I do not know where the {wanted} is")
+        # A retry looks at the same place again, though this look may not see it.
+        context.bindings[f"placement:{wanted}"] = placement
         outcome, detections = go_and_look(context, placement)
         if outcome.status is not Status.FINISHED:
             return outcome
