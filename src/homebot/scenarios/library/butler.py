@@ -20,6 +20,7 @@ from typing import Any
 from rich.console import Console
 
 from homebot.errors import KnowledgeError
+from homebot.events import Event
 from homebot.knowledge import AddStatement, Kind, KnowledgeBase, parse_statement
 from homebot.knowledge.store import KnowledgeStore
 from homebot.scenarios.runtime import SimulatedRun
@@ -59,6 +60,7 @@ class LuisScript:
     refuse_update: bool = False
     typed: Responder | None = None  #: a person typing Luis's answers instead of the script
     simulation: Simulation | None = None
+    ordered: bool = False  #: he has asked for something; he sits down once the robot goes
     heard: list[str] = field(default_factory=list)
 
     def __call__(self, person: PersonModel, question: str) -> str | None:
@@ -67,6 +69,7 @@ class LuisScript:
         answer = self._answer(normalise_question(question))
         if self.typed is not None:
             answer = self.typed(person, question)
+            self.ordered = self.ordered or "do something for you" in normalise_question(question)
         if answer is not None:
             self.heard.append(answer)
         return answer
@@ -82,17 +85,23 @@ class LuisScript:
         if "how was your day" in question:
             return "I had a bad day!"
         if "do something for you" in question:
+            self.ordered = True
             return "Bring me something to drink and biscuits."
         if "your favorite drink" in question:
             return "Yes."
         if "shall i bring you" in question:
-            self._walk(_ON_THE_COUCH)
             return "No, Golem, noodles are ok."
         if "change the preferred location" in question:
             return "No, Golem, leave it as it is." if self.refuse_update else "Yes, Golem, please."
         if "take it to its right shelf" in question:
             return "Yes, Golem, please."
         return None
+
+    def notice(self, event: Event) -> None:
+        """Tired, Luis goes to the couch once the robot sets off with his order."""
+        if self.ordered and event.kind == "robot.path":
+            self.ordered = False
+            self._walk(_ON_THE_COUCH)
 
     def _walk(self, position: tuple[float, float], after: float = 0.0) -> None:
         if self.simulation is None:
@@ -123,6 +132,7 @@ def run_butler(*, prefers: str = "malz", refuse_update: bool = False, tidy: bool
     luis = LuisScript(prefers=prefers, refuse_update=refuse_update, typed=typed)
     run = SimulatedRun.create(world, seed=seed, responder=luis)
     luis.simulation = run.simulation
+    run.simulation.events.listeners.append(luis.notice)
     with tempfile.TemporaryDirectory() as scratch:
         path = kb_store if kb_store is not None else Path(scratch) / "butler.db"
         if path.exists():
