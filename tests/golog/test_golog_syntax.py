@@ -31,6 +31,7 @@ from homebot.golog.build import (
     pproj,
     prob,
     proc,
+    procedure,
     seq,
     solve,
     star,
@@ -103,8 +104,8 @@ def test_operators_on_formulas_build_the_same_trees() -> None:
 
 def test_every_shipped_program_reads_and_prints_back_to_the_same_program() -> None:
     for name in shipped_program_names():
-        for procedure in shipped_procedures(name):
-            assert parse_program(str(procedure.body)) == procedure.body, procedure.name
+        for shipped in shipped_procedures(name):
+            assert parse_program(str(shipped.body)) == shipped.body, shipped.name
 
 
 @pytest.mark.parametrize(("text", "line", "column", "words"), [
@@ -140,3 +141,12 @@ def test_all_lists_exactly_the_public_names(package: object) -> None:
               if not name.startswith("_") and not isinstance(value, types.ModuleType)
               and name != "annotations"}
     assert set(package.__all__) == public  # type: ignore[attr-defined]
+
+
+def test_a_python_function_is_a_procedure() -> None:
+    @procedure
+    def go_floor(N: object) -> object:
+        return while_(ne(f("floor"), N), if_(lt(f("floor"), N), "up", "down"))
+
+    shipped = {p.name: p for p in shipped_procedures("elevator")}
+    assert go_floor == shipped["go_floor"]

@@ -13,7 +13,8 @@ that is data, as a quoted string is in the textual syntax. Example::
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+import inspect
+from collections.abc import Callable, Sequence
 from typing import Any
 
 from homebot.golog.expressions import (
@@ -77,6 +78,7 @@ __all__ = [
     "pproj",
     "prob",
     "proc",
+    "procedure",
     "seq",
     "solve",
     "star",
@@ -237,3 +239,19 @@ def solve(horizon: Any, reward: Any, body: Program | str) -> Solve:
 
 def proc(name: str, parameters: Sequence[str], body: Program | str) -> Procedure:
     return Procedure(name, tuple(parameters), _program(body))
+
+
+def procedure(function: Callable[..., Program | str]) -> Procedure:
+    """A procedure from a Python function: its name and parameters, the program it builds.
+
+    The function is called once with each parameter standing for itself, so::
+
+        @procedure
+        def go_floor(N):
+            return while_(ne(f("floor"), N), if_(lt(f("floor"), N), "up", "down"))
+
+    is the same procedure as ``proc go_floor(N) while floor != N do ... endproc``.
+    """
+    parameters = tuple(inspect.signature(function).parameters)
+    return Procedure(function.__name__, parameters,
+                     _program(function(*(Fn(name) for name in parameters))))
