@@ -113,7 +113,7 @@ class Fn(Expr):
     args: tuple[Expr, ...] = ()
 
     def evaluate(self, theory: Theory, state: State) -> Any:
-        values = tuple(arg.evaluate(theory, state) for arg in self.args)
+        values = tuple([arg.evaluate(theory, state) for arg in self.args]) if self.args else ()
         fluent = theory.fluents.get(self.name)
         if fluent is not None:
             return state.values.get((self.name, *values), fluent.default)
