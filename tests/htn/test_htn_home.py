@@ -127,3 +127,24 @@ def test_goals_from_gpsr_steps(apartment: World) -> None:
     assert [goal.task for goal in goals] == [("serve", "robot", "drink", "Alex"),
                                              ("guide_person", "robot", "Alex", "bedroom")]
     assert goals_from_steps([Step("count", {"room": "kitchen"})], apartment) is None
+
+
+def test_where_things_belong_comes_from_the_knowledge_base(apartment: World) -> None:
+    from homebot.knowledge import KnowledgeBase
+
+    knowledge = KnowledgeBase.load("apartment_places")
+    domain = home_domain()
+    beliefs = Beliefs.from_world(apartment)
+    beliefs.saw_object("red wine", "coffee table")
+
+    def tidy(kb: KnowledgeBase | None) -> list[tuple[str, ...]]:
+        state, names = state_from_beliefs(apartment, beliefs, apartment.robot.pose[:2],
+                                          knowledge=kb)
+        plan = find_plan(domain, state, [Goal.of("tidy", [], apartment, names).task]).plan
+        return [(args[1], args[2]) for operator, *args in plan.actions()
+                if operator == "!put_down"]
+
+    # Told (the world file): drinks go in the fridge, toys on a toy shelf.
+    assert tidy(None) == [("red_wine", "fridge"), ("rubik_cube", "bookshelf")]
+    # The KB's exceptions: red wine is kept on the counter, the rubik cube on the desk.
+    assert tidy(knowledge) == [("red_wine", "kitchen_counter")]

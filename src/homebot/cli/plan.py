@@ -31,6 +31,7 @@ from homebot.htn import (
     task_network_text,
 )
 from homebot.htn.domain import task_data
+from homebot.knowledge import KnowledgeBase
 from homebot.world import World
 
 __all__ = ["carry_out_with_htn", "print_htn_run", "register"]
@@ -50,6 +51,8 @@ def register(subparsers: Any) -> None:
                              "of the home domain")
     parser.add_argument("--problem", type=Path,
                         help="a JSHOP2 (defproblem ...) file: its atoms are the initial state")
+    parser.add_argument("--kb", help="a knowledge base saying where objects belong (loc=>PLACE):"
+                                     " a file or a shipped KB, e.g. apartment_places")
     parser.add_argument("--all", action="store_true", help="every plan (one per task network)")
     parser.add_argument("--cheapest", action="store_true", help="the plan of least cost")
     parser.add_argument("--limit", type=int, default=1000, help="most plans with --all")
@@ -97,8 +100,9 @@ def plan(args: argparse.Namespace) -> int:
     if problem is not None:
         state = State(problem.atoms)
     else:
+        knowledge = KnowledgeBase.load(args.kb) if args.kb else None
         state, _ = state_from_beliefs(world, Beliefs.from_world(world), world.robot.pose[:2],
-                                      names)
+                                      names, knowledge=knowledge)
     tasks, atoms = _goal(args, domain, world, names, problem)
     for atom in atoms:
         state.add(atom)

@@ -23,6 +23,7 @@ from homebot.htn.domain import Domain
 from homebot.htn.home import Goal, Names, home_domain, state_from_beliefs
 from homebot.htn.planner import Plan, Planner, PlanStep
 from homebot.htn.state import Atom
+from homebot.knowledge import KnowledgeBase
 from homebot.skills import ErrorCode, Outcome, SkillContext, Status, skill_named, speak
 from homebot.task import Step
 
@@ -138,13 +139,16 @@ class PlanActor:
         retries: extra attempts per operator name, e.g. ``{"!grasp": 3}``.
         max_replans: how many times to replan after a failed or aborted operator.
         recovery: let the executive's protocols mend a closed door or a blocked way first.
+        knowledge: a knowledge base saying where objects belong (``loc=>PLACE``).
         planner: bounds for each search (``Planner`` keyword arguments).
     """
 
     def __init__(self, context: SkillContext, domain: Domain | None = None, *,
                  retries: Mapping[str, int] | None = None, max_replans: int = 3,
-                 recovery: bool = True, **planner: Any) -> None:
+                 recovery: bool = True, knowledge: KnowledgeBase | None = None,
+                 **planner: Any) -> None:
         self.context = context
+        self.knowledge = knowledge
         self.domain = domain or home_domain()
         self.planner = Planner(self.domain, **planner)
         self.retries = dict(retries or {})
@@ -155,7 +159,7 @@ class PlanActor:
         context = self.context
         state, _ = state_from_beliefs(context.world, context.beliefs,
                                       context.robot.pose().xy(), names,
-                                      extra=[*goal.atoms, *memory])
+                                      extra=[*goal.atoms, *memory], knowledge=self.knowledge)
         return state
 
     def run(self, goal: Goal, names: Names | None = None) -> HtnRun:

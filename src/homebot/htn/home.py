@@ -16,10 +16,11 @@ from pathlib import Path
 from typing import Any
 
 from homebot.beliefs import Beliefs
-from homebot.errors import PlanningError
+from homebot.errors import KnowledgeError, PlanningError
 from homebot.htn.domain import Domain
 from homebot.htn.jshop import read_domain, read_domain_text
 from homebot.htn.state import Atom, State
+from homebot.knowledge import KnowledgeBase
 from homebot.task import Step
 from homebot.world import World
 
@@ -122,13 +123,26 @@ def _robot_at(world: World, beliefs: Beliefs, pose: tuple[float, float], names: 
     return names.of(room) if room else names.of(next(iter(world.rooms)))
 
 
+def _kb_places(knowledge: KnowledgeBase, name: str, category: str) -> list[str]:
+    """Where the KB says an object belongs (``loc``): its own value, else its category's."""
+    for entity in (name, category):
+        try:
+            places = knowledge.values(entity, "loc")
+        except KnowledgeError:
+            continue
+        if places:
+            return [str(place) for place in places]
+    return []
+
+
 def state_from_beliefs(world: World, beliefs: Beliefs, robot_pose: tuple[float, float],
-                       names: Names | None = None,
-                       extra: Iterable[Atom] = ()) -> tuple[State, Names]:
+                       names: Names | None = None, extra: Iterable[Atom] = (),
+                       knowledge: KnowledgeBase | None = None) -> tuple[State, Names]:
     """The planning state: what the robot believes, on its map (``world``).
 
     ``robot_pose`` is where the robot believes it is (its localisation);
-    ``extra`` adds atoms kept by the actor between plans (what it has told whom).
+    ``extra`` adds atoms kept by the actor between plans (what it has told whom);
+    ``knowledge`` says where objects belong (``loc=>PLACE``, defaults with exceptions).
     """
     names = names or Names()
     of = names.of
@@ -159,6 +173,10 @@ def state_from_beliefs(world: World, beliefs: Beliefs, robot_pose: tuple[float, 
         elif isinstance(where, str) and where.startswith("person:"):
             atoms.append(("has", of(where[len("person:"):]), of(name)))
         atoms += [("ruled-out", of(name), of(p)) for p in sorted(beliefs.not_at.get(name, ()))]
+        if knowledge is not None:
+            atoms += [("kb-belongs", of(name), of(place))
+                      for place in _kb_places(knowledge, name, obj.category)
+                      if place in world.placements]
     for person, position in beliefs.person_at.items():
         person_room = world.room_at(*position)
         atoms.append(("person", of(person)))
