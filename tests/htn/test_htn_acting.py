@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import pytest
+
+from homebot.errors import PlanningError
 from homebot.events import EventLog
 from homebot.htn import Goal, HtnRun, Names, PlanActor, home_domain, read_domain_text
 from homebot.navigation import Navigator
@@ -158,3 +161,12 @@ def test_declared_effects_are_checked_against_the_beliefs(
     missing = [e.data["missing"] for e in run.simulation.events.of_kind("htn.effects")]
     assert missing == [["object-at cola desk"]] * 2
     assert "after move_base I do not believe object-at cola desk" in done.reason
+
+
+def test_operators_without_a_skill_are_refused_before_acting(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    run = SimulatedRun.create(apartment, navigator=apartment_navigator)
+    domain = read_domain_text("(defdomain d ((:operator (!dance ?r) () () ((danced ?r)))))")
+    with pytest.raises(PlanningError, match="no skill runs operator '!dance'"):
+        PlanActor(run.context, domain).run(Goal(("!dance", "robot")))
+    assert not list(run.simulation.events.of_kind("skill.start"))

@@ -22,7 +22,7 @@ from homebot.executive.recovery import PROTOCOLS
 from homebot.htn.domain import Domain
 from homebot.htn.home import Goal, Names, home_domain, state_from_beliefs
 from homebot.htn.planner import Plan, Planner, PlanStep
-from homebot.htn.state import Atom
+from homebot.htn.state import Atom, State
 from homebot.knowledge import KnowledgeBase
 from homebot.skills import ErrorCode, Outcome, SkillContext, Status, skill_named, speak
 from homebot.task import Step
@@ -155,7 +155,7 @@ class PlanActor:
         self.max_replans = max_replans
         self.recovery = recovery
 
-    def _state(self, goal: Goal, names: Names, memory: set[Atom]) -> Any:
+    def _state(self, goal: Goal, names: Names, memory: set[Atom]) -> State:
         context = self.context
         state, _ = state_from_beliefs(context.world, context.beliefs,
                                       context.robot.pose().xy(), names,
@@ -178,6 +178,9 @@ class PlanActor:
                               if not result.stopped else f"planning stopped ({result.stopped})")
                 break
             plan = result.plan
+            for step in plan.steps:  # every operator must have a skill before the robot moves
+                if not self.domain.operators[step.operator].internal:
+                    step_for(step, names)
             run.plans.append(plan)
             context.events.record("htn.plan", replan=run.replans, plan=plan.to_dicts())
             failure = self._execute(plan, names, memory, goal, run)
@@ -186,7 +189,8 @@ class PlanActor:
                 break
             run.replans += 1
             if run.replans > self.max_replans:
-                run.reason = f"{failure} (and {self.max_replans} new plans did not help)"
+                run.reason = failure if not self.max_replans else (
+                    f"{failure} (and {self.max_replans} new plans did not help)")
                 break
             context.events.record("htn.replan", replan=run.replans, reason=failure)
         if run.success and not any(s.operator == "!report" for s in run.plans[-1].steps):
