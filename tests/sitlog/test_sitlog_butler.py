@@ -209,3 +209,10 @@ def test_a_person_can_answer_for_luis() -> None:
     assert _words("Glad to hear that; do you want me to do something for you?") in said
     assert summary["order"] == ["coke"] and summary["success"]
     assert _words("Some objects are not on their right shelves.") in said  # the noodles
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_under_disturbances_the_dialogue_always_comes_to_an_end(seed: int) -> None:
+    summary = run_butler(seed=seed, level=1.0)
+    assert summary["speech"][-1] == "Goodbye."
+    assert summary["kb_persisted"]

@@ -23,7 +23,7 @@ from homebot.errors import KnowledgeError
 from homebot.events import Event
 from homebot.knowledge import AddStatement, Kind, KnowledgeBase, parse_statement
 from homebot.knowledge.store import KnowledgeStore
-from homebot.scenarios.runtime import SimulatedRun
+from homebot.scenarios.runtime import SimulatedRun, disturbed
 from homebot.scenarios.summary import scenario_summary
 from homebot.sim import InteractiveResponder, Responder, Simulation
 from homebot.sim.people import normalise_question
@@ -48,6 +48,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="the noodles and the coke are on their own shelves")
     parser.add_argument("--kb-store", metavar="FILE", default=None,
                         help="SQLite file (new) that keeps the KB and its updates")
+    parser.add_argument("--level", type=float, default=0.0,
+                        help="disturbance level (0: none, as in the paper; 1: the demo's)")
     parser.add_argument("--interactive", action="store_true",
                         help="you answer for Luis at a prompt (his day goes on as scripted)")
 
@@ -126,11 +128,12 @@ def butler_world(tidy: bool = False) -> World:
 
 def run_butler(*, prefers: str = "malz", refuse_update: bool = False, tidy: bool = False,
                kb_store: Path | None = None, seed: int = 0,
-               typed: Responder | None = None) -> dict[str, Any]:
+               typed: Responder | None = None, level: float = 0.0) -> dict[str, Any]:
     """Run the dialogue once; returns the summary (``transcript``, ``speech``, KB figures)."""
     world = butler_world(tidy)
     luis = LuisScript(prefers=prefers, refuse_update=refuse_update, typed=typed)
-    run = SimulatedRun.create(world, seed=seed, responder=luis)
+    run = SimulatedRun.create(world, seed=seed, responder=luis,
+                              disturbances=disturbed(level) if level else None)
     luis.simulation = run.simulation
     run.simulation.events.listeners.append(luis.notice)
     with tempfile.TemporaryDirectory() as scratch:
@@ -188,7 +191,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     """The dialogue of §9 with the variant the arguments choose."""
     summary = run_butler(prefers=args.prefers, refuse_update=args.refuse_update,
                          tidy=args.tidy, kb_store=Path(args.kb_store) if args.kb_store else None,
-                         seed=args.seed,
+                         seed=args.seed, level=args.level,
                          typed=InteractiveResponder() if args.interactive else None)
     if console is not None:
         for number, line in enumerate(summary["transcript"], start=1):

@@ -191,13 +191,22 @@ def next_to_fetch(env: Environment) -> Term:
 
 
 def next_location(env: Environment, entity: str) -> Term:
-    """``at(Shelf)``: the next preferred location not yet searched (Appendix B.2)."""
+    """``at(Shelf)``: the next preferred location not yet searched (Appendix B.2).
+
+    When every shelf was searched once, they are searched a second time in the same
+    order (a look can miss what is there); then ``none``.
+    """
     home = home_of(env)
     tried = items_of(env, "tried")
-    for location in home.kb.values(entity, "loc"):
-        if location not in tried and location in home.context.world.placements:
-            _append(env, "tried", location)
-            return Struct("at", (location,))
+    locations = [str(location) for location in home.kb.values(entity, "loc")
+                 if location in home.context.world.placements]
+    for sweep in (1, 2):
+        for location in locations:
+            if tried.count(location) < sweep:
+                if sweep == 2 and location == locations[0] and tried.count(location) == 1:
+                    env.say(f"Let me look for the {home.spoken(entity)} again.")
+                _append(env, "tried", location)
+                return Struct("at", (location,))
     return "none"
 
 
@@ -246,17 +255,19 @@ def user_name(env: Environment) -> Term:
 
 def next_user_place(env: Environment) -> Term:
     """``room(Room)``: where the user most likely is by the KB's preferences (B.2), then the
-    other rooms the KB knows."""
+    other rooms the KB knows; twice round."""
     home = home_of(env)
     tried = items_of(env, "tried")
     likely = [str(point) for point in home.kb.values(home.user_id, "found_in")]
     others = [str(point) for point in home.kb.class_extension("point") if point not in likely]
-    for point in likely + others:
-        room = home.spoken(point)
-        if room not in tried and room in home.context.world.rooms:
-            _append(env, "tried", room)
-            env.set("user_room", room)
-            return Struct("room", (room,))
+    rooms = [home.spoken(point) for point in likely + others
+             if home.spoken(point) in home.context.world.rooms]
+    for sweep in (1, 2):  # people are missed at times: every room is looked at twice
+        for room in rooms:
+            if tried.count(room) < sweep:
+                _append(env, "tried", room)
+                env.set("user_room", room)
+                return Struct("room", (room,))
     return "none"
 
 
