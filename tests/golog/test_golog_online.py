@@ -167,3 +167,12 @@ def test_programs_are_checked_against_the_theory_before_they_run(text: str,
     with pytest.raises(GologError) as raised:
         Interpreter(theory, SimulatedExecutor(theory)).run(parse_program(text))
     assert words in str(raised.value)
+
+
+def test_the_listener_sees_the_log_as_it_happens_and_history_replays() -> None:
+    theory = _switch()
+    seen: list[dict[str, Any]] = []
+    run = Interpreter(theory, SimulatedExecutor(theory), listener=seen.append).run(
+        seq("tick", "toggle", "tick"))
+    assert seen == run.log and [entry["action"] for entry in seen] == ["tick", "toggle", "tick"]
+    assert theory.state_after(run.situation.history) == run.state

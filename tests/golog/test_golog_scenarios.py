@@ -25,6 +25,23 @@ def test_rips_registers_through_the_skills_in_the_simulated_home() -> None:
     assert summary["speech"][0] == "I am ready. Please press my start button."
 
 
+def test_rips_writes_golog_steps_into_the_event_log(monkeypatch: pytest.MonkeyPatch) -> None:
+    logs: list[object] = []
+    original = rips.SimulatedRun.create
+
+    def keep(*args: object, **kwargs: object) -> object:
+        made = original(*args, **kwargs)  # type: ignore[arg-type]
+        logs.append(made.simulation.events)
+        return made
+
+    monkeypatch.setattr(rips.SimulatedRun, "create", keep)
+    rips.run(argparse.Namespace(seed=0, disturb=0.0), None)
+    kinds = [event.kind for event in logs[0].events]  # type: ignore[attr-defined]
+    assert "golog.exogenous" in kinds and "golog.action" in kinds and "skill.start" in kinds
+    assert kinds.index("golog.exogenous") < kinds.index("golog.action", kinds.index(
+        "golog.exogenous"))
+
+
 def test_rips_is_the_same_run_for_the_same_seed() -> None:
     first = rips.run(argparse.Namespace(seed=4, disturb=1.0), None)
     second = rips.run(argparse.Namespace(seed=4, disturb=1.0), None)

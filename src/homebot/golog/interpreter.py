@@ -162,12 +162,18 @@ class Run:
 
 
 class Interpreter:
-    """Runs programs online over one theory and one executor; seeded for ``prob``."""
+    """Runs programs online over one theory and one executor; seeded for ``prob``.
+
+    ``listener`` sees every log entry as it happens (actions, plans, re-plans,
+    exogenous actions, sensing results, waits).
+    """
 
     def __init__(self, theory: Theory, executor: Executor, *, seed: int = 0,
-                 max_steps: int = 2000, max_replans: int = 25) -> None:
+                 max_steps: int = 2000, max_replans: int = 25,
+                 listener: Callable[[dict[str, Any]], None] | None = None) -> None:
         self.theory = theory
         self.executor = executor
+        self.listener = listener
         self.rng = random.Random(seed)
         self.max_steps = max_steps
         self.max_replans = max_replans
@@ -196,7 +202,7 @@ class Interpreter:
                 if happened is None:
                     return self._failed(run, state, "the program is blocked and nothing "
                                                     "more will happen")
-                run.log.append({"kind": "wait"})
+                self._log(run, {"kind": "wait"})
                 for action in happened:
                     state = self._exogenous(run, action, state)
                 continue
@@ -214,7 +220,7 @@ class Interpreter:
         """Have the executor do an action; the new state, what remains, and any failure."""
         report = self.executor.execute(step.action, state)
         text = action_text(step.action)
-        run.log.append({"kind": "action", "action": text, "ok": report.ok,
+        self._log(run, {"kind": "action", "action": text, "ok": report.ok,
                         "message": report.message})
         if report:
             run.history.append(step.action)
@@ -224,7 +230,7 @@ class Interpreter:
             return state, remaining, f"{text} failed: {report.message}"
         # A planned action failed: the policy's model of the world was wrong; plan again.
         run.replans += 1
-        run.log.append({"kind": "replan", "marker": f"done({text})", "expected": True,
+        self._log(run, {"kind": "replan", "marker": f"done({text})", "expected": True,
                         "message": report.message})
         return state, step.fallback, ""
 
@@ -232,19 +238,25 @@ class Interpreter:
         """Log a step that is not an action; the failure it means, if any."""
         if isinstance(step, PlanStep):
             run.plans.append(step.result)
-            run.log.append({"kind": "plan", "value": step.result.value,
+            self._log(run, {"kind": "plan", "value": step.result.value,
                             "probability": step.result.probability,
                             "actions": [action_text(action)
                                         for action in policy_actions(step.result.policy)]})
         elif isinstance(step, ReplanStep):
             run.replans += 1
-            run.log.append({"kind": "replan", "marker": str(step.condition),
+            self._log(run, {"kind": "replan", "marker": str(step.condition),
                             "expected": step.expected})
             if run.replans > self.max_replans:
                 return "too many re-plans"
         elif isinstance(step, SenseStep):
-            run.log.append({"kind": "sensed", "outcome": action_text(step.nature)})
+            self._log(run, {"kind": "sensed", "outcome": action_text(step.nature)})
         return ""
+
+    def _log(self, run: Run, entry: dict[str, Any]) -> None:
+        """Keep a log entry with the run and pass it to the listener (an event log, say)."""
+        run.log.append(entry)
+        if self.listener is not None:
+            self.listener(entry)
 
     def _pick(self, found: list[tuple[Step, Program]]) -> tuple[Step, Program]:
         step, remaining = found[0]
@@ -268,7 +280,7 @@ class Interpreter:
         return state.progressed(report.sensed) if report.sensed else state
 
     def _exogenous(self, run: Run, action: GroundAction, state: State) -> State:
-        run.log.append({"kind": "exogenous", "action": action_text(action)})
+        self._log(run, {"kind": "exogenous", "action": action_text(action)})
         return self.theory.do(action, state)
 
     @staticmethod

@@ -211,6 +211,14 @@ class Theory:
             return state
         return state.progressed(schema.effects(state, *action[1:]))
 
+    def state_after(self, history: Sequence[GroundAction]) -> State:
+        """The state of the situation ``do(history, S0)``: the initial state progressed
+        through the history (nature's actions stand for the stochastic ones)."""
+        state = self.initial
+        for action in history:
+            state = self.do(action, state)
+        return state
+
     def outcomes(self, action: GroundAction, state: State) -> list[tuple[GroundAction, float]]:
         """Nature's choices for a stochastic action; a deterministic one has only itself."""
         schema = self.schema(action)

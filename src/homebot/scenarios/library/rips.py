@@ -76,7 +76,12 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
 
     theory = rips_theory()
     executor = SkillExecutor(context, _bindings(), waiting=waiting)
-    outcome = Interpreter(theory, executor, seed=args.seed).run(do("rips"))
+    def record(entry: dict[str, Any]) -> None:
+        # Golog's own steps go into the run's event log beside the skills' events.
+        context.events.record(f"golog.{entry['kind']}",
+                              **{key: value for key, value in entry.items() if key != "kind"})
+
+    outcome = Interpreter(theory, executor, seed=args.seed, listener=record).run(do("rips"))
     simulation = simulation_run.simulation
     with_committee = simulation.object_location.get(SHEET) == f"person:{COMMITTEE}"
     out = world.room_at(*simulation.robot_pose[:2]) == "entrance"
