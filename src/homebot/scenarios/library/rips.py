@@ -13,6 +13,7 @@ from homebot.golog.domains import rips_theory
 from homebot.golog.skill_executor import SkillExecutor
 from homebot.scenarios.runtime import SimulatedRun, disturbed
 from homebot.scenarios.summary import scenario_summary
+from homebot.skills import speak
 from homebot.task import Step
 from homebot.world import World
 
@@ -69,8 +70,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
         # The robot waits for its start button; the committee presses it on the second look.
         waits.append(len(waits))
         if len(waits) == 1:
-            context.robot.say("I am ready. Please press my start button.")
-            context.events.record("speech", text="I am ready. Please press my start button.")
+            speak(context, "I am ready. Please press my start button.")
             return []
         return [("press_start_button",)] if len(waits) <= 3 else None
 
@@ -82,6 +82,8 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
                               **{key: value for key, value in entry.items() if key != "kind"})
 
     outcome = Interpreter(theory, executor, seed=args.seed, listener=record).run(do("rips"))
+    if not outcome.success:
+        speak(context, f"I am sorry, I could not finish the registration: {outcome.reason}.")
     simulation = simulation_run.simulation
     with_committee = simulation.object_location.get(SHEET) == f"person:{COMMITTEE}"
     out = world.room_at(*simulation.robot_pose[:2]) == "entrance"
