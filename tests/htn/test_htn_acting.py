@@ -86,11 +86,10 @@ def test_an_object_moved_away_is_searched_for(apartment: World,
     done, events = _carry_out(apartment, apartment_navigator, "bring_object",
                               ["pringles", "Alex"], seed=2,
                               disturbances=DisturbanceModel(object_moved=1.0))
-    assert done and done.replans == 2
+    assert done and done.replans == 1
     failed = [(r.operator, r.args[2], r.status, r.error) for r in done.operators
               if r.status != "verified"]
-    assert failed == [("!find_object", "pantry", "failed", "not_found"),
-                      ("!find_object", "coffee table", "failed", "not_found")]
+    assert failed == [("!find_object", "pantry", "failed", "not_found")]
     assert ("!search_object", ("robot", "pringles")) in [(r.operator, r.args)
                                                           for r in done.operators]
     assert "failed" in _statuses(events, "find_object")
@@ -135,9 +134,9 @@ def test_a_missed_second_look_keeps_the_found_placement(
 def test_a_vain_search_is_repeated_after_forgetting_the_misses(
         apartment: World, apartment_navigator: Navigator) -> None:
     done, events = _carry_out(apartment, apartment_navigator, "place_object",
-                              ["cup", "dishwasher"], seed=5, disturbances=disturbed(1.0))
+                              ["cup", "dishwasher"], seed=9, disturbances=disturbed(1.0))
     searches = [r.status for r in done.operators if r.operator == "!search_object"]
-    assert done and searches == ["failed", "verified"]
+    assert done and done.replans == 2 and searches == ["failed", "verified"]
     assert [e.data["object"] for e in events.of_kind("belief")
             if e.data["what"] == "forgot_not_at"] == ["cup"]
 

@@ -5,7 +5,9 @@ GTPyhop (``gtpyhop-core``, a dev dependency) gets the same decomposition as
 told / belongs, deliver, report), written the way GTPyhop domains are: state
 variables in dicts, actions and methods as Python functions, over the same
 beliefs. Both find their first plan; each is timed in the same run. Then the
-paper's Table 1 figures, and tidy-ups of growing numbers of misplaced objects.
+paper's Table 1 figures, tidy-ups of growing numbers of misplaced objects, and
+seeded bring tasks under disturbances carried out by the executive (GPSR steps)
+and by the HTN actor (plan, monitor, replan), judged by ground truth.
 """
 
 from __future__ import annotations
@@ -22,7 +24,18 @@ from typing import Any
 from rich.console import Console
 
 from homebot.beliefs import Beliefs
-from homebot.htn import Goal, Planner, State, home_domain, state_from_beliefs
+from homebot.bench.fetch_tasks import delivered, fetch_tasks
+from homebot.htn import (
+    Goal,
+    Names,
+    PlanActor,
+    Planner,
+    State,
+    home_domain,
+    state_from_beliefs,
+)
+from homebot.navigation import Navigator
+from homebot.scenarios import SimulatedRun, disturbed
 from homebot.world import World
 
 __all__ = ["add_arguments", "run"]
@@ -239,10 +252,47 @@ def _tidy_world(base: World, misplaced: int) -> World:
     return World.from_dict(data, f"<{base.name} with {misplaced} misplaced objects>")
 
 
+def _execution(world: World, runs: int, seed: int, level: float) -> list[dict[str, Any]]:
+    """The same seeded bring tasks under disturbances: GPSR steps with the executive's
+    recovery protocols, and HTN goals with per-operator monitoring and replanning."""
+    navigator = Navigator(world)
+    domain = home_domain()
+    rows = []
+    for mode in ("executive (GPSR steps + recovery)", "htn (plan + monitor + replan)"):
+        delivered_count = verified = told = 0
+        sim_times: list[float] = []
+        for index, fetch in enumerate(fetch_tasks(world, runs, seed)):
+            simulation_run = SimulatedRun.create(world, seed=seed * 100_003 + index,
+                                                 disturbances=disturbed(level),
+                                                 navigator=navigator)
+            if mode.startswith("htn"):
+                names = Names()
+                goal = Goal.of("bring_object", [fetch.obj, fetch.person], world, names, domain)
+                done = PlanActor(simulation_run.context, domain).run(goal, names)
+                success, speech, sim_time = done.success, done.speech, done.sim_time
+            else:
+                report = simulation_run.run(fetch.task)
+                success, speech, sim_time = report.success, report.speech, report.sim_time
+            really = delivered(simulation_run.simulation, fetch)
+            delivered_count += really
+            verified += really and success
+            told += not success and any(text.startswith("I am sorry") for text in speech)
+            sim_times.append(sim_time)
+        rows.append({"mode": mode, "tasks": runs, "delivered": delivered_count,
+                     "verified_delivery_rate": round(verified / max(runs, 1), 4),
+                     "failed_and_told_why": told,
+                     "median_sim_time_s": round(statistics.median(sim_times or [0.0]), 1)})
+    return rows
+
+
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--repeats", type=int, default=300, help="plans timed per planner")
     parser.add_argument("--sizes", type=int, nargs="+", default=[25, 50, 100, 200],
                         help="numbers of misplaced objects to tidy up")
+    parser.add_argument("--runs", type=int, default=60,
+                        help="seeded bring tasks run under disturbances per mode (0: none)")
+    parser.add_argument("--level", type=float, default=1.0, help="disturbance level")
+    parser.add_argument("--seed", type=int, default=1, help="seed of tasks and disturbances")
 
 
 def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, Any]:
@@ -289,6 +339,7 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
         tidy.append({"misplaced": size, "put_away": moved, "plan_length": len(result.plan),
                      "ms": round(tidy_ms, 2), "ms_per_object": round(tidy_ms / size, 3)})
     figures["tidy"] = tidy
+    figures["execution"] = _execution(world, args.runs, args.seed, args.level) if args.runs else []
     if console is not None:
         for label, row in table.items():
             console.print(f"Table 1, {label}: {row['plans']} plans, shortest {row['shortest']}, "
@@ -297,4 +348,6 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
         console.print(f"bring_object, first plan: {comparison}")
         for row in tidy:
             console.print(f"tidy-up: {row}")
+        for row in figures["execution"]:
+            console.print(f"bring under disturbances x{args.level}: {row}")
     return {"benchmark": "htn", "figures": figures}
