@@ -11,7 +11,8 @@ from homebot.cli import main
 
 def test_bench_htn_reports_table_1_and_the_comparison(
         capsys: pytest.CaptureFixture[str]) -> None:
-    assert main(["bench", "htn", "--repeats", "3", "--sizes", "10", "20", "--json"]) == 0
+    assert main(["bench", "htn", "--repeats", "3", "--sizes", "10", "20", "--runs", "2",
+                 "--json"]) == 0
     figures = json.loads(capsys.readouterr().out)["figures"]
     assert figures["table1"]["bring object"]["plans"] == 3
     assert figures["table1"]["bring object"]["shortest"] == 8
@@ -22,3 +23,4 @@ def test_bench_htn_reports_table_1_and_the_comparison(
     if "gtpyhop_median_ms" in comparison:  # gtpyhop-core is a dev dependency
         assert comparison["same_plan"] is True
     assert [row["put_away"] for row in figures["tidy"]] == [10, 20]
+    assert [row["tasks"] for row in figures["execution"]] == [2, 2]
