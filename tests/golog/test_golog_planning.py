@@ -171,3 +171,13 @@ def test_progression_changes_only_what_an_action_affects() -> None:
     after = theory.do(("reset",), start)
     assert after.get(("n",)) == 0 and after.get(("heads",)) is True
     assert start.get(("n",)) == 4  # states are values: the old one is unchanged
+
+
+def test_chance_and_a_nested_solve_inside_concurrency_are_planned() -> None:
+    theory = _counter()
+    mixed = Planner(theory, f("reward")).solve(
+        conc(prob(0.5, "bump", "never"), wait_for(f("heads"))), State(), 3)
+    assert mixed.probability == pytest.approx(0.5)
+    nested = Planner(theory, f("reward")).solve(
+        conc(solve(2, f("reward"), seq("bump", "bump")), wait_for(f("heads"))), State(), 3)
+    assert policy_actions(nested.policy) == [("bump",), ("bump",)]

@@ -216,13 +216,26 @@ class Planner:
         options: list[Result] = []
         if final(head, state, theory):
             options.append(self.best(rest, state, horizon))
-        for step, remaining in transitions(head, state, theory):
+        found = transitions(head, state, theory)
+        chances = [(step.probability, remaining) for step, remaining in found
+                   if isinstance(step, ChanceStep)]
+        if chances:  # nature's choice between programs, as prob(p, σ1, σ2) is planned
+            results = [(chance, self.best((remaining, *rest), state, horizon))
+                       for chance, remaining in chances]
+            options.append(Result(sum(chance * result.value for chance, result in results),
+                                  sum(chance * result.probability
+                                      for chance, result in results),
+                                  PChance(chances[0][0], results[0][1].policy,
+                                          results[-1][1].policy)))
+        for step, remaining in found:
             following = (remaining, *rest)
             if isinstance(step, ActionStep):
                 options.append(self._action(step.action, following, state, horizon))
             elif isinstance(step, TestStep):
                 options.append(self._marked(step.condition, step.value,
                                             self.best(following, state, horizon)))
+            elif isinstance(step, PlanStep | SenseStep | ReplanStep):
+                options.append(self.best(following, state, horizon))
         if not options:
             return Result(self.reward_of(state), 0.0, _STOP)
         chosen = options[-1]
