@@ -89,3 +89,9 @@ def test_every_edge_of_the_diagram_joins_declared_nodes(
 def test_the_butler_needs_its_home(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["sitlog", "run", "butler"]) == 2
     assert "homebot scenario butler" in " ".join(capsys.readouterr().err.split())
+
+
+def test_trace_prints_transitions_as_they_happen(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["sitlog", "run", "appendix_a", "--trace", "--input", "finish"]) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert out[:2] == ["robot: Good Bye", "  main: (is,finish:screen(Good Bye))"]

@@ -258,3 +258,21 @@ dialogue_models:
 """)
     result, said = _run(program, ["no", "maybe", "yes"])
     assert said == ["3"] and result.globals["visits"] == 3
+
+
+def test_speech_is_read_against_the_expectations() -> None:
+    program = _program("""
+dialogue_models:
+  - id: main
+    situations:
+      - id: is
+        type: speech
+        arcs:
+          - "yes : say(agreed) => fs"
+          - "'no thanks' : say(declined) => fs"
+          - "Other : say(Other) => fs"
+      - {id: fs, type: final}
+""")
+    assert _run(program, ["Yes, Golem, please."])[1] == ["agreed"]
+    assert _run(program, ["Oh no thanks, not now."])[1] == ["declined"]
+    assert _run(program, ["Maybe later!"])[1] == ["maybe later"]

@@ -49,6 +49,7 @@ def register(subparsers: Any) -> None:
     run.add_argument("--call", help="the dialogue model to run, e.g. \"find(cola, [fridge], W)\"")
     run.add_argument("--world", help="run skills on a simulated robot in this world")
     run.add_argument("--seed", type=int, default=0, help="seed for the simulated world")
+    run.add_argument("--trace", action="store_true", help="print each transition as it is taken")
     run.add_argument("--json", action="store_true", help="print the result as JSON")
     run.set_defaults(handler=_run)
     show = commands.add_parser("show", help="list a program's models, or draw them as dot")
@@ -95,7 +96,9 @@ def _run(args: argparse.Namespace) -> int:
     if args.world:
         perception, body_on_robot, application = _on_robot(args, spoken)
         body = body_on_robot
-    result = Interpreter(program, perception, body=body, application=application).run(args.call)
+    trace = (lambda step: console.print(f"  {step}")) if console and args.trace else None
+    result = Interpreter(program, perception, body=body, application=application,
+                         on_transition=trace).run(args.call)
     history = render_history(result.history)
     if args.json:
         print(json.dumps({"final": format_term(result.final), "out_arg": format_term(

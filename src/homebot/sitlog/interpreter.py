@@ -302,7 +302,7 @@ class Interpreter:
         if situation.interpreter is not None and datum is not None:
             datum = env.function(situation.interpreter)(env, datum, tuple(expectations))
         elif isinstance(datum, Text):
-            datum = utterance_term(datum.text)
+            datum = utterance_term(datum.text, expectations)
         return datum, pipe
 
     def _match(self, arcs: list[tuple[Any, tuple[Term, Term, Term]]], expectations: list[Term],

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Protocol
 
 from homebot.errors import DialogueError
-from homebot.sitlog.terms import Term, Text, parse_term
+from homebot.sitlog.terms import Term, Text, deref, parse_term
 
 if TYPE_CHECKING:
     from homebot.sitlog.interpreter import Environment
@@ -51,13 +51,29 @@ class RecordingBody:
             self.echo(text)
 
 
-def utterance_term(text: str) -> Term:
-    """A typed or heard line as a term: SitLog notation if it parses, else an atom."""
+def utterance_term(text: str, expectations: Sequence[Term] = ()) -> Term:
+    """A typed or heard line as a term, read top-down against the expectations.
+
+    SitLog notation is taken as written. Otherwise an expected atom whose words
+    occur in the utterance is what was meant ("Yes, Golem, please." meets ``yes``),
+    the first such in the arcs' order; failing that, the words become one atom.
+    """
     stripped = text.strip().rstrip(".")
     try:
         return parse_term(stripped, "<input>")
     except DialogueError:
-        return " ".join(re.sub(r"[^\w\s']", " ", stripped.lower()).split())
+        pass
+    words = re.sub(r"[^\w\s']", " ", stripped.lower()).split()
+    for expectation in expectations:
+        expected = deref(expectation)
+        if isinstance(expected, str) and expected and _contains(words, expected.split()):
+            return expected
+    return " ".join(words)
+
+
+def _contains(words: list[str], phrase: list[str]) -> bool:
+    size = len(phrase)
+    return any(words[i:i + size] == phrase for i in range(len(words) - size + 1))
 
 
 @dataclass
@@ -91,7 +107,7 @@ class ScriptedPerception:
         if item is None:
             raise DialogueError(f"no more input for the {kind} situation "
                                 f"{env.situation_name}; give more inputs")
-        datum = utterance_term(item) if isinstance(item, str) else item
+        datum = utterance_term(item, expectations) if isinstance(item, str) else item
         self.consumed.append(datum)
         return datum
 
