@@ -151,3 +151,10 @@ def test_where_things_belong_comes_from_the_knowledge_base(apartment: World) -> 
     assert tidy(None) == [("red_wine", "fridge"), ("rubik_cube", "bookshelf")]
     # The KB's exceptions: red wine is kept on the counter, the rubik cube on the desk.
     assert tidy(knowledge) == [("red_wine", "kitchen_counter")]
+
+
+def test_tidy_one_room(apartment: World) -> None:
+    office = _plans(apartment, "tidy_room", ["office"])[0]
+    assert [a for a in office.actions() if a[0] == "!put_down"] == [
+        ("!put_down", "robot", "rubik_cube", "bookshelf")]
+    assert len(_plans(apartment, "tidy_room", ["bedroom"])[0]) == 0

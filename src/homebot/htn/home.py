@@ -37,6 +37,7 @@ HOME_TASKS: Mapping[str, tuple[str, ...]] = {
     "put_away": ("OBJECT",),
     "place_object": ("OBJECT", "PLACEMENT"),
     "tidy": (),
+    "tidy_room": ("ROOM",),
     "serve": ("OBJECT-OR-CATEGORY", "PERSON"),
 }
 
