@@ -45,16 +45,57 @@ __all__ = ["check_program", "check_theory"]
 def check_theory(theory: Theory) -> None:
     """Check every procedure of the theory; raise ``GologError`` naming the first problem."""
     for procedure in theory.procedures.values():
-        check_program(theory, procedure.body, f"procedure {procedure.name}")
+        check_program(theory, procedure.body, f"procedure {procedure.name}",
+                      bound=frozenset(procedure.parameters))
 
 
-def check_program(theory: Theory, program: Program, where: str = "the program") -> None:
+def check_program(theory: Theory, program: Program, where: str = "the program", *,
+                  bound: frozenset[str] = frozenset()) -> None:
     """Raise ``GologError`` if the program calls an unknown action or procedure, or a
-    fluent or function that is not declared, or any of them with the wrong arity."""
+    fluent or function that is not declared, or any of them with the wrong arity, or
+    tests a bare name that is neither a fluent, a function nor a bound variable
+    (``bound`` holds the names bound around the program, such as parameters)."""
     for call in _calls(program):
         _check_call(theory, call, where)
     for term in _terms(program):
         _check_term(theory, term, where)
+    _check_conditions(theory, program, bound, where)
+
+
+def _check_conditions(theory: Theory, program: Program, bound: frozenset[str],
+                      where: str) -> None:
+    """A bare name tested as a condition must be a fluent, a function or a variable."""
+    if isinstance(program, Pi | PickBest):
+        bound = bound | {program.variable}
+    programs, expressions = _children(program)
+    for expression in expressions:
+        _check_truth(theory, expression, bound, where, condition=isinstance(
+            program, Test | WaitFor | If | While | WithCtrl))
+    for child in programs:
+        _check_conditions(theory, child, bound, where)
+
+
+def _check_truth(theory: Theory, expression: Expr, bound: frozenset[str], where: str, *,
+                 condition: bool) -> None:
+    match expression:
+        case Fn(name=name, args=()) if condition and name not in bound and (
+                name not in theory.fluents and name not in theory.functions):
+            known = [*theory.fluents, *theory.functions, *bound]
+            raise GologError(f"{where}: the condition '{name}' is neither a fluent, a "
+                             f"function nor a variable; {_hint(name, known)}")
+        case Not(operand=operand):
+            _check_truth(theory, operand, bound, where, condition=condition)
+        case And(operands=operands) | Or(operands=operands):
+            for operand in operands:
+                _check_truth(theory, operand, bound, where, condition=condition)
+        case Exists(variable=variable, body=body) | Forall(variable=variable, body=body):
+            _check_truth(theory, body, bound | {variable}, where, condition=True)
+        case PProj(condition=inner, program=program):
+            _check_truth(theory, inner, bound, where, condition=True)
+            _check_conditions(theory, program, bound, where)
+        case Compare(left=left, right=right) | Arith(left=left, right=right):
+            _check_truth(theory, left, bound, where, condition=False)
+            _check_truth(theory, right, bound, where, condition=False)
 
 
 def _check_call(theory: Theory, call: Call, where: str) -> None:
