@@ -175,9 +175,11 @@ def test_user_functions_read_the_history_of_the_task() -> None:
 def test_a_model_built_in_python_runs_like_a_loaded_one() -> None:
     hello = Situation(parse_term("is"), "speech", (Arc.from_text("hi(Name) : say(Name) => fs"),))
     model = DialogueModel("main", (hello, Situation("fs", "final")))
-    program = Program({("main", 0): model}, ("main", 0))
+    program = Program.build([model])
     result, said = _run(program, ["hi(ada)"])
     assert said == ["ada"] and format_term(result.final) == "fs"
+    with pytest.raises(DialogueError, match="no final situation"):
+        Program.build([DialogueModel("main", (hello,))])
 
 
 def test_a_loop_without_end_is_stopped() -> None:

@@ -233,8 +233,14 @@ class _File:
             return tuple(self.term(item, variables) for item in node.value)
         if not isinstance(node, yaml.ScalarNode):
             raise DialogueError(f"{self.place(node)}: expected a term, not a mapping")
+        if node.tag.startswith("!") or not node.tag.startswith("tag:yaml.org,2002:"):
+            raise DialogueError(f"{self.place(node)}: YAML tag {node.tag} means nothing here; "
+                                "write the term without it")
         if node.style is None:
-            value = self.constructor.construct_object(node)
+            try:
+                value = self.constructor.construct_object(node)
+            except yaml.YAMLError as error:
+                raise DialogueError(f"{self.place(node)}: {error}") from None
             if isinstance(value, bool):
                 return "true" if value else "false"
             if isinstance(value, int | float):

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -147,6 +147,25 @@ class Program:
     recovery: Term | None = None
     source: str = "<program>"
     options: Mapping[str, Any] = field(default_factory=dict)
+
+    @classmethod
+    def build(cls, models: Sequence[DialogueModel], *, main: str | None = None,
+              globals: Mapping[str, Term] | None = None,
+              functions: Mapping[str, UserFunction] | None = None,
+              recovery: Term | None = None, source: str = "<python>") -> Program:
+        """A checked program from models written in Python (the first is main by default)."""
+        from homebot.errors import DialogueError
+        from homebot.sitlog.validation import check_program
+
+        keyed = {model.key: model for model in models}
+        if not keyed or len(keyed) != len(models):
+            raise DialogueError(f"{source}: give one or more dialogue models, each name once")
+        chosen = next((key for key in keyed if key[0] == main), None) if main else models[0].key
+        if chosen is None:
+            raise DialogueError(f"{source}: no dialogue model called {main}")
+        program = cls(keyed, chosen, dict(globals or {}), dict(functions or {}), recovery, source)
+        check_program(program)
+        return program
 
     def model(self, name: str, arity: int = 0) -> DialogueModel:
         return self.models[(name, arity)]
