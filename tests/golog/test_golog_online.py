@@ -16,6 +16,7 @@ from homebot.golog import (
     parse_program,
 )
 from homebot.golog.build import (
+    choice,
     conc,
     do,
     eq,
@@ -24,12 +25,14 @@ from homebot.golog.build import (
     lt,
     prob,
     proc,
+    search,
     seq,
     wait_for,
     while_,
     with_ctrl,
     with_pol,
 )
+from homebot.golog.build import test as guard
 from homebot.golog.domains import elevator_theory
 
 
@@ -181,3 +184,19 @@ def test_the_listener_sees_the_log_as_it_happens_and_history_replays() -> None:
         seq("tick", "toggle", "tick"))
     assert seen == run.log and [entry["action"] for entry in seen] == ["tick", "toggle", "tick"]
     assert theory.state_after(run.situation.history) == run.state
+
+
+def test_search_looks_ahead_where_plain_choice_commits_blindly() -> None:
+    theory = _switch()
+    program = seq(choice("tick", "toggle"), guard(f("light")))
+    blind = Interpreter(theory, SimulatedExecutor(theory, patience=0)).run(program)
+    assert not blind.success and blind.actions == ["tick"]
+    looked = Interpreter(theory, SimulatedExecutor(theory)).run(search(program))
+    assert looked.success and looked.actions == ["toggle"]
+
+
+def test_search_finds_the_floor_whose_button_is_lit() -> None:
+    theory = elevator_theory(floors=4, start=1, lit=(3,))
+    program = parse_program("search(pi(n, floors, go_floor(n); ?(lit(n)); turnoff(n)))")
+    run = Interpreter(theory, SimulatedExecutor(theory)).run(program)
+    assert run.success and run.actions == ["up", "up", "turnoff(3)"]

@@ -18,6 +18,7 @@ from homebot.golog.program import (
     PickBest,
     Prob,
     Program,
+    Search,
     Seq,
     Solve,
     Star,
@@ -57,7 +58,7 @@ def _programs(inner: st.SearchStrategy[Program]) -> st.SearchStrategy[Program]:
     return st.one_of(
         many.map(Seq), many.map(Choice), st.builds(Conc, inner, inner),
         st.builds(If, FORMULAS, inner, inner), st.builds(While, FORMULAS, inner),
-        inner.map(Star), st.builds(Pi, NAMES, DOMAINS, inner),
+        inner.map(Star), inner.map(Search), st.builds(Pi, NAMES, DOMAINS, inner),
         st.builds(PickBest, NAMES, DOMAINS, inner), st.builds(WithPol, inner, inner),
         st.builds(WithCtrl, FORMULAS, inner), st.builds(Prob, TERMS, inner, inner),
         st.builds(Solve, TERMS, TERMS, inner))

@@ -42,6 +42,7 @@ from homebot.golog.program import (
     Prob,
     Procedure,
     Program,
+    Search,
     Seq,
     Solve,
     Star,
@@ -79,6 +80,7 @@ __all__ = [
     "prob",
     "proc",
     "procedure",
+    "search",
     "seq",
     "solve",
     "star",
@@ -203,6 +205,11 @@ def choice(*options: Program | str) -> Choice:
 
 def star(body: Program | str) -> Star:
     return Star(_program(body))
+
+
+def search(body: Program | str) -> Search:
+    """IndiGolog's Σ: online, take only steps from which ``body`` can still end."""
+    return Search(_program(body))
 
 
 def pi(variable: str, domain: Any, body: Program | str) -> Pi:

@@ -28,6 +28,7 @@ from homebot.golog.program import (
     PickBest,
     Prob,
     Program,
+    Search,
     Seq,
     Solve,
     Star,
@@ -146,7 +147,7 @@ def _children(program: Program) -> tuple[list[Program], list[Expr]]:
             return [then, otherwise], [condition]
         case While(condition=condition, body=body) | WithCtrl(condition=condition, body=body):
             return [body], [condition]
-        case Star(body=body):
+        case Star(body=body) | Search(body=body):
             return [body], []
         case Pi(domain=domain, body=body) | PickBest(domain=domain, body=body):
             return [body], [domain]

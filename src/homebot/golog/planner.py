@@ -40,6 +40,7 @@ from homebot.golog.program import (
     PickBest,
     Prob,
     Program,
+    Search,
     Seq,
     Solve,
     Star,
@@ -156,7 +157,7 @@ class Planner:
                 return Result(chance * one.value + (1.0 - chance) * other.value,
                               chance * one.probability + (1.0 - chance) * other.probability,
                               PChance(chance, one.policy, other.policy))
-            case Solve(body=body):
+            case Solve(body=body) | Search(body=body):
                 return self.best((body, *rest), state, horizon)
         return self._by_transitions(head, rest, state, horizon)
 

@@ -21,6 +21,7 @@ __all__ = [
     "Prob",
     "Procedure",
     "Program",
+    "Search",
     "Seq",
     "Solve",
     "Star",
@@ -273,6 +274,19 @@ class Solve(Program):
 
     def __str__(self) -> str:
         return f"solve({self.horizon}, {self.reward}, {self.body})"
+
+
+@dataclass(frozen=True, slots=True)
+class Search(Program):
+    """``search(δ)``: IndiGolog's Σ; online, take only steps from which δ can still end."""
+
+    body: Program
+
+    def substitute(self, bindings: Substitution) -> Program:
+        return Search(self.body.substitute(bindings))
+
+    def __str__(self) -> str:
+        return f"search({self.body})"
 
 
 @dataclass(frozen=True, slots=True)

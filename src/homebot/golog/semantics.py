@@ -26,6 +26,7 @@ from homebot.golog.program import (
     PickBest,
     Prob,
     Program,
+    Search,
     Seq,
     Solve,
     Star,
@@ -56,6 +57,8 @@ __all__ = [
 DEFAULT_HORIZON = 6
 #: unfolding depth beyond which a procedure is taken to recurse without acting
 _MAX_UNFOLD = 200
+#: how many steps ``search`` looks ahead for a way to the end
+SEARCH_DEPTH = 60
 
 
 @dataclass(frozen=True, slots=True)
@@ -219,7 +222,33 @@ def transitions(program: Program, state: State, theory: Theory,
             return [(PlanStep(result), Running(result.policy, program))]
         case Running():
             return _policy_transitions(program, state, theory)
+        case Search(body=body):
+            chosen = _first_step_to_the_end(body, state, theory, SEARCH_DEPTH)
+            return [] if chosen is None else [(chosen[0], Search(chosen[1]))]
     return []
+
+
+def _first_step_to_the_end(program: Program, state: State, theory: Theory,
+                           depth: int) -> tuple[Step, Program] | None:
+    """The first step of an execution of ``program`` that ends (offline, depth first).
+
+    Only deterministic steps are searched: a stochastic action or a chance event
+    cannot be promised to lead to the end.
+    """
+    if depth <= 0:
+        return None
+    for step, remaining in transitions(program, state, theory):
+        if isinstance(step, ChanceStep):
+            continue
+        after = state
+        if isinstance(step, ActionStep):
+            if theory.schema(step.action).stochastic:
+                continue
+            after = theory.do(step.action, state)
+        if final(remaining, after, theory) or _first_step_to_the_end(
+                remaining, after, theory, depth - 1) is not None:
+            return step, remaining
+    return None
 
 
 def _mapped(found: list[tuple[Step, Program]],
@@ -286,4 +315,6 @@ def final(program: Program, state: State, theory: Theory, depth: int = 0) -> boo
             return final(body, state, theory, depth)
         case Running(policy=policy):
             return isinstance(policy, PNil)
+        case Search(body=body):
+            return final(body, state, theory, depth)
     return False

@@ -13,7 +13,7 @@
 Statements are joined by ``;`` (or ``,`` outside argument lists); ``|`` is
 nondeterministic choice and ``||`` prioritised concurrency (choice binds
 loosest). Constructs: ``nil``, ``fail``, ``?(φ)``, ``if φ then δ [else δ] endif``,
-``while φ do δ endwhile``, ``star(δ)``, ``pi(x, D, δ)``, ``pickBest(x, D, δ)``,
+``while φ do δ endwhile``, ``star(δ)``, ``search(δ)``, ``pi(x, D, δ)``, ``pickBest(x, D, δ)``,
 ``solve(h, reward, δ)``, ``prob(p, δ1, δ2)``, ``withPol(δ1, δ2)``,
 ``withCtrl φ do δ endwithCtrl``, ``waitFor(φ)``, ``name(args)`` (an action or a
 procedure). Formulas use ``and & ∧``, ``or | ∨``, ``not ! ¬``, ``= != ≠ < <= >
@@ -53,6 +53,7 @@ from homebot.golog.program import (
     Prob,
     Procedure,
     Program,
+    Search,
     Seq,
     Solve,
     Star,
@@ -308,6 +309,12 @@ class _Parser:
         body = self.program(commas=False)
         self._close("star")
         return Star(body)
+
+    def _statement_search(self) -> Program:
+        self._open("search")
+        body = self.program(commas=False)
+        self._close("search")
+        return Search(body)
 
     def _binder(self, construct: str) -> tuple[str, Expr, Program]:
         self._open(construct)
