@@ -1,10 +1,13 @@
 """Golog / READYLOG: robot programs with decision-theoretic planning and execution monitoring.
 
-A basic action theory (``Theory``) over fluents and primitive, stochastic,
-sensing and exogenous actions; programs built in Python (``homebot.golog.build``)
-or read from text (``parse_program``, ``parse_procedures``); ``solve`` plans
-DTGolog policies with READYLOG's markers; the ``Interpreter`` runs programs
-online through an ``Executor`` (the skills of the home, or a pure simulation).
+A basic action theory (``Theory``: fluents; primitive, stochastic, sensing and
+exogenous actions; progression) in ``theory``; program constructs in
+``program`` (with IndiGolog's ``search``); formulas in ``expressions``; the
+Python embedding in ``build``; the textual syntax in ``syntax``; static checks
+in ``checking``; ``solve`` as DTGolog's forward search with READYLOG's markers
+in ``planner`` and ``policy``; Trans/Final in ``semantics``; the online
+``Interpreter`` with its executors in ``interpreter`` (a pure simulation) and
+``skill_executor`` (the home's skills); shipped domains in ``domains``.
 """
 
 from homebot.golog.interpreter import Executor, Interpreter, Report, Run, SimulatedExecutor
