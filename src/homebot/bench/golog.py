@@ -63,10 +63,11 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
     for memo in (False, True):
         figures[f"order cups, hardest start, memo {'on' if memo else 'off'}"] = _measure(
             theory, solve, cups_horizon, theory.initial, memo, repeats)
+    starts = [cups_theory(dict(zip(CUPS, places, strict=True)))
+              for places in itertools.permutations(POSITIONS, len(CUPS))]
     for memo in (False, True):
         began, nodes = time.perf_counter(), 0
-        for places in itertools.permutations(POSITIONS, len(CUPS)):
-            start = cups_theory(dict(zip(CUPS, places, strict=True)))
+        for start in starts:
             planner = Planner(start, solve.reward, memo=memo)
             planner.solve(solve.body, start.initial, cups_horizon)
             nodes += planner.nodes
