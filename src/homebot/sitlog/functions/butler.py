@@ -97,18 +97,14 @@ def thank_user(env: Environment) -> Term:
 
 def how_was_your_day(env: Environment) -> Term:
     home = home_of(env)
-    home.update(AddStatement(owner=home.user_id, kind=Kind.PROPERTY,
-                             statement=parse_statement("back_from_work")),
-                f"{home.user_name} is back from work")
+    home.state(home.user_id, "back_from_work", f"{home.user_name} is back from work")
     return Text(f"Hi, {home.user_name}, how was your day?")
 
 
 def note_mood(env: Environment, mood: str) -> Term:
     home = home_of(env)
     if mood == "bad":
-        home.update(AddStatement(owner=home.user_id, kind=Kind.PROPERTY,
-                                 statement=parse_statement("bad_day")),
-                    f"{home.user_name} had a bad day")
+        home.state(home.user_id, "bad_day", f"{home.user_name} had a bad day")
     return Struct("mood", (mood,))
 
 
@@ -119,9 +115,8 @@ def offer_help(env: Environment, mood: str) -> Term:
 
 def note_request(env: Environment, items: tuple[Term, ...]) -> Term:
     home = home_of(env)
-    home.update(AddStatement(owner=home.user_id, kind=Kind.PROPERTY,
-                             statement=parse_statement("asked_comestible")),
-                f"{home.user_name} asked for something to eat or drink")
+    home.state(home.user_id, "asked_comestible",
+               f"{home.user_name} asked for something to eat or drink")
     env.set("requests", items)
     return Struct("request", (items,))
 
@@ -336,10 +331,7 @@ def next_misplaced(env: Environment) -> Term:
         where = home.kb.value(entity, "last_seen")
         right = home.stated_location(entity)
         if isinstance(where, str) and right is not None and where != right:
-            if home.kb.value(entity, "misplaced") != "yes":
-                home.update(AddStatement(owner=entity, kind=Kind.PROPERTY,
-                                         statement=parse_statement("misplaced")),
-                            f"the {entity} is on {where}, not on {right}")
+            home.state(entity, "misplaced", f"the {entity} is on {where}, not on {right}")
             return Struct("misplaced", (entity, where, right))
     return "none"
 

@@ -7,7 +7,7 @@ from dataclasses import dataclass, field
 from types import MappingProxyType
 
 from homebot.errors import DialogueError
-from homebot.knowledge import ANY, KnowledgeBase, Update
+from homebot.knowledge import ANY, AddStatement, Kind, KnowledgeBase, Update, parse_statement
 from homebot.knowledge.store import KnowledgeStore
 from homebot.sitlog.interpreter import Environment
 from homebot.sitlog.terms import Struct, Term, Text, resolve
@@ -42,6 +42,12 @@ class ButlerHome:
         self.store.apply(update, when=self.context.robot.now(), why=why)
         self.updates.append(f"{update} ({why})")
         self.context.events.record("kb.update", update=update.to_dict(), why=why)
+
+    def state(self, owner: str, literal: str, why: str) -> None:
+        """Add the property ``literal`` to ``owner`` unless it holds already (persisted)."""
+        if self.kb.value(owner, literal) != "yes":
+            self.update(AddStatement(owner=owner, kind=Kind.PROPERTY,
+                                     statement=parse_statement(literal)), why)
 
     def spoken(self, entity: str) -> str:
         """How the robot names an object or place: the KB's ``name``, else its id."""
