@@ -40,3 +40,22 @@ def test_any_inputs_end_the_run_or_stop_it_with_a_dialogue_error(inputs: list[st
     except DialogueError:
         return
     assert result.final == "fs"
+
+
+_ANSWERS = ["Yes.", "No.", "I like coke.", "Noodles.", "I had a bad day!", "Great day.",
+            "Bring me something to drink and biscuits.", "Bring me noodles and coke.", "hmm", "",
+            "Yes please, bring the biscuits", "coke and malz and noodles and biscuits"]
+
+
+@settings(max_examples=12, deadline=None)
+@given(st.randoms(use_true_random=False))
+def test_whatever_luis_says_the_butler_ends_or_says_why_it_cannot_go_on(rng: object) -> None:
+    from homebot.scenarios.library.butler import run_butler
+
+    choose = rng.choice  # type: ignore[attr-defined]
+    try:
+        summary = run_butler(typed=lambda person, question: choose(_ANSWERS) or None)
+    except DialogueError as error:
+        assert "cannot go on" in str(error)
+        return
+    assert summary["speech"][-1] == "Goodbye."
