@@ -64,11 +64,20 @@ def test_run_reports_a_blocked_program_with_exit_1(capsys: pytest.CaptureFixture
     assert "blocked" in capsys.readouterr().out
 
 
+def test_a_search_with_no_end_gives_up_instead_of_hanging(
+        capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["golog", "run", "search(star(up | down); ?(false))", "--domain",
+                 "elevator"]) == 1
+    assert "blocked" in capsys.readouterr().out
+
+
 @pytest.mark.parametrize(("argv", "words"), [
     (["golog", "run", "pickBest(f, {1, 2}, up)", "--domain", "elevator"], "not a number"),
     (["golog", "plan", "solve(x, reward, build_tower(3))", "--domain", "blocks"],
      "must be a whole number"),
     (["golog", "run", "up(", "--domain", "elevator"], "<command line>:1:4"),
+    (["golog", "plan", "solve(3, 1, while true do nil endwhile)", "--domain", "elevator"],
+     "goes round without acting"),
 ])
 def test_mistakes_on_the_command_line_exit_2(argv: list[str], words: str,
                                              capsys: pytest.CaptureFixture[str]) -> None:

@@ -96,7 +96,12 @@ class Planner:
         """The best policy for ``program`` from ``state`` within ``horizon`` actions."""
         if horizon < 0:
             raise GologError(f"the horizon of solve must be 0 or more, not {horizon}")
-        return self.best((program,), state, horizon)
+        try:
+            return self.best((program,), state, horizon)
+        except RecursionError:
+            raise GologError(f"the search of solve at horizon {horizon} is too deep: the "
+                             f"horizon is too large, or a loop goes round without acting; "
+                             f"lower the horizon or put an action in the loop") from None
 
     def best(self, stack: Stack, state: State, horizon: int) -> Result:
         """DTGolog's ``bestDo`` for the programs on ``stack`` (first to run first).
@@ -257,11 +262,7 @@ def horizon_of(theory: Theory, solve: Solve, state: State) -> int:
 def plan(theory: Theory, solve: Solve, state: State, *, memo: bool = True) -> Result:
     """The policy ``solve(h, reward, σ)`` stands for in ``state``."""
     horizon = horizon_of(theory, solve, state)
-    try:
-        return Planner(theory, solve.reward, memo=memo).solve(solve.body, state, horizon)
-    except RecursionError:
-        raise GologError(f"the search of solve at horizon {horizon} is too deep for this "
-                         f"interpreter; lower the horizon") from None
+    return Planner(theory, solve.reward, memo=memo).solve(solve.body, state, horizon)
 
 
 def project(theory: Theory, program: Program, state: State, condition: Expr,

@@ -57,8 +57,9 @@ __all__ = [
 DEFAULT_HORIZON = 6
 #: unfolding depth beyond which a procedure is taken to recurse without acting
 _MAX_UNFOLD = 200
-#: how many steps ``search`` looks ahead for a way to the end
+#: how many steps ``search`` looks ahead for a way to the end, and how many it tries
 SEARCH_DEPTH = 60
+SEARCH_BUDGET = 20_000
 
 
 @dataclass(frozen=True, slots=True)
@@ -233,22 +234,30 @@ def _first_step_to_the_end(program: Program, state: State, theory: Theory,
     """The first step of an execution of ``program`` that ends (offline, depth first).
 
     Only deterministic steps are searched: a stochastic action or a chance event
-    cannot be promised to lead to the end.
+    cannot be promised to lead to the end. The search gives up (None) after
+    ``SEARCH_BUDGET`` steps, so a program with no end cannot hang the robot.
     """
-    if depth <= 0:
-        return None
-    for step, remaining in transitions(program, state, theory):
-        if isinstance(step, ChanceStep):
-            continue
-        after = state
-        if isinstance(step, ActionStep):
-            if theory.schema(step.action).stochastic:
+    budget = [SEARCH_BUDGET]
+
+    def ends(program: Program, state: State, depth: int) -> tuple[Step, Program] | None:
+        if depth <= 0:
+            return None
+        for step, remaining in transitions(program, state, theory):
+            budget[0] -= 1
+            if budget[0] < 0:
+                return None
+            if isinstance(step, ChanceStep):
                 continue
-            after = theory.do(step.action, state)
-        if final(remaining, after, theory) or _first_step_to_the_end(
-                remaining, after, theory, depth - 1) is not None:
-            return step, remaining
-    return None
+            after = state
+            if isinstance(step, ActionStep):
+                if theory.schema(step.action).stochastic:
+                    continue
+                after = theory.do(step.action, state)
+            if final(remaining, after, theory) or ends(remaining, after, depth - 1):
+                return step, remaining
+        return None
+
+    return ends(program, state, depth)
 
 
 def _mapped(found: list[tuple[Step, Program]],
