@@ -136,3 +136,23 @@ def test_a_missed_detection_is_retried_at_the_same_place(apartment: World,
     assert len(looks) == 2
     assert all("fridge" in e.data.get("message", "fridge") for e in looks)
     assert outcome.data["placement"] == "fridge"
+
+
+def test_a_place_whose_check_missed_is_looked_at_again(apartment: World,
+                                                       apartment_navigator: Navigator) -> None:
+    run = SimulatedRun.create(apartment, navigator=apartment_navigator, seed=1)
+    assert skill_named("pick").run(run.context, {"object": "cola"})
+    run.simulation.disturbances = DisturbanceModel(detection_miss=0.5)
+    outcome = skill_named("place").run(run.context, {"placement": "kitchen table"})
+    assert run.simulation.object_location["cola"] == "kitchen table"
+    assert outcome.error is not ErrorCode.NOT_HOLDING
+
+
+def test_a_room_search_retry_searches_again(apartment: World,
+                                            apartment_navigator: Navigator) -> None:
+    run = SimulatedRun.create(apartment, navigator=apartment_navigator, seed=0,
+                              disturbances=DisturbanceModel(detection_miss=1.0))
+    outcome = skill_named("find_object").run(run.context, {"object": "fruit", "room": "kitchen"})
+    assert outcome.error is ErrorCode.NOT_FOUND
+    assert "anywhere" not in outcome.message
+    assert len(outcome.data["searched"]) == len(apartment.placements_in("kitchen"))

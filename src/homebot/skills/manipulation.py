@@ -91,6 +91,10 @@ class Place(Skill):
         if hand is None and str(wanted) not in context.world.objects:
             hand = context.beliefs.hand_holding()  # a category or pronoun: whatever is held
         if hand is None:
+            placed = context.bindings.get(f"placed:{placement}")
+            if placed is not None and (wanted is None or placed == wanted):
+                # A retry after a look that missed it: it is already down, look again.
+                return Outcome.finished(f"the {placed} is already down", object=placed)
             return Outcome.failed(ErrorCode.NOT_HOLDING, "I am not holding anything to place")
         label = context.beliefs.holding[hand]
         x, y, _ = context.world.placements[placement].approach
@@ -101,6 +105,7 @@ class Place(Skill):
                 return moved
         context.robot.release(hand, placement)
         context.beliefs.let_go(hand, placement)
+        context.bindings[f"placed:{placement}"] = label
         return Outcome.finished(f"put the {label} on the {placement}", object=label)
 
     def monitor(self, context: SkillContext, args: Mapping[str, Any],

@@ -128,6 +128,11 @@ class FindObject(Skill):
         else:
             candidates = candidate_placements(context, wanted, args.get("room"),
                                               args.get("exclude", ()))
+            if not candidates and not args.get("exclude"):
+                # Every place was searched and missed it; a detection may have failed,
+                # so a retry searches them all again rather than nothing.
+                context.beliefs.not_at.pop(wanted, None)
+                candidates = candidate_placements(context, wanted, args.get("room"))
         for placement in candidates:
             outcome, detections = go_and_look(context, placement)
             if outcome.status is not Status.FINISHED:
