@@ -278,3 +278,17 @@ dialogue_models:
     assert _run(program, ["Yes, Golem, please."])[1] == ["agreed"]
     assert _run(program, ["Oh no thanks, not now."])[1] == ["declined"]
     assert _run(program, ["Maybe later!"])[1] == ["maybe later"]
+
+
+def test_an_arc_can_set_out_arg_through_its_shared_variable() -> None:
+    program = _program("""
+dialogue_models:
+  - id: main
+    situations:
+      - id: is
+        type: speech
+        out_arg: Out
+        arcs: ["said(X) : assign(Out, X) => fs"]
+      - {id: fs, type: final}
+""")
+    assert _run(program, ["said(hello)"])[0].out_arg == "hello"

@@ -237,6 +237,9 @@ class Interpreter:
                    pipe: Term) -> tuple[Term, Term]:
         env = Environment(self, frame)
         copy = _Copier(own)
+        for shared in situation.shared_terms():  # their variables are the same in every arc
+            if shared is not None:
+                copy(shared)
         if situation.in_arg is not None:
             unify(copy(situation.in_arg), pipe, self.trail)
         tries = recoveries = 0
