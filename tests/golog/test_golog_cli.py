@@ -83,3 +83,16 @@ def test_mistakes_on_the_command_line_exit_2(argv: list[str], words: str,
                                              capsys: pytest.CaptureFixture[str]) -> None:
     assert main(argv) == 2
     assert words in " ".join(capsys.readouterr().err.split())
+
+
+@pytest.mark.parametrize(("program", "words"), [
+    ("prob(abc, up, down)", "write a number from 0 to 1"),
+    ('?(floor + "a" = 2)', "numbers with numbers"),
+    ("?(1 / 0 = 2)", "divides by zero"),
+    ("pi(x, 3, up)", "not a finite set"),
+    ("(" * 3000 + "up" + ")" * 3000, "nested too deeply"),
+])
+def test_programs_that_cannot_be_evaluated_exit_2(program: str, words: str,
+                                                  capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["golog", "run", program, "--domain", "elevator"]) == 2
+    assert words in " ".join(capsys.readouterr().err.split())

@@ -210,8 +210,11 @@ class Compare(Expr):
     right: Expr
 
     def evaluate(self, theory: Theory, state: State) -> Any:
-        return _COMPARISONS[self.op](self.left.evaluate(theory, state),
-                                     self.right.evaluate(theory, state))
+        left, right = self.left.evaluate(theory, state), self.right.evaluate(theory, state)
+        try:
+            return _COMPARISONS[self.op](left, right)
+        except TypeError:
+            raise _mismatch(self, left, right) from None
 
     def substitute(self, bindings: Substitution) -> Expr:
         return Compare(self.op, self.left.substitute(bindings), self.right.substitute(bindings))
@@ -229,14 +232,24 @@ class Arith(Expr):
     right: Expr
 
     def evaluate(self, theory: Theory, state: State) -> Any:
-        return _ARITHMETIC[self.op](self.left.evaluate(theory, state),
-                                    self.right.evaluate(theory, state))
+        left, right = self.left.evaluate(theory, state), self.right.evaluate(theory, state)
+        try:
+            return _ARITHMETIC[self.op](left, right)
+        except ZeroDivisionError:
+            raise GologError(f"cannot compute {self}: it divides by zero") from None
+        except TypeError:
+            raise _mismatch(self, left, right) from None
 
     def substitute(self, bindings: Substitution) -> Expr:
         return Arith(self.op, self.left.substitute(bindings), self.right.substitute(bindings))
 
     def __str__(self) -> str:
         return f"({self.left} {self.op} {self.right})"
+
+
+def _mismatch(expr: Expr, left: Any, right: Any) -> GologError:
+    return GologError(f"cannot compute {expr}: its sides are {left!r} and {right!r}; compare "
+                      f"and add only values of the same kind (numbers with numbers)")
 
 
 def _values(domain: Expr, theory: Theory, state: State) -> Iterable[Any]:

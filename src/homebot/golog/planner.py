@@ -57,6 +57,7 @@ from homebot.golog.semantics import (
     domain_values,
     final,
     ground,
+    probability_of,
     transitions,
     unfold,
 )
@@ -156,7 +157,7 @@ class Planner:
             case Star(body=body):
                 return self._best_of([rest, (body, head, *rest)], state, horizon)
             case Prob(probability=probability, first=first, second=second):
-                chance = float(probability.evaluate(theory, state))
+                chance = probability_of(probability, theory, state)
                 one = self.best((first, *rest), state, horizon)
                 other = self.best((second, *rest), state, horizon)
                 return Result(chance * one.value + (1.0 - chance) * other.value,

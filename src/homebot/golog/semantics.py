@@ -49,6 +49,7 @@ __all__ = [
     "TestStep",
     "final",
     "ground",
+    "probability_of",
     "sequence",
     "transitions",
 ]
@@ -148,6 +149,14 @@ def unfold(call: Call, theory: Theory, state: State) -> Program:
     return procedure.body.substitute(values)
 
 
+def probability_of(expr: Expr, theory: Theory, state: State) -> float:
+    """The value of a probability; anything but a number from 0 to 1 raises ``GologError``."""
+    value = expr.evaluate(theory, state)
+    if isinstance(value, bool) or not isinstance(value, int | float) or not 0 <= value <= 1:
+        raise GologError(f"the probability {expr} is {value!r}; write a number from 0 to 1")
+    return float(value)
+
+
 def domain_values(domain: Expr, theory: Theory, state: State) -> tuple[Any, ...]:
     """The values of a finite domain."""
     values = domain.evaluate(theory, state)
@@ -214,7 +223,7 @@ def transitions(program: Program, state: State, theory: Theory,
             return _mapped(transitions(body, state, theory, depth),
                            lambda remaining: WithCtrl(condition, remaining))
         case Prob(probability=probability, first=first, second=second):
-            chance = float(probability.evaluate(theory, state))
+            chance = probability_of(probability, theory, state)
             return [(ChanceStep(chance), first), (ChanceStep(1.0 - chance), second)]
         case Solve():
             from homebot.golog.planner import plan

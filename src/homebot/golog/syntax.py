@@ -456,7 +456,11 @@ class _Parser:
 def parse_program(text: str, source: str = "<program>") -> Program:
     """One program; raises ``GologError`` naming line and column when it is malformed."""
     parser = _Parser(text, source)
-    program = parser.program(commas=True)
+    try:
+        program = parser.program(commas=True)
+    except RecursionError:
+        raise parser.fail("the program is nested too deeply to read",
+                          "split it into procedures") from None
     if not parser.at("<end>"):
         raise parser.fail(f"unexpected '{parser.token.text}' after the program",
                           "join statements with ';' or remove what follows")
@@ -465,4 +469,9 @@ def parse_program(text: str, source: str = "<program>") -> Program:
 
 def parse_procedures(text: str, source: str = "<program>") -> list[Procedure]:
     """The procedures of a program file (``proc NAME(PARAMS) BODY endproc`` ...)."""
-    return _Parser(text, source).procedures()
+    parser = _Parser(text, source)
+    try:
+        return parser.procedures()
+    except RecursionError:
+        raise parser.fail("the program is nested too deeply to read",
+                          "split it into procedures") from None
