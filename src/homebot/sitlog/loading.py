@@ -1,6 +1,7 @@
 """Reading dialogue models from YAML: terms with their place, user functions, includes.
 
-The YAML form mirrors Listing A1: a file holds ``dialogue_models`` (each with an
+Files ending in ``.dm`` are read in SitLog's own notation (``prolog_form``). The YAML
+form mirrors Listing A1: a file holds ``dialogue_models`` (each with an
 ``id``, ``situations`` and ``locals``), ``globals``, ``functions`` (Python modules
 or ``.py`` files next to the YAML that define ``user_functions()``), ``include``
 (other YAML files) and ``main``. Values are terms in SitLog's notation; an arc is
@@ -41,17 +42,20 @@ def _data_directory() -> Path:
 
 
 def shipped_dialogue_path(spec: str | Path) -> Path:
-    """The file a dialogue argument names: a path, ``$DATA/...`` or a shipped model's name."""
+    """The file a dialogue argument names: a path, ``$DATA/...``, or a shipped file (``butler``,
+    ``appendix_a.dm``)."""
     text = str(spec)
     if text.startswith(_DATA_TOKEN):
         return _data_directory().parent / text[len(_DATA_TOKEN):].lstrip("/")
     path = Path(text)
     if path.exists():
         return path
-    shipped = _data_directory() / f"{text}.yaml"
-    if "/" not in text and shipped.is_file():
-        return shipped
-    names = ", ".join(sorted(p.stem for p in _data_directory().glob("*.yaml")))
+    if "/" not in text:
+        for shipped in (_data_directory() / text, _data_directory() / f"{text}.yaml"):
+            if shipped.is_file():
+                return shipped
+    names = ", ".join(sorted(p.name for p in _data_directory().glob("*.*")
+                             if p.suffix in (".yaml", ".dm")))
     raise DialogueError(f"no dialogue file '{text}'; give a path or a shipped name ({names})")
 
 
@@ -106,10 +110,31 @@ class _Reader:
         self.seen.add(path)
         try:
             text = path.read_text(encoding="utf-8")
-        except OSError as error:
-            raise DialogueError(f"{path}: cannot read it ({error.strerror}); check the path") \
-                from None
-        self.read_text(text, str(path), path.parent)
+        except (OSError, UnicodeDecodeError) as error:
+            raise DialogueError(f"{path}: cannot read it ({error}); check the path") from None
+        if path.suffix in (".dm", ".pl"):
+            self.read_dm(text, str(path), path.parent)
+        else:
+            self.read_text(text, str(path), path.parent)
+
+    def read_dm(self, text: str, source: str, base: Path) -> None:
+        """A file in SitLog's own notation (``diag_mod/3`` clauses)."""
+        from homebot.sitlog.prolog_form import read_dm_text
+
+        found = read_dm_text(text, source)
+        file = _File(source, base)
+        for spec in found.functions:
+            self._functions(file, yaml.ScalarNode("tag:yaml.org,2002:str", spec), spec)
+        self.globals.update(found.globals)
+        for model in found.models:
+            if model.key in self.models:
+                raise DialogueError(f"{model.place}: dialogue model {model.name}/{model.key[1]} "
+                                    "is defined twice; rename one")
+            self.models[model.key] = model
+        if found.main is not None:
+            self.main = next((key for key in self.models if key[0] == found.main), None)
+            if self.main is None:
+                raise DialogueError(f"{source}: main({found.main}) names no dialogue model")
 
     def read_text(self, text: str, source: str, base: Path) -> None:
         try:
@@ -153,8 +178,8 @@ class _Reader:
                                     f"here; models: {_names(self.models)}")
             self.main = main
 
-    def _functions(self, file: _File, node: yaml.Node) -> None:
-        spec = file.string(node, "a module or .py file")
+    def _functions(self, file: _File, node: yaml.Node, spec: str | None = None) -> None:
+        spec = spec if spec is not None else file.string(node, "a module or .py file")
         try:
             if spec.endswith(".py"):
                 path = (file.base / spec).resolve()
@@ -191,6 +216,8 @@ class _File:
 
     def place(self, node: yaml.Node) -> str:
         mark = node.start_mark
+        if mark is None:
+            return self.source
         return f"{self.source}, line {mark.line + 1}, column {mark.column + 1}"
 
     def mapping(self, node: yaml.Node | None, keys: tuple[str, ...],

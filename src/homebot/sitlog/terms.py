@@ -27,7 +27,9 @@ __all__ = [
     "deref",
     "format_term",
     "is_ground",
+    "parse_clauses",
     "parse_term",
+    "place_in",
     "resolve",
     "unify",
     "variables_of",
@@ -253,19 +255,28 @@ def _tokens(source: str, where: str, offset: int) -> list[_Token]:
 
 
 class _Parser:
-    def __init__(self, source: str, where: str, column_offset: int) -> None:
+    def __init__(self, source: str, where: str, column_offset: int,
+                 positions: dict[int, int] | None = None) -> None:
         self.source = source
         self.where = where
         self.offset = column_offset
         self.tokens = _tokens(source, where, column_offset)
         self.index = 0
         self.variables: dict[str, Var] = {}
+        self.positions = positions  #: id of each structure and list -> its offset
 
     def error(self, token: _Token, expected: str) -> DialogueError:
         found = f"'{token.text}'" if token.text else "the end"
+        if "\n" in self.source:
+            return DialogueError(f"{self.where}, {place_in(self.source, token.column)}: expected "
+                                 f"{expected}, found {found}")
         return DialogueError(f"{self.where}, column {self.offset + token.column + 1}: expected "
-                             f"{expected}, "
-                             f"found {found} in {self.source!r}")
+                             f"{expected}, found {found} in {self.source!r}")
+
+    def note(self, term: Term, offset: int) -> Term:
+        if self.positions is not None:
+            self.positions[id(term)] = offset
+        return term
 
     def peek(self) -> _Token:
         return self.tokens[self.index]
@@ -281,6 +292,7 @@ class _Parser:
             raise self.error(token, f"'{text}'")
 
     def parse(self, max_priority: int = 1200) -> Term:
+        start = self.peek().column
         left = self.primary()
         left_priority = 0
         while True:
@@ -295,7 +307,7 @@ class _Parser:
                 return left
             self.take()
             right = self.parse(right_max)
-            left = Struct(token.text, (left, right))
+            left = self.note(Struct(token.text, (left, right)), start)
             left_priority = priority
 
     def primary(self) -> Term:
@@ -316,7 +328,7 @@ class _Parser:
                 return -number
             if self.peek().text == "(" and self.peek().column == token.column + len(token.text):
                 self.take()
-                return Struct(name, self.arguments(")"))
+                return self.note(Struct(name, self.arguments(")")), token.column)
             return name
         if token.text == "(":
             inner = self.parse()
@@ -326,8 +338,7 @@ class _Parser:
             if self.peek().text == "]":
                 self.take()
                 return ()
-            items = self.arguments("]")
-            return tuple(items)
+            return self.note(tuple(self.arguments("]")), token.column)
         raise self.error(token, "a term")
 
     def arguments(self, closing: str) -> tuple[Term, ...]:
@@ -343,6 +354,33 @@ class _Parser:
 
 def _unescape(text: str) -> str:
     return re.sub(r"\\(.)|''", lambda m: m.group(1) if m.group(1) else "'", text)
+
+
+def place_in(source: str, offset: int) -> str:
+    """``line L, column C`` of an offset in a text."""
+    line = source.count("\n", 0, offset) + 1
+    column = offset - (source.rfind("\n", 0, offset) + 1) + 1
+    return f"line {line}, column {column}"
+
+
+def parse_clauses(source: str, where: str,
+                  positions: dict[int, int] | None = None) -> list[tuple[Term, int]]:
+    """Every ``term.`` of a text in Prolog's notation, with the offset where it starts.
+
+    Each clause has its own variables; ``positions`` (if given) receives the offset of
+    every structure and list by ``id``.
+    """
+    parser = _Parser(source, where, 0, positions)
+    clauses = []
+    while parser.peek().kind != "end":
+        start = parser.peek().column
+        parser.variables = {}
+        term = parser.parse()
+        end = parser.take()
+        if end.text != ".":
+            raise parser.error(end, "'.' at the end of the clause")
+        clauses.append((term, start))
+    return clauses
 
 
 def parse_term(source: str, where: str = "<term>",
