@@ -141,8 +141,23 @@ def test_runs_are_deterministic() -> None:
 def test_the_scenario_command(capsys: pytest.CaptureFixture[str], tmp_path: Path) -> None:
     assert main(["scenario", "butler", "--json", "--kb-store", str(tmp_path / "kb.db")]) == 0
     assert '"scenario": "butler"' in capsys.readouterr().out
-    assert main(["scenario", "butler", "--kb-store", str(tmp_path / "kb.db")]) == 2
-    assert "give --kb-store a new file" in " ".join(capsys.readouterr().err.split())
+    assert main(["scenario", "butler", "--kb-store", str(tmp_path / "kb.db")]) == 0
+    assert "Hi, Luis, how was your day?" in capsys.readouterr().out
+
+
+def test_the_next_day_the_robot_remembers(tmp_path: Path) -> None:
+    store = tmp_path / "luis.db"
+    run_butler(kb_store=store)
+    second = run_butler(kb_store=store)
+    said = [_words(line) for line in second["speech"]]
+    assert not any("what do you like best" in line for line in said)  # preferences known
+    assert said[:2] == [_words("Hi, Luis."), _words("Hi, Luis, how was your day?")]
+    assert not any("not in the shelf of food" in line for line in said)  # noodles: snacks
+    assert not any("preferred location" in line for line in said)
+    assert _words(PAPER_ROBOT_LINES[32]) in said  # the child again
+    whys = [update["why"] for update in second["kb_updates"]]
+    assert whys[:3] == ["a new day"] * 3
+    assert second["success"]
 
 
 @pytest.mark.acceptance

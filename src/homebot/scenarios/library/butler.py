@@ -19,7 +19,6 @@ from typing import Any
 
 from rich.console import Console
 
-from homebot.errors import KnowledgeError
 from homebot.events import Event
 from homebot.knowledge import AddStatement, Kind, KnowledgeBase, parse_statement
 from homebot.knowledge.store import KnowledgeStore
@@ -47,7 +46,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--tidy", action="store_true",
                         help="the noodles and the coke are on their own shelves")
     parser.add_argument("--kb-store", metavar="FILE", default=None,
-                        help="SQLite file (new) that keeps the KB and its updates")
+                        help="SQLite file that keeps the KB and its updates; run again with "
+                        "the same file for another day with what the robot learnt")
     parser.add_argument("--level", type=float, default=0.0,
                         help="disturbance level (0: none, as in the paper; 1: the demo's)")
     parser.add_argument("--interactive", action="store_true",
@@ -62,6 +62,7 @@ class LuisScript:
     refuse_update: bool = False
     typed: Responder | None = None  #: a person typing Luis's answers instead of the script
     simulation: Simulation | None = None
+    at_work: bool = False  #: he has gone to work (and come back)
     ordered: bool = False  #: he has asked for something; he sits down once the robot goes
     heard: list[str] = field(default_factory=list)
 
@@ -82,7 +83,6 @@ class LuisScript:
         if "what do you like best" in question:
             return "I like noodles best."
         if "any more preferences" in question:
-            self._walk(_AT_THE_DOOR, after=_WORK_DAY)
             return "No thanks, Golem; that is ok."
         if "how was your day" in question:
             return "I had a bad day!"
@@ -100,8 +100,14 @@ class LuisScript:
         return None
 
     def notice(self, event: Event) -> None:
-        """Tired, Luis goes to the couch once the robot sets off with his order."""
-        if self.ordered and event.kind == "robot.path":
+        """Luis's day: to work and back while the robot first drives off; to the couch,
+        tired, once the robot sets off with his order."""
+        if event.kind != "robot.path":
+            return
+        if not self.at_work:
+            self.at_work = True
+            self._walk(_AT_THE_DOOR, after=_WORK_DAY)
+        elif self.ordered:
             self.ordered = False
             self._walk(_ON_THE_COUCH)
 
@@ -138,15 +144,18 @@ def run_butler(*, prefers: str = "malz", refuse_update: bool = False, tidy: bool
     run.simulation.events.listeners.append(luis.notice)
     with tempfile.TemporaryDirectory() as scratch:
         path = kb_store if kb_store is not None else Path(scratch) / "butler.db"
-        if path.exists():
-            raise KnowledgeError(f"{path} exists already; give --kb-store a new file")
-        store = KnowledgeStore.create(path, KnowledgeBase.load("butler").taxonomy, when=0.0,
-                                      why="the KB of Listing 3")
+        if path.exists():  # another day with what the robot learnt before
+            store = KnowledgeStore.open(path)
+        else:
+            store = KnowledgeStore.create(path, KnowledgeBase.load("butler").taxonomy,
+                                          when=0.0, why="the KB of Listing 3")
+        first_update = len(store.history())
         try:
             home = ButlerHome(store, run.context)
-            home.update(AddStatement(owner="malz", kind=Kind.RELATION,
-                                     statement=parse_statement("healthier_than=>coke")),
-                        "a general health recommendation")
+            if home.kb.value("malz", "healthier_than=>coke") != "yes":
+                home.update(AddStatement(owner="malz", kind=Kind.RELATION,
+                                         statement=parse_statement("healthier_than=>coke")),
+                            "a general health recommendation")
             interpreter = Interpreter(load_program("butler"),
                                       SkillPerception(run.context, person="Luis"),
                                       body=SkillBody(run.context), application=home,
@@ -172,7 +181,7 @@ def run_butler(*, prefers: str = "malz", refuse_update: bool = False, tidy: bool
         transcript=transcript, order=order,
         objects={name: truth[name] for name in ("malz", "coke", "noodles", "bisquits")},
         kb_updates=[{"what": entry.what, "why": entry.why, "at": round(entry.when, 1)}
-                    for entry in log[1:]],
+                    for entry in log[first_update:]],
         kb_persisted=persisted, kb_store=str(kb_store) if kb_store else None,
         situations=result.steps, sim_time=round(run.robot.now(), 1))
 

@@ -33,6 +33,9 @@ from homebot.sitlog.terms import Struct, Term, Text, deref, resolve
 
 __all__ = ["ButlerHome", "user_functions"]
 
+#: What holds of the user for one day only (Listing 3's antecedents of found_in).
+_DAY_FACTS = ("bad_day", "back_from_work", "asked_comestible")
+
 
 def _capital(text: str) -> str:
     return text[:1].upper() + text[1:]
@@ -45,7 +48,14 @@ def _append(env: Environment, variable: str, item: Term) -> None:
 # ---------------------------------------------------------------- preferences (lines 1-10)
 
 def hello(env: Environment) -> Term:
-    return Text(f"Hi, {home_of(env).user_name}.")
+    """Line 1; a new day: what was true of the user's last day is forgotten."""
+    home = home_of(env)
+    for fact in _DAY_FACTS:
+        if fact in [str(literal) for literal in home.kb.taxonomy.individual(
+                home.user_id).properties]:
+            home.update(RemoveStatement(owner=home.user_id, kind=Kind.PROPERTY,
+                                        statement=parse_statement(fact)), "a new day")
+    return Text(f"Hi, {home.user_name}.")
 
 
 def next_choice(env: Environment) -> Term:
@@ -57,12 +67,17 @@ def next_choice(env: Environment) -> Term:
     env.set("ask_about", pending[1:])
     kind = str(pending[0])
     members = list(home.kb.class_extension(kind))
-    if len(members) < 2:
+    if len(members) < 2 or preferred_member(home, kind) is not None:  # known already
         return next_choice(env)
     first, second = members[0], members[1]
     if home.kb.value(second, f"healthier_than=>{first}") == "yes":
         first, second = second, first
     return Struct("choice", (kind, first, second))
+
+
+def after_choices(env: Environment) -> Term:
+    """``more`` when preferences were asked for, else ``done`` (all known from before)."""
+    return "more" if resolve(env.get("asked")) == "true" else "done"
 
 
 def choice_question(env: Environment, first: str, second: str) -> Term:
@@ -393,7 +408,7 @@ def closing_line(env: Environment) -> Term:
 def user_functions() -> dict[str, UserFunction]:
     """The functions ``butler.yaml`` names, by name."""
     functions: tuple[UserFunction, ...] = (
-        hear_yes_no, hear_choice, hear_mood, hear_request, hello, next_choice,
+        hear_yes_no, hear_choice, hear_mood, hear_request, hello, next_choice, after_choices,
         choice_question, record_choice, thank_user, how_was_your_day, note_mood, offer_help,
         note_request, next_request, favourite_offer, counter_offer, add_to_order, order_summary,
         next_to_fetch, next_location, observe, free_arm, attempt_grab, took, user_name,
