@@ -82,6 +82,15 @@ def test_the_whole_conversation_has_the_papers_41_turns(paper_run: dict[str, Any
     assert robot_turns == list(PAPER_ROBOT_LINES)
 
 
+def test_luis_is_sought_in_the_living_room_because_he_is_tired(
+        paper_run: dict[str, Any]) -> None:
+    assert paper_run["why_user"] == ["tired : bad_day",
+                                     "found_in=>living_room : [back_from_work,tired]"]
+    searched = [a["situation"] for a in paper_run["actions"]
+                if a["model"] == "deliver" and a["situation"].startswith("find")]
+    assert searched == ["find('living room')"]
+
+
 def test_the_task_is_done_in_the_simulated_home(paper_run: dict[str, Any]) -> None:
     assert paper_run["success"]
     assert paper_run["order"] == ["malz", "noodles"]

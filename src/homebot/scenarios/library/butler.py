@@ -163,6 +163,7 @@ def run_butler(*, prefers: str = "malz", refuse_update: bool = False, tidy: bool
                                           "sitlog.transition", transition=str(step)))
             result = interpreter.run()
             log = store.history()
+            why_user = [str(explanation) for explanation in home.kb.explanations(home.user_id)]
         finally:
             store.close()
         reopened = KnowledgeStore.open(path)
@@ -183,6 +184,7 @@ def run_butler(*, prefers: str = "malz", refuse_update: bool = False, tidy: bool
         kb_updates=[{"what": entry.what, "why": entry.why, "at": round(entry.when, 1)}
                     for entry in log[first_update:]],
         kb_persisted=persisted, kb_store=str(kb_store) if kb_store else None,
+        why_user=why_user,
         situations=result.steps, sim_time=round(run.robot.now(), 1))
 
 
@@ -213,6 +215,8 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
         for update in summary["kb_updates"]:
             console.print(f"  - {update['why']}: {_describe(update['what'])}", highlight=False,
                           markup=False)
+        console.print("Why Luis was looked for where he was (abduction over the KB): "
+                      + "; ".join(summary["why_user"]), highlight=False, markup=False)
     return summary
 
 
