@@ -34,8 +34,10 @@ def _cluster(program: Program, model: DialogueModel, index: int) -> list[str]:
              f"    label={_quote(format_term(model.head))};"]
     for situation in model.situations:
         shape = "doublecircle" if situation.type == FINAL else "circle"
+        style = ", style=bold, penwidth=2" if situation.type == RECURSIVE else ""
         label = f"{format_term(situation.id)}\\n{situation.type}"
-        lines.append(f"    {_node(model, situation)} [shape={shape}, label={_quote(label)}];")
+        lines.append(f"    {_node(model, situation)} [shape={shape}{style}, "
+                     f"label={_quote(label)}];")
     lines.append("  }")
     for situation in model.situations:
         lines.extend(_arcs(program, model, situation))
