@@ -67,3 +67,15 @@ def test_move_asks_someone_in_the_doorway_to_let_it_through() -> None:
     assert resolve(variables["Status"]) == "ok"
     said = [event.data["text"] for event in run.simulation.events.of_kind("speech")]
     assert said == ["Excuse me, Tom, could you please let me through?", "Thank you!"]
+
+
+def test_take_then_deliver_to_a_person() -> None:
+    run = SimulatedRun.create(_home(), seed=2)
+    variables: dict[str, Var] = {}
+    program = load_program("behaviours")
+    perception, body = SkillPerception(run.context), SkillBody(run.context)
+    for call in ("take(malz, shelf_drinks, left, Took)", "deliver(malz, 'Luis', 'living room', S)"):
+        Interpreter(program, perception, body=body, application=run.context).run(
+            parse_term(call, "<test>", variables))
+    assert resolve(variables["Took"]) == "ok" and resolve(variables["S"]) == "ok"
+    assert run.simulation.object_location["malz"] == "person:Luis"
