@@ -95,3 +95,25 @@ def test_trace_prints_transitions_as_they_happen(capsys: pytest.CaptureFixture[s
     assert main(["sitlog", "run", "appendix_a", "--trace", "--input", "finish"]) == 0
     out = capsys.readouterr().out.splitlines()
     assert out[:2] == ["robot: Good Bye", "  main: (is,finish:screen(Good Bye))"]
+
+
+def test_speech_asks_a_simulated_person(tmp_path: Path,
+                                        capsys: pytest.CaptureFixture[str]) -> None:
+    program = tmp_path / "ask.yaml"
+    program.write_text("""
+dialogue_models:
+  - id: main
+    situations:
+      - id: is
+        type: people
+        input: "find('Alex', 'living room')"
+        arcs: ["found(_) : empty => ask", "error(_) : empty => fs"]
+      - id: ask
+        type: speech
+        input: "'What would you like to drink?'"
+        arcs: ["Drink : say(['I will bring you', Drink]) => fs"]
+      - {id: fs, type: final}
+""")
+    assert main(["sitlog", "run", str(program), "--world", "apartment", "--person", "Alex"]) == 0
+    assert "say(I will bring you orange juice)" in capsys.readouterr().out
+    assert main(["sitlog", "run", str(program), "--person", "Alex"]) == 2

@@ -49,6 +49,8 @@ def register(subparsers: Any) -> None:
     run.add_argument("--call", help="the dialogue model to run, e.g. \"find(cola, [fridge], W)\"")
     run.add_argument("--world", help="run skills on a simulated robot in this world")
     run.add_argument("--seed", type=int, default=0, help="seed for the simulated world")
+    run.add_argument("--person", help="with --world: speech situations ask this person, who "
+                     "answers as the world file scripts")
     run.add_argument("--trace", action="store_true", help="print each transition as it is taken")
     run.add_argument("--json", action="store_true", help="print the result as JSON")
     run.set_defaults(handler=_run)
@@ -93,6 +95,8 @@ def _run(args: argparse.Namespace) -> int:
     body = RecordingBody(echo=(lambda text: console.print(f"robot: {text}")) if console else None)
     perception: Any = spoken
     application = None
+    if args.person and not args.world:
+        raise DialogueError("--person needs --world (the simulated home the person is in)")
     if args.world:
         perception, body_on_robot, application = _on_robot(args, spoken)
         body = body_on_robot
@@ -122,7 +126,9 @@ def _on_robot(args: argparse.Namespace, spoken: ScriptedPerception) -> tuple[Any
     from homebot.world import World
 
     run = SimulatedRun.create(World.load(args.world), seed=args.seed)
-    return _Mixed(spoken, SkillPerception(run.context)), SkillBody(run.context), run.context
+    robot = SkillPerception(run.context, person=args.person)
+    perception = robot if args.person else _Mixed(spoken, robot)
+    return perception, SkillBody(run.context), run.context
 
 
 def _show(args: argparse.Namespace) -> int:
