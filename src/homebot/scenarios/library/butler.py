@@ -2,10 +2,12 @@
 
 The SitLog program ``butler.yaml`` runs over the skills in ``butler_home``; the KB
 of Listing 3 lives in a SQLite store (a temporary file unless ``--kb-store`` names
-one) and every change the dialogue makes to it is persisted there. Luis is
-simulated: he answers as in the paper, or prefers coke and refuses to change the
-KB (``--prefers coke --refuse-update``); ``--tidy`` puts the noodles and the coke
-where they belong, so nothing is misplaced.
+one; naming it again runs another day with what the robot learnt) and every change
+the dialogue makes to it is persisted there. Luis is simulated: he answers as in
+the paper, or prefers coke and refuses to change the KB (``--prefers coke
+--refuse-update``), or a person answers for him (``--interactive``); ``--tidy`` puts
+the noodles and the coke where they belong, so nothing is misplaced; ``--level``
+switches the simulator's disturbances on.
 """
 
 from __future__ import annotations
