@@ -69,6 +69,24 @@ def test_cup_moved_unseen_is_found_when_the_next_move_fails() -> None:
     assert summary["success"] and summary["markers"] == ["done(move_cup(red, p2, p1))"]
 
 
+def test_order_cups_through_the_skills_in_the_home() -> None:
+    summary = order_cups.run(argparse.Namespace(seed=1, goal="red,green,blue", horizon=4,
+                                                home=True), None)
+    assert summary["success"] and summary["moves"] == summary["fewest_moves"] == 4
+    skills = [step["skill"] for step in summary["skills"]]
+    assert skills[:4] == ["look"] * 4 and skills[4:6] == ["pick", "place"]
+    assert all(step["status"] == "verified" for step in summary["skills"])
+
+
+@pytest.mark.parametrize(("unseen", "marker"), [
+    (False, "poss(move_cup(red, p2, p1))"), (True, "done(move_cup(red, p2, p1))")])
+def test_cup_moved_in_the_home_is_noticed_and_replanned(unseen: bool, marker: str) -> None:
+    summary = cup_moved.run(argparse.Namespace(seed=0, after=1, unseen=unseen, home=True),
+                            None)
+    assert summary["success"] and summary["markers"] == [marker]
+    assert summary["moves_after_disturbance"] == summary["fewest_after_disturbance"]
+
+
 def test_maze_reaches_the_goal() -> None:
     summary = maze.run(argparse.Namespace(seed=0, horizon=8), None)
     assert summary["success"] and summary["end"] == [5, 1]

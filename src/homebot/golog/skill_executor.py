@@ -4,7 +4,10 @@ A binding turns a ground action into skill steps (none for an action that only
 changes the robot's model, such as parking the arm). A step that does not end
 verified fails the action, with the skill's message as the reason. While the
 program waits (a test or ``waitFor`` that does not hold yet), the ``waiting``
-hook is asked what happened meanwhile. With ``recovery`` on, a failed skill goes
+hook is asked what happened meanwhile. ``sensing(action, done)`` reads fluent
+values from the robot's beliefs after each action (done or failed), and
+``noticing()`` reports exogenous actions the robot saw happen. With ``recovery``
+on, a failed skill goes
 through the executive's recovery protocols (door closed, path blocked, object
 not where expected) before the action is given up.
 """
@@ -25,6 +28,8 @@ __all__ = ["SkillBinding", "SkillExecutor"]
 
 SkillBinding = Callable[[GroundAction], list[Step]]
 Waiting = Callable[[State], list[GroundAction] | None]
+Sensing = Callable[[GroundAction, bool], Mapping[tuple[Any, ...], Any]]
+Noticing = Callable[[], list[GroundAction]]
 
 # How many recovery protocols one skill step may use before the action fails.
 _MAX_RECOVERIES = 3
@@ -34,10 +39,13 @@ class SkillExecutor(Executor):
     """Runs actions as skills in a ``SkillContext``; ``steps`` records every skill run."""
 
     def __init__(self, context: SkillContext, bindings: Mapping[str, SkillBinding], *,
-                 waiting: Waiting | None = None, recovery: bool = True) -> None:
+                 waiting: Waiting | None = None, sensing: Sensing | None = None,
+                 noticing: Noticing | None = None, recovery: bool = True) -> None:
         self.context = context
         self.bindings = dict(bindings)
         self.waiting = waiting
+        self.sensing = sensing
+        self.noticing = noticing
         self.recovery = recovery and context.monitoring
         self.steps: list[dict[str, Any]] = []
 
@@ -52,8 +60,15 @@ class SkillExecutor(Executor):
                                **step.args, "status": outcome.status.value,
                                "error": outcome.error.value if outcome.error else None})
             if not outcome:
-                return Report(False, message=outcome.message or str(outcome.error))
-        return Report(True)
+                return Report(False, sensed=self._sensed(action, False),
+                              message=outcome.message or str(outcome.error))
+        return Report(True, sensed=self._sensed(action, True))
+
+    def _sensed(self, action: GroundAction, done: bool) -> Mapping[tuple[Any, ...], Any]:
+        return self.sensing(action, done) if self.sensing is not None else {}
+
+    def exogenous(self, state: State) -> list[GroundAction]:
+        return self.noticing() if self.noticing is not None else []
 
     def _run(self, step: Step) -> Outcome:
         context = self.context

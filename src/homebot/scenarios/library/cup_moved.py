@@ -7,9 +7,10 @@ from typing import Any
 
 from rich.console import Console
 
-from homebot.golog import Interpreter, SimulatedExecutor, State
+from homebot.golog import Executor, Interpreter, SimulatedExecutor, State
 from homebot.golog.build import do
 from homebot.golog.domains import CUPS, POSITIONS, cups_theory, minimum_moves
+from homebot.scenarios.library.order_cups import PLACEMENTS, home_cups
 from homebot.scenarios.summary import scenario_summary
 
 __all__ = ["add_arguments", "run"]
@@ -25,6 +26,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--unseen", action="store_true",
                         help="the robot does not see the person move the cup: it finds out "
                              "by looking at the table as it moves the next one")
+    parser.add_argument("--home", action="store_true",
+                        help="run through the skills in the simulated apartment")
 
 
 def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
@@ -35,6 +38,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     next move (or that move fails), and the policy's markers fail then.
     """
     after = getattr(args, "after", 1)
+    unseen = getattr(args, "unseen", False)
     theory = cups_theory(START)
     moved: list[tuple[Any, ...]] = []
 
@@ -46,13 +50,41 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
         moved.append(("person_moves_cup", cup, free[0]))
         return list(moved)
 
-    executor = SimulatedExecutor(theory, seed=args.seed, events=person,
-                                 observed=not getattr(args, "unseen", False))
-    outcome = Interpreter(theory, executor, seed=args.seed).run(
-        do("sort_cups", *GOAL, 4))
+    executor: Executor
+    figures: dict[str, Any] = {}
+    if getattr(args, "home", False):
+        seen: list[tuple[Any, ...]] = []
+
+        def noticing() -> list[tuple[Any, ...]]:
+            # After the robot's move number ``after``, a person moves a cup in the home.
+            done = sum(1 for step in home.executor.steps if step["skill"] == "place")
+            if done < after or moved:
+                return []
+            truth = State({("pos", cup): at for cup, at in home.truth().items()})
+            happened = person(after, truth)
+            for _, cup, position in happened:
+                home.simulated.simulation.object_location[f"{cup} cup"] = PLACEMENTS[position]
+                home.simulated.simulation.events.record(
+                    "sim.disturbance", what="object_moved_by_person", object=f"{cup} cup",
+                    to=PLACEMENTS[position])
+            seen.extend(happened)
+            return [] if unseen else happened
+
+        home = home_cups(START, args.seed, noticing=noticing)
+        executor = home.executor
+        outcome = Interpreter(theory, executor, seed=args.seed).run(do("sort_cups", *GOAL, 4))
+        final = home.truth()
+        figures = {"skills": home.executor.steps,
+                   "sim_time": round(home.simulated.robot.now(), 2)}
+    else:
+        simulated = SimulatedExecutor(theory, seed=args.seed, events=person,
+                                      observed=not unseen)
+        executor = simulated
+        outcome = Interpreter(theory, executor, seed=args.seed).run(do("sort_cups", *GOAL, 4))
+        final = {cup: simulated.truth.get(("pos", cup)) for cup in CUPS}
     replans = [entry for entry in outcome.log if entry["kind"] == "replan"]
-    in_order = all(executor.truth.get(("pos", cup)) == position
-                   for cup, position in zip(GOAL, POSITIONS, strict=False))
+    in_order = all(final[cup] == position for cup, position in zip(GOAL, POSITIONS,
+                                                                    strict=False))
     if console is not None:
         for entry in outcome.log:
             if entry["kind"] == "plan":
@@ -75,7 +107,8 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
                             replans=len(replans), markers=[entry["marker"] for entry in replans],
                             moves_after_disturbance=len(outcome.history) - after if moved
                             else None,
-                            fewest_after_disturbance=_fewest_after(moved, after, outcome.history))
+                            fewest_after_disturbance=_fewest_after(moved, after, outcome.history),
+                            **figures)
 
 
 def _fewest_after(moved: list[tuple[Any, ...]], after: int,
