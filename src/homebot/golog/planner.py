@@ -13,8 +13,12 @@ the branch with the current reward and success probability 1. The planner adds
 markers: every test and branch condition and every action's precondition,
 with the truth value it had while planning.
 
-``project`` computes ``pproj``: the probability that a condition holds after
-a program, projected from a state.
+Beyond DTGolog: the search is memoised on (programs left, state, horizon) by
+default, which changes the work but not the answer (DTGolog re-expands equal
+subtrees; ``memo=False`` does too); constructs without a DTGolog rule
+(concurrency, guards, waiting, ``search``) are planned through their Trans/Final
+steps. ``project`` computes ``pproj``: the probability that a condition holds
+after a program, projected from a state.
 """
 
 from __future__ import annotations
