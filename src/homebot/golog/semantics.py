@@ -5,6 +5,14 @@ preference, each with the program that remains. A step is an action, a test,
 a chance event (``prob``), a plan (``solve``), a sensing result, or a replan
 (a policy marker whose value changed). Policies from ``solve`` run as
 ``Running(policy, origin)`` nodes, so they nest anywhere in a program.
+
+Choices where the references differ: ``σ1 || σ2`` may end when either part may
+end (CAESAR §3.1.1; ConGolog's ``>>`` needs both), which is what makes
+``withPol(σ1, σ2) = (σ1; ?(false)) || σ2`` end with σ2; ``withCtrl φ do σ``
+and a false test block rather than end, so the program waits (for exogenous
+actions) or a lower-priority branch runs; a ``pickBest`` outside any ``solve``
+is planned as ``solve(DEFAULT_HORIZON, reward, ...)`` with the theory's
+``reward`` function.
 """
 
 from __future__ import annotations
