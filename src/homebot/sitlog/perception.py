@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Protocol
 
 from homebot.errors import DialogueError
-from homebot.sitlog.terms import Term, Text, deref, parse_term
+from homebot.sitlog.terms import Term, deref, parse_term
 
 if TYPE_CHECKING:
     from homebot.sitlog.interpreter import Environment
@@ -110,8 +110,3 @@ class ScriptedPerception:
         datum = utterance_term(item, expectations) if isinstance(item, str) else item
         self.consumed.append(datum)
         return datum
-
-
-def heard(text: str | None) -> Text | None:
-    """What speech recognition delivered, as a text term."""
-    return None if text is None else Text(text)
