@@ -93,6 +93,11 @@ def test_maze_reaches_the_goal() -> None:
     assert 0 < summary["success_probability"] < 1
 
 
+def test_in_the_maze_the_robot_can_slip_down_the_stairs() -> None:
+    summary = maze.run(argparse.Namespace(seed=10, horizon=8), None)
+    assert not summary["success"] and summary["fell"] and summary["end"] == [3, 1]
+
+
 def test_scenario_json_through_the_command_line(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["scenario", "cup_moved", "--json"]) == 0
     summary = json.loads(capsys.readouterr().out)

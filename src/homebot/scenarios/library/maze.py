@@ -37,13 +37,15 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
         if first is not None:
             console.print(f"first policy: value {first.value:.4f}, success probability "
                           f"{first.probability:.4f}")
+        fell = at in maze.stairs
         console.print(f"{'reached the goal' if reached else 'did not reach the goal'} after "
-                      f"{len(outcome.history)} moves and {len(outcome.plans)} plans")
+                      f"{len(outcome.history)} moves and {len(outcome.plans)} plans"
+                      f"{' (it slipped and fell down the stairs)' if fell else ''}")
     return scenario_summary("maze", outcome.success and reached, outcome.actions, [],
                             moves=len(outcome.history), plans=len(outcome.plans),
                             value=first.value if first else None,
                             success_probability=first.probability if first else None,
-                            end=list(at))
+                            end=list(at), fell=at in maze.stairs)
 
 
 def _arrivals(log: list[dict[str, Any]]) -> list[tuple[Any, ...]]:
