@@ -292,3 +292,19 @@ dialogue_models:
       - {id: fs, type: final}
 """)
     assert _run(program, ["said(hello)"])[0].out_arg == "hello"
+
+
+def test_running_a_program_leaves_it_unchanged_for_the_next_run() -> None:
+    program = _program("""
+dialogue_models:
+  - id: main(Heard)
+    situations:
+      - id: is
+        type: speech
+        arcs: ["X : assign(Heard, X) => fs"]
+      - {id: fs, type: final}
+""")
+    _run(program, ["one"])
+    second, _ = _run(program, ["two"])
+    assert format_term(second.transitions()[0].expectation) == "two"
+    assert format_term(program.main_model.head) == "main(Heard)"

@@ -171,7 +171,7 @@ class Interpreter:
         """Run the main model (or ``call``, e.g. ``take(malz, Status)``) to its end."""
         if isinstance(call, str):
             call = parse_term(call, "<call>")
-        call = call if call is not None else self.program.main_model.head
+        call = call if call is not None else copy_term(self.program.main_model.head)
         pipe = pipe if pipe is not None else Var("_Pipe")
         final, pipe = self._run_model(call, pipe, self.history)
         return RunResult(resolve(final), resolve(pipe), dict(self.globals), self.history,
