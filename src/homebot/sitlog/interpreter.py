@@ -162,7 +162,7 @@ class Interpreter:
         self.max_steps = max_steps
         self.on_transition = on_transition
         self.trail = Trail()
-        self.globals: dict[str, Term] = {k: resolve(v) for k, v in program.globals.items()}
+        self.globals: dict[str, Term] = {k: copy_term(v) for k, v in program.globals.items()}
         self.history: History = []
         self.stack: list[Frame] = []
         self.steps = 0
@@ -189,7 +189,7 @@ class Interpreter:
         head = copy_term(model.head, mapping)
         if not unify(head, call, self.trail):
             raise DialogueError(f"{model.place}: cannot call {model.name} as {format_term(call)}")
-        frame = Frame(model, {k: resolve(v) for k, v in model.locals.items()}, mapping, history)
+        frame = Frame(model, {k: copy_term(v) for k, v in model.locals.items()}, mapping, history)
         self.stack.append(frame)
         try:
             next_situation: Term = model.initial.id if not mapping else copy_term(
