@@ -87,11 +87,19 @@ def as_expr(value: Any) -> Expr:
     return Const(value)
 
 
-@dataclass(frozen=True, slots=True)
+@dataclass(frozen=True, slots=True, eq=False)
 class Const(Expr):
-    """A constant value (a number, a quoted string, a tuple)."""
+    """A constant value (a number, a quoted string, a tuple); ``1``, ``1.0`` and ``true``
+    are different constants, as they are different program texts."""
 
     value: Any
+
+    def __eq__(self, other: object) -> bool:
+        return (isinstance(other, Const) and type(self.value) is type(other.value)
+                and self.value == other.value)
+
+    def __hash__(self) -> int:
+        return hash((type(self.value).__name__, self.value))
 
     def evaluate(self, theory: Theory, state: State) -> Any:
         return self.value
