@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import cached_property
 
 from homebot.golog.build import eq, f, not_
 from homebot.golog.library import shipped_procedures
@@ -44,15 +45,15 @@ class Maze:
         return [(x, y) for y, row in enumerate(self.rows) for x, char in enumerate(row)
                 if char == mark]
 
-    @property
+    @cached_property
     def start(self) -> Cell:
         return self.cells("S")[0]
 
-    @property
+    @cached_property
     def goal(self) -> Cell:
         return self.cells("G")[0]
 
-    @property
+    @cached_property
     def stairs(self) -> frozenset[Cell]:
         return frozenset(self.cells("X"))
 
