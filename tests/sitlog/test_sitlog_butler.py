@@ -240,3 +240,24 @@ def test_under_disturbances_the_dialogue_always_comes_to_an_end(seed: int) -> No
     summary = run_butler(seed=seed, level=1.0)
     assert summary["speech"][-1] == "Goodbye."
     assert summary["kb_persisted"]
+
+
+def test_an_object_off_every_shelf_is_sought_elsewhere(monkeypatch: pytest.MonkeyPatch) -> None:
+    from homebot.scenarios.library import butler
+    from homebot.world import World
+
+    def moved_malz(tidy: bool = False) -> World:
+        data = World.load("butler_home").to_dict()
+        for item in data["objects"]:
+            if item["name"] == "malz":
+                item["placement"] = "dining table"
+        return World.from_dict(data, source="malz on the dining table")
+
+    monkeypatch.setattr(butler, "butler_world", moved_malz)
+    summary = run_butler()
+    said = [_words(line) for line in summary["speech"]]
+    assert _words("Let me look for the malz again.") in said
+    assert _words("Let me look for the malz elsewhere.") in said
+    assert summary["success"]
+    assert any("change the preferred location of malz to the dining table" in line
+               for line in said)

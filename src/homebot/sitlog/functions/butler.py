@@ -9,11 +9,14 @@ variables declared in ``butler.yaml``.
 
 from __future__ import annotations
 
+import math
+
 from homebot.knowledge import (
     AddStatement,
     ChangeValue,
     Kind,
     Literal,
+    Preference,
     RemoveStatement,
     parse_statement,
 )
@@ -70,7 +73,7 @@ def next_choice(env: Environment) -> Term:
     if len(members) < 2 or preferred_member(home, kind) is not None:  # known already
         return next_choice(env)
     first, second = members[0], members[1]
-    if home.kb.value(second, f"healthier_than=>{first}") == "yes":
+    if home.kb.value(second, Literal("healthier_than", first)) == "yes":
         first, second = second, first
     return Struct("choice", (kind, first, second))
 
@@ -92,13 +95,13 @@ def record_choice(env: Environment, kind: str, chosen: str, first: str, second: 
     home = home_of(env)
     other = second if chosen == first else first
     for weight, entity in ((1, chosen), (2, other)):
-        statement = parse_statement(f"'-'=>>to_serve=>{entity}", weight)
+        statement = Preference((), Literal("to_serve", entity), weight)
         home.update(AddStatement(owner=kind, kind=Kind.PROPERTY, statement=statement),
                     f"{home.user_name} likes {chosen} better than {other}")
-    if home.kb.value(chosen, f"healthier_than=>{other}") == "yes":
+    if home.kb.value(chosen, Literal("healthier_than", other)) == "yes":
         return Text(f"Excellent! {_capital(home.spoken(chosen))} is much healthier than the "
                     f"{home.spoken(other)}!")
-    if home.kb.value(other, f"healthier_than=>{chosen}") == "yes":
+    if home.kb.value(other, Literal("healthier_than", chosen)) == "yes":
         return Text(f"I will recall your choice, although {home.spoken(other)} is much "
                     f"healthier than the {home.spoken(chosen)}!")
     return Text("Great! I will recall your choice!")
@@ -204,12 +207,14 @@ def next_location(env: Environment, entity: str) -> Term:
     """``at(Shelf)``: the next preferred location not yet searched (Appendix B.2).
 
     When every shelf was searched once, they are searched a second time in the same
-    order (a look can miss what is there); then ``none``.
+    order (a look can miss what is there); then, as a last resort, every other
+    surface of the home the robot knows, nearest first; then ``none``.
     """
     home = home_of(env)
     tried = items_of(env, "tried")
+    world = home.context.world
     locations = [str(location) for location in home.kb.values(entity, "loc")
-                 if location in home.context.world.placements]
+                 if location in world.placements]
     for sweep in (1, 2):
         for location in locations:
             if tried.count(location) < sweep:
@@ -217,6 +222,16 @@ def next_location(env: Environment, entity: str) -> Term:
                     env.say(f"Let me look for the {home.spoken(entity)} again.")
                 _append(env, "tried", location)
                 return Struct("at", (location,))
+    here = home.context.robot.pose().xy()
+    elsewhere = sorted((name for name, placement in world.placements.items()
+                        if placement.model.kind == "furniture" and name not in locations),
+                       key=lambda name: math.dist(world.placements[name].approach[:2], here))
+    for location in elsewhere:
+        if location not in tried:
+            if not any(str(place) in elsewhere for place in tried):
+                env.say(f"Let me look for the {home.spoken(entity)} elsewhere.")
+            _append(env, "tried", location)
+            return Struct("at", (location,))
     return "none"
 
 
@@ -226,9 +241,9 @@ def observe(env: Environment, shelf: str, seen: tuple[Term, ...], wanted: str) -
     for label in (str(item) for item in seen):
         if label not in home.kb.taxonomy.individuals:
             continue
-        if home.kb.value(label, f"last_seen=>{shelf}") != "yes":
+        if home.kb.value(label, Literal("last_seen", shelf)) != "yes":
             home.update(ChangeValue(owner=label, kind=Kind.PROPERTY,
-                                    statement=parse_statement(f"last_seen=>{shelf}")),
+                                    statement=Literal("last_seen", shelf)),
                         f"saw the {label} on {shelf}")
         if label not in items_of(env, "seen"):
             _append(env, "seen", label)
@@ -324,7 +339,7 @@ def update_question(env: Environment, entity: str, found: str, stated: str) -> T
 
 def update_location(env: Environment, entity: str, found: str) -> Term:
     home = home_of(env)
-    statement = parse_statement(f"'-'=>>loc=>{found}", 1)
+    statement = Preference((), Literal("loc", found), 1)
     home.update(AddStatement(owner=entity, kind=Kind.PROPERTY, statement=statement),
                 f"{home.user_name} agreed that the {entity} belong on {found}")
     return Text("Ok. I updated my KB with your new preference.")
@@ -378,7 +393,7 @@ def will_take_back(env: Environment, right: str) -> Term:
 def placed(env: Environment, entity: str, shelf: str, arm: str) -> Term:
     home = home_of(env)
     home.update(ChangeValue(owner=entity, kind=Kind.PROPERTY,
-                            statement=parse_statement(f"last_seen=>{shelf}")),
+                            statement=Literal("last_seen", shelf)),
                 f"put the {entity} on {shelf}")
     if home.kb.value(entity, "misplaced") == "yes":
         home.update(RemoveStatement(owner=entity, kind=Kind.PROPERTY,

@@ -57,6 +57,8 @@ class ButlerHome:
             name = self.kb.value(entity, "name")
             if isinstance(name, str) and name not in ("unknown", "yes", "no"):
                 return name
+        if entity in self.context.world.placements:
+            return f"the {entity.replace('_', ' ')}"  # a surface the KB has no name for
         return entity.replace("_", " ")
 
     def stated_location(self, entity: str) -> str | None:
