@@ -156,3 +156,10 @@ def test_a_room_search_retry_searches_again(apartment: World,
     assert outcome.error is ErrorCode.NOT_FOUND
     assert "anywhere" not in outcome.message
     assert len(outcome.data["searched"]) == len(apartment.placements_in("kitchen"))
+
+
+def test_pick_looks_where_the_object_now_is(run: SimulatedRun) -> None:
+    assert _do(run, "pick", object="cola")
+    assert _do(run, "place", placement="kitchen table")
+    assert _do(run, "pick", object="cola")
+    assert run.simulation.object_location["cola"] == "hand:left"

@@ -35,8 +35,11 @@ class Pick(Skill):
         if hand is None or context.beliefs.holding.get(hand, "") is not None:
             return Outcome.failed(ErrorCode.HANDS_FULL, "both my hands are full" if hand is None
                                   else f"my {hand} hand is not free")
-        placement = context.bindings.get(f"placement:{wanted}") or context.beliefs.object_at.get(
-            wanted)
+        believed = context.beliefs.object_at.get(wanted)
+        # Where the robot believes it is comes first; the binding only remembers where it
+        # was last expected after a look that missed it (so a retry looks there again).
+        placement = believed if believed in context.world.placements else context.bindings.get(
+            f"placement:{wanted}")
         if placement not in context.world.placements:
             return Outcome.failed(ErrorCode.NOT_FOUND, f"I do not know where the {wanted} is")
         # A retry looks at the same place again, though this look may not see it.
@@ -65,6 +68,7 @@ class Pick(Skill):
             return Outcome.aborted(ErrorCode.WRONG_OBJECT,
                                    f"I picked the {held.label}, not the {expected}")
         context.beliefs.took(held.label, hand)
+        context.bindings.pop(f"placement:{args['object']}", None)
         return Outcome.verified(f"I have the {held.label}", object=held.label, hand=hand)
 
     def assume(self, context: SkillContext, args: Mapping[str, Any], finished: Outcome) -> None:
