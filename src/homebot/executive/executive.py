@@ -92,8 +92,8 @@ class Executive:
         inferred = gave_up = False
         while self.recovery and not outcome and len(recoveries) < _MAX_RECOVERIES:
             protocol = self._protocol_for(skill, outcome, inference, inferred, gave_up)
-            if protocol is None:
-                break
+            if protocol is None or (depth > 0 and outcome.error is ErrorCode.NOT_FOUND):
+                break  # a search a protocol runs does not start searches of its own
             inferred = inferred or protocol is inference
             recoveries.append(outcome.error.value if outcome.error else outcome.status.value)
             self.context.events.record("recovery", skill=skill, error=recoveries[-1],

@@ -81,8 +81,8 @@ def _object_not_found(context: SkillContext, skill: str, args: Mapping[str, Any]
     speak(context, f"The {wanted} is not where I expected. I will look elsewhere.")
     found = run("find_object", {"object": wanted, "exclude": searched})
     if not found and found.error is ErrorCode.NOT_FOUND:
-        # Every likely place was searched once; a detection may have missed it, so
-        # forget where it was not seen and sweep the whole home once more.
+        # The likely places were searched; a detection may have missed it where it
+        # was expected, so forget the misses and search the whole home, once.
         context.beliefs.not_at.pop(wanted, None)
         speak(context, f"I will search the whole home once more for the {wanted}.")
         found = run("find_object", {"object": wanted})

@@ -106,8 +106,9 @@ class Look(Skill):
 class FindObject(Skill):
     """Search candidate placements in order until the object (or one of the category) is seen.
 
-    Monitor: a second look at that placement sees it again (a confused detection
-    rarely repeats). Data: ``object`` (what was found) and ``placement``.
+    Monitor: another look at that placement sees it again (a confused detection
+    rarely repeats; one more look when that look misses it). Data: ``object``
+    (what was found) and ``placement``.
     """
 
     name = "find_object"
@@ -153,8 +154,10 @@ class FindObject(Skill):
     def monitor(self, context: SkillContext, args: Mapping[str, Any],
                 finished: Outcome) -> Outcome:
         name, placement = finished.data["object"], finished.data["placement"]
-        if any(d.label == name for d in context.robot.perceive_objects(placement)):
-            return Outcome.verified(finished.message, object=name, placement=placement)
+        # Two looks at most: one miss is likelier a missed detection than a moved object.
+        for _ in range(2):
+            if any(d.label == name for d in context.robot.perceive_objects(placement)):
+                return Outcome.verified(finished.message, object=name, placement=placement)
         context.beliefs.missed_object(name, placement)
         return Outcome.aborted(ErrorCode.NOT_FOUND, f"the {name} is not on the {placement}")
 
