@@ -173,3 +173,12 @@ def test_inference_gets_a_turn_when_the_protocols_give_up(
     report = run.run(Task((Step("navigate", {"to": "bed"}),)))
     assert not report.success
     assert asked == [ErrorCode.DOOR_CLOSED]
+
+
+def test_run_step_recovers_like_a_task_step(apartment: World,
+                                            apartment_navigator: Navigator) -> None:
+    run = _run(apartment, apartment_navigator)
+    run.simulation.door_state["bedroom door"] = DoorState.CLOSED
+    outcome = run.executive.run_step("navigate", {"to": "bed"})
+    assert outcome
+    assert not any(e.kind == "task.end" for e in run.simulation.events.events)

@@ -76,6 +76,14 @@ class Executive:
                   [first_speech:]]
         return TaskReport(success, reports, speech, context.robot.now() - started, reason)
 
+    def run_step(self, skill: str, args: Mapping[str, Any]) -> Outcome:
+        """Run one skill step with retries and recovery, as a task's step would be.
+
+        For engines that sequence skills themselves (HTN, Golog, SitLog) and want the
+        executive's recovery protocols without its task-level reporting.
+        """
+        return self._run_step(skill, self._bind(args))[0]
+
     def _run_step(self, skill: str, args: Mapping[str, Any],
                   depth: int = 0) -> tuple[Outcome, list[str]]:
         outcome = skill_named(skill).run(self.context, args)
