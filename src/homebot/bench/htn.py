@@ -46,7 +46,7 @@ __all__ = ["add_arguments", "run"]
 def _gtpyhop() -> Any:
     # GTPyhop prints a banner when imported; keep the benchmark's output clean.
     with contextlib.redirect_stdout(io.StringIO()):
-        import gtpyhop  # type: ignore[import-untyped]
+        import gtpyhop
     return gtpyhop
 
 

@@ -188,7 +188,7 @@ def _updates(kb: KnowledgeBase, props: list[str]) -> dict[str, Any]:
     figures: dict[str, Any] = {}
     individual = props[0]
     leaf = next(name for name in reversed(kb.taxonomy.classes) if not kb.taxonomy.children(name))
-    cases = {
+    cases: dict[str, ChangeValue | AddStatement] = {
         "individual last_seen": ChangeValue(
             owner=individual, kind=Kind.PROPERTY, statement=parse_statement("last_seen=>shelf_0")
         ),

@@ -13,7 +13,7 @@ of questions.
 
 from __future__ import annotations
 
-from homebot.knowledge.model import ANY, Literal, Value
+from homebot.knowledge.model import ANY, Literal, Statement, Value
 from homebot.knowledge.tables import (
     EMPTY,
     NAMESPACES,
@@ -68,7 +68,7 @@ class Closure:
         self,
         name: str,
         table: ClassTable,
-        own: tuple[list, list] | None = None,
+        own: tuple[list[Statement], list[Statement]] | None = None,
         inherited: Closure | None = None,
     ) -> None:
         self.name = name
@@ -235,8 +235,9 @@ class Closure:
         for index, (name, literals) in enumerate(self.entries(namespace)):
             spans[name] = (index, len(flat), len(flat) + len(literals))
             flat.extend(literals)
-        self._flat[namespace] = (tuple(flat), spans)
-        return self._flat[namespace]
+        result = (tuple(flat), spans)
+        self._flat[namespace] = result
+        return result
 
     def _affected_keys(self) -> set[Key]:
         affected = self._affected

@@ -120,7 +120,7 @@ class Reasoner:
             type(s) is not Literal for s in own_statements
         ):
             return self.closure(entity).resolve(namespace, name)
-        own = [s for s in own_statements if s.name == name]
+        own = [s for s in own_statements if isinstance(s, Literal) and s.name == name]
         if not own:
             return table.facts[namespace].get(name, EMPTY)
         return resolve_levels((effective(own), *table.levels[namespace].get(name, ())))
@@ -190,9 +190,9 @@ class Reasoner:
         return len(self._tables), len(self._closures), len(self._extensions)
 
     def _drop_class(self, class_name: str) -> int:
-        dropped = self._tables.pop(class_name, None) is not None
+        dropped = int(self._tables.pop(class_name, None) is not None)
         dropped += self._closures.pop(class_name, None) is not None
-        return int(dropped)
+        return dropped
 
     def _subtree(self, class_name: str) -> list[str]:
         children = self.children()

@@ -187,7 +187,9 @@ def kb_warnings(path: str | Path) -> list[str]:
     taxonomy = parser.knowledge_base()
     messages = []
     for problem in coherence.warnings(taxonomy):
-        index = parser.statement_at.get((problem.entity, problem.kind, problem.position))
+        index = None
+        if problem.kind is not None and problem.position is not None:
+            index = parser.statement_at.get((problem.entity, problem.kind, problem.position))
         if index is None:
             messages.append(f"{path}: {problem.message}")
             continue

@@ -266,7 +266,9 @@ class ClassTable:
             self.facts[namespace].update(facts)
         own_rules = sort_rules(_preferences(properties, relations), name)
         self.rules: tuple[Rule, ...] = (*own_rules, *(mother.rules if mother else ()))
-        self.groups = group_rules(own_rules, mother.groups if mother else ({}, {}))
+        self.groups: tuple[dict[str, tuple[Rule, ...]], dict[str, tuple[Rule, ...]]] = (
+            group_rules(own_rules, mother.groups if mother else ({}, {}))
+        )
         self._graph: DependencyGraph | None = None
 
     @property

@@ -9,7 +9,7 @@ the store can log them and replay them.
 from __future__ import annotations
 
 from abc import ABC, abstractmethod
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, fields, is_dataclass
 from typing import Any, ClassVar
 
@@ -65,7 +65,9 @@ class Update(ABC):
     def to_dict(self) -> dict[str, Any]:
         """Plain data: ``type`` plus the fields (statements as KB text)."""
         data: dict[str, Any] = {"type": self.type_name}
-        for item in fields(self) if is_dataclass(self) else ():
+        if not is_dataclass(self):
+            return data
+        for item in fields(self):
             name = item.name
             value = getattr(self, name)
             if isinstance(value, Kind):
@@ -427,14 +429,20 @@ def _drop_relations_to(taxonomy: Taxonomy, name: str) -> Touched:
     return _map_relations_to(taxonomy, name, lambda value: None)
 
 
-def _map_relations_to(taxonomy: Taxonomy, name: str, replace: Any) -> Touched:
+def _map_relations_to(
+    taxonomy: Taxonomy, name: str, replace: Callable[[Value], Value | None]
+) -> Touched:
     """Rewrite (or drop, when ``replace`` gives ``None``) relations whose object is ``name``."""
     touched = Touched()
     for entity in taxonomy.entities():
         changed = False
         rewritten: list[Statement] = []
         for statement in entity.relations:
-            if isinstance(statement, Literal) and _names(statement.value, name):
+            if (
+                isinstance(statement, Literal)
+                and statement.value is not None
+                and _names(statement.value, name)
+            ):
                 changed = True
                 value = _replace_value(statement.value, name, replace)
                 if value is None:
@@ -453,7 +461,9 @@ def _names(value: Value | None, name: str) -> bool:
     return value == name
 
 
-def _replace_value(value: Value, name: str, replace: Any) -> Value | None:
+def _replace_value(
+    value: Value, name: str, replace: Callable[[Value], Value | None]
+) -> Value | None:
     if isinstance(value, tuple):
         items = [_replace_value(item, name, replace) for item in value]
         kept = tuple(item for item in items if item is not None)

@@ -165,18 +165,19 @@ class _YamlReader:
         result = []
         for position, item in enumerate(self.sequence(node, f"the {kind.value} list")):
             weight = 0
-            text_node = item
+            text_node: yaml.Node | None = item
             if isinstance(item, yaml.MappingNode):
                 fields = self.mapping(item, "a weighted statement", {"statement", "weight"})
                 text_node = fields.get("statement")
                 weight_node = fields.get("weight")
                 if text_node is None or weight_node is None:
                     raise self.fail(item, "expected both statement: and weight:")
-                weight = _scalar(weight_node)
-                if isinstance(weight, bool) or not isinstance(weight, int) or weight < 0:
+                stated = _scalar(weight_node)
+                if isinstance(stated, bool) or not isinstance(stated, int) or stated < 0:
                     raise self.fail(
-                        weight_node, f"expected a whole-number weight, found {weight!r}"
+                        weight_node, f"expected a whole-number weight, found {stated!r}"
                     )
+                weight = stated
             if not isinstance(text_node, yaml.ScalarNode):
                 raise self.fail(
                     text_node, f"expected a statement in KB syntax, found {_describe(text_node)}"

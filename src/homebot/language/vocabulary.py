@@ -164,9 +164,9 @@ def _build_index(rooms: tuple[str, ...], placements: Mapping[str, str],
             for variant in _variants(name, kind):
                 derived.setdefault(variant, []).append(Entity(kind, name))
     for word, target in SYNONYMS:
-        kind = _kind(target, rooms, placements, objects)
-        if kind:
-            derived.setdefault(phrase_tokens(word), []).append(Entity(kind, target))
+        target_kind = _kind(target, rooms, placements, objects)
+        if target_kind:
+            derived.setdefault(phrase_tokens(word), []).append(Entity(target_kind, target))
     for phrase, candidates in _category_phrases(categories).items():
         derived.setdefault(phrase, []).extend(candidates)
     for phrase, entities in derived.items():

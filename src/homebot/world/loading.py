@@ -43,10 +43,12 @@ class LocatedDocument:
             child = _child_node(node, step)
             if child is None:
                 break
-            node = child
-            line = _key_line(node) if isinstance(node, tuple) else node.start_mark.line + 1
-            if isinstance(node, tuple):
-                node = node[1]
+            if isinstance(child, tuple):
+                line = _key_line(child)
+                node = child[1]
+            else:
+                line = child.start_mark.line + 1
+                node = child
         return line
 
 
