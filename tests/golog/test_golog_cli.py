@@ -39,6 +39,14 @@ def test_a_missing_file_is_an_error_not_a_crash(capsys: pytest.CaptureFixture[st
     assert "cannot read" in capsys.readouterr().err
 
 
+def test_a_file_that_is_not_utf8_is_an_error_not_a_crash(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    binary = tmp_path / "binary.golog"
+    binary.write_bytes(b"proc p\n  \xff\xfe\nendproc\n")
+    assert main(["golog", "check", str(binary)]) == 2
+    assert "not UTF-8" in capsys.readouterr().err
+
+
 def test_plan_prints_the_policy_with_markers(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["golog", "plan", "build_tower(4)", "--domain", "blocks", "--json"]) == 0
     result = json.loads(capsys.readouterr().out)

@@ -85,6 +85,7 @@ def test_plan_with_a_python_domain(tmp_path: Path, capsys: pytest.CaptureFixture
     (["plan", "bring_objekt", "pringles", "Alex"], "did you mean 'bring_object'"),
     (["plan", "guide_person", "Alex"], "takes 2 arguments"),
     (["plan"], "give a TASK"),
+    (["plan", "bring_object", "pringles", "Alex", "--all", "--limit", "0"], "1 or more"),
 ])
 def test_plan_errors_exit_2(argv: list[str], words: str,
                             capsys: pytest.CaptureFixture[str]) -> None:

@@ -36,4 +36,7 @@ def load_procedures(path: str | Path) -> list[Procedure]:
     except OSError as error:
         raise GologError(f"cannot read the Golog program {file}: {error.strerror}; "
                          f"check the path") from None
+    except UnicodeDecodeError as error:
+        raise GologError(f"cannot read the Golog program {file}: byte {error.start} is not "
+                         f"UTF-8; save the file as UTF-8 text") from None
     return parse_procedures(text, str(file))

@@ -181,6 +181,15 @@ def _effect_atoms(operator: str, patterns: tuple[Any, ...], positions: tuple[tup
     return atoms
 
 
+def _variables(data: Any) -> set[str]:
+    """Every variable written anywhere in plain data."""
+    if is_variable(data):
+        return {data}
+    if isinstance(data, str) or not isinstance(data, Iterable):
+        return set()
+    return set().union(*(_variables(item) for item in data))
+
+
 def _atoms(data: Iterable[Any]) -> list[Any]:
     if data is None or data == "nil":
         return []
@@ -231,8 +240,14 @@ class Method:
                                 "a precondition and a list of subtasks")
         built = []
         for index, (name, precondition, subtasks) in enumerate(branches):
-            built.append(Branch(name or f"{task}-{index + 1}", expression(precondition),
-                                tuple(task_data(sub) for sub in _atoms(subtasks))))
+            branch = Branch(name or f"{task}-{index + 1}", expression(precondition),
+                            tuple(task_data(sub) for sub in _atoms(subtasks)))
+            unbound = _variables(branch.subtasks) - _variables(params) - _variables(precondition)
+            if unbound:
+                raise PlanningError(f"method '{task}' branch '{branch.name}': the subtasks use "
+                                    f"{', '.join(sorted(unbound))}, bound neither by the head "
+                                    "nor by the precondition; bind it there")
+            built.append(branch)
         return cls(task, params, tuple(built))
 
     def bind(self, task: Atom) -> dict[str, Term] | None:
