@@ -31,7 +31,8 @@ def test_check_names_an_unknown_action(tmp_path: Path,
     bad = tmp_path / "typo.golog"
     bad.write_text("proc p\n  stak(a, b)\nendproc\n")
     assert main(["golog", "check", str(bad), "--domain", "blocks"]) == 2
-    assert "didyoumean'stack'?" in "".join(capsys.readouterr().err.split())
+    err = "".join(capsys.readouterr().err.split())
+    assert "didyoumean'stack'?" in err and f"{bad}:2:3:procedurep:" in err
 
 
 def test_a_missing_file_is_an_error_not_a_crash(capsys: pytest.CaptureFixture[str]) -> None:

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import difflib
+import re
 from collections.abc import Iterable, Iterator
 
 from homebot.errors import GologError
@@ -46,8 +47,15 @@ __all__ = ["check_program", "check_theory"]
 def check_theory(theory: Theory) -> None:
     """Check every procedure of the theory; raise ``GologError`` naming the first problem."""
     for procedure in theory.procedures.values():
-        check_program(theory, procedure.body, f"procedure {procedure.name}",
-                      bound=frozenset(procedure.parameters))
+        try:
+            check_program(theory, procedure.body, f"procedure {procedure.name}",
+                          bound=frozenset(procedure.parameters))
+        except GologError as error:  # read from a file: say where the name is written
+            named = re.search(r"'(\w+)'", str(error))
+            place = procedure.places.get(named.group(1)) if named else None
+            if place is None:
+                raise
+            raise GologError(f"{place}: {error}") from None
 
 
 def check_program(theory: Theory, program: Program, where: str = "the program", *,

@@ -6,7 +6,7 @@ procedure parameters bind them) and prints itself in the textual syntax.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from homebot.golog.expressions import Expr, Substitution
 
@@ -296,6 +296,8 @@ class Procedure:
     name: str
     parameters: tuple[str, ...]
     body: Program
+    #: where each name in the body is first written ("file:line:column"), when read from text
+    places: dict[str, str] = field(default_factory=dict, compare=False, repr=False)
 
     def __str__(self) -> str:
         head = f"{self.name}({', '.join(self.parameters)})" if self.parameters else self.name

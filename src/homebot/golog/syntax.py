@@ -181,9 +181,14 @@ class _Parser:
                 self.expect(")", "close the parameter list with ')'")
             if self.at(","):
                 self.advance()
+            start = self.index
             body = self.program(commas=True)
+            places: dict[str, str] = {}
+            for token in self.tokens[start:self.index]:
+                if token.kind == "name":
+                    places.setdefault(token.text, f"{self.source}:{token.line}:{token.column}")
             self.expect("endproc", f"end procedure '{name}' with 'endproc'")
-            found.append(Procedure(name, tuple(parameters), body))
+            found.append(Procedure(name, tuple(parameters), body, places))
         return found
 
     def _parameter_list_follows(self) -> bool:
