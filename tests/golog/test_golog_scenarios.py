@@ -109,6 +109,16 @@ def test_a_bad_goal_order_exits_2_with_a_hint(capsys: pytest.CaptureFixture[str]
     assert "--goal blue,red,green" in capsys.readouterr().err.replace("\n", " ")
 
 
+@pytest.mark.parametrize(("argv", "words"), [
+    (["scenario", "maze", "--horizon", "0"], "give 1 or more"),
+    (["scenario", "cup_moved", "--after", "-1"], "0 or more"),
+])
+def test_scenario_numbers_out_of_range_exit_2(argv: list[str], words: str,
+                                              capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(argv) == 2
+    assert words in capsys.readouterr().err.replace("\n", " ")
+
+
 def test_the_benchmark_reports_nodes_and_time() -> None:
     report = golog_bench.run(argparse.Namespace(repeats=1, cups_horizon=3, maze_horizon=4),
                              None)

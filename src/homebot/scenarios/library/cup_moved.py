@@ -7,6 +7,7 @@ from typing import Any
 
 from rich.console import Console
 
+from homebot.errors import GologError
 from homebot.golog import Executor, Interpreter, SimulatedExecutor, State
 from homebot.golog.build import do
 from homebot.golog.domains import CUPS, POSITIONS, cups_theory, minimum_moves
@@ -38,6 +39,8 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     next move (or that move fails), and the policy's markers fail then.
     """
     after = getattr(args, "after", 1)
+    if after < 0:
+        raise GologError(f"--after {after}: give how many moves the robot makes first, 0 or more")
     unseen = getattr(args, "unseen", False)
     theory = cups_theory(START)
     moved: list[tuple[Any, ...]] = []

@@ -7,6 +7,7 @@ from typing import Any
 
 from rich.console import Console
 
+from homebot.errors import GologError
 from homebot.golog import Interpreter, SimulatedExecutor
 from homebot.golog.build import do
 from homebot.golog.domains import Maze, maze_theory
@@ -22,6 +23,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     """From S to G; moves slip sideways with probability 0.2; falling down the stairs fails."""
     horizon = getattr(args, "horizon", 8)
+    if horizon < 1:
+        raise GologError(f"--horizon {horizon}: give 1 or more (at 0 the robot plans no move)")
     maze = Maze()
     theory = maze_theory(maze)
     executor = SimulatedExecutor(theory, seed=args.seed)
