@@ -157,6 +157,11 @@ def test_internal_operators_and_errors() -> None:
     unbound.operator(("!bad",), add=[("x", "?y")])
     with pytest.raises(PlanningError, match="unbound"):
         find_plan(unbound, State(), [("!bad",)])
+    looping = Domain("looping")
+    looping.declare_axiom(("p", "?x"), ("", [("p", "?x")]))
+    looping.operator(("!a", "?x"), [("p", "?x")])
+    with pytest.raises(PlanningError, match="recursed without end"):
+        find_plan(looping, State([("foo", 1)]), [("!a", 1)])
 
 
 def test_state_indexes_and_undo() -> None:

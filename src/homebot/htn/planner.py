@@ -221,6 +221,10 @@ class Planner:
         mark = state.mark()
         try:
             self._seek(proof, goal, result, limit, cheapest)
+        except RecursionError:  # the search is iterative: only a proof can recurse this deep
+            raise PlanningError("proving a precondition recursed without end: an axiom proves "
+                                "its head from itself (such as (:- (p ?x) ((p ?x)))); put a "
+                                "condition that binds or fails before the recursive one") from None
         finally:
             state.undo(mark)
         return result
