@@ -15,7 +15,7 @@ from rich.console import Console
 from homebot.language import Vocabulary, parse_command
 from homebot.language.generator import generate_commands
 from homebot.navigation import Navigator
-from homebot.scenarios import SimulatedRun, disturbed
+from homebot.scenarios import SimulatedRun, disturbance_level, disturbed
 from homebot.task import Step
 from homebot.world import World
 
@@ -120,7 +120,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--commands", type=int, default=200, help="commands to carry out")
     parser.add_argument("--seed", type=int, default=1)
     parser.add_argument("--world", default="apartment", help="world file or shipped name")
-    parser.add_argument("--level", type=float, default=0.0,
+    parser.add_argument("--level", type=disturbance_level, default=0.0,
                         help="disturbance level (0: none, 1: the robustness benchmark's)")
 
 

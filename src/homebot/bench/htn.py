@@ -35,7 +35,7 @@ from homebot.htn import (
     state_from_beliefs,
 )
 from homebot.navigation import Navigator
-from homebot.scenarios import SimulatedRun, disturbed
+from homebot.scenarios import SimulatedRun, disturbance_level, disturbed
 from homebot.world import World
 
 __all__ = ["add_arguments", "run"]
@@ -291,7 +291,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="numbers of misplaced objects to tidy up")
     parser.add_argument("--runs", type=int, default=60,
                         help="seeded bring tasks run under disturbances per mode (0: none)")
-    parser.add_argument("--level", type=float, default=1.0, help="disturbance level")
+    parser.add_argument("--level", type=disturbance_level, default=1.0, help="disturbance level")
     parser.add_argument("--seed", type=int, default=1, help="seed of tasks and disturbances")
 
 

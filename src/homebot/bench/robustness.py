@@ -13,7 +13,7 @@ from rich.table import Table
 
 from homebot.bench.fetch_tasks import delivered, fetch_tasks
 from homebot.navigation import Navigator
-from homebot.scenarios import SimulatedRun, disturbed
+from homebot.scenarios import SimulatedRun, disturbance_level, disturbed
 from homebot.world import World
 
 __all__ = ["ModeResult", "add_arguments", "compare_modes", "run"]
@@ -72,7 +72,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--tasks", type=int, default=200, help="tasks per mode (default 200)")
     parser.add_argument("--seed", type=int, default=1, help="seed of tasks and disturbances")
     parser.add_argument("--world", default="apartment", help="world file or shipped name")
-    parser.add_argument("--level", type=float, default=1.0, help="disturbance level (1 = default)")
+    parser.add_argument("--level", type=disturbance_level, default=1.0,
+                        help="disturbance level (1 = default)")
 
 
 def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, Any]:

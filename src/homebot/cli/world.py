@@ -94,7 +94,14 @@ def _show(args: argparse.Namespace) -> int:
     if args.png:
         from homebot.viz import render_map
 
-        render_map(world, _path_from_events(args.events or last_run_path(), world)).save(args.png)
+        if args.png.suffix.lower() != ".png":
+            raise WorldError(f"{args.png}: the map is a PNG image; give a name ending in .png")
+        image = render_map(world, _path_from_events(args.events or last_run_path(), world))
+        try:
+            image.save(args.png)
+        except OSError as error:
+            raise WorldError(f"{args.png}: cannot be written ({error.strerror or error}); "
+                             "check that its folder exists and is writable") from None
         print(f"wrote {args.png}")
     if args.json:
         print(json.dumps(world_summary(world)))
@@ -108,13 +115,14 @@ def _path_from_events(events: Path, world: World) -> list[tuple[float, float]]:
         return []
     start = (world.robot.pose[0], world.robot.pose[1])
     path: list[tuple[float, float]] = [start]
-    for line in events.read_text(encoding="utf-8").splitlines():
-        try:
+    try:
+        for line in events.read_text(encoding="utf-8").splitlines():
             event = json.loads(line)
-        except json.JSONDecodeError:
-            raise WorldError(f"{events}: not a homebot event log (JSON lines)") from None
-        if event.get("kind") == "robot.path" and event.get("world") == world.name:
-            path.extend((float(x), float(y)) for x, y in event["points"])
+            if event.get("kind") == "robot.path" and event.get("world") == world.name:
+                path.extend((float(x), float(y)) for x, y in event["points"])
+    except (OSError, ValueError, TypeError, KeyError, AttributeError):
+        raise WorldError(f"{events}: not a homebot event log (JSON lines); give the file "
+                         "written by run-task --events") from None
     return path if len(path) > 1 else []
 
 

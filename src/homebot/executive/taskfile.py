@@ -47,10 +47,10 @@ def _task(document: LocatedDocument, world: World) -> Task:
     description = ""
     prefix: list[str | int] = []
     if isinstance(data, dict):
-        unknown = set(data) - {"description", "steps"}
+        unknown = sorted(map(str, set(data) - {"description", "steps"}))
         if unknown:
-            raise TaskError(f"{document.source}: line {document.line_of([sorted(unknown)[0]])}: "
-                            f"unknown field '{sorted(unknown)[0]}'; use 'description' and 'steps'")
+            raise TaskError(f"{document.source}: line {document.line_of([unknown[0]])}: "
+                            f"unknown field '{unknown[0]}'; use 'description' and 'steps'")
         description = str(data.get("description", ""))
         data = data.get("steps")
         prefix = ["steps"]
@@ -62,6 +62,10 @@ def _task(document: LocatedDocument, world: World) -> Task:
         where = f"{document.source}: line {document.line_of([*prefix, index])}: step {index + 1}"
         if not isinstance(entry, dict) or "skill" not in entry:
             raise TaskError(f"{where}: a step is a mapping with a 'skill' field")
+        odd = [key for key in entry if not isinstance(key, str)]
+        if odd:
+            raise TaskError(f"{where}: argument names are words, not {odd[0]!r}; "
+                            "write {skill: NAME, ARG: VALUE}")
         step = Step.from_dict(entry)
         check_step(step, world, where)
         steps.append(step)

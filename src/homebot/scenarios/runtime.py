@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import argparse
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass
 
@@ -14,7 +16,7 @@ from homebot.skills import SkillContext
 from homebot.task import Task
 from homebot.world import DisturbanceModel, World
 
-__all__ = ["SimulatedRun", "disturbed"]
+__all__ = ["SimulatedRun", "disturbance_level", "disturbed", "probability"]
 
 
 def disturbed(level: float = 1.0) -> DisturbanceModel:
@@ -29,6 +31,27 @@ def disturbed(level: float = 1.0) -> DisturbanceModel:
         detection_confusion=0.05 * level, door_closed=0.15 * level,
         person_in_way=0.05 * level, object_moved=0.10 * level,
         object_moved_during_task=0.10 * level, object_missing=0.02 * level)
+
+
+def disturbance_level(text: str) -> float:
+    """An argparse type: a level for ``disturbed``, 0 (none) to 6 (90 % of grasps slip)."""
+    return _number_between(text, 0.0, 6.0, "a disturbance level")
+
+
+def probability(text: str) -> float:
+    """An argparse type: a probability, 0 to 1."""
+    return _number_between(text, 0.0, 1.0, "a probability")
+
+
+def _number_between(text: str, low: float, high: float, what: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not low <= value <= high:  # also false for nan
+        raise argparse.ArgumentTypeError(f"{what} is a number from {low:g} to {high:g}, "
+                                         f"not '{text}'")
+    return value
 
 
 @dataclass

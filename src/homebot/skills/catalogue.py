@@ -61,10 +61,23 @@ def check_step(step: Step, world: World, where: str) -> None:
 
 def _check_value(skill: str, name: str, value: Any, world: World, where: str) -> None:
     if name == "person" and isinstance(value, Mapping):
-        unknown = set(value) - _PERSON_FIELDS
+        unknown = sorted(map(str, set(value) - _PERSON_FIELDS))
         if unknown:
             raise TaskError(f"{where}: a person is described by {', '.join(sorted(_PERSON_FIELDS))}"
-                            f", not '{sorted(unknown)[0]}'")
+                            f", not '{unknown[0]}'")
+        for field, text in value.items():
+            if isinstance(text, (list, dict)):
+                raise TaskError(f"{where}: {skill}.person.{field} is a word such as 'waving', "
+                                f"not {text!r}")
+        return
+    if name == "exclude" and isinstance(value, list):
+        value = tuple(value)
+    elif isinstance(value, (list, dict)):
+        raise TaskError(f"{where}: {skill}.{name} is a name or text, not {value!r}; "
+                        "write it as one word or a quoted string")
+    if name == "exclude":
+        for placement in value if isinstance(value, tuple) else (value,):
+            _check_value(skill, "placement", placement, world, where)
         return
     kind = _ARGUMENT_KINDS.get(name)
     if name == "person":
@@ -73,7 +86,7 @@ def _check_value(skill: str, name: str, value: Any, world: World, where: str) ->
         return
     text = str(value)
     known = _names(world, kind, skill)
-    if text not in known and not text.startswith("$"):
+    if text not in known:
         guess = difflib.get_close_matches(text, sorted(known), n=1)
         hint = f"did you mean '{guess[0]}'?" if guess else "check the world's names"
         raise TaskError(f"{where}: unknown {kind} '{text}' for {skill}.{name}; {hint}")

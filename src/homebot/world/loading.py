@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import difflib
+import re
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any, TypeVar
@@ -81,7 +82,7 @@ def load_yaml_document(path: Path | str,
     except FileNotFoundError:
         raise error_type(f"{path}: no such file; check the path") from None
     except (OSError, UnicodeDecodeError) as error:
-        raise error_type(f"{path}: cannot be read ({error})") from None
+        raise error_type(f"{path}: cannot be read ({error}); give a UTF-8 text file") from None
     return parse_yaml_text(text, str(path), error_type)
 
 
@@ -99,6 +100,9 @@ def parse_yaml_text(text: str, source: str,
         ) from None
     except yaml.YAMLError as error:
         raise error_type(f"{source}: YAML syntax error: {error}") from None
+    except RecursionError:
+        raise error_type(f"{source}: YAML nested too deeply; flatten the lists and mappings"
+                         ) from None
     return LocatedDocument(data, root, source)
 
 
@@ -143,7 +147,9 @@ def _describe(document: LocatedDocument, model: type[BaseModel], detail: Any) ->
 
 
 def _is_union_tag(step: Any) -> bool:
-    return isinstance(step, str) and ("[" in step or step in {"function-after", "tagged-union"})
+    """Pydantic's own steps (``tuple[float, float]``, ``function-after[...]``), not a key."""
+    return isinstance(step, str) and (re.fullmatch(r"[A-Za-z_-]+\[.*\]", step) is not None
+                                      or step in {"function-after", "tagged-union"})
 
 
 def _fields_at(model: type[BaseModel], location: Sequence[str | int]) -> list[str]:

@@ -33,9 +33,12 @@ Name = Annotated[str, Field(min_length=1, pattern=r"^[A-Za-z][A-Za-z0-9_ '\-]*$"
 
 
 class _Strict(BaseModel):
-    """Base for world entities: unknown fields are errors (they are usually typos)."""
+    """Base for world entities: unknown fields are errors (they are usually typos).
 
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    Numbers are finite: ``.nan`` or ``.inf`` in a coordinate is an error, not geometry.
+    """
+
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
 
 
 class DoorState(StrEnum):

@@ -35,6 +35,8 @@ __all__ = ["Placement", "World", "shipped_world_names", "shipped_world_path"]
 
 # Clearance between the robot's body and furniture when the approach pose is derived.
 _APPROACH_CLEARANCE = 0.12
+# The largest occupancy grid a world may ask for (a 150 m square at 5 cm; a few hundred MB).
+_MAX_GRID_CELLS = 9e6
 
 
 @dataclass(frozen=True, slots=True)
@@ -236,6 +238,8 @@ class World:
             if not polygon.is_valid or polygon.area <= 0:
                 self._problem(["rooms", index, "polygon"],
                               "polygon is not a simple area; list its corners in order")
+        if self._problems:  # geometry on broken polygons fails; every later check would too
+            raise WorldError("\n".join(self._problems))
         names = list(self.room_polygons)
         for i, first in enumerate(names):
             for second in names[i + 1:]:
@@ -243,6 +247,14 @@ class World:
                 if overlap > 1e-6:
                     self._problem(["rooms", i, "polygon"],
                                   f"room '{first}' overlaps room '{second}' by {overlap:.2f} m²")
+        min_x, min_y, max_x, max_y = self.bounds()
+        resolution = self.model.grid_resolution
+        cells = (max_x - min_x) / resolution * ((max_y - min_y) / resolution)
+        if cells > _MAX_GRID_CELLS:
+            self._problem(["grid_resolution"],
+                          f"the rooms span {max_x - min_x:g} × {max_y - min_y:g} m, "
+                          f"{cells:.3g} grid cells at {resolution:g} m (at most "
+                          f"{_MAX_GRID_CELLS:.0e}); use a coarser grid_resolution or smaller rooms")
 
     def _check_doors(self) -> None:
         tolerance = self.model.wall_thickness + 0.05

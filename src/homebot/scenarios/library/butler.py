@@ -24,7 +24,7 @@ from rich.console import Console
 from homebot.events import Event
 from homebot.knowledge import AddStatement, Kind, KnowledgeBase, parse_statement
 from homebot.knowledge.store import KnowledgeStore
-from homebot.scenarios.runtime import SimulatedRun, disturbed
+from homebot.scenarios.runtime import SimulatedRun, disturbance_level, disturbed
 from homebot.scenarios.summary import scenario_summary
 from homebot.sim import InteractiveResponder, Responder, Simulation
 from homebot.sim.people import normalise_question
@@ -50,7 +50,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--kb-store", metavar="FILE", default=None,
                         help="SQLite file that keeps the KB and its updates; run again with "
                         "the same file for another day with what the robot learnt")
-    parser.add_argument("--level", type=float, default=0.0,
+    parser.add_argument("--level", type=disturbance_level, default=0.0,
                         help="disturbance level (0: none, as in the paper; 1: the demo's)")
     parser.add_argument("--interactive", action="store_true",
                         help="you answer for Luis at a prompt (his day goes on as scripted)")

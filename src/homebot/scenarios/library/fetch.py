@@ -8,7 +8,7 @@ from typing import Any
 from rich.console import Console
 
 from homebot.bench.fetch_tasks import delivered, fetch_tasks
-from homebot.scenarios.runtime import SimulatedRun, disturbed
+from homebot.scenarios.runtime import SimulatedRun, disturbance_level, disturbed
 from homebot.scenarios.summary import report_actions, scenario_summary
 from homebot.world import World
 
@@ -16,7 +16,7 @@ __all__ = ["add_arguments", "run"]
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--level", type=float, default=1.0, help="disturbance level")
+    parser.add_argument("--level", type=disturbance_level, default=1.0, help="disturbance level")
 
 
 def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:

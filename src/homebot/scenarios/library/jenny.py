@@ -13,7 +13,7 @@ from rich.console import Console
 
 from homebot.beliefs import Beliefs
 from homebot.htn import Goal, Names, PlanActor, Planner, home_domain, state_from_beliefs
-from homebot.scenarios.runtime import SimulatedRun
+from homebot.scenarios.runtime import SimulatedRun, probability
 from homebot.scenarios.summary import scenario_summary
 from homebot.world import DisturbanceModel, World
 
@@ -24,9 +24,9 @@ _SCENARIOS = (("bring_object", ["pringles", "Alex"]), ("guide_person", ["Alex", 
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--slip", type=float, default=0.5,
+    parser.add_argument("--slip", type=probability, default=0.5,
                         help="probability that a grasp slips (the paper's retried grasp)")
-    parser.add_argument("--door-closed", type=float, default=0.0,
+    parser.add_argument("--door-closed", type=probability, default=0.0,
                         help="probability that each door starts closed")
 
 

@@ -11,7 +11,7 @@ from homebot.golog import Interpreter, State
 from homebot.golog.build import do
 from homebot.golog.domains import rips_theory
 from homebot.golog.skill_executor import SkillExecutor
-from homebot.scenarios.runtime import SimulatedRun, disturbed
+from homebot.scenarios.runtime import SimulatedRun, disturbance_level, disturbed
 from homebot.scenarios.summary import scenario_summary
 from homebot.skills import speak
 from homebot.task import Step
@@ -27,7 +27,7 @@ COMMITTEE = "Sophie"  #: the Technical Committee member, at the registration des
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--disturb", type=float, default=0.0,
+    parser.add_argument("--disturb", type=disturbance_level, default=0.0,
                         help="disturbance level (0: a perfect world)")
 
 

@@ -1,0 +1,125 @@
+"""Trying to break the command line: odd files, types and options give exit 2, one line."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from homebot.cli import main
+
+SUPERMARKET = Path(__file__).resolve().parents[2] / "src/homebot/data/worlds/supermarket.yaml"
+FETCH = "- {skill: find_object, object: drink}\n- {skill: pick, object: drink}\n"
+
+
+def _file(tmp_path: Path, name: str, text: str) -> Path:
+    path = tmp_path / name
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def _fails_cleanly(capsys: pytest.CaptureFixture[str], status: int, expected: str) -> None:
+    captured = capsys.readouterr()
+    assert status == 2
+    assert expected in captured.err
+    assert "Traceback" not in captured.err + captured.out
+    assert len(captured.err.strip().splitlines()) == 1  # one line, however long
+
+
+@pytest.mark.parametrize(("task", "expected"), [
+    ("- {skill: navigate, to: kitchen, 1: x}\n", "argument names are words, not 1"),
+    ("{1: a, b: c}\n", "unknown field '1'"),
+    ("- {skill: navigate, to: [kitchen]}\n", "navigate.to is a name or text, not ['kitchen']"),
+    ("- {skill: say, text: {a: 1}}\n", "say.text is a name or text"),
+    ("- {skill: find_person, person: {name: [1]}}\n", "find_person.person.name is a word"),
+    ("- {skill: find_person, person: {1: x}}\n", "not '1'"),
+    ("- {skill: find_object, object: cola, exclude: [window]}\n", "unknown placement 'window'"),
+    ("- {skill: navigate, to: $kitchen}\n", "unknown target '$kitchen'"),
+    ("- {skill: navigate, to: '[/bold]x'}\n", "unknown target '[/bold]x'"),
+    ("a: " + "[" * 3000 + "]" * 3000 + "\n", "nested too deeply"),
+])
+def test_odd_task_files_exit_2(tmp_path: Path, task: str, expected: str,
+                               capsys: pytest.CaptureFixture[str]) -> None:
+    status = main(["run-task", str(_file(tmp_path, "task.yaml", task))])
+    _fails_cleanly(capsys, status, expected)
+
+
+def test_binary_and_directory_task_files_exit_2(tmp_path: Path,
+                                                capsys: pytest.CaptureFixture[str]) -> None:
+    binary = tmp_path / "task.yaml"
+    binary.write_bytes(bytes(range(256)))
+    _fails_cleanly(capsys, main(["run-task", str(binary)]), "give a UTF-8 text file")
+    _fails_cleanly(capsys, main(["run-task", str(tmp_path)]), "cannot be read")
+
+
+def test_speech_with_markup_is_printed_as_said(tmp_path: Path,
+                                               capsys: pytest.CaptureFixture[str]) -> None:
+    task = _file(tmp_path, "task.yaml", "- {skill: say, text: '[/x] [bold]hi'}\n")
+    assert main(["run-task", str(task)]) == 0
+    assert "[/x] [bold]hi" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(("old", "new", "expected"), [
+    ("[[0, 0], [10, 0], [10, 8], [0, 8]]", "[[0, 0], [10, 8], [10, 0], [0, 8]]",
+     "polygon is not a simple area"),
+    ("[[0, 0], [10, 0], [10, 8], [0, 8]]", "[[0, 0], [.nan, 0], [10, 8], [0, 8]]",
+     "finite number"),
+    ("pose: [1.5, 1.5, 0.0]", "pose: [1.5, 1.5, .inf]", "robot.pose.2"),
+    ("[[10, 0], [14, 0], [14, 8], [10, 8]]", "[[10, 0], [5000, 0], [5000, 5000], [10, 5000]]",
+     "use a coarser grid_resolution"),
+])
+def test_odd_worlds_exit_2(tmp_path: Path, old: str, new: str, expected: str,
+                           capsys: pytest.CaptureFixture[str]) -> None:
+    text = SUPERMARKET.read_text(encoding="utf-8")
+    assert old in text
+    world = _file(tmp_path, "w.yaml", text.replace(old, new, 1))
+    status = main(["world", "check", str(world)])
+    captured = capsys.readouterr()
+    assert status == 2 and expected in captured.err and "Traceback" not in captured.err
+
+
+@pytest.mark.parametrize("argv", [
+    ["do", "go to the kitchen", "--disturb", "-1"],
+    ["do", "go to the kitchen", "--disturb", "nan"],
+    ["run-task", "task.yaml", "--disturb", "1e9"],
+    ["scenario", "fetch", "--level", "50"],
+    ["scenario", "jenny", "--slip", "7"],
+    ["bench", "robustness", "--level", "x"],
+])
+def test_out_of_range_levels_are_usage_errors(argv: list[str],
+                                              capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit) as exit_:
+        main(argv)
+    assert exit_.value.code == 2
+    assert "is a number from 0 to" in capsys.readouterr().err
+
+
+def test_world_show_png_to_bad_places_exits_2(tmp_path: Path,
+                                              capsys: pytest.CaptureFixture[str]) -> None:
+    status = main(["world", "show", "--png", str(tmp_path / "map.txt")])
+    _fails_cleanly(capsys, status, "give a name ending in .png")
+    status = main(["world", "show", "--png", str(tmp_path / "no" / "map.png")])
+    _fails_cleanly(capsys, status, "check that its folder exists")
+    events = _file(tmp_path, "events.jsonl", "[1]\n")
+    status = main(["world", "show", "--png", str(tmp_path / "m.png"), "--events", str(events)])
+    _fails_cleanly(capsys, status, "not a homebot event log")
+
+
+def test_events_to_a_bad_place_exit_2(tmp_path: Path,
+                                      capsys: pytest.CaptureFixture[str]) -> None:
+    task = _file(tmp_path, "task.yaml", FETCH)
+    status = main(["run-task", str(task), "--events", str(tmp_path)])
+    _fails_cleanly(capsys, status, "cannot write the event log")
+
+
+def test_same_seed_same_event_log(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    task = str(_file(tmp_path, "task.yaml", FETCH))
+    command = "find a fruit in the kitchen then get it and deliver it to me"
+    logs = []
+    for name in ("a", "b"):
+        for argv in (["run-task", task], ["do", command]):
+            events = tmp_path / f"{argv[0]}-{name}.jsonl"
+            main([*argv, "--disturb", "1", "--seed", "7", "--events", str(events)])
+            logs.append(events.read_text(encoding="utf-8"))
+    assert logs[0] == logs[2] and logs[1] == logs[3]
+    assert logs[0] and logs[1]
