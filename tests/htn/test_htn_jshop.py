@@ -51,6 +51,17 @@ def test_domain_and_problem_plan() -> None:
     assert result.plans[0].cost == 6
 
 
+def test_shop2_task_markers_are_read_as_plain_tasks() -> None:
+    marked = DOMAIN.replace("(:ordered (goto ?from) (!pickup ?b ?from)",
+                            "(:ordered (:task goto ?from) (:task !pickup ?b ?from)")
+    assert marked != DOMAIN
+    problem = read_problem_text(PROBLEM.replace("(move red hall)", "(:task move red hall)"))[0]
+    plain_problem = read_problem_text(PROBLEM)[0]
+    assert problem.tasks == plain_problem.tasks
+    assert find_plans(read_domain_text(marked), State(problem.atoms), problem.tasks).plans == \
+        find_plans(read_domain_text(DOMAIN), State(problem.atoms), problem.tasks).plans
+
+
 def test_reading_from_a_file(tmp_path: Path) -> None:
     path = tmp_path / "boxes.jshop"
     path.write_text(DOMAIN, encoding="utf-8")

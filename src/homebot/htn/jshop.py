@@ -5,7 +5,8 @@ a variable bound to a list of atoms, as SHOP2's ``!!assert ?g``), ``(:method HEA
 [NAME] PRE TASKS ...)``, ``(:- HEAD [NAME] TAIL ...)``, preconditions with
 ``and``, ``or``, ``not``, ``imply``, ``forall``, ``call``, ``assign`` and
 ``:first``, list terms with dotted tails (``(?first . ?rest)``; ``nil`` is the
-empty list), task lists with an optional ``:ordered``. Not supported
+empty list), task lists with an optional ``:ordered`` and tasks with an optional
+``:task`` (SHOP2's ``(:task NAME ARG...)``). Not supported
 (total-order planning only): ``:unordered``, ``:sort-by``, ``:protection``,
 ``:immediate`` and ``forall`` in effects; each is reported with its line and
 column. Every error names file, line and column. Symbols are case-sensitive.
@@ -66,8 +67,10 @@ def _tasks(value: Any) -> list[Any]:
     if data and isinstance(data[0], str) and data[0].lower() == ":ordered":
         data = data[1:]
     if data and isinstance(data[0], str):
-        return [data]  # a single task written without the outer list
-    return data
+        data = [data]  # a single task written without the outer list
+    # SHOP2 may mark each task (:task NAME ARG...)
+    return [task[1:] if isinstance(task, list) and task and isinstance(task[0], str)
+            and task[0].lower() == ":task" else task for task in data]
 
 
 def _operator(form: Form, source: str) -> Operator:
