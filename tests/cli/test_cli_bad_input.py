@@ -123,3 +123,8 @@ def test_same_seed_same_event_log(tmp_path: Path, capsys: pytest.CaptureFixture[
             logs.append(events.read_text(encoding="utf-8"))
     assert logs[0] == logs[2] and logs[1] == logs[3]
     assert logs[0] and logs[1]
+
+
+def test_demo_in_a_world_without_its_names_exits_2(capsys: pytest.CaptureFixture[str]) -> None:
+    status = main(["demo", "--world", "supermarket", "--quiet"])
+    _fails_cleanly(capsys, status, "the demo is written for the apartment")

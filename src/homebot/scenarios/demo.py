@@ -5,8 +5,10 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
+from homebot.errors import WorldError
 from homebot.events import Event
 from homebot.executive import TaskReport
+from homebot.executive.taskfile import validate_task
 from homebot.navigation import Navigator
 from homebot.scenarios.runtime import SimulatedRun, disturbed
 from homebot.sim import Simulation
@@ -59,6 +61,10 @@ def _gone(simulation: Simulation) -> None:
     simulation.object_location["red wine"] = None
 
 
+# What the disturbances above change, so ``run_demo`` can check a world has them.
+_SETUP_NAMES = ("kitchen arch", "kitchen door", "office door", "Maria", "cola", "coffee table",
+                "red wine")
+
 DEMO_TASKS: tuple[DemoTask, ...] = (
     DemoTask("Bring the orange juice to Alex (nothing goes wrong)",
              _bring("orange juice", "fridge", "operator"), _nothing),
@@ -88,7 +94,17 @@ DEMO_TASKS: tuple[DemoTask, ...] = (
 def run_demo(world: World, on_event: Callable[[Event], None] | None = None,
              on_task: Callable[[DemoTask], None] | None = None,
              level: float = 0.5) -> list[tuple[DemoTask, TaskReport, SimulatedRun]]:
-    """Run every demo task in a fresh home with light random disturbances on top."""
+    """Run every demo task in a fresh home with light random disturbances on top.
+
+    Raises ``WorldError`` or ``TaskError`` when ``world`` lacks what the tasks name.
+    """
+    known = {*world.doors, *world.people, *world.objects, *world.placements}
+    missing = [name for name in _SETUP_NAMES if name not in known]
+    if missing:
+        raise WorldError(f"{world.source}: the demo is written for the apartment and needs "
+                         f"{', '.join(missing)}; leave out --world, or add them")
+    for demo in DEMO_TASKS:
+        validate_task(demo.task, world, f"demo task '{demo.title}'")
     navigator = Navigator(world)
     results = []
     for demo in DEMO_TASKS:
