@@ -152,3 +152,18 @@ def test_a_python_function_is_a_procedure() -> None:
 
     shipped = {p.name: p for p in shipped_procedures("elevator")}
     assert go_floor == shipped["go_floor"]
+
+
+def test_the_engines_never_load_the_simulator_or_the_interfaces() -> None:
+    """Golog and HTN, with their skill executors, reach the world only through skills."""
+    import subprocess
+    import sys
+
+    engines = ["homebot.golog", "homebot.golog.skill_executor", "homebot.golog.domains",
+               "homebot.htn", "homebot.htn.acting"]
+    loaded = subprocess.run(
+        [sys.executable, "-c", f"import sys\nfor m in {engines!r}: __import__(m)\n"
+         "print(' '.join(sorted(m for m in sys.modules if m.startswith(('homebot.sim', "
+         "'homebot.cli', 'homebot.scenarios', 'homebot.web')))))"],
+        capture_output=True, text=True, check=True).stdout.split()
+    assert loaded == []
