@@ -124,3 +124,17 @@ def test_the_benchmark_reports_nodes_and_time() -> None:
                              None)
     for figures in report["figures"].values():
         assert figures["nodes"] > 0 and figures["nodes_per_second"] > 0
+
+
+def test_with_monitoring_off_a_finished_skill_is_a_done_action() -> None:
+    from homebot.golog import State
+    from homebot.golog.skill_executor import SkillExecutor
+    from homebot.scenarios import SimulatedRun
+    from homebot.task import Step
+    from homebot.world import World
+
+    run = SimulatedRun.create(World.load("apartment"), monitoring=False)
+    executor = SkillExecutor(run.context, {"say": lambda action: [Step("say",
+                                                                       {"text": action[1]})]})
+    assert executor.execute(("say", "hello"), State())
+    assert executor.steps[0]["status"] == "finished"

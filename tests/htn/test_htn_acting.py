@@ -172,3 +172,14 @@ def test_operators_without_a_skill_are_refused_before_acting(
     with pytest.raises(PlanningError, match="no skill runs operator '!dance'"):
         PlanActor(run.context, domain).run(Goal(("!dance", "robot")))
     assert not list(run.simulation.events.of_kind("skill.start"))
+
+
+def test_with_monitoring_off_finished_operators_go_on(apartment: World,
+                                                      apartment_navigator: Navigator) -> None:
+    run = SimulatedRun.create(apartment, navigator=apartment_navigator, monitoring=False)
+    names = Names()
+    domain = home_domain()
+    done = PlanActor(run.context, domain).run(
+        Goal.of("bring_object", ["pringles", "Alex"], apartment, names, domain), names)
+    assert done and done.replans == 0
+    assert [r.status for r in done.operators] == ["finished"] * 8

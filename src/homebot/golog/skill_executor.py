@@ -21,7 +21,7 @@ from homebot.errors import GologError
 from homebot.executive import PROTOCOLS
 from homebot.golog.interpreter import Executor, Report
 from homebot.golog.theory import GroundAction, State, action_text
-from homebot.skills import Outcome, SkillContext, skill_named
+from homebot.skills import Outcome, SkillContext, Status, skill_named
 from homebot.task import Step
 
 __all__ = ["SkillBinding", "SkillExecutor"]
@@ -59,7 +59,7 @@ class SkillExecutor(Executor):
             self.steps.append({"action": action_text(action), "skill": step.skill,
                                **step.args, "status": outcome.status.value,
                                "error": outcome.error.value if outcome.error else None})
-            if not outcome:
+            if outcome.status not in (Status.VERIFIED, Status.FINISHED):  # finished: no monitor
                 return Report(False, sensed=self._sensed(action, False),
                               message=outcome.message or str(outcome.error))
         return Report(True, sensed=self._sensed(action, True))

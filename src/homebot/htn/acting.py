@@ -222,7 +222,8 @@ class PlanActor:
                                        status=outcome.status.value, attempts=attempts,
                                        error=outcome.error.value if outcome.error else None)
             self._remember(skill_step, outcome, run)
-            if outcome.status is not Status.VERIFIED:
+            # finished is as far as a skill goes with monitoring off (a plain sequence)
+            if outcome.status not in (Status.VERIFIED, Status.FINISHED):
                 return outcome.message or (outcome.error.value if outcome.error else "failed")
             memory.update(atom for atom in step.adds if atom[0] in _MEMORY)
             missing = self._unexpected(list(step.deletes), list(step.adds), goal, names, memory)
