@@ -128,3 +128,11 @@ def test_same_seed_same_event_log(tmp_path: Path, capsys: pytest.CaptureFixture[
 def test_demo_in_a_world_without_its_names_exits_2(capsys: pytest.CaptureFixture[str]) -> None:
     status = main(["demo", "--world", "supermarket", "--quiet"])
     _fails_cleanly(capsys, status, "the demo is written for the apartment")
+
+
+def test_parse_file_names_the_line_it_cannot_take(tmp_path: Path,
+                                                  capsys: pytest.CaptureFixture[str]) -> None:
+    commands = _file(tmp_path, "commands.txt", "Go to the kitchen\n" + "x " * 800 + "\n")
+    status = main(["parse", "--file", str(commands)])
+    captured = capsys.readouterr()
+    assert status == 2 and "commands.txt: line 2: the command has 1600 characters" in captured.err

@@ -43,10 +43,13 @@ def _parse_file(path: Path, vocabulary: Vocabulary) -> int:
         raise LanguageError(f"{path}: cannot be read ({error}); give a text file, "
                             "one command a line") from None
     status = 0
-    for line in lines:
+    for number, line in enumerate(lines, 1):
         if not line.strip():
             continue
-        result = parse_command(line, vocabulary)
+        try:
+            result = parse_command(line, vocabulary)
+        except LanguageError as error:
+            raise LanguageError(f"{path}: line {number}: {error}") from None
         print(json.dumps({"command": line, **result.to_dict()}))
         status = status or (0 if result else 1)
     return status
