@@ -24,3 +24,11 @@ def test_bench_htn_reports_table_1_and_the_comparison(
         assert comparison["same_plan"] is True
     assert [row["put_away"] for row in figures["tidy"]] == [10, 20]
     assert [row["tasks"] for row in figures["execution"]] == [2, 2]
+
+
+@pytest.mark.parametrize("argv", [["--repeats", "0"], ["--sizes", "0"], ["--runs", "-1"]])
+def test_bench_htn_refuses_counts_out_of_range(argv: list[str],
+                                               capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit) as exited:
+        main(["bench", "htn", *argv])
+    assert exited.value.code == 2 and "give a whole number from" in capsys.readouterr().err
