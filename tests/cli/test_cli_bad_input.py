@@ -136,3 +136,27 @@ def test_parse_file_names_the_line_it_cannot_take(tmp_path: Path,
     status = main(["parse", "--file", str(commands)])
     captured = capsys.readouterr()
     assert status == 2 and "commands.txt: line 2: the command has 1600 characters" in captured.err
+
+
+_LAUGHS = "[" + ", ".join(["&a [lol, lol, lol, lol, lol, lol, lol, lol, lol]"]
+                          + [f"&{b} [{', '.join([f'*{a}'] * 9)}]"
+                             for a, b in zip("abcdefg", "bcdefgh", strict=True)]) + "]"
+
+
+@pytest.mark.parametrize(("task", "expected"), [
+    (f"- {{skill: say, text: {_LAUGHS}}}\n", "say.text is a name or text"),
+    (f"description: {_LAUGHS}\nsteps: [{{skill: say, text: hi}}]\n", "description is one line"),
+])
+def test_nested_aliases_give_a_short_message(tmp_path: Path, task: str, expected: str,
+                                             capsys: pytest.CaptureFixture[str]) -> None:
+    status = main(["run-task", str(_file(tmp_path, "task.yaml", task))])
+    err = capsys.readouterr().err
+    assert status == 2 and expected in err and len(err) < 400
+
+
+def test_a_world_of_nested_aliases_gives_a_short_message(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    world = _file(tmp_path, "w.yaml", f"name: x\nrooms: {_LAUGHS}\nrobot: {{pose: [0, 0, 0]}}\n")
+    assert main(["world", "check", str(world)]) == 2
+    err = capsys.readouterr().err
+    assert "rooms.0" in err and len(err) < 2000

@@ -51,7 +51,11 @@ def _task(document: LocatedDocument, world: World) -> Task:
         if unknown:
             raise TaskError(f"{document.source}: line {document.line_of([unknown[0]])}: "
                             f"unknown field '{unknown[0]}'; use 'description' and 'steps'")
-        description = str(data.get("description", ""))
+        description = data.get("description", "")
+        if isinstance(description, (list, dict)):
+            raise TaskError(f"{document.source}: line {document.line_of(['description'])}: "
+                            "description is one line of text, not a list or mapping")
+        description = str(description)
         data = data.get("steps")
         prefix = ["steps"]
     if not isinstance(data, list) or not data:

@@ -15,6 +15,7 @@ from homebot.skills.places import OPERATOR
 from homebot.skills.skill import Skill
 from homebot.task import Step
 from homebot.world import World
+from homebot.world.loading import short_repr
 
 __all__ = ["SKILLS", "check_step", "skill_named"]
 
@@ -68,12 +69,12 @@ def _check_value(skill: str, name: str, value: Any, world: World, where: str) ->
         for field, text in value.items():
             if isinstance(text, (list, dict)):
                 raise TaskError(f"{where}: {skill}.person.{field} is a word such as 'waving', "
-                                f"not {text!r}")
+                                f"not {short_repr(text)}")
         return
     if name == "exclude" and isinstance(value, list):
         value = tuple(value)
     elif isinstance(value, (list, dict)):
-        raise TaskError(f"{where}: {skill}.{name} is a name or text, not {value!r}; "
+        raise TaskError(f"{where}: {skill}.{name} is a name or text, not {short_repr(value)}; "
                         "write it as one word or a quoted string")
     if name == "exclude":
         for placement in value if isinstance(value, tuple) else (value,):

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import difflib
 import re
+import reprlib
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any, TypeVar
@@ -18,10 +19,20 @@ __all__ = [
     "field_error",
     "load_yaml_document",
     "parse_yaml_text",
+    "short_repr",
     "validate_document",
 ]
 
 ModelT = TypeVar("ModelT", bound=BaseModel)
+
+# Values quoted in messages are cut short: a file may nest aliases into millions of items.
+_SHORT = reprlib.Repr()
+_SHORT.maxlevel, _SHORT.maxlist, _SHORT.maxdict, _SHORT.maxstring = 2, 4, 4, 60
+
+
+def short_repr(value: Any) -> str:
+    """``repr(value)``, cut short enough to quote in a one-line message."""
+    return _SHORT.repr(value)
 
 
 class LocatedDocument:
@@ -142,7 +153,7 @@ def _describe(document: LocatedDocument, model: type[BaseModel], detail: Any) ->
     elif kind == "missing":
         message = "required field is missing; add it"
     else:
-        message = f"{detail['msg']} (got {detail.get('input')!r})"
+        message = f"{detail['msg']} (got {short_repr(detail.get('input'))})"
     return field_error(document, location, message)
 
 
