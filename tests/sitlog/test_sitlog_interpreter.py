@@ -308,3 +308,32 @@ dialogue_models:
     second, _ = _run(program, ["two"])
     assert format_term(second.transitions()[0].expectation) == "two"
     assert format_term(program.main_model.head) == "main(Heard)"
+
+
+def test_arithmetic_errors_and_failing_user_functions_are_dialogue_errors() -> None:
+    def boom(env: Environment, *args: Term) -> Term:
+        raise ValueError("boom")
+
+    text = """
+    dialogue_models:
+      - id: main
+        situations:
+          - {id: is, type: speech, arcs: ["X : %s => fs"]}
+          - {id: fs, type: final}
+    """
+    with pytest.raises(DialogueError, match=r"line 5, column 9: cannot compute 1/0"):
+        _run(_program(text % "assign(Y, 1/0)"), ["go"])
+    with pytest.raises(DialogueError, match=r"user function boom failed: ValueError: boom"):
+        _run(_program(text % "apply(boom, [X])", {"boom": boom}), ["go"])
+
+
+def test_a_model_that_embeds_itself_without_end_is_stopped() -> None:
+    text = """
+    dialogue_models:
+      - id: main
+        situations:
+          - {id: is, type: recursive, embedded_dm: main, arcs: ["fs : empty => fs"]}
+          - {id: fs, type: final}
+    """
+    with pytest.raises(DialogueError, match=r"line 3, column 5: dialogue models embedded 50"):
+        _run(_program(text), [])

@@ -57,6 +57,13 @@ def test_bad_expression_syntax_names_the_column() -> None:
     assert "expected" in message
 
 
+def test_a_situation_defined_twice_is_rejected() -> None:
+    message = _error(GOOD.replace("      - {id: fs, type: final}\n",
+                                  "      - {id: fs, type: final}\n      - {id: fs, type: final}\n"))
+    assert "test.yaml, line 12, column 9" in message
+    assert "situation fs is defined twice" in message
+
+
 def test_unknown_variable_in_an_expression() -> None:
     message = _error(GOOD.replace("inc(count)", "inc(cuont)"))
     assert "line 10" in message and "no variable 'cuont'" in message

@@ -6,7 +6,7 @@ from collections.abc import Mapping
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any
 
-from homebot.errors import DialogueError
+from homebot.errors import DialogueError, HomebotError
 from homebot.sitlog.terms import EMPTY, Struct, Term, Text, Var, deref, format_term, resolve, unify
 
 if TYPE_CHECKING:
@@ -73,7 +73,11 @@ def evaluate(term: Term, env: Environment) -> Term:
     if term.arity == 2 and term.functor in _ARITHMETIC:
         left, right = (resolve(evaluate(arg, env)) for arg in term.args)
         if isinstance(left, int | float) and isinstance(right, int | float):
-            return _ARITHMETIC[term.functor](left, right)  # type: ignore[no-any-return]
+            try:
+                return _ARITHMETIC[term.functor](left, right)  # type: ignore[no-any-return]
+            except ArithmeticError as error:
+                raise DialogueError(f"{env.place}: cannot compute {format_term(term)}: "
+                                    f"{error}") from None
         return Struct(term.functor, (left, right))
     return Struct(term.functor, tuple(evaluate(arg, env) for arg in term.args))
 
@@ -141,7 +145,14 @@ def _apply(term: Struct, env: Environment) -> Term:
         return _when(function, env)
     user_function = env.function(function.functor)
     values = [resolve(arg) for arg in function.args]
-    return as_term(user_function(env, *values))
+    try:
+        value = user_function(env, *values)
+    except HomebotError:
+        raise
+    except Exception as error:  # a failure of the user's code is the program's problem
+        raise DialogueError(f"{env.place}: the user function {function.functor} failed: "
+                            f"{type(error).__name__}: {error}") from None
+    return as_term(value)
 
 
 def _when(term: Struct, env: Environment) -> Term:

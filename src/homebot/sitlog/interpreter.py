@@ -40,6 +40,7 @@ from homebot.sitlog.terms import (
 __all__ = ["Environment", "Frame", "Interpreter", "RunResult"]
 
 _MAX_RECOVERIES = 3  #: recovery models run for one situation before the run gives up
+_MAX_DEPTH = 50  #: dialogue models embedded in one another before the run gives up
 
 
 @dataclass
@@ -189,6 +190,9 @@ class Interpreter:
         head = copy_term(model.head, mapping)
         if not unify(head, call, self.trail):
             raise DialogueError(f"{model.place}: cannot call {model.name} as {format_term(call)}")
+        if len(self.stack) >= _MAX_DEPTH:
+            raise DialogueError(f"{model.place}: dialogue models embedded {_MAX_DEPTH} deep; "
+                                f"check {model.name} for a recursive situation that never ends")
         frame = Frame(model, {k: copy_term(v) for k, v in model.locals.items()}, mapping, history)
         self.stack.append(frame)
         try:

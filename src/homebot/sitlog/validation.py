@@ -16,7 +16,7 @@ from homebot.sitlog.model import (
     Situation,
     functor_of,
 )
-from homebot.sitlog.terms import Struct, Term, Var, deref, format_term
+from homebot.sitlog.terms import Struct, Term, Var, deref, format_term, is_ground
 
 __all__ = ["GROUNDED_TYPES", "OPERATORS", "check_program"]
 
@@ -44,7 +44,14 @@ def _check_model(program: Program, model: DialogueModel, types: frozenset[str] |
                             " add one with type: final")
     keys = {situation.key for situation in model.situations}
     variables = set(model.locals) | set(program.globals)
+    ground: set[str] = set()
     for situation in model.situations:
+        if is_ground(situation.id):
+            name = format_term(situation.id)
+            if name in ground:
+                raise DialogueError(f"{situation.place}: situation {name} is defined twice in "
+                                    f"dialogue model {model.name}; rename one")
+            ground.add(name)
         if situation.type not in types:
             guess = difflib.get_close_matches(situation.type, sorted(types), n=1)
             hint = f"did you mean '{guess[0]}'?" if guess else f"types: {', '.join(sorted(types))}"

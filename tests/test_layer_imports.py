@@ -1,0 +1,33 @@
+"""Imports go downward: engines and skills reach the world through the Robot port, not sim."""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pytest
+
+SOURCE = Path(__file__).resolve().parents[1] / "src" / "homebot"
+ENGINES = ["knowledge", "skills", "executive", "htn", "golog", "sitlog", "inference", "language"]
+
+
+def _imported(path: Path) -> set[str]:
+    names: set[str] = set()
+    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        if isinstance(node, ast.Import):
+            names.update(alias.name for alias in node.names)
+        elif isinstance(node, ast.ImportFrom) and node.module:
+            names.add(node.module)
+            names.update(f"{node.module}.{alias.name}" for alias in node.names)
+    return names
+
+
+@pytest.mark.parametrize("package", ENGINES)
+def test_engines_never_import_the_simulator(package: str) -> None:
+    offending = sorted(
+        f"{path.relative_to(SOURCE)}: {name}"
+        for path in (SOURCE / package).rglob("*.py")
+        for name in _imported(path)
+        if name == "homebot.sim" or name.startswith("homebot.sim.")
+    )
+    assert offending == []
