@@ -42,6 +42,7 @@ from homebot.golog.build import (
     with_pol,
 )
 from homebot.golog.build import test as guard
+from homebot.golog.checking import check_theory
 from homebot.golog.library import shipped_procedures, shipped_program_names
 
 SORT_CUPS = """
@@ -119,6 +120,8 @@ def test_every_shipped_program_reads_and_prints_back_to_the_same_program() -> No
     ("proc p(X,) a endproc", 1, 10, "parameter"),
     ("proc p solve(3, r) endproc", 1, 18, "','"),
     ("proc p a endwhile", 1, 10, "endproc"),
+    ("proc p a endproc\nproc p b endproc", 2, 6, "defined twice"),
+    ("proc p(X, Y, X) a endproc", 1, 14, "named twice"),
 ])
 def test_malformed_programs_name_the_line_and_column(text: str, line: int, column: int,
                                                      words: str) -> None:
@@ -167,3 +170,11 @@ def test_the_engines_never_load_the_simulator_or_the_interfaces() -> None:
          "'homebot.cli', 'homebot.scenarios', 'homebot.web')))))"],
         capture_output=True, text=True, check=True).stdout.split()
     assert loaded == []
+
+
+def test_a_procedure_may_not_take_the_name_of_an_action() -> None:
+    theory = homebot.golog.domains.domain_theory("elevator")
+    theory.define(*parse_procedures("proc p up endproc\nproc up\n  down\nendproc", "mine.golog"))
+    with pytest.raises(GologError, match=r"^mine.golog:2:6: procedure 'up' has the name of an "
+                                         r"action"):
+        check_theory(theory)

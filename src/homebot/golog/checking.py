@@ -48,6 +48,9 @@ def check_theory(theory: Theory) -> None:
     """Check every procedure of the theory; raise ``GologError`` naming the first problem."""
     for procedure in theory.procedures.values():
         try:
+            if procedure.name in theory.actions:
+                raise GologError(f"procedure '{procedure.name}' has the name of an action of "
+                                 f"the theory '{theory.name}'; rename the procedure")
             check_program(theory, procedure.body, f"procedure {procedure.name}",
                           bound=frozenset(procedure.parameters))
         except GologError as error:  # read from a file: say where the name is written

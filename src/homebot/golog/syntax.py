@@ -169,15 +169,21 @@ class _Parser:
                 raise self.fail(f"expected 'proc' but found '{self.token.text}'",
                                 "a program file is a list of 'proc NAME ... endproc'")
             self.advance()
+            if any(self.token.text == earlier.name for earlier in found):
+                raise self.fail(f"procedure '{self.token.text}' is defined twice in this file",
+                                "rename or remove one of them")
+            header = self.token
             name = self.name("the procedure's name")
             parameters: list[str] = []
             if self.at("(") and self._parameter_list_follows():
                 self.advance()
-                if not self.at(")"):
+                while not self.at(")"):
+                    if parameters:
+                        self.expect(",", "separate the parameters with ','")
+                    if self.token.text in parameters:
+                        raise self.fail(f"parameter '{self.token.text}' is named twice",
+                                        "give each parameter its own name")
                     parameters.append(self.name("a parameter"))
-                    while self.at(","):
-                        self.advance()
-                        parameters.append(self.name("a parameter"))
                 self.expect(")", "close the parameter list with ')'")
             if self.at(","):
                 self.advance()
@@ -187,6 +193,7 @@ class _Parser:
             for token in self.tokens[start:self.index]:
                 if token.kind == "name":
                     places.setdefault(token.text, f"{self.source}:{token.line}:{token.column}")
+            places.setdefault(name, f"{self.source}:{header.line}:{header.column}")
             self.expect("endproc", f"end procedure '{name}' with 'endproc'")
             found.append(Procedure(name, tuple(parameters), body, places))
         return found
