@@ -80,3 +80,9 @@ def test_nothing_a_person_types_crashes_the_parser(text: str, vocabulary: Vocabu
     except LanguageError:
         return
     assert result.status in set(ParseStatus)
+
+
+def test_full_width_letters_and_ligatures_read_as_plain(vocabulary: Vocabulary) -> None:
+    assert steps("Ｇｏ ｔｏ ｔｈｅ ｋｉｔｃｈｅｎ", vocabulary) == [
+        {"skill": "navigate", "to": "kitchen"}]
+    assert steps("ﬁnd a fruit in the kitchen", vocabulary)[1]["object"] == "fruit"

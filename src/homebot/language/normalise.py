@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import re
+import unicodedata
 from dataclasses import dataclass
 
 from rapidfuzz import fuzz, process
@@ -41,6 +42,7 @@ def normalise(text: str, vocabulary: Vocabulary) -> Normalised:
         quotes.append(next(group for group in match.groups() if group is not None).strip())
         return f" {QUOTE_MARK}{len(quotes) - 1} "
 
+    text = unicodedata.normalize("NFKC", text)  # full-width letters, ligatures, odd spaces
     text = _QUOTED.sub(keep_quote, text.replace("’", "'").replace("‘", "'"))
     capitalised = _capitalised_words(text)
     lowered = text.lower()
