@@ -160,3 +160,7 @@ def test_a_world_of_nested_aliases_gives_a_short_message(
     assert main(["world", "check", str(world)]) == 2
     err = capsys.readouterr().err
     assert "rooms.0" in err and len(err) < 2000
+
+
+def test_world_without_a_command_names_all_three(capsys: pytest.CaptureFixture[str]) -> None:
+    _fails_cleanly(capsys, main(["world"]), "from-robocup DIR")

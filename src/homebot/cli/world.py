@@ -57,7 +57,8 @@ def register(subparsers: Any) -> None:
 
 
 def _no_command() -> int:
-    raise WorldError("name a world command: check FILE, show [--world W]")
+    raise WorldError("name a world command: check FILE, show [--world W], "
+                     "from-robocup DIR -o WORLD.yaml")
 
 
 def _check(args: argparse.Namespace) -> int:
