@@ -9,7 +9,7 @@ from homebot.navigation import Navigator
 from homebot.scenarios import SimulatedRun
 from homebot.skills import SKILLS, ErrorCode, Status, check_step, skill_named
 from homebot.task import Step
-from homebot.world import DisturbanceModel, World
+from homebot.world import DisturbanceModel, DoorState, World
 
 
 @pytest.fixture
@@ -163,3 +163,16 @@ def test_pick_looks_where_the_object_now_is(run: SimulatedRun) -> None:
     assert _do(run, "place", placement="kitchen table")
     assert _do(run, "pick", object="cola")
     assert run.simulation.object_location["cola"] == "hand:left"
+
+
+def test_look_greet_follow_and_open_door(run: SimulatedRun) -> None:
+    looked = _do(run, "look", placement="fridge")
+    assert looked.status is Status.VERIFIED
+    assert _do(run, "find_person", person={"name": "Maria"}, room="kitchen")
+    assert _do(run, "greet", person="Maria").status is Status.VERIFIED
+    assert _do(run, "follow", person="Maria", to="office").status is Status.VERIFIED
+    assert run.simulation.people["Maria"].room == "office"
+    assert run.world.room_at(*run.robot.pose().xy()) == "office"
+    run.simulation.door_state["office door"] = DoorState.CLOSED
+    assert _do(run, "open_door", door="office door").status is Status.VERIFIED
+    assert run.simulation.door_state["office door"] is DoorState.OPEN
