@@ -93,6 +93,8 @@ def test_the_printed_listing_3_fails_with_line_and_column() -> None:
         ("[class(top,none,[[a=>b=>c,0]],[],[])]", "line 1, column 23", "'=>' cannot be chained"),
         ("[class(top,none,[[Fly,0]],[],[])]", "line 1, column 19", "variable Fly"),
         ("[class(top,none,[[a=>>b,0]],[],[])]", "line 1, column 19", "weight of 1 or more"),
+        ("[class(top,none,[[a=>>b,9223372036854775808]],[],[])]", "line 1, column 18",
+         "at most 9223372036854775807"),
         ("[class(top,none,[[a=>>b=>'-',2]],[],[])]", "line 1, column 19", "captures a value"),
         ("[class(top,none,[],[],[]),\nclass(a,nowhere,[],[],[])]", "line 2, column 9", "mother"),
         ("[class(a,top,[],[],[])]", "", "no class 'top'"),

@@ -126,6 +126,12 @@ def test_moving_a_class_below_itself_is_refused(animals: KnowledgeBase) -> None:
             ),
             "weight of 1 or more",
         ),
+        (
+            AddStatement(
+                owner="pete", kind=Kind.PROPERTY, statement=parse_statement("'-'=>>b", 2**63)
+            ),
+            "at most 9223372036854775807",
+        ),
     ],
 )
 def test_invalid_updates_raise_and_change_nothing(

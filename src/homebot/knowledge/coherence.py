@@ -212,10 +212,15 @@ def contradicting(statement: Statement, other: Statement) -> bool:
     return not (statement.negated and other.negated)
 
 
+#: The largest weight a store can keep (a SQLite INTEGER).
+_MAX_WEIGHT = 2**63 - 1
+
+
 def _preference_problem(preference: Preference) -> str | None:
     weight = preference.weight
-    if isinstance(weight, bool) or not isinstance(weight, int) or weight < 1:
-        return f"the conditional default {preference} needs a whole-number weight of 1 or more"
+    if isinstance(weight, bool) or not isinstance(weight, int) or not 1 <= weight <= _MAX_WEIGHT:
+        return (f"the conditional default {preference} needs a whole-number weight of 1 or "
+                f"more (at most {_MAX_WEIGHT})")
     for antecedent in preference.antecedents:
         message = _literal_problem(antecedent, allow_any=True)
         if message is not None:
