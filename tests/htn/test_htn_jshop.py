@@ -85,6 +85,8 @@ def test_reading_from_a_file(tmp_path: Path) -> None:
     ('(defdomain d ((:operator (!a) () () ("x))))', "1:38", "close the string"),
     ("(defdomain d ((:operator (!a ?x) () () ())\n  (:method (t ?x) () ((!a ?y)))))", "2:3",
      "?y, bound neither by the head nor by the precondition"),
+    ("(defdomain d ((:operator (!a ?x) () () ())\n  (:method (t ?x) () ((!a ?x ?x)))))", "2:3",
+     "(!a ?x ?x) has 2 argument(s); '!a' is (!a ?x)"),
 ])
 def test_errors_name_line_and_column(text: str, place: str, words: str) -> None:
     with pytest.raises(PlanningError) as caught:

@@ -146,6 +146,9 @@ def test_internal_operators_and_errors() -> None:
         find_plan(domain, State(), [("dx", "it")])
     with pytest.raises(PlanningError, match="variable"):
         find_plan(domain, State(), [("do", "?x")])
+    with pytest.raises(PlanningError, match=r"\(do it too\) has 2 argument\(s\); 'do' is "
+                                            r"\(do \?x\)"):
+        find_plan(domain, State(), [("do", "it", "too")])
     with pytest.raises(PlanningError, match="twice"):
         domain.operator(("!act", "?y"))
     with pytest.raises(PlanningError, match="must start with '!'"):

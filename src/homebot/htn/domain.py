@@ -304,6 +304,14 @@ class Domain:
         """Raise ``PlanningError`` when ``task`` names neither an operator nor a method."""
         name = task[0] if task else ""
         if isinstance(name, str) and self.is_task(name):
+            operator = self.operators.get(name)
+            heads = [operator.params] if operator else [m.params for m in self.methods[name]]
+            if len(task) - 1 not in {len(params) for params in heads}:
+                prefix = f"{where}: " if where else ""
+                forms = " or ".join(sorted({"(" + " ".join(map(str, (name, *params))) + ")"
+                                            for params in heads}))
+                raise PlanningError(f"{prefix}{_text(task)} has {len(task) - 1} argument(s); "
+                                    f"'{name}' is {forms}")
             return
         known = sorted({*self.operators, *self.methods})
         guess = difflib.get_close_matches(str(name), known, n=1)
@@ -335,3 +343,7 @@ class Problem:
     domain: str
     atoms: tuple[Atom, ...]
     tasks: tuple[tuple[Term, ...], ...]
+
+
+def _text(task: Sequence[Any]) -> str:
+    return "(" + " ".join(str(item) for item in task) + ")"
