@@ -37,6 +37,7 @@ def _fails_cleanly(capsys: pytest.CaptureFixture[str], status: int, expected: st
     ("- {skill: navigate, to: $kitchen}\n", "unknown target '$kitchen'"),
     ("- {skill: navigate, to: '[/bold]x'}\n", "unknown target '[/bold]x'"),
     ("a: " + "[" * 3000 + "]" * 3000 + "\n", "nested too deeply"),
+    ("- {skill: navigate, to: kitchen, to: office}\n", "line 1: 'to' appears twice"),
 ])
 def test_odd_task_files_exit_2(tmp_path: Path, task: str, expected: str,
                                capsys: pytest.CaptureFixture[str]) -> None:
@@ -65,6 +66,7 @@ def test_speech_with_markup_is_printed_as_said(tmp_path: Path,
     ("[[0, 0], [10, 0], [10, 8], [0, 8]]", "[[0, 0], [.nan, 0], [10, 8], [0, 8]]",
      "finite number"),
     ("pose: [1.5, 1.5, 0.0]", "pose: [1.5, 1.5, .inf]", "robot.pose.2"),
+    ("operator: customer", "operator: customer\nrooms: []", "'rooms' appears twice"),
     ("[[10, 0], [14, 0], [14, 8], [10, 8]]", "[[10, 0], [5000, 0], [5000, 5000], [10, 5000]]",
      "use a coarser grid_resolution"),
 ])
