@@ -72,6 +72,16 @@ def test_homebot_scenario_supermarket_json(capsys: pytest.CaptureFixture[str]) -
     assert summary["scenario"] == "supermarket" and summary["success"]
 
 
+@pytest.mark.parametrize("budget", ["-5", "nan", "lots"])
+def test_a_budget_that_is_no_number_of_seconds_is_refused(
+    budget: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    with pytest.raises(SystemExit) as caught:
+        _story(0, "--r-max", budget)
+    assert caught.value.code == 2
+    assert f"r_max is a number of seconds from 0 up, not '{budget}'" in capsys.readouterr().err
+
+
 def test_a_product_on_its_shelf_needs_no_inference(
         supermarket: World, supermarket_navigator: Navigator) -> None:
     inventory = Inventory.load("supermarket")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import math
 from typing import Any
 
 from rich.console import Console
@@ -36,10 +37,21 @@ _CUSTOMER_SAYS = {
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--r-max", type=float, default=240.0,
+    parser.add_argument("--r-max", type=_budget, default=240.0,
                         help="the most (expected) seconds a decision may cost (r_max)")
     parser.add_argument("--kb-store", metavar="FILE", default=None,
                         help="keep the robot's KB in this SQLite store across runs")
+
+
+def _budget(text: str) -> float:
+    """An argparse type: r_max, in seconds from 0 up (inf: no limit)."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not value >= 0:  # also false for nan
+        raise argparse.ArgumentTypeError(f"r_max is a number of seconds from 0 up, not '{text}'")
+    return value
 
 
 def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
