@@ -325,6 +325,9 @@ def test_arithmetic_errors_and_failing_user_functions_are_dialogue_errors() -> N
         _run(_program(text % "assign(Y, 1/0)"), ["go"])
     with pytest.raises(DialogueError, match=r"user function boom failed: ValueError: boom"):
         _run(_program(text % "apply(boom, [X])", {"boom": boom}), ["go"])
+    hearing = text.replace("type: speech,", "type: speech, interpreter: boom,") % "empty"
+    with pytest.raises(DialogueError, match=r"line 5, column 9: the interpreter boom failed"):
+        _run(_program(hearing, {"boom": boom}), ["go"])
 
 
 def test_a_model_that_embeds_itself_without_end_is_stopped() -> None:

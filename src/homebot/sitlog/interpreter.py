@@ -17,7 +17,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
-from homebot.errors import DialogueError
+from homebot.errors import DialogueError, HomebotError
 from homebot.sitlog.evaluation import evaluate
 from homebot.sitlog.history import History, Transition, last_transition, transitions
 from homebot.sitlog.model import FINAL, RECURSIVE, DialogueModel, Program, Situation, functor_of
@@ -307,7 +307,13 @@ class Interpreter:
             return (request if request is not None else EMPTY), pipe
         datum = self.perception.perceive(situation.type, request, expectations, env)
         if situation.interpreter is not None and datum is not None:
-            datum = env.function(situation.interpreter)(env, datum, tuple(expectations))
+            try:
+                datum = env.function(situation.interpreter)(env, datum, tuple(expectations))
+            except HomebotError:
+                raise
+            except Exception as error:  # a failure of the user's code is the program's problem
+                raise DialogueError(f"{situation.place}: the interpreter {situation.interpreter} "
+                                    f"failed: {type(error).__name__}: {error}") from None
         elif isinstance(datum, Text):
             datum = utterance_term(datum.text, expectations)
         return datum, pipe
