@@ -11,10 +11,13 @@ from hypothesis import strategies as st
 
 from homebot.errors import HomebotError
 from homebot.executive.taskfile import task_from_text
+from homebot.navigation import Navigator
+from homebot.scenarios import SimulatedRun, disturbed
 from homebot.skills import SKILLS
 from homebot.world import World
 
 _WORLD = World.load("apartment")
+_NAVIGATOR = Navigator(_WORLD)
 _NAMES = st.sampled_from(["kitchen", "fridge", "cola", "drink", "operator", "left", "$result",
                           "waving", "kitchen door", "", "nowhere", "Küche", "[/b]"])
 _SCALARS = (st.none() | st.booleans() | st.integers() | st.floats() | st.text(max_size=8)
@@ -69,3 +72,37 @@ def test_the_undamaged_task_loads() -> None:
     assert len(task_from_text(_GOOD, _WORLD).steps) == 4
     with pytest.raises(HomebotError):
         task_from_text("- {skill: navigate, to: [kitchen]}", _WORLD)
+
+
+_PEOPLE = [*_WORLD.people, "operator"]
+_GOOD_VALUES = {
+    "to": [*_WORLD.placements, *_WORLD.rooms, *_PEOPLE], "placement": list(_WORLD.placements),
+    "room": list(_WORLD.rooms), "object": [*_WORLD.objects, *_WORLD.categories],
+    "door": list(_WORLD.doors), "text": ["hi", "$result"], "info": ["your name"],
+    "person": [*_PEOPLE, {"name": "Maria"}, {"gesture": "waving"}, {}],
+    "question": ["what is your name"], "hand": ["left", "foot"], "property": ["biggest"],
+    "exclude": [["fridge"], []]}
+
+
+@st.composite
+def _valid_steps(draw: st.DrawFn) -> dict[str, Any]:
+    skill = SKILLS[draw(st.sampled_from(sorted(SKILLS)))]
+    names = [*skill.required, *draw(st.lists(st.sampled_from(skill.optional or ("",)),
+                                             max_size=2, unique=True))]
+    return {"skill": skill.name, **{name: draw(st.sampled_from(_GOOD_VALUES[name]))
+                                    for name in names if name}}
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.lists(_valid_steps(), min_size=1, max_size=5), st.integers(0, 3), st.booleans(),
+       st.integers(0, 1000))
+def test_a_valid_task_runs_to_a_report_whatever_happens(steps: list[dict[str, Any]], level: int,
+                                                        monitoring: bool, seed: int) -> None:
+    try:
+        task = task_from_text(yaml.safe_dump(steps), _WORLD)
+    except HomebotError:
+        return
+    run = SimulatedRun.create(_WORLD, seed=seed, navigator=_NAVIGATOR, monitoring=monitoring,
+                              disturbances=disturbed(level) if level else None)
+    report = run.run(task)
+    assert report.success or report.reason

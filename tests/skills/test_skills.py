@@ -176,3 +176,10 @@ def test_look_greet_follow_and_open_door(run: SimulatedRun) -> None:
     run.simulation.door_state["office door"] = DoorState.CLOSED
     assert _do(run, "open_door", door="office door").status is Status.VERIFIED
     assert run.simulation.door_state["office door"] is DoorState.OPEN
+
+
+def test_a_person_is_a_name_or_a_description_for_every_skill(run: SimulatedRun) -> None:
+    assert _do(run, "find_person", person="Maria", room="kitchen")
+    assert _do(run, "count", person="Maria", room="kitchen").data["count"] == 1
+    assert _do(run, "answer_question", person={"name": "Maria"}).status is not None
+    assert _do(run, "greet", person={"name": "Maria"}).status is Status.VERIFIED

@@ -188,7 +188,7 @@ class FindPerson(Skill):
     retries = 1
 
     def execute(self, context: SkillContext, args: Mapping[str, Any]) -> Outcome:
-        description = dict(args.get("person") or {})
+        description = _description(args.get("person"))
         where = args.get("room") or args.get("placement")
         rooms = [str(args["room"])] if args.get("room") else (
             [context.world.placements[str(args["placement"])].room] if args.get("placement")
@@ -267,7 +267,7 @@ class Count(Skill):
             moved = drive(context, goal) if goal else None
             if moved is not None and moved.status is not Status.FINISHED:
                 return moved
-        description = dict(args.get("person") or {})
+        description = _description(args.get("person"))
         return sum(1 for seen in context.robot.perceive_people()
                    if matches_person(seen, description))
 
@@ -292,7 +292,7 @@ def _count_sentence(context: SkillContext, args: Mapping[str, Any], count: int) 
             thing = f"{thing}s" if not thing.endswith("s") else thing
         return f"There {'is' if count == 1 else 'are'} {count} {thing} on the {args['placement']}."
     people = "person" if count == 1 else "people"
-    who = _describe(dict(args.get("person") or {}))
+    who = _describe(_description(args.get("person")))
     suffix = "" if not args.get("person") else f" ({who})"
     verb = "is" if count == 1 else "are"
     return f"There {verb} {count} {people}{suffix} in the {args['room']}."
@@ -355,3 +355,10 @@ def _person_fact(seen: PersonPercept, info: str) -> str:
     if info == "clothes":
         return f"{name} is wearing {' and '.join(seen.clothes) or 'nothing I can recognise'}."
     return f"This is {name}."
+
+
+def _description(person: Any) -> dict[str, Any]:
+    """A person argument as a description: a mapping as it is, a bare name as ``{name}``."""
+    if not person:
+        return {}
+    return dict(person) if isinstance(person, Mapping) else {"name": str(person)}

@@ -3,6 +3,8 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
+from typing import Any
 
 from homebot.robot import Pose
 from homebot.skills.skill import SkillContext
@@ -22,8 +24,14 @@ OPERATOR = "operator"  #: how a task names the person who gave the command
 _PERSON_DISTANCE = 0.9
 
 
-def person_name(context: SkillContext, name: str | None) -> str | None:
-    """A person's name: ``operator`` becomes the world's operator, None the person last found."""
+def person_name(context: SkillContext, name: str | Mapping[str, Any] | None) -> str | None:
+    """A person's name: ``operator`` becomes the world's operator, None the person last found.
+
+    A description (``{name: ...}``, as ``find_person`` takes) stands for the name in it,
+    or for the person last found when it names nobody.
+    """
+    if isinstance(name, Mapping):
+        name = name.get("name")
     if name is None:
         found = context.bindings.get("person")
         return str(found) if found else None
