@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import os
 import signal
+import sqlite3
 import subprocess
 import sys
 import textwrap
@@ -93,6 +94,21 @@ def test_store_errors_are_knowledge_errors(tmp_path: Path) -> None:
     KnowledgeStore.create(tmp_path / "kb.db", taxonomy, when=0.0).close()
     with pytest.raises(KnowledgeError, match="exists already"):
         KnowledgeStore.create(tmp_path / "kb.db", taxonomy, when=0.0)
+
+
+def test_another_programs_database_is_refused_and_left_as_it_was(tmp_path: Path) -> None:
+    other = tmp_path / "other.db"
+    connection = sqlite3.connect(other)
+    connection.execute("CREATE TABLE t (x)")
+    connection.execute("INSERT INTO t VALUES (1)")
+    connection.commit()
+    connection.close()
+    with pytest.raises(KnowledgeError, match="not a homebot knowledge store"):
+        KnowledgeStore.open(other)
+    connection = sqlite3.connect(other)
+    assert connection.execute("PRAGMA journal_mode").fetchone() == ("delete",)
+    assert connection.execute("SELECT x FROM t").fetchall() == [(1,)]
+    connection.close()
 
 
 _WRITER = textwrap.dedent(

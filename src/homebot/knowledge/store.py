@@ -101,11 +101,8 @@ class KnowledgeStore:
         path = Path(path)
         if not path.is_file():
             raise KnowledgeError(f"no knowledge store at {path}; create one first")
-        connection = _connect(path)
+        connection = _connect(path, store=True)
         try:
-            version = connection.execute("PRAGMA user_version").fetchone()[0]
-            if version != _SCHEMA_VERSION:
-                raise KnowledgeError(f"{path} is not a homebot knowledge store (version {version})")
             kb = KnowledgeBase(_read_all(connection, str(path)))
         except (KnowledgeError, sqlite3.DatabaseError) as error:
             connection.close()
@@ -151,9 +148,14 @@ class KnowledgeStore:
         return [LogEntry(seq, at, json.loads(what), why) for seq, at, what, why in rows]
 
 
-def _connect(path: Path) -> sqlite3.Connection:
+def _connect(path: Path, *, store: bool = False) -> sqlite3.Connection:
+    """Connect; with ``store``, first check the file is a store (nothing else is changed)."""
     try:
         connection = sqlite3.connect(path, isolation_level=None)
+        version = connection.execute("PRAGMA user_version").fetchone()[0]
+        if store and version != _SCHEMA_VERSION:
+            connection.close()
+            raise KnowledgeError(f"{path} is not a homebot knowledge store (version {version})")
         connection.execute("PRAGMA journal_mode = WAL")
         connection.execute("PRAGMA synchronous = FULL")
     except sqlite3.Error as error:
