@@ -118,6 +118,16 @@ def test_stochastic_actions_branch_on_sensing_conditions() -> None:
     assert "senseEffect(flip)" in text and "heads = true" in text
 
 
+def test_a_long_policy_text_is_cut_and_says_so() -> None:
+    theory = _counter()
+    result = Planner(theory, f("reward")).solve(seq("flip", "flip", "flip"), State(), 3)
+    whole = policy_text(result.policy).splitlines()
+    cut = policy_text(result.policy, limit=5).splitlines()
+    assert len(whole) > 6 and cut[:5] == whole[:5] and len(cut) == 6
+    assert cut[5].startswith("... (cut after 5 lines")
+    assert policy_text(result.policy, limit=len(whole)).splitlines() == whole
+
+
 def test_prob_weighs_two_programs() -> None:
     theory = _counter()
     result = Planner(theory, f("reward")).solve(prob(0.25, seq("bump", "bump"), "never"),

@@ -20,6 +20,8 @@ from homebot.golog.theory import Theory
 
 __all__ = ["register"]
 
+_LINES = 2000  # most lines of a policy printed by 'golog plan' (a policy is a tree)
+
 
 def register(subparsers: Any) -> None:
     parser = subparsers.add_parser("golog", help="check, plan and run Golog programs")
@@ -83,10 +85,11 @@ def _plan(args: argparse.Namespace) -> int:
     result = planner.solve(solve.body, theory.initial, horizon_of(theory, solve, theory.initial))
     if args.json:
         print(json.dumps({"value": result.value, "probability": result.probability,
-                          "nodes": planner.nodes, "policy": policy_text(result.policy)}))
+                          "nodes": planner.nodes,
+                          "policy": policy_text(result.policy, limit=_LINES)}))
     else:
         console = Console(highlight=False)
-        console.print(policy_text(result.policy))
+        console.print(policy_text(result.policy, limit=_LINES), markup=False)
         console.print(f"value {result.value:g}, success probability {result.probability:g}, "
                       f"{planner.nodes} nodes expanded")
     return 0

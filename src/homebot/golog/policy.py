@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from dataclasses import dataclass
+from itertools import islice
 
 from homebot.golog.expressions import Expr
 from homebot.golog.theory import GroundAction, action_text
@@ -119,9 +120,16 @@ def policy_actions(policy: Policy) -> list[GroundAction]:
             return actions
 
 
-def policy_text(policy: Policy, *, markers: bool = True) -> str:
-    """The policy as an indented conditional program, one step a line."""
-    return "\n".join(_lines(policy, 0, markers)) or "nil"
+def policy_text(policy: Policy, *, markers: bool = True, limit: int | None = None) -> str:
+    """The policy as an indented conditional program, one step a line.
+
+    A policy is a tree that can grow exponentially with the horizon when written
+    out; ``limit`` keeps the first lines and says how the text was cut.
+    """
+    lines = list(islice(_lines(policy, 0, markers), None if limit is None else limit + 1))
+    if limit is not None and len(lines) > limit:
+        lines[limit:] = [f"... (cut after {limit} lines: the policy branches on every outcome)"]
+    return "\n".join(lines) or "nil"
 
 
 def _lines(policy: Policy, depth: int, markers: bool) -> Iterator[str]:
