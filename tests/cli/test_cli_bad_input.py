@@ -166,3 +166,11 @@ def test_a_world_of_nested_aliases_gives_a_short_message(
 
 def test_world_without_a_command_names_all_three(capsys: pytest.CaptureFixture[str]) -> None:
     _fails_cleanly(capsys, main(["world"]), "from-robocup DIR")
+
+
+def test_an_approach_pose_outside_the_room_exits_2(tmp_path: Path,
+                                                   capsys: pytest.CaptureFixture[str]) -> None:
+    text = SUPERMARKET.read_text(encoding="utf-8").replace(
+        "holds: [drink]", "approach: [50, 50, 0], holds: [drink]")
+    status = main(["world", "check", str(_file(tmp_path, "w.yaml", text))])
+    _fails_cleanly(capsys, status, "placements.1.approach: [50.0, 50.0] lies outside room")

@@ -300,6 +300,11 @@ class World:
                     if category not in self.categories:
                         self._problem(["placements", index, "holds", position],
                                       _unknown("object category", category, self.categories))
+            if model.approach and not self.room_polygons[model.room].covers(
+                    Point(model.approach[:2])):
+                self._problem(["placements", index, "approach"],
+                              f"{list(model.approach[:2])} lies outside room '{model.room}'; "
+                              "the robot stands in the placement's room to use it")
             approach = model.approach or self._derive_approach(model, footprints[model.name],
                                                                furniture)
             if approach is None:
