@@ -99,9 +99,17 @@ def test_mistakes_on_the_command_line_exit_2(argv: list[str], words: str,
     ('?(floor + "a" = 2)', "numbers with numbers"),
     ("?(1 / 0 = 2)", "divides by zero"),
     ("pi(x, 3, up)", "not a finite set"),
+    ("?(floor + true = 4)", "numbers with numbers"),
+    ("?(true < 2)", "numbers with numbers"),
     ("(" * 3000 + "up" + ")" * 3000, "nested too deeply"),
 ])
 def test_programs_that_cannot_be_evaluated_exit_2(program: str, words: str,
                                                   capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["golog", "run", program, "--domain", "elevator"]) == 2
     assert words in " ".join(capsys.readouterr().err.split())
+
+
+def test_true_is_not_the_number_one(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["golog", "run", "if true = 1 then up else down endif", "--domain",
+                 "elevator"]) == 0
+    assert capsys.readouterr().out.split()[:2] == ["action:", "down"]

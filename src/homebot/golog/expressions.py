@@ -219,6 +219,10 @@ class Compare(Expr):
 
     def evaluate(self, theory: Theory, state: State) -> Any:
         left, right = self.left.evaluate(theory, state), self.right.evaluate(theory, state)
+        if isinstance(left, bool) is not isinstance(right, bool):  # true is not 1
+            if self.op in ("=", "!="):
+                return self.op == "!="
+            raise _mismatch(self, left, right)
         try:
             return _COMPARISONS[self.op](left, right)
         except TypeError:
@@ -241,6 +245,8 @@ class Arith(Expr):
 
     def evaluate(self, theory: Theory, state: State) -> Any:
         left, right = self.left.evaluate(theory, state), self.right.evaluate(theory, state)
+        if isinstance(left, bool) or isinstance(right, bool):
+            raise _mismatch(self, left, right)
         try:
             return _ARITHMETIC[self.op](left, right)
         except ZeroDivisionError:
