@@ -182,3 +182,17 @@ def test_run_step_recovers_like_a_task_step(apartment: World,
     outcome = run.executive.run_step("navigate", {"to": "bed"})
     assert outcome
     assert not any(e.kind == "task.end" for e in run.simulation.events.events)
+
+
+def test_the_report_names_the_object_a_recovery_really_picked(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    def offer_another(context, skill, args, outcome, run):
+        found = run("find_object", {"object": "orange juice", "placement": "fridge"})
+        taken = run("pick", {"object": "orange juice"})
+        return taken if found and taken else False
+
+    run = SimulatedRun.create(apartment, navigator=apartment_navigator, inference=offer_another)
+    run.simulation.object_location["cola"] = None
+    report = run.run(Task((Step("navigate", {"to": "fridge"}), Step("pick", {"object": "cola"}))))
+    assert report.success
+    assert report.steps[1].args == {"object": "orange juice"}

@@ -59,6 +59,12 @@ class Executive:
         for index, step in enumerate(task.steps):
             args = self._bind(step.args)
             outcome, recoveries = self._run_step(step.skill, args)
+            handled = outcome.data.get("object")
+            if (step.skill == "pick" and recoveries and isinstance(handled, str)
+                    and handled != args.get("object")):
+                # Recovery took another object (the one offered when the asked one ran
+                # out): the report says what was really picked.
+                args = {**args, "object": handled}
             reports.append(StepReport(step.skill, args, outcome.status.value,
                                       outcome.error.value if outcome.error else None,
                                       outcome.message, tuple(recoveries)))
