@@ -152,3 +152,14 @@ def test_unknown_scenario_is_a_usage_error(capsys: pytest.CaptureFixture[str]) -
     with pytest.raises(SystemExit) as exit_info:
         main(["scenario", "moonwalk"])
     assert exit_info.value.code == 2
+
+
+def test_retry_budgets_from_the_command_line(tmp_path: Path,
+                                             capsys: pytest.CaptureFixture[str]) -> None:
+    task = _file(tmp_path, "task.yaml", TASK)
+    assert main(["run-task", str(task), "--json", "--retries", "pick=0,navigate=2"]) == 0
+    capsys.readouterr()
+    assert main(["run-task", str(task), "--retries", "pick=many"]) == 2
+    assert "needs a count" in capsys.readouterr().err
+    assert main(["do", "bring me the cola from the fridge", "--retries", "grab=1"]) == 2
+    assert "unknown skill 'grab'" in capsys.readouterr().err

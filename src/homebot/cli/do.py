@@ -10,7 +10,7 @@ from typing import Any
 from rich.console import Console
 from rich.markup import escape
 
-from homebot.cli.options import add_world_options, load_world
+from homebot.cli.options import add_retry_option, add_world_options, load_world, retry_budgets
 from homebot.cli.run_task import print_report, write_events
 from homebot.cli.world import remember_last_run
 from homebot.language import Vocabulary, parse_command
@@ -24,6 +24,7 @@ def register(subparsers: Any) -> None:
     parser = subparsers.add_parser("do", help="understand a command and carry it out")
     parser.add_argument("command", help='what to do, e.g. "bring me the cola from the fridge"')
     add_world_options(parser)
+    add_retry_option(parser)
     parser.add_argument("--disturb", type=disturbance_level, default=0.0, metavar="LEVEL",
                         help="switch disturbances on (1 = the benchmark's level)")
     parser.add_argument("--interactive", action="store_true",
@@ -49,7 +50,8 @@ def do(args: argparse.Namespace) -> int:
         return 1
     run = SimulatedRun.create(
         world, seed=args.seed, disturbances=disturbed(args.disturb) if args.disturb else None,
-        responder=InteractiveResponder() if args.interactive else None)
+        responder=InteractiveResponder() if args.interactive else None,
+        retries=retry_budgets(args.retries))
     if args.planner == "htn":
         from homebot.cli.plan import carry_out_with_htn
 

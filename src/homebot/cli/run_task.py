@@ -10,7 +10,7 @@ from typing import Any
 from rich.console import Console
 from rich.markup import escape
 
-from homebot.cli.options import add_world_options, load_world
+from homebot.cli.options import add_retry_option, add_world_options, load_world, retry_budgets
 from homebot.cli.world import remember_last_run
 from homebot.errors import TaskError
 from homebot.events import EventLog
@@ -26,6 +26,7 @@ def register(subparsers: Any) -> None:
     parser = subparsers.add_parser("run-task", help="run a YAML task of skill steps")
     parser.add_argument("file", type=Path, help="task file: a list of {skill: NAME, ARG: VALUE}")
     add_world_options(parser)
+    add_retry_option(parser)
     parser.add_argument("--disturb", type=disturbance_level, default=0.0, metavar="LEVEL",
                         help="switch disturbances on (1 = the benchmark's level)")
     parser.add_argument("--no-monitoring", action="store_true",
@@ -44,7 +45,8 @@ def run_task(args: argparse.Namespace) -> int:
         world, seed=args.seed,
         disturbances=disturbed(args.disturb) if args.disturb else None,
         monitoring=not args.no_monitoring,
-        responder=InteractiveResponder() if args.interactive else None)
+        responder=InteractiveResponder() if args.interactive else None,
+        retries=retry_budgets(args.retries))
     report = run.run(task)
     remember_last_run(run.simulation.events)
     if args.events:
