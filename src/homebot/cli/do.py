@@ -4,18 +4,14 @@ from __future__ import annotations
 
 import argparse
 import json
-from pathlib import Path
 from typing import Any
 
 from rich.console import Console
 from rich.markup import escape
 
-from homebot.cli.options import add_retry_option, add_world_options, load_world, retry_budgets
-from homebot.cli.run_task import print_report, write_events
-from homebot.cli.world import remember_last_run
+from homebot.cli.options import load_world
+from homebot.cli.simulated import add_run_options, finish_run, keep_events, simulated_run
 from homebot.language import Vocabulary, parse_command
-from homebot.scenarios import SimulatedRun, disturbance_level, disturbed
-from homebot.sim import InteractiveResponder
 
 __all__ = ["register"]
 
@@ -23,14 +19,7 @@ __all__ = ["register"]
 def register(subparsers: Any) -> None:
     parser = subparsers.add_parser("do", help="understand a command and carry it out")
     parser.add_argument("command", help='what to do, e.g. "bring me the cola from the fridge"')
-    add_world_options(parser)
-    add_retry_option(parser)
-    parser.add_argument("--disturb", type=disturbance_level, default=0.0, metavar="LEVEL",
-                        help="switch disturbances on (1 = the benchmark's level)")
-    parser.add_argument("--interactive", action="store_true",
-                        help="type the answers of the people the robot talks to")
-    parser.add_argument("--events", type=Path, help="write the event log here (JSON lines)")
-    parser.add_argument("--json", action="store_true", help="print the report as JSON")
+    add_run_options(parser)
     parser.add_argument("--planner", choices=("gpsr", "htn"), default="gpsr",
                         help="gpsr: run the parsed skill steps (default); htn: make the parse's "
                              "intent an HTN goal and plan it from the robot's beliefs")
@@ -48,25 +37,12 @@ def do(args: argparse.Namespace) -> int:
         else:
             Console().print(f"  [cyan]robot:[/] {escape(said)}", highlight=False)
         return 1
-    run = SimulatedRun.create(
-        world, seed=args.seed, disturbances=disturbed(args.disturb) if args.disturb else None,
-        responder=InteractiveResponder() if args.interactive else None,
-        retries=retry_budgets(args.retries))
+    run = simulated_run(args, world)
     if args.planner == "htn":
         from homebot.cli.plan import carry_out_with_htn
 
         status = carry_out_with_htn(args, world, run, parsed.steps)
         if status is not None:
-            remember_last_run(run.simulation.events)
-            if args.events:
-                write_events(run.simulation.events, args.events)
+            keep_events(args, run)
             return status
-    report = run.run(parsed.to_task())
-    remember_last_run(run.simulation.events)
-    if args.events:
-        write_events(run.simulation.events, args.events)
-    if args.json:
-        print(json.dumps(report.to_dict()))
-    else:
-        print_report(Console(), report)
-    return 0 if report.success else 1
+    return finish_run(args, run, run.run(parsed.to_task()))

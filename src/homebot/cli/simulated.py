@@ -1,0 +1,93 @@
+"""What ``run-task`` and ``do`` share: options for a simulated run, and how a run ends."""
+
+from __future__ import annotations
+
+import argparse
+import json
+from pathlib import Path
+
+from rich.console import Console
+from rich.markup import escape
+
+from homebot.cli.options import add_retry_option, add_world_options, retry_budgets
+from homebot.cli.world import remember_last_run
+from homebot.errors import TaskError
+from homebot.events import EventLog
+from homebot.executive import TaskReport
+from homebot.scenarios import SimulatedRun, disturbance_level, disturbed
+from homebot.sim import InteractiveResponder
+from homebot.world import World
+
+__all__ = [
+    "add_run_options",
+    "finish_run",
+    "keep_events",
+    "print_report",
+    "simulated_run",
+    "write_events",
+]
+
+
+def add_run_options(parser: argparse.ArgumentParser) -> None:
+    """World, seed, retries, disturbances, interactive people, event log and JSON output."""
+    add_world_options(parser)
+    add_retry_option(parser)
+    parser.add_argument("--disturb", type=disturbance_level, default=0.0, metavar="LEVEL",
+                        help="switch disturbances on (1 = the benchmark's level)")
+    parser.add_argument("--interactive", action="store_true",
+                        help="type the answers of the people the robot talks to")
+    parser.add_argument("--events", type=Path, help="write the event log here (JSON lines)")
+    parser.add_argument("--json", action="store_true", help="print the report as JSON")
+
+
+def simulated_run(args: argparse.Namespace, world: World, *,
+                  monitoring: bool = True) -> SimulatedRun:
+    """The simulated home the options of ``add_run_options`` ask for."""
+    return SimulatedRun.create(
+        world, seed=args.seed,
+        disturbances=disturbed(args.disturb) if args.disturb else None,
+        monitoring=monitoring,
+        responder=InteractiveResponder() if args.interactive else None,
+        retries=retry_budgets(args.retries))
+
+
+def keep_events(args: argparse.Namespace, run: SimulatedRun) -> None:
+    """Remember the run for ``world show`` and write ``--events`` if asked."""
+    remember_last_run(run.simulation.events)
+    if args.events:
+        write_events(run.simulation.events, args.events)
+
+
+def finish_run(args: argparse.Namespace, run: SimulatedRun, report: TaskReport) -> int:
+    """Keep the events, print the report (or its JSON); 0 when the task succeeded, else 1."""
+    keep_events(args, run)
+    if args.json:
+        print(json.dumps(report.to_dict()))
+    else:
+        print_report(Console(), report)
+    return 0 if report.success else 1
+
+
+def write_events(events: EventLog, path: Path) -> None:
+    """Write the event log for ``--events``; a path that cannot be written is the person's error."""
+    try:
+        events.write(path)
+    except OSError as error:
+        raise TaskError(f"{path}: cannot write the event log ({error.strerror or error}); "
+                        "check that its folder exists and is writable") from None
+
+
+def print_report(console: Console, report: TaskReport) -> None:
+    """The steps, their outcomes, and what the robot said, for a person to read."""
+    for step in report.steps:
+        colour = "green" if step.status == "verified" else (
+            "yellow" if step.status == "finished" else "red")
+        args = escape(", ".join(f"{key}={value}" for key, value in step.args.items()))
+        error = f" ({escape(step.error)})" if step.error else ""
+        recovered = f" after {escape(', '.join(step.recoveries))}" if step.recoveries else ""
+        console.print(f"  [{colour}]{step.status:9}[/] {step.skill}({args}){error}{recovered}",
+                      highlight=False)
+    for text in report.speech:
+        console.print(f"  [cyan]robot:[/] {escape(text)}", highlight=False)
+    verdict = "[green]success[/]" if report.success else f"[red]failed[/]: {escape(report.reason)}"
+    console.print(f"  {verdict} in {report.sim_time:.1f} s simulated", highlight=False)
