@@ -69,7 +69,8 @@ class SimRobot(Robot):
         for index, door in enumerate(plan.doors):
             if door not in shut:
                 continue
-            stop = self._point_before(door, plan.route.rooms[index])
+            stop = sim.world.point_before_door(door, plan.route.rooms[index],
+                                               _STOP_BEFORE_DOOR)[:2]
             travelled = sim.navigator.distance(start, stop, avoid_doors)
             travelled = plan.length if math.isinf(travelled) else travelled
             self._travel(travelled, stop, escort)
@@ -91,15 +92,6 @@ class SimRobot(Robot):
         self.sim.trail.extend(rounded)
         self.sim.events.record("robot.path", world=self.sim.world.name,
                                points=[list(point) for point in rounded])
-
-    def _point_before(self, door: str, room: str) -> tuple[float, float]:
-        """Where the robot stops, in ``room``, in front of a door it cannot pass."""
-        position = self.sim.world.doors[door].position
-        centre = self.sim.world.room_polygons[room].centroid
-        dx, dy = centre.x - position[0], centre.y - position[1]
-        norm = math.hypot(dx, dy) or 1.0
-        return (position[0] + dx / norm * _STOP_BEFORE_DOOR,
-                position[1] + dy / norm * _STOP_BEFORE_DOOR)
 
     def _travel(self, distance: float, point: tuple[float, float], escort: str | None,
                 theta: float | None = None) -> None:

@@ -75,12 +75,7 @@ def resolve_target(context: SkillContext, target: str) -> Pose | None:
     if name is not None and name in context.beliefs.person_at:
         return pose_near_point(context, context.beliefs.person_at[name])
     if target in world.doors:
-        door = world.doors[target]
-        room = world.room_polygons[door.rooms[0]].centroid
-        dx, dy = room.x - door.position[0], room.y - door.position[1]
-        norm = math.hypot(dx, dy) or 1.0
-        return Pose(door.position[0] + 0.6 * dx / norm, door.position[1] + 0.6 * dy / norm,
-                    math.atan2(-dy, -dx))
+        return Pose(*world.point_before_door(target, world.doors[target].rooms[0], 0.6))
     return None
 
 

@@ -186,6 +186,15 @@ class World:
             return self.people[name]
         raise WorldError(_unknown("person", name, self.people))
 
+    def point_before_door(self, door: str, room: str,
+                          distance: float) -> tuple[float, float, float]:
+        """A point ``distance`` metres into ``room`` in front of ``door``, facing the door."""
+        x, y = self.doors[door].position
+        centre = self.room_polygons[room].centroid
+        dx, dy = centre.x - x, centre.y - y
+        norm = math.hypot(dx, dy) or 1.0
+        return (x + dx / norm * distance, y + dy / norm * distance, math.atan2(-dy, -dx))
+
     def plural_of(self, category: str) -> str:
         """The plural of an object category (its declared plural, else ``category + s``)."""
         declared = self.categories.get(category)
