@@ -19,6 +19,7 @@ __all__ = [
     "Look",
     "candidate_placements",
     "go_and_look",
+    "go_into_room",
     "matches_object",
     "matches_person",
 ]
@@ -48,6 +49,17 @@ def go_and_look(context: SkillContext, placement: str) -> tuple[Outcome, list[De
         if where == placement and name not in seen:
             context.beliefs.missed_object(name, placement)
     return Outcome.finished(), detections
+
+
+def go_into_room(context: SkillContext, room: str, target: str) -> Outcome | None:
+    """Drive to ``target`` unless already in ``room``; a blocked way is returned, else None."""
+    if context.world.room_at(*context.robot.pose().xy()) == room:
+        return None
+    goal = resolve_target(context, target)
+    moved = drive(context, goal) if goal else None
+    if moved is not None and moved.status is not Status.FINISHED:
+        return moved
+    return None
 
 
 def candidate_placements(context: SkillContext, wanted: str, room: str | None = None,
@@ -196,11 +208,10 @@ class FindPerson(Skill):
         for room in rooms:
             if room not in context.world.rooms:
                 return Outcome.failed(ErrorCode.UNKNOWN_TARGET, f"I do not know the {where}")
-            if context.world.room_at(*context.robot.pose().xy()) != room:
-                goal = resolve_target(context, str(where) if where and len(rooms) == 1 else room)
-                moved = drive(context, goal) if goal else None
-                if moved is not None and moved.status is not Status.FINISHED:
-                    return moved
+            moved = go_into_room(context, room,
+                                 str(where) if where and len(rooms) == 1 else room)
+            if moved is not None:
+                return moved
             for seen in context.robot.perceive_people():
                 if seen.name and matches_person(seen, description):
                     context.beliefs.saw_person(seen.name, seen.position)
@@ -262,11 +273,9 @@ class Count(Skill):
         room = str(args.get("room", ""))
         if room not in context.world.rooms:
             return Outcome.failed(ErrorCode.UNKNOWN_TARGET, f"I do not know the room {room}")
-        if context.world.room_at(*context.robot.pose().xy()) != room:
-            goal = resolve_target(context, room)
-            moved = drive(context, goal) if goal else None
-            if moved is not None and moved.status is not Status.FINISHED:
-                return moved
+        moved = go_into_room(context, room, room)
+        if moved is not None:
+            return moved
         description = _description(args.get("person"))
         return sum(1 for seen in context.robot.perceive_people()
                    if matches_person(seen, description))
