@@ -57,6 +57,10 @@ class Simulation:
         self.object_location: dict[str, str | None] = {
             name: obj.placement for name, obj in world.objects.items()}
         self.object_ids = {name: index for index, name in enumerate(sorted(world.objects))}
+        self._object_names = {index: name for name, index in self.object_ids.items()}
+        #: where someone may have put an object: every piece of furniture
+        self.furniture = [p.name for p in world.placements.values()
+                          if p.model.kind is PlacementKind.FURNITURE]
         self.door_state = {name: door.state for name, door in world.doors.items()}
         self.people = {name: _PersonState(person, person.position, person.room)
                        for name, person in world.people.items()}
@@ -71,15 +75,13 @@ class Simulation:
 
     def _apply_start_disturbances(self) -> None:
         model = self.disturbances
-        shelves = [p.name for p in self.world.placements.values()
-                   if p.model.kind is PlacementKind.FURNITURE]
         for name in sorted(self.object_location):
             draw = self.random.random()
             if draw < model.object_missing:
                 self.object_location[name] = None
                 self.events.record("sim.disturbance", what="object_missing", object=name)
             elif draw < model.object_missing + model.object_moved:
-                self._move_object_elsewhere(name, shelves, "object_moved")
+                self._move_object_elsewhere(name, self.furniture, "object_moved")
         for door in sorted(self.door_state):
             if self.door_state[door] is DoorState.OPEN and self.random.random() < model.door_closed:
                 self.door_state[door] = DoorState.CLOSED
@@ -117,9 +119,7 @@ class Simulation:
         self._looked_at.add(placement)
         here = sorted(name for name, where in self.object_location.items() if where == placement)
         if here and self.random.random() < self.disturbances.object_moved_during_task:
-            shelves = [p.name for p in self.world.placements.values()
-                       if p.model.kind is PlacementKind.FURNITURE]
-            self._move_object_elsewhere(self.random.choice(here), shelves,
+            self._move_object_elsewhere(self.random.choice(here), self.furniture,
                                         "object_moved_during_task")
 
     # ------------------------------------------------------------ truth queries
@@ -134,7 +134,7 @@ class Simulation:
         return sorted(name for name, where in self.object_location.items() if where == placement)
 
     def object_by_id(self, handle: int) -> str | None:
-        return next((name for name, index in self.object_ids.items() if index == handle), None)
+        return self._object_names.get(handle)
 
     def robot_room(self) -> str | None:
         return self.world.room_at(self.robot_pose[0], self.robot_pose[1])
