@@ -15,7 +15,9 @@ from rich.console import Console
 from homebot.language import Vocabulary, parse_command
 from homebot.language.generator import generate_commands
 from homebot.navigation import Navigator
+from homebot.robot import PersonPercept
 from homebot.scenarios import SimulatedRun, disturbance_level, disturbed
+from homebot.skills.perception import matches_person
 from homebot.task import Step
 from homebot.world import World
 
@@ -23,21 +25,12 @@ __all__ = ["ExecutionResult", "add_arguments", "execute_commands", "feasible", "
 
 
 def _person_fits(world: World, description: Mapping[str, Any], room: str | None) -> bool:
-    for person in world.people.values():
-        if room is not None and person.room != room:
-            continue
-        if "name" in description and person.name.lower() != str(description["name"]).lower():
-            continue
-        if "posture" in description and person.posture.value != description["posture"]:
-            continue
-        if "gesture" in description and not person.gesture.value.startswith(
-                str(description["gesture"])):
-            continue
-        if "clothes" in description and not any(
-                str(description["clothes"]) in item for item in person.clothes):
-            continue
-        return True
-    return False
+    """Whether someone in ``room`` fits the description, as find_person would match them."""
+    return any(
+        matches_person(PersonPercept(person.name, person.posture.value, person.gesture.value,
+                                     tuple(person.clothes), person.position, person.room),
+                       description)
+        for person in world.people.values() if room is None or person.room == room)
 
 
 def _object_fits(world: World, wanted: str, placement: str | None, room: str | None) -> bool:
