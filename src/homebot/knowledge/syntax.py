@@ -22,7 +22,14 @@ from homebot.knowledge.terms import (
     statement_from_term,
 )
 
-__all__ = ["kb_warnings", "read_kb", "read_kb_text", "write_kb", "write_kb_text"]
+__all__ = [
+    "kb_warnings",
+    "read_kb",
+    "read_kb_file_text",
+    "read_kb_text",
+    "write_kb",
+    "write_kb_text",
+]
 
 _NONE = "none"
 
@@ -183,7 +190,7 @@ def read_kb_text(text: str, source: str = "<text>") -> Taxonomy:
 def kb_warnings(path: str | Path) -> list[str]:
     """Statements of a KB file the reasoner ignores (see ``coherence``), with line and column."""
     path = Path(path)
-    parser = _KBParser(path.read_text(encoding="utf-8"), str(path))
+    parser = _KBParser(read_kb_file_text(path), str(path))
     taxonomy = parser.knowledge_base()
     messages = []
     for problem in coherence.warnings(taxonomy):
@@ -198,16 +205,20 @@ def kb_warnings(path: str | Path) -> list[str]:
     return messages
 
 
-def read_kb(path: str | Path) -> Taxonomy:
-    """Read a KB file in the paper's syntax."""
-    path = Path(path)
+def read_kb_file_text(path: Path) -> str:
+    """The text of a KB file (either form); unreadable or non-UTF-8 files are KB errors."""
     try:
-        text = path.read_text(encoding="utf-8")
+        return path.read_text(encoding="utf-8")
     except OSError as error:
         raise KnowledgeError(f"cannot read KB file {path}: {error.strerror}") from None
     except UnicodeDecodeError as error:
         raise KnowledgeError(f"{path} is not UTF-8 text: {error.reason}") from None
-    return read_kb_text(text, str(path))
+
+
+def read_kb(path: str | Path) -> Taxonomy:
+    """Read a KB file in the paper's syntax."""
+    path = Path(path)
+    return read_kb_text(read_kb_file_text(path), str(path))
 
 
 def write_kb_text(taxonomy: Taxonomy) -> str:

@@ -34,6 +34,7 @@ from homebot.knowledge.model import (
     Statement,
     Taxonomy,
 )
+from homebot.knowledge.syntax import read_kb_file_text
 from homebot.knowledge.terms import format_statement, parse_statement
 
 __all__ = ["read_kb_yaml", "read_kb_yaml_text", "write_kb_yaml", "write_kb_yaml_text"]
@@ -228,13 +229,7 @@ def read_kb_yaml_text(text: str, source: str = "<yaml>") -> Taxonomy:
 def read_kb_yaml(path: str | Path) -> Taxonomy:
     """Read a KB file in the YAML form."""
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as error:
-        raise KnowledgeError(f"cannot read KB file {path}: {error.strerror}") from None
-    except UnicodeDecodeError as error:
-        raise KnowledgeError(f"{path} is not UTF-8 text: {error.reason}") from None
-    return read_kb_yaml_text(text, str(path))
+    return read_kb_yaml_text(read_kb_file_text(path), str(path))
 
 
 def _statement_data(statement: Statement) -> Any:
