@@ -51,7 +51,7 @@ class Executive:
         """Run every step in order; the report says whether all ended as expected."""
         context = self.context
         started = context.robot.now()
-        first_speech = len(list(context.events.of_kind("speech")))
+        first_event = len(context.events.events)
         context.events.record("task.start", description=task.description,
                               steps=task.to_dicts())
         reports: list[StepReport] = []
@@ -78,8 +78,8 @@ class Executive:
         if success and context.monitoring:
             speak(context, "I have done what you asked.")
         context.events.record("task.end", success=success, reason=reason)
-        speech = [event.data["text"] for event in list(context.events.of_kind("speech"))
-                  [first_speech:]]
+        speech = [event.data["text"] for event in context.events.events[first_event:]
+                  if event.kind == "speech"]
         return TaskReport(success, reports, speech, context.robot.now() - started, reason)
 
     def run_step(self, skill: str, args: Mapping[str, Any]) -> Outcome:
