@@ -7,7 +7,7 @@ naming a room, an object on a placement) are checked by ``homebot.world.world``.
 from __future__ import annotations
 
 from enum import StrEnum
-from typing import Annotated
+from typing import Annotated, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator
 
@@ -16,6 +16,7 @@ __all__ = [
     "DoorModel",
     "DoorState",
     "Gesture",
+    "LaserModel",
     "ObjectCategoryModel",
     "ObjectModel",
     "PersonModel",
@@ -156,13 +157,31 @@ class PersonModel(_Strict):
     cooperative: bool = True
 
 
+class LaserModel(_Strict):
+    """The 2-D laser of the embodied robot: beams over a field of view, noise, spurious returns.
+
+    ``spurious`` is the share of beams that return a random short range instead
+    of the true one (people's feet, reflections: CAESAR localised with up to 90 %).
+    """
+
+    beams: int = Field(default=271, ge=8, le=4000)
+    field_of_view: float = Field(default=4.712389, gt=0.0, le=6.2832)
+    range_max: float = Field(default=10.0, gt=0.5, le=60.0)
+    noise: float = Field(default=0.01, ge=0.0, le=0.5)
+    spurious: Probability = 0.0
+
+
 class RobotModel(_Strict):
-    """The robot's body: start pose (x, y, heading), size, speed and hands."""
+    """The robot's body: start pose (x, y, heading), size, speeds, hands, base and laser."""
 
     pose: tuple[float, float, float]
     radius: float = Field(default=0.25, gt=0.05, le=1.0)
     speed: float = Field(default=0.5, gt=0.0, le=3.0)
+    angular_speed: float = Field(default=1.2, gt=0.0, le=6.0)
     hands: list[Name] = Field(default_factory=lambda: ["left", "right"], min_length=1)
+    #: how the base moves in the embodied fidelity (``homebot.robot.DriveKind``)
+    drive: Literal["omnidirectional", "differential"] = "differential"
+    laser: LaserModel = Field(default_factory=LaserModel)
 
 
 class DisturbanceModel(_Strict):
