@@ -13,8 +13,19 @@ __all__ = ["Follow", "Guide", "Navigate", "OpenDoor", "drive"]
 
 
 def drive(context: SkillContext, goal: Pose, escort: str | None = None) -> Outcome:
-    """Drive to ``goal`` around doors believed shut; a blocked way is a failed outcome."""
-    report = context.robot.move_to(goal, frozenset(context.beliefs.closed_doors), escort)
+    """Drive to ``goal``, around doors believed shut when there is a way round.
+
+    When every route crosses a door believed shut, drive through one anyway: the
+    robot port stops at the first shut door and reports ``DOOR_CLOSED``, so the
+    door protocol (open it, ask someone, go round) runs there. This lives here,
+    in the skill layer, so every Robot implementation gets it from the same
+    ``move_to(goal, avoid_doors)`` contract.
+    """
+    closed = frozenset(context.beliefs.closed_doors)
+    report = context.robot.move_to(goal, closed, escort)
+    if not report.reached and report.blocker is Blocker.NO_PATH and closed:
+        context.events.record("motion.through_closed_doors", doors=sorted(closed))
+        report = context.robot.move_to(goal, frozenset(), escort)
     return _motion_outcome(context, report)
 
 
