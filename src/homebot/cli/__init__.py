@@ -4,6 +4,19 @@ Each command group lives in its own module of this package and exposes
 ``register(subparsers)``, which adds its sub-parser and sets ``handler`` to a
 function ``(args) -> int`` returning the exit status. ``main`` turns every
 ``HomebotError`` into a one-line message on stderr and exit status 2.
+
+Imports are lazy (``homebot.cli.modules.LazySubcommands``): ``homebot --help`` lists the
+groups from ``COMMAND_GROUPS`` without importing their modules, and a group's module is
+imported only when the command line names it. To add a command group:
+
+1. write ``homebot/cli/NAME.py`` with ``register(subparsers)`` as above;
+2. add ``"COMMAND": ("NAME", "help line")`` to ``COMMAND_GROUPS``, with the same help line
+   as the module's ``add_parser`` (``tests/cli`` checks that they agree);
+3. keep the module's top-level imports to what its sub-commands need.
+
+A new flag needs nothing of this: add it in the group's ``register``. A new benchmark or
+scenario is a module of ``homebot.bench`` / ``homebot.scenarios.library`` (see
+``homebot.cli.modules``), imported only when chosen; its help line is its docstring's first.
 """
 
 from __future__ import annotations
@@ -11,20 +24,27 @@ from __future__ import annotations
 import argparse
 import importlib
 import sys
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
-from rich.console import Console
-from rich.markup import escape
-
+from homebot.cli.modules import LazySubcommands, lazy_subparsers
 from homebot.errors import HomebotError
 
 __all__ = ["COMMAND_GROUPS", "command_line_argument_parser", "main"]
 
-# Modules of this package that register command groups, in help order.
-COMMAND_GROUPS: tuple[str, ...] = (
-    "demo", "do", "run_task", "parse", "scenario", "world", "bench", "kb", "plan", "sitlog",
-    "golog",
-)
+# Command groups in help order: command -> (module of this package, help line).
+COMMAND_GROUPS: dict[str, tuple[str, str]] = {
+    "demo": ("demo", "watch the robot do a few tasks in the apartment"),
+    "do": ("do", "understand a command and carry it out"),
+    "run-task": ("run_task", "run a YAML task of skill steps"),
+    "parse": ("parse", "turn a command into skill steps"),
+    "scenario": ("scenario", "run a demonstration from the seed papers"),
+    "world": ("world", "check or show a world"),
+    "bench": ("bench", "run benchmarks and print their figures"),
+    "kb": ("kb", "check or query a non-monotonic knowledge base"),
+    "plan": ("plan", "plan a task with the HTN planner and print the task network"),
+    "sitlog": ("sitlog", "run or draw a SitLog dialogue model"),
+    "golog": ("golog", "check, plan and run Golog programs"),
+}
 
 
 def command_line_argument_parser() -> argparse.ArgumentParser:
@@ -33,11 +53,16 @@ def command_line_argument_parser() -> argparse.ArgumentParser:
         prog="homebot",
         description="A cognitive software stack for domestic service robots.",
     )
-    subparsers = parser.add_subparsers(dest="command", metavar="COMMAND")
-    for group in COMMAND_GROUPS:
-        module = importlib.import_module(f"homebot.cli.{group}")
-        module.register(subparsers)
+    subparsers = lazy_subparsers(parser, dest="command", metavar="COMMAND")
+    for command, (module, text) in COMMAND_GROUPS.items():
+        subparsers.add_lazy(command, text, _group_register(module))
     return parser
+
+
+def _group_register(module: str) -> Callable[[LazySubcommands], None]:
+    def register(subparsers: LazySubcommands) -> None:
+        importlib.import_module(f"homebot.cli.{module}").register(subparsers)
+    return register
 
 
 def main(argv: Sequence[str] | None = None) -> int:
@@ -51,6 +76,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         return int(handler(args))
     except HomebotError as error:
+        from rich.console import Console
+        from rich.markup import escape
+
         # Escaped, as messages quote what the person typed; soft-wrapped, so one line stays one.
         Console(stderr=True, highlight=False, soft_wrap=True).print(
             f"[bold red]error:[/] {escape(str(error))}", markup=True)

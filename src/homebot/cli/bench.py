@@ -7,10 +7,8 @@ import importlib
 import json
 from typing import Any
 
-from rich.console import Console
-
 import homebot.bench
-from homebot.cli.modules import add_module_commands, module_names
+from homebot.cli.modules import add_module_commands, lazy_subparsers, module_names
 from homebot.errors import HomebotError
 
 __all__ = ["benchmark_names", "register"]
@@ -26,7 +24,7 @@ def benchmark_names() -> list[str]:
 
 def register(subparsers: Any) -> None:
     parser = subparsers.add_parser("bench", help="run benchmarks and print their figures")
-    bench_parsers = parser.add_subparsers(dest="benchmark", metavar="NAME")
+    bench_parsers = lazy_subparsers(parser, dest="benchmark", metavar="NAME")
     add_module_commands(bench_parsers, homebot.bench, benchmark_names(),
                         add_common=_add_json, exit_status=lambda figures: 0)
     every = bench_parsers.add_parser("all", help="every benchmark with its default settings")
@@ -44,6 +42,8 @@ def _missing() -> int:
 
 
 def _run_all(args: argparse.Namespace) -> int:
+    from rich.console import Console
+
     console = None if args.json else Console()
     everything = []
     for name in benchmark_names():
@@ -55,5 +55,5 @@ def _run_all(args: argparse.Namespace) -> int:
             console.rule(name)
         everything.append(module.run(defaults, console))
     if args.json:
-        print(json.dumps(everything))
+        print(json.dumps(everything, ensure_ascii=False))
     return 0

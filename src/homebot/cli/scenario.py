@@ -6,7 +6,7 @@ import argparse
 from typing import Any
 
 import homebot.scenarios.library
-from homebot.cli.modules import add_module_commands, module_names
+from homebot.cli.modules import add_module_commands, lazy_subparsers, module_names
 from homebot.errors import HomebotError
 
 __all__ = ["register", "scenario_names"]
@@ -19,7 +19,7 @@ def scenario_names() -> list[str]:
 
 def register(subparsers: Any) -> None:
     parser = subparsers.add_parser("scenario", help="run a demonstration from the seed papers")
-    scenarios = parser.add_subparsers(dest="scenario", metavar="NAME")
+    scenarios = lazy_subparsers(parser, dest="scenario", metavar="NAME")
     add_module_commands(scenarios, homebot.scenarios.library, scenario_names(),
                         add_common=_add_common,
                         exit_status=lambda summary: 0 if summary["success"] else 1)
