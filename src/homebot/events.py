@@ -48,7 +48,9 @@ class EventLog:
         return (event for event in self.events if event.kind == kind)
 
     def to_json_lines(self) -> str:
-        return "".join(json.dumps(event.to_dict(), sort_keys=True) + "\n" for event in self.events)
+        # Names print as written ("Patrícia"), not as \u escapes.
+        return "".join(json.dumps(event.to_dict(), sort_keys=True, ensure_ascii=False) + "\n"
+                       for event in self.events)
 
     def write(self, target: Path | TextIO) -> None:
         """Write the log as JSON lines to a path or an open text stream."""

@@ -33,7 +33,7 @@ def do(args: argparse.Namespace) -> int:
         said = parsed.question or parsed.reason or "I did not understand."
         if args.json:
             print(json.dumps({"success": False, "parse": parsed.to_dict(), "steps": [],
-                              "speech": [said], "sim_time": 0.0}))
+                              "speech": [said], "sim_time": 0.0}, ensure_ascii=False))
         else:
             Console().print(f"  [cyan]robot:[/] {escape(said)}", highlight=False)
         return 1

@@ -86,7 +86,7 @@ def _plan(args: argparse.Namespace) -> int:
     if args.json:
         print(json.dumps({"value": result.value, "probability": result.probability,
                           "nodes": planner.nodes,
-                          "policy": policy_text(result.policy, limit=_LINES)}))
+                          "policy": policy_text(result.policy, limit=_LINES)}, ensure_ascii=False))
     else:
         console = Console(highlight=False)
         console.print(policy_text(result.policy, limit=_LINES), markup=False)
@@ -102,7 +102,7 @@ def _run(args: argparse.Namespace) -> int:
                       seed=args.seed).run(program)
     if args.json:
         print(json.dumps({"success": run.success, "actions": run.actions, "log": run.log,
-                          "replans": run.replans, "reason": run.reason}))
+                          "replans": run.replans, "reason": run.reason}, ensure_ascii=False))
     else:
         console = Console(highlight=False)
         for entry in run.log:

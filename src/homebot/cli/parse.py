@@ -32,7 +32,7 @@ def _parse(args: argparse.Namespace) -> int:
     if args.file is not None:
         return _parse_file(args.file, vocabulary)
     result = parse_command(args.command, vocabulary)
-    print(json.dumps(result.to_dict()) if args.json else _readable(result))
+    print(json.dumps(result.to_dict(), ensure_ascii=False) if args.json else _readable(result))
     return 0 if result else 1
 
 
@@ -50,7 +50,7 @@ def _parse_file(path: Path, vocabulary: Vocabulary) -> int:
             result = parse_command(line, vocabulary)
         except LanguageError as error:
             raise LanguageError(f"{path}: line {number}: {error}") from None
-        print(json.dumps({"command": line, **result.to_dict()}))
+        print(json.dumps({"command": line, **result.to_dict()}, ensure_ascii=False))
         status = status or (0 if result else 1)
     return status
 

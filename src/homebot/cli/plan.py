@@ -115,7 +115,7 @@ def plan(args: argparse.Namespace) -> int:
     else:
         result = planner.search(state, tasks, limit=args.limit if args.all else 1)
     if args.json:
-        print(json.dumps(plans_json(result.plans, names.name)))
+        print(json.dumps(plans_json(result.plans, names.name), ensure_ascii=False))
     elif args.dot:
         print(plan_dot(result.plans, " ".join(str(item) for item in tasks[0])), end="")
     else:
@@ -165,7 +165,7 @@ def carry_out_with_htn(args: argparse.Namespace, world: World, run: Any,
     runs = [actor.run(goal, names) for goal in goals]
     if args.json:
         print(json.dumps({"success": all(runs), "goals": [list(g.task) for g in goals],
-                          "runs": [r.to_dict() for r in runs]}))
+                          "runs": [r.to_dict() for r in runs]}, ensure_ascii=False))
     else:
         console = Console()
         for goal, done in zip(goals, runs, strict=True):

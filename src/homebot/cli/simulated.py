@@ -62,7 +62,7 @@ def finish_run(args: argparse.Namespace, run: SimulatedRun, report: TaskReport) 
     """Keep the events, print the report (or its JSON); 0 when the task succeeded, else 1."""
     keep_events(args, run)
     if args.json:
-        print(json.dumps(report.to_dict()))
+        print(json.dumps(report.to_dict(), ensure_ascii=False))
     else:
         print_report(Console(), report)
     return 0 if report.success else 1

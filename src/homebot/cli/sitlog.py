@@ -107,7 +107,7 @@ def _run(args: argparse.Namespace) -> int:
     if args.json:
         print(json.dumps({"final": format_term(result.final), "out_arg": format_term(
             result.out_arg), "globals": {k: format_term(v) for k, v in result.globals.items()},
-            "history": history.split("\n"), "situations": result.steps}))
+            "history": history.split("\n"), "situations": result.steps}, ensure_ascii=False))
         return 0
     assert console is not None
     console.print(history)

@@ -105,7 +105,7 @@ def _show(args: argparse.Namespace) -> int:
                              "check that its folder exists and is writable") from None
         print(f"wrote {args.png}")
     if args.json:
-        print(json.dumps(world_summary(world)))
+        print(json.dumps(world_summary(world), ensure_ascii=False))
     elif not args.png:
         _print_tables(world)
     return 0

@@ -11,6 +11,7 @@ from rapidfuzz.distance import JaroWinkler
 
 from homebot.language import lexicon
 from homebot.language.vocabulary import Vocabulary
+from homebot.text import fold
 
 __all__ = ["QUOTE_MARK", "Normalised", "correct_spelling", "normalise"]
 
@@ -18,7 +19,8 @@ _QUOTED = re.compile(r"\"([^\"]+)\"|“([^”]+)”|«([^»]+)»")
 _CONTRACTIONS = tuple((re.compile(rf"\b{re.escape(short)}\b"), long)
                       for short, long in lexicon.CONTRACTIONS)
 _BREAKS = re.compile(r"[,;:.!?]+")
-_OTHER = re.compile(r"[^a-z0-9,' ]+")
+_OTHER = re.compile(r"[^\w,' ]+|_+")  # after folding: letters of any script stay
+_WORDS = re.compile(r"[^\W\d_]+|[.!?]")
 QUOTE_MARK = "xquote"
 
 
@@ -35,7 +37,8 @@ class Normalised:
 
 
 def normalise(text: str, vocabulary: Vocabulary) -> Normalised:
-    """Lower-case, expand contractions, split off quoted words, fix misspelt names."""
+    """Fold (``homebot.text.fold``: case and accents), expand contractions, split off
+    quoted words (kept as written), fix misspelt names."""
     quotes: list[str] = []
 
     def keep_quote(match: re.Match[str]) -> str:
@@ -45,7 +48,7 @@ def normalise(text: str, vocabulary: Vocabulary) -> Normalised:
     text = unicodedata.normalize("NFKC", text)  # full-width letters, ligatures, odd spaces
     text = _QUOTED.sub(keep_quote, text.replace("’", "'").replace("‘", "'"))
     capitalised = _capitalised_words(text)
-    lowered = text.lower()
+    lowered = fold(text)
     for pattern, long in _CONTRACTIONS:
         lowered = pattern.sub(long, lowered)
     lowered = _BREAKS.sub(" , ", lowered)
@@ -64,11 +67,11 @@ def normalise(text: str, vocabulary: Vocabulary) -> Normalised:
 
 def _capitalised_words(text: str) -> set[str]:
     """Words written with a capital inside a sentence: probably names."""
-    words = re.findall(r"[A-Za-z]+|[.!?]", text)
+    words = _WORDS.findall(text)
     found = set()
     for previous, word in zip([".", *words], words, strict=False):
         if word[0].isupper() and previous not in {".", "!", "?"} and not word.isupper():
-            found.add(word.lower())
+            found.add(fold(word))
     return found
 
 

@@ -10,6 +10,7 @@ from typing import Any
 
 from homebot.errors import LanguageError
 from homebot.language import lexicon
+from homebot.text import fold
 
 __all__ = ["SYNONYMS", "Entity", "Token", "Vocabulary", "phrase_tokens", "progressive"]
 
@@ -32,12 +33,13 @@ SYNONYMS: tuple[tuple[str, str], ...] = (
     ("bedside", "bedside table"), ("wardrobe", "closet"), ("closet", "wardrobe"),
 )
 
-_SPLIT = re.compile(r"[^a-z0-9]+")
+_SPLIT = re.compile(r"[\W_]+")
 
 
 def phrase_tokens(text: str) -> tuple[str, ...]:
-    """The normalised tokens of a name or phrase: lower case, apostrophes dropped."""
-    return tuple(token for token in _SPLIT.split(text.lower().replace("'", "")) if token)
+    """The normalised tokens of a name or phrase: folded (``homebot.text.fold``: no case,
+    no accents), apostrophes dropped, split at anything that is not a letter or digit."""
+    return tuple(token for token in _SPLIT.split(fold(text).replace("'", "")) if token)
 
 
 @dataclass(frozen=True, slots=True)

@@ -30,7 +30,9 @@ __all__ = [
 
 Point = tuple[float, float]
 Probability = Annotated[float, Field(ge=0.0, le=1.0)]
-Name = Annotated[str, Field(min_length=1, pattern=r"^[A-Za-z][A-Za-z0-9_ '\-]*$")]
+# A letter of any script first, then letters (with their accents), digits, space, _ ' -.
+# The pattern runs in pydantic-core's regex engine, which knows Unicode classes.
+Name = Annotated[str, Field(min_length=1, pattern=r"^\p{L}[\p{L}\p{M}\p{N}_ '\-]*$")]
 
 
 class _Strict(BaseModel):

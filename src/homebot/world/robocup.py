@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 import re
+import unicodedata
 import zlib
 from pathlib import Path
 from typing import Any
@@ -161,8 +162,9 @@ def _object_classes(text: str, root: Path) -> list[dict[str, Any]]:
 
 
 def _clean(text: str) -> str:
-    """A name as people say it: underscores as spaces, single spaces, no markup."""
-    cleaned = re.sub(r"[^A-Za-z0-9 '\-]", " ", text.replace("_", " "))
+    """A name as people say it: underscores as spaces, single spaces, no markup; letters of
+    any script keep their accents ("Patrícia")."""
+    cleaned = re.sub(r"[^\w '\-]|_", " ", unicodedata.normalize("NFC", text))
     return " ".join(cleaned.split()).strip()
 
 

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import difflib
 import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
@@ -15,6 +14,7 @@ from shapely.geometry import Point, Polygon, box
 from shapely.prepared import prep
 
 from homebot.errors import WorldError
+from homebot.text import closest_names, fold, folded_index
 from homebot.world.loading import (
     LocatedDocument,
     field_error,
@@ -140,7 +140,8 @@ class World:
 
     def save(self, path: str | Path) -> None:
         """Write the world as YAML."""
-        Path(path).write_text(yaml.safe_dump(self.to_dict(), sort_keys=False), encoding="utf-8")
+        Path(path).write_text(yaml.safe_dump(self.to_dict(), sort_keys=False, allow_unicode=True),
+                              encoding="utf-8")
 
     # ------------------------------------------------------------------ lookups
 
@@ -230,16 +231,26 @@ class World:
             ("objects", self.model.objects), ("people", self.model.people),
         ]
         for field, entries in groups:
-            seen: set[str] = set()
+            seen: dict[str, str] = {}  # folded -> as written: "José" and "jose" are one name
             for index, entry in enumerate(entries):
-                if entry.name in seen:
+                earlier = seen.get(fold(entry.name))
+                if earlier is None:
+                    seen[fold(entry.name)] = entry.name
+                elif earlier == entry.name:
                     self._problem([field, index, "name"],
                                   f"'{entry.name}' is used twice in {field}; rename one")
-                seen.add(entry.name)
+                else:
+                    self._problem([field, index, "name"],
+                                  f"'{entry.name}' and '{earlier}' in {field} differ only in "
+                                  "accents or case, and people say them alike; rename one")
+        rooms = folded_index(self.rooms)
         for index, placement in enumerate(self.model.placements):
-            if placement.name in self.rooms:
+            room = rooms.get(fold(placement.name))
+            if room is not None:
+                same = "" if room == placement.name else f" ('{room}', but for accents or case)"
                 self._problem(["placements", index, "name"],
-                              f"'{placement.name}' is also a room name; rename the placement")
+                              f"'{placement.name}' is also a room name{same}; rename the "
+                              "placement")
 
     def _check_rooms(self) -> None:
         for index, room in enumerate(self.model.rooms):
@@ -372,6 +383,6 @@ class World:
 
 def _unknown(kind: str, name: str, known: Iterable[str]) -> str:
     names = sorted(known)
-    guess = difflib.get_close_matches(name, names, n=1)
+    guess = closest_names(name, names)
     hint = f"did you mean '{guess[0]}'?" if guess else f"known: {', '.join(names) or 'none'}"
     return f"unknown {kind} '{name}'; {hint}"

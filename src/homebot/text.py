@@ -1,0 +1,62 @@
+"""Names compared as people mean them: one folded form, whatever the accents or the case.
+
+"Patrícia", "patricia" and "PATRÍCIA" are one name; so are "Søren" and "Soren". Every
+comparison of a name with what a person typed, said or wrote in a file goes through
+``fold`` (or ``find_name`` / ``closest_names``, built on it), on both sides; what is
+shown keeps the spelling of the file that defined the name. This module imports
+nothing of homebot, so every layer (the world included) may use it.
+"""
+
+from __future__ import annotations
+
+import difflib
+import unicodedata
+from collections.abc import Iterable
+
+__all__ = ["closest_names", "find_name", "fold", "folded_index"]
+
+# Letters Unicode does not decompose into a base letter and a mark, written the way a
+# keyboard or a speech recogniser without them writes them ("Søren" -> "soren").
+_UNDECOMPOSED = str.maketrans({
+    "ø": "o", "æ": "ae", "œ": "oe", "ł": "l", "đ": "d", "ð": "d", "þ": "th", "ı": "i",
+    "ħ": "h", "ŧ": "t", "ŀ": "l", "ĸ": "k", "ŋ": "n",
+})
+
+
+def fold(text: str) -> str:
+    """The form names are compared in: case-folded, Unicode NFKD, combining marks removed.
+
+    A few letters that have no decomposition (ø, æ, œ, ł, đ, ð, þ, ı) become the plain
+    letters people type for them. ``fold(fold(t)) == fold(t)`` for every text.
+    """
+    if text.isascii():
+        return text.lower()
+    # Twice: a compatibility character may decompose to a capital ("ℌ" -> "H").
+    return _unmarked(_unmarked(text)).translate(_UNDECOMPOSED)
+
+
+def _unmarked(text: str) -> str:
+    decomposed = unicodedata.normalize("NFKD", text.casefold())
+    return "".join(char for char in decomposed if not unicodedata.combining(char))
+
+
+def folded_index(names: Iterable[str]) -> dict[str, str]:
+    """Each name's folded form -> the name as written (the first one, on a clash)."""
+    index: dict[str, str] = {}
+    for name in names:
+        index.setdefault(fold(name), name)
+    return index
+
+
+def find_name(text: str, names: Iterable[str]) -> str | None:
+    """The name among ``names`` that ``text`` spells, ignoring accents and case, as written."""
+    wanted = fold(text)
+    return next((name for name in names if fold(name) == wanted), None)
+
+
+def closest_names(text: str, names: Iterable[str], count: int = 1,
+                  cutoff: float = 0.6) -> list[str]:
+    """The names most like ``text`` compared in folded form (difflib), as written."""
+    index = folded_index(names)
+    return [index[match] for match in
+            difflib.get_close_matches(fold(text), list(index), n=count, cutoff=cutoff)]
