@@ -2,13 +2,19 @@
 
 from __future__ import annotations
 
+import json
+import math
 from pathlib import Path
 
 import pytest
 
+from homebot.cli import main
 from homebot.errors import WorldError
+from homebot.language import Vocabulary, parse_command
+from homebot.scenarios import SimulatedRun
+from homebot.sim import PERSON_PREFIX
 from homebot.world import World
-from homebot.world.robocup import read_robocup_data, world_from_robocup
+from homebot.world.robocup import import_robocup, read_robocup_data, world_from_robocup
 
 SHARED = Path(__file__).resolve().parents[3] / "shared" / "data" / "robocup" / "CompetitionTemplate"
 
@@ -127,3 +133,75 @@ def test_the_competition_template_builds_a_world() -> None:
     world = World.from_dict(world_from_robocup(SHARED))
     assert len(world.rooms) == 5 and len(world.placements) == 25
     assert len(world.objects) == 39 and len(world.people) == 10
+
+
+# ---------------------------------------------------------------- real competition data (issue 14)
+
+PLACEHOLDERS = Path(__file__).resolve().parent / "data" / "robocup_placeholders"
+
+
+def test_placeholder_rows_are_skipped_with_a_warning() -> None:
+    imported = import_robocup(PLACEHOLDERS)
+    assert len(imported.warnings) == 3
+    assert all("location_names.md" in warning and "placeholder" in warning
+               for warning in imported.warnings)
+    assert any("'| 4 | - |'" in warning for warning in imported.warnings)
+    names = {placement["name"] for placement in imported.data["placements"]}
+    assert "-" not in names and "" not in names and len(names) == 15
+
+
+def test_the_operator_stands_at_the_start_beside_the_robot() -> None:
+    data = import_robocup(PLACEHOLDERS).data
+    world = World.from_dict(data)
+    assert world.operator is not None and world.operator.name == "Adel"
+    robot = world.robot.pose
+    assert math.dist(world.operator.position, robot[:2]) < 1.5
+    assert world.placements["entrance"].approach[:2] == pytest.approx(robot[:2], abs=0.5)
+
+
+def test_placements_go_to_their_common_sense_rooms() -> None:
+    world = World.from_dict(import_robocup(PLACEHOLDERS).data)
+    expected = {"kitchen table": "kitchen", "refrigerator": "kitchen", "bed": "bedroom",
+                "bedside table": "bedroom", "desk": "office", "sofa": "living room",
+                "side tables": "living room"}
+    assert {name: world.placements[name].room for name in expected} == expected
+
+
+def test_a_rooms_file_overrides_the_table(tmp_path: Path) -> None:
+    rooms = tmp_path / "rooms.yaml"
+    rooms.write_text("kitchen table: office\nsink: [garage, bathroom]\n", encoding="utf-8")
+    world = World.from_dict(import_robocup(PLACEHOLDERS, rooms_file=rooms).data)
+    assert world.placements["kitchen table"].room == "office"
+    assert world.placements["sink"].room == "bathroom"
+
+
+@pytest.mark.parametrize("text", ["- kitchen\n", "sink: 3\n", "sink: [\n"])
+def test_a_bad_rooms_file_is_a_world_error(tmp_path: Path, text: str) -> None:
+    rooms = tmp_path / "rooms.yaml"
+    rooms.write_text(text, encoding="utf-8")
+    with pytest.raises(WorldError, match=r"rooms\.yaml"):
+        import_robocup(PLACEHOLDERS, rooms_file=rooms)
+
+
+def test_bring_me_a_coke_from_the_kitchen_table_succeeds_in_the_imported_world(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    output = tmp_path / "world.yaml"
+    assert main(["world", "from-robocup", str(PLACEHOLDERS), "-o", str(output)]) == 0
+    captured = capsys.readouterr()
+    assert captured.err.count("warning:") == 3
+    text = output.read_text(encoding="utf-8")
+    assert "position: [" in text and "polygon: [[" in text  # flow-style coordinates
+    assert "operator: Adel" in text
+    status = main(["do", "bring me a coke from the kitchen table", "--world", str(output),
+                   "--json"])
+    report = json.loads(capsys.readouterr().out)
+    assert status == 0 and report["success"]
+    assert [step["skill"] for step in report["steps"]] == [
+        "navigate", "find_object", "pick", "navigate", "give"]
+    assert report["steps"][0]["args"] == {"to": "kitchen table"}
+    # Judged by ground truth, not by the report: the simulator has the coke with Adel.
+    world = World.load(output)
+    run = SimulatedRun.create(world)
+    run.run(parse_command("bring me a coke from the kitchen table",
+                          Vocabulary.from_world(world)).to_task())
+    assert run.simulation.object_location["coke"] == PERSON_PREFIX + "Adel"

@@ -3,14 +3,14 @@
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 from typing import Any
 
-import yaml
-
 from homebot.errors import WorldError
 from homebot.world import World
-from homebot.world.robocup import world_from_robocup
+from homebot.world.robocup import import_robocup
+from homebot.world.writing import world_yaml
 
 __all__ = ["register_robocup"]
 
@@ -23,14 +23,22 @@ def register_robocup(world_subparsers: Any) -> None:
                         help="directory with names/, maps/ and objects/ (markdown tables)")
     parser.add_argument("-o", "--output", type=Path, required=True, help="world YAML to write")
     parser.add_argument("--name", help="name of the world (default: the directory's name)")
+    parser.add_argument("--rooms", type=Path, metavar="FILE",
+                        help="YAML of 'location: room' lines, looked up before the shipped "
+                             "common-sense table (bed: bedroom, sink: kitchen ...)")
     parser.set_defaults(handler=_from_robocup)
 
 
 def _from_robocup(args: argparse.Namespace) -> int:
-    data = world_from_robocup(args.directory, name=args.name)
+    imported = import_robocup(args.directory, name=args.name, rooms_file=args.rooms)
+    for warning in imported.warnings:
+        print(f"warning: {warning}", file=sys.stderr)
+    data = imported.data
     world = World.from_dict(data, source=str(args.directory))
+    header = (f"Built by `homebot world from-robocup {args.directory}`.\n"
+              f"The robot starts at the entrance; {data['operator']} is the operator.")
     try:
-        args.output.write_text(yaml.safe_dump(data, sort_keys=False), encoding="utf-8")
+        args.output.write_text(world_yaml(data, header), encoding="utf-8")
     except OSError as error:
         raise WorldError(f"{args.output}: cannot be written ({error})") from None
     print(f"{args.output}: {len(world.rooms)} rooms, {len(world.doors)} doors, "

@@ -6,29 +6,26 @@ import math
 import re
 import unicodedata
 import zlib
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from importlib import resources
 from pathlib import Path
 from typing import Any
 
+import yaml
+
 from homebot.errors import WorldError
 
-__all__ = ["read_robocup_data", "world_from_robocup"]
+__all__ = ["RobocupImport", "import_robocup", "read_robocup_data", "room_table",
+           "world_from_robocup"]
 
 _CELL = 2.0  # metres between placement centres
 _STRIP = 2.5  # free strip along the bottom of every room (doors, people, robot)
 _MARGIN = 1.5  # free band along the left wall (doors to the room above)
 _FOOTPRINT = (0.8, 0.6)
 _SPOTS = frozenset({"entrance", "exit"})
-# Which room a location most likely stands in, by a word of its name.
-_AFFINITY: tuple[tuple[str, tuple[str, ...]], ...] = (
-    ("bedside", ("bedroom",)), ("bed", ("bedroom",)), ("kitchen", ("kitchen",)),
-    ("dishwasher", ("kitchen",)), ("refrigerator", ("kitchen",)), ("fridge", ("kitchen",)),
-    ("pantry", ("kitchen",)), ("sink", ("kitchen", "bathroom")), ("desk", ("office",)),
-    ("sofa", ("living room",)), ("couch", ("living room",)), ("tv", ("living room",)),
-    ("armchair", ("living room",)), ("bookshelf", ("living room", "office")),
-    ("cabinet", ("kitchen", "bathroom")), ("shelf", ("bathroom", "office")),
-    ("entrance", ("living room", "hallway", "corridor")),
-    ("exit", ("hallway", "corridor", "kitchen")), ("coatrack", ("hallway", "living room")),
-)
+# A cell that stands for no name: "| 4 | - |" in a competition's location table.
+_PLACEHOLDER = re.compile(r"[-\u2013\u2014_.?*\s]*|n/?a|tbd|none|todo", re.IGNORECASE)
 _GESTURES = ("waving", "none", "raising_left_arm", "pointing_right", "raising_right_arm",
              "pointing_left", "none")
 _POSTURES = ("standing", "sitting", "standing", "lying", "standing")
@@ -36,18 +33,32 @@ _CLOTHES = ("blue t-shirt", "red sweater", "black jacket", "white shirt", "yello
             "gray sweater", "orange jacket", "blue blouse", "green coat", "black t-shirt")
 
 
-def read_robocup_data(directory: str | Path) -> dict[str, Any]:
+@dataclass
+class RobocupImport:
+    """A world built from RoboCup@Home data, and what was skipped on the way."""
+
+    data: dict[str, Any]  #: plain world data, for ``World.from_dict``
+    warnings: list[str] = field(default_factory=list)  #: one line per skipped row
+
+
+def read_robocup_data(directory: str | Path,
+                      warnings: list[str] | None = None) -> dict[str, Any]:
     """The names, rooms, locations (with placeability and category) and object classes.
 
-    Raises ``WorldError`` naming the missing file or the table it could not read.
+    Placeholder rows (``| 4 | - |``, as competition repositories hold for locations
+    still to be named) are skipped, each with a line in ``warnings``. Raises
+    ``WorldError`` naming the missing file or the table it could not read.
     """
     root = Path(directory)
     if not root.is_dir():
         raise WorldError(f"{root}: not a directory; give a RoboCup@Home data directory "
                          "(with names/, maps/ and objects/)")
-    names = _first_column(_read(root / "names" / "names.md"))
-    rooms = _first_column(_read(root / "maps" / "room_names.md"))
-    locations = _locations(_read(root / "maps" / "location_names.md"), root)
+    skipped = warnings if warnings is not None else []
+    names = _first_column(_read(root / "names" / "names.md"), root / "names" / "names.md",
+                          skipped)
+    rooms = _first_column(_read(root / "maps" / "room_names.md"),
+                          root / "maps" / "room_names.md", skipped)
+    locations = _locations(_read(root / "maps" / "location_names.md"), root, skipped)
     classes = _object_classes(_read(root / "objects" / "objects.md"), root)
     for label, entries, path in (("names", names, "names/names.md"),
                                  ("rooms", rooms, "maps/room_names.md"),
@@ -58,19 +69,66 @@ def read_robocup_data(directory: str | Path) -> dict[str, Any]:
     return {"names": names, "rooms": rooms, "locations": locations, "classes": classes}
 
 
-def world_from_robocup(directory: str | Path, name: str | None = None) -> dict[str, Any]:
-    """Plain world data (for ``World.from_dict``) from a RoboCup@Home data directory.
+def world_from_robocup(directory: str | Path, name: str | None = None,
+                       rooms_file: str | Path | None = None) -> dict[str, Any]:
+    """Plain world data (for ``World.from_dict``) from a RoboCup@Home data directory."""
+    return import_robocup(directory, name=name, rooms_file=rooms_file).data
+
+
+def room_table(rooms_file: str | Path | None = None) -> dict[str, list[str]]:
+    """Location name or word -> likely rooms: ``--rooms FILE``'s entries, then the shipped ones.
+
+    Raises ``WorldError`` when the file cannot be read or is not a mapping of names
+    to a room or a list of rooms.
+    """
+    shipped = resources.files("homebot.data").joinpath("robocup", "rooms.yaml")
+    table = _room_entries(yaml.safe_load(shipped.read_text(encoding="utf-8")), "rooms.yaml")
+    if rooms_file is None:
+        return table
+    path = Path(rooms_file)
+    try:
+        loaded = yaml.safe_load(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError) as error:
+        raise WorldError(f"{path}: cannot be read ({error}); give a YAML file of "
+                         "'location: room' lines") from None
+    except yaml.YAMLError as error:
+        raise WorldError(f"{path}: not valid YAML ({str(error).splitlines()[0]})") from None
+    return {**table, **_room_entries(loaded, str(path))}
+
+
+def _room_entries(loaded: Any, source: str) -> dict[str, list[str]]:
+    if not isinstance(loaded, Mapping):
+        raise WorldError(f"{source}: expected a mapping of 'location: room' lines, "
+                         f"got {type(loaded).__name__}")
+    table: dict[str, list[str]] = {}
+    for key, value in loaded.items():
+        rooms = [value] if isinstance(value, str) else value
+        if not isinstance(key, str) or not isinstance(rooms, list) or not rooms or not all(
+                isinstance(room, str) for room in rooms):
+            raise WorldError(f"{source}: entry '{key}' needs a room or a list of rooms, "
+                             f"e.g. '{key}: kitchen'")
+        table[_clean(key).lower()] = [_clean(room).lower() for room in rooms]
+    return table
+
+
+def import_robocup(directory: str | Path, *, name: str | None = None,
+                   rooms_file: str | Path | None = None) -> RobocupImport:
+    """A world from a RoboCup@Home data directory, with the rows it skipped.
 
     Rooms are laid out on a grid with doors between neighbours; every location is
-    furniture (or a spot, for entrance and exit) in a room; every object lies on a
-    placeable location, its category's default location when there is one.
+    furniture (or a spot, for entrance and exit) in the room the common-sense table
+    (``room_table``) gives it; every object lies on a placeable location, its
+    category's default location when there is one. The robot starts at the
+    entrance, and the first person named is the operator, standing beside it.
     """
-    data = read_robocup_data(directory)
+    warnings: list[str] = []
+    data = read_robocup_data(directory, warnings)
     rooms: list[str] = [_clean(room) for room in data["rooms"]]
     locations: list[dict[str, Any]] = data["locations"]
     classes: list[dict[str, Any]] = data["classes"]
     _check_clashes(rooms, locations)
-    in_room = _assign_rooms([location["name"] for location in locations], rooms)
+    in_room = _assign_rooms([location["name"] for location in locations], rooms,
+                            room_table(rooms_file))
     per_room = max(1, max(list(in_room.values()).count(room) for room in rooms))
     columns_inside = max(2, math.ceil(math.sqrt(per_room)))
     rows_inside = max(1, math.ceil(per_room / columns_inside))
@@ -84,8 +142,11 @@ def world_from_robocup(directory: str | Path, name: str | None = None) -> dict[s
     placements = _placements(locations, in_room, origins, columns_inside, category_names)
     objects = _objects(classes, placements)
     people = _people(data["names"], rooms, origins, width)
-    x0, y0 = origins[rooms[0]]
-    return {
+    start, start_room = _start(placements, origins, rooms, width)
+    operator = people[0]
+    operator.update(room=start_room, position=[start[0], round(start[1] - 0.9, 2)],
+                    posture="standing", gesture="none")
+    world = {
         "name": name or _clean(Path(directory).name) or "robocup",
         "description": f"Built from the RoboCup@Home data in {Path(directory).name}.",
         "rooms": [{"name": room, "polygon": _rectangle(origins[room], width, height)}
@@ -95,8 +156,20 @@ def world_from_robocup(directory: str | Path, name: str | None = None) -> dict[s
         "categories": [{"name": entry["name"], "plural": entry["plural"]} for entry in classes],
         "objects": objects,
         "people": people,
-        "robot": {"pose": [round(x0 + width - 1.0, 2), round(y0 + 1.0, 2), 1.5708]},
+        "operator": operator["name"],
+        "robot": {"pose": [start[0], start[1], 1.5708]},
     }
+    return RobocupImport(world, warnings)
+
+
+def _start(placements: list[dict[str, Any]], origins: dict[str, tuple[float, float]],
+           rooms: list[str], width: float) -> tuple[tuple[float, float], str]:
+    """Where the robot starts: the entrance spot, else the first room's free strip."""
+    entrance = next((p for p in placements if p["name"].lower() == "entrance"), None)
+    if entrance is not None:
+        return (float(entrance["center"][0]), float(entrance["center"][1])), entrance["room"]
+    x0, y0 = origins[rooms[0]]
+    return (round(x0 + width - 1.0, 2), round(y0 + 1.9, 2)), rooms[0]
 
 
 # ---------------------------------------------------------------- reading
@@ -113,31 +186,50 @@ def _read(path: Path) -> str:
         raise WorldError(f"{path}: cannot be read ({error})") from None
 
 
-def _rows(text: str) -> list[list[str]]:
+def _rows(text: str) -> list[tuple[int, str, list[str]]]:
+    """The table's rows after its header: (line number, the line, its cells)."""
     rows = []
-    for line in text.splitlines():
+    for number, line in enumerate(text.splitlines(), start=1):
         if "|" not in line or re.fullmatch(r"[\s|:\-]*", line):
             continue
         cells = [cell.strip() for cell in line.strip().strip("|").split("|")]
-        rows.append(cells)
+        rows.append((number, line.strip(), cells))
     return rows[1:]  # the first row is the header
 
 
-def _first_column(text: str) -> list[str]:
-    return [row[0] for row in _rows(text) if row and row[0]]
+def _placeholder(cell: str) -> bool:
+    return bool(_PLACEHOLDER.fullmatch(cell.replace("(p)", "").strip()))
 
 
-def _locations(text: str, root: Path) -> list[dict[str, Any]]:
+def _skip(warnings: list[str], path: Path, number: int, line: str) -> None:
+    warnings.append(f"{path}:{number}: skipped the placeholder row '{line}'")
+
+
+def _first_column(text: str, path: Path, warnings: list[str]) -> list[str]:
+    names = []
+    for number, line, row in _rows(text):
+        if row and row[0] and _placeholder(row[0]):
+            _skip(warnings, path, number, line)
+        elif row and row[0]:
+            names.append(row[0])
+    return names
+
+
+def _locations(text: str, root: Path, warnings: list[str]) -> list[dict[str, Any]]:
+    path = root / "maps" / "location_names.md"
     locations = []
-    for row in _rows(text):
-        if len(row) < 2 or not row[1]:
+    for number, line, row in _rows(text):
+        if len(row) < 2 or _placeholder(row[1]):
+            _skip(warnings, path, number, line)
             continue
         label = row[1]
         placeable = "(p)" in label
         location = _clean(label.replace("(p)", ""))
-        category = _clean(row[2]) if len(row) > 2 and row[2] else None
+        category = _clean(row[2]) if len(row) > 2 and row[2] and not _placeholder(row[2]) \
+            else None
         if not location:
-            raise WorldError(f"{root / 'maps/location_names.md'}: a row has no location name")
+            raise WorldError(f"{path}:{number}: the row '{line}' has no location name "
+                             "a person could say; write one, or '-' to leave the row out")
         locations.append({"name": location, "placeable": placeable, "category": category})
     return locations
 
@@ -178,20 +270,36 @@ def _check_clashes(rooms: list[str], locations: list[dict[str, Any]]) -> None:
 # ---------------------------------------------------------------- layout
 
 
-def _assign_rooms(locations: list[str], rooms: list[str]) -> dict[str, str]:
-    """Each location's room: by name affinity when the room exists, else the emptiest."""
+def _assign_rooms(locations: list[str], rooms: list[str],
+                  table: Mapping[str, list[str]]) -> dict[str, str]:
+    """Each location's room: by the common-sense table when its room exists, else the emptiest.
+
+    The table is asked about the location's whole name first, then about each of its
+    words from left to right ("kitchen table": kitchen), a plural word also as its
+    singular ("chairs": chair).
+    """
     assigned: dict[str, str] = {}
+    by_key = {room.lower(): room for room in rooms}
     counts = dict.fromkeys(rooms, 0)
+    unplaced = []
     for location in locations:
         words = location.lower().split()
-        room = next((candidate for word, candidates in _AFFINITY
-                     if any(w.startswith(word) for w in words)
-                     for candidate in candidates if candidate in counts), None)
-        if room is None or counts[room] >= math.ceil(len(locations) / len(rooms)) + 1:
-            room = min(rooms, key=lambda r: (counts[r], rooms.index(r)))
+        whole = " ".join(words)
+        keys = [whole, whole[:-1] if whole.endswith("s") else whole] + [
+            form for word in words
+            for form in (word, word[:-1] if word.endswith("s") else "") if form]
+        room = next((by_key[candidate] for key in keys for candidate in table.get(key, ())
+                     if candidate in by_key), None)
+        if room is None:
+            unplaced.append(location)
+            continue
         assigned[location] = room
         counts[room] += 1
-    return assigned
+    for location in unplaced:
+        room = min(rooms, key=lambda r: (counts[r], rooms.index(r)))
+        assigned[location] = room
+        counts[room] += 1
+    return {location: assigned[location] for location in locations}
 
 
 def _rectangle(origin: tuple[float, float], width: float, height: float) -> list[list[float]]:
