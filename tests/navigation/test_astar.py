@@ -1,0 +1,106 @@
+"""Stage-1 A* (libtcod): the contract the pure-Python A* had, and its path lengths."""
+
+from __future__ import annotations
+
+import heapq
+import itertools
+
+import numpy as np
+import pytest
+
+from homebot.navigation import astar
+
+
+def _reference_astar(blocked: np.ndarray, shape: tuple[int, int], start: int,
+                     goal: int) -> int | None:
+    """The cost of the shortest path by a plain Dijkstra (1000 straight, 1414 diagonal)."""
+    rows, columns = shape
+    grid = blocked.reshape(shape)
+    best = {start: 0}
+    frontier = [(0, start)]
+    while frontier:
+        cost, cell = heapq.heappop(frontier)
+        if cell == goal:
+            return cost
+        if cost > best[cell]:
+            continue
+        row, column = divmod(cell, columns)
+        for dr, dc in itertools.product((-1, 0, 1), repeat=2):
+            r, c = row + dr, column + dc
+            if (dr, dc) == (0, 0) or not (0 <= r < rows and 0 <= c < columns) or grid[r, c]:
+                continue
+            if dr and dc and (grid[row + dr, column] or grid[row, column + dc]):
+                continue
+            new = cost + (1414 if dr and dc else 1000)
+            if new < best.get(r * columns + c, 1 << 62):
+                best[r * columns + c] = new
+                heapq.heappush(frontier, (new, r * columns + c))
+    return None
+
+
+def _cost(path: list[int], columns: int) -> int:
+    cells = [divmod(cell, columns) for cell in path]
+    return sum(1414 if a[0] != b[0] and a[1] != b[1] else 1000
+               for a, b in itertools.pairwise(cells))
+
+
+def _check_moves(path: list[int], grid: np.ndarray) -> None:
+    cells = [divmod(cell, grid.shape[1]) for cell in path]
+    for (r1, c1), (r2, c2) in itertools.pairwise(cells):
+        assert max(abs(r1 - r2), abs(c1 - c2)) == 1
+        assert not grid[r2, c2]
+        if r1 != r2 and c1 != c2:
+            assert not grid[r1, c2] and not grid[r2, c1], "a diagonal cut a corner"
+
+
+def test_paths_are_as_short_as_dijkstra_finds_on_random_grids() -> None:
+    rng = np.random.default_rng(7)
+    compared = 0
+    for _ in range(150):
+        rows, columns = (int(n) for n in rng.integers(3, 45, 2))
+        grid = rng.random((rows, columns)) < rng.uniform(0.0, 0.45)
+        free = np.flatnonzero(~grid.ravel())
+        if len(free) < 2:
+            continue
+        start, goal = (int(cell) for cell in rng.choice(free, 2, replace=False))
+        path = astar(grid.ravel(), grid.shape, start, goal)
+        expected = _reference_astar(grid.ravel(), grid.shape, start, goal)
+        if expected is None:
+            assert path is None
+            continue
+        assert path is not None and path[0] == start and path[-1] == goal
+        _check_moves(path, grid)
+        assert _cost(path, columns) == expected
+        compared += 1
+    assert compared > 80
+
+
+def test_a_detour_leaving_the_first_window_is_still_shortest() -> None:
+    grid = np.zeros((120, 120), dtype=bool)
+    grid[5:115, 60] = True  # a long wall between start and goal
+    start, goal = 60 * 120 + 20, 60 * 120 + 100
+    path = astar(grid.ravel(), grid.shape, start, goal)
+    assert path is not None
+    _check_moves(path, grid)
+    assert _cost(path, 120) == _reference_astar(grid.ravel(), grid.shape, start, goal)
+
+
+def test_corner_squeeze_is_not_taken() -> None:
+    grid = np.zeros((3, 3), dtype=bool)
+    grid[0, 1] = grid[1, 0] = True  # (0,0) and (1,1) touch only diagonally past two corners
+    assert astar(grid.ravel(), grid.shape, 0, 4) is None
+    grid[1, 0] = False
+    path = astar(grid.ravel(), grid.shape, 0, 4)
+    assert path == [0, 3, 4]
+
+
+@pytest.mark.parametrize("start, goal", [(0, 99), (55, 0)])
+def test_blocked_start_or_goal_gives_none(start: int, goal: int) -> None:
+    grid = np.zeros((10, 10), dtype=bool)
+    grid.ravel()[[99, 55]] = True
+    assert astar(grid.ravel(), grid.shape, start, goal) is None
+
+
+def test_start_equal_to_goal_is_a_one_cell_path() -> None:
+    grid = np.zeros((5, 5), dtype=bool)
+    assert astar(grid.ravel(), grid.shape, 12, 12) == [12]
