@@ -67,6 +67,8 @@ class Simulation:
         x, y, theta = world.robot.pose
         self.robot_pose = (x, y, theta)
         self.trail: list[tuple[float, float]] = [(x, y)]  #: where the robot has driven
+        #: every time the robot's body touched a wall, furniture or a person (embodied runs)
+        self.collisions: list[dict[str, object]] = []
         self.hands: dict[str, str | None] = {hand: None for hand in world.robot.hands}
         self._looked_at: set[str] = set()
         self._apply_start_disturbances()

@@ -1,0 +1,258 @@
+"""``SimBody``: the Body port over the simulated home.
+
+A kinematic base (omnidirectional or differential, as the world file says)
+moves under velocity commands within its limits; a bumper stops it on
+contact, and every contact is a collision in the simulation's truth. Odometry
+integrates the motion with a systematic and a random error, so it drifts. The
+laser is cast against the true geometry and the legs of people, some of whom
+walk about on their own. Time passes only in ticks of simulated time.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+from collections.abc import Sequence
+
+import numpy as np
+
+from homebot.robot import (
+    Body,
+    BodyError,
+    DriveKind,
+    HeadState,
+    LaserScan,
+    Odometry,
+    Pose,
+    Twist,
+    VelocityLimits,
+)
+from homebot.sim.geometry import TrueGeometry
+from homebot.sim.laser import LaserSimulator
+from homebot.sim.simulation import Simulation
+from homebot.sim.walkers import PeopleWalking
+from homebot.world import LaserModel
+
+__all__ = ["PERSON_RADIUS", "OdometryNoise", "SimBody"]
+
+PERSON_RADIUS = 0.2  #: a person's body, for the bumper (their legs are what the laser sees)
+_LASER_MOUNT = Pose(0.15, 0.0, 0.0)
+_PAN_LIMIT = 2.6
+_TILT_LIMITS = (-0.4, 0.9)
+_CONTACT_HYSTERESIS = 0.03  #: metres clear of an obstacle before a new touch counts again
+_TRAJECTORY_STEP = 0.1  #: metres between recorded trajectory points
+# Seeds of the body's own random streams, apart from the simulation's disturbances.
+_SENSOR_STREAM, _WALKER_STREAM = 101, 202
+
+
+class OdometryNoise:
+    """How wheel odometry errs: a per-run scale error and per-tick noise, each per metre/radian."""
+
+    def __init__(self, scale: float = 0.01, translation: float = 0.02,
+                 rotation: float = 0.02) -> None:
+        self.scale, self.translation, self.rotation = scale, translation, rotation
+
+
+class SimBody(Body):
+    """A robot body in a ``Simulation``.
+
+    Args:
+        simulation: the ground truth; the body moves ``simulation.robot_pose``.
+        walkers: how many people walk about (chosen in name order, the operator last),
+            or their names.
+        tick_rate: control ticks per simulated second (≥ 20).
+        laser: the laser (default: the world's).
+        odometry_noise: how the wheels err.
+    """
+
+    def __init__(self, simulation: Simulation, *, walkers: int | Sequence[str] = 0,
+                 tick_rate: float = 20.0, laser: LaserModel | None = None,
+                 odometry_noise: OdometryNoise | None = None) -> None:
+        if not (math.isfinite(tick_rate) and tick_rate >= 20.0):
+            raise BodyError(f"tick_rate must be at least 20 Hz, not {tick_rate!r}")
+        self.sim = simulation
+        world = simulation.world
+        robot = world.robot
+        self.drive = DriveKind(robot.drive)
+        self.limits = VelocityLimits(robot.speed, robot.angular_speed)
+        self.radius = robot.radius
+        self.tick_period = 1.0 / tick_rate
+        self.geometry = TrueGeometry.of(world)
+        sensor_rng = np.random.default_rng([simulation.seed, _SENSOR_STREAM])
+        self._rng = sensor_rng
+        self.laser = LaserSimulator(self.geometry, laser or robot.laser, _LASER_MOUNT, sensor_rng)
+        noise = odometry_noise or OdometryNoise()
+        self._noise = noise
+        self._scale_error = (1.0 + sensor_rng.normal(0.0, noise.scale),
+                             1.0 + sensor_rng.normal(0.0, noise.scale))
+        self.people = PeopleWalking(simulation, self._walker_names(walkers),
+                                    random.Random(f"{simulation.seed}:{_WALKER_STREAM}"))
+        self._command = Twist()
+        self._velocity = Twist()
+        self._stopped = False
+        self._odometry = (0.0, 0.0, 0.0)
+        self._head = HeadState()
+        self._in_contact = False
+        self._scan: LaserScan | None = None
+        self._travelled_since_point = 0.0
+        self._trajectory: list[tuple[float, float]] = [self._rounded_position()]
+
+    def _walker_names(self, walkers: int | Sequence[str]) -> list[str]:
+        people = self.sim.people
+        if isinstance(walkers, int):
+            if walkers < 0:
+                raise BodyError(f"walkers must be 0 or more, not {walkers}")
+            operator = self.sim.world.model.operator
+            order = sorted(people, key=lambda name: (name == operator, name))
+            return order[:walkers]
+        unknown = [name for name in walkers if name not in people]
+        if unknown:
+            raise BodyError(f"unknown walker(s) {', '.join(unknown)}; "
+                            f"people: {', '.join(sorted(people))}")
+        return list(walkers)
+
+    # ------------------------------------------------------------ the port
+
+    def now(self) -> float:
+        return self.sim.clock.now()
+
+    def command_velocity(self, twist: Twist) -> None:
+        self._command = self.limits.clip(twist, self.drive)
+
+    def emergency_stop(self, engaged: bool = True) -> None:
+        self._stopped = engaged
+        if engaged:
+            self._command = Twist()
+
+    @property
+    def stopped(self) -> bool:
+        return self._stopped
+
+    def odometry(self) -> Odometry:
+        return Odometry(self.now(), Pose(*self._odometry), self._velocity)
+
+    def scan(self) -> LaserScan:
+        if self._scan is None:
+            self._scan = self.laser.scan(self.now(), self.sim.robot_pose,
+                                         self.sim.closed_doors(), self.people.legs())
+        return self._scan
+
+    def head(self) -> HeadState:
+        return self._head
+
+    def point_head(self, pan: float, tilt: float) -> None:
+        self._head = HeadState(max(-_PAN_LIMIT, min(_PAN_LIMIT, pan)),
+                               max(_TILT_LIMITS[0], min(_TILT_LIMITS[1], tilt)))
+
+    def tick(self, ticks: int = 1) -> None:
+        for _ in range(ticks):
+            self._tick_once()
+        self._scan = None
+
+    # ------------------------------------------------------------ ground truth (not the port)
+
+    def teleport(self, pose: Pose) -> None:
+        """Carry the robot elsewhere without its wheels knowing (kidnapping)."""
+        self.sim.robot_pose = (pose.x, pose.y, pose.theta)
+        self._scan = None
+        self.sim.events.record("sim.disturbance", what="kidnapped", to=[pose.x, pose.y])
+
+    def true_pose(self) -> Pose:
+        return Pose(*self.sim.robot_pose)
+
+    def flush_trajectory(self) -> list[tuple[float, float]]:
+        """The driven path since the last flush, recorded as a ``robot.trajectory`` event."""
+        points = self._trajectory
+        if len(points) > 1:
+            self.sim.events.record("robot.trajectory", points=[list(p) for p in points])
+            self.sim.trail.extend(points[1:])
+        self._trajectory = [self._rounded_position()]
+        return points
+
+    # ------------------------------------------------------------ one tick
+
+    def _tick_once(self) -> None:
+        dt = self.tick_period
+        target = Twist() if self._stopped else self._command
+        self._velocity = Twist() if self._stopped else self._accelerate(target, dt)
+        moved = self._move(dt)
+        self._odometry_step(*moved)
+        self.people.advance(dt, self.sim.robot_pose[:2], self.radius + PERSON_RADIUS + 0.1)
+        self.sim.clock.advance(dt)
+
+    def _accelerate(self, target: Twist, dt: float) -> Twist:
+        linear = self.limits.linear_acceleration * dt
+        angular = self.limits.angular_acceleration * dt
+        now = self._velocity
+        return Twist(now.vx + max(-linear, min(linear, target.vx - now.vx)),
+                     now.vy + max(-linear, min(linear, target.vy - now.vy)),
+                     now.wz + max(-angular, min(angular, target.wz - now.wz)))
+
+    def _move(self, dt: float) -> tuple[float, float, float]:
+        """Move by the current velocity unless the bumper meets something; the motion in the
+        robot's frame (forward, left, turn)."""
+        velocity = self._velocity
+        if velocity.is_zero():
+            return (0.0, 0.0, 0.0)
+        x, y, theta = self.sim.robot_pose
+        middle = theta + velocity.wz * dt / 2
+        forward, left = velocity.vx * dt, velocity.vy * dt
+        new_x = x + forward * math.cos(middle) - left * math.sin(middle)
+        new_y = y + forward * math.sin(middle) + left * math.cos(middle)
+        new_theta = _wrap(theta + velocity.wz * dt)
+        obstacle = self._obstacle_at(new_x, new_y) if (forward or left) else None
+        if obstacle is not None:
+            if not self._in_contact:
+                self.sim.collisions.append({"time": round(self.now(), 3), "with": obstacle,
+                                            "at": [round(new_x, 3), round(new_y, 3)]})
+                self.sim.events.record("sim.collision", what=obstacle,
+                                       at=[round(new_x, 3), round(new_y, 3)])
+            self._in_contact = True
+            self._velocity = Twist()
+            return (0.0, 0.0, 0.0)
+        # One touch is one collision: contact ends only once the robot is clear again.
+        if self._in_contact:
+            self._in_contact = self._obstacle_at(new_x, new_y, _CONTACT_HYSTERESIS) is not None
+        self.sim.robot_pose = (new_x, new_y, new_theta)
+        self._note_trajectory(math.hypot(forward, left))
+        return (forward, left, velocity.wz * dt)
+
+    def _obstacle_at(self, x: float, y: float, margin: float = 0.0) -> str | None:
+        """What the robot's footprint at (x, y), grown by ``margin``, would touch, or None."""
+        radius = self.radius + margin
+        if self.geometry.clearance(x, y, self.sim.closed_doors()) < radius:
+            return "wall or furniture"
+        for name, state in self.sim.people.items():
+            if math.dist((x, y), state.position) < radius + PERSON_RADIUS:
+                return f"person {name}"
+        return None
+
+    def _odometry_step(self, forward: float, left: float, turn: float) -> None:
+        if forward == 0.0 and left == 0.0 and turn == 0.0:
+            return
+        noise = self._noise
+        rng = self._rng
+        distance = math.hypot(forward, left)
+        forward = forward * self._scale_error[0] + rng.normal(0.0, noise.translation * distance)
+        left = left * self._scale_error[0] + rng.normal(0.0, noise.translation * distance)
+        turn = turn * self._scale_error[1] + rng.normal(
+            0.0, noise.rotation * abs(turn) + 0.1 * noise.rotation * distance)
+        x, y, theta = self._odometry
+        middle = theta + turn / 2
+        self._odometry = (x + forward * math.cos(middle) - left * math.sin(middle),
+                          y + forward * math.sin(middle) + left * math.cos(middle),
+                          _wrap(theta + turn))
+
+    def _note_trajectory(self, distance: float) -> None:
+        self._travelled_since_point += distance
+        if self._travelled_since_point >= _TRAJECTORY_STEP:
+            self._travelled_since_point = 0.0
+            self._trajectory.append(self._rounded_position())
+
+    def _rounded_position(self) -> tuple[float, float]:
+        x, y, _ = self.sim.robot_pose
+        return (round(x, 3), round(y, 3))
+
+
+def _wrap(angle: float) -> float:
+    return (angle + math.pi) % (2 * math.pi) - math.pi

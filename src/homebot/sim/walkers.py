@@ -1,0 +1,146 @@
+"""People who walk about the home on their own, on seeded schedules.
+
+Each walker goes from place to place (the approach spots of furniture), stays
+a while, and sometimes carries an object off to where they go next. Walkers
+keep out of the robot's way the way people do: they stop when the robot is
+just ahead of them. They are the dynamic obstacles of the embodied robot.
+"""
+
+from __future__ import annotations
+
+import math
+import random
+from dataclasses import dataclass, field
+
+from homebot.sim.simulation import Simulation
+from homebot.world import PlacementKind
+
+__all__ = ["PeopleWalking", "Walker"]
+
+_SPEED = (0.4, 0.8)  #: metres per second, drawn per walker
+_DWELL = (5.0, 40.0)  #: seconds spent at a place
+_CARRY_CHANCE = 0.1  #: share of departures on which an object is taken along
+_BESIDE = 0.75  #: metres sideways from a placement's approach spot, where people stand
+_YIELD_DISTANCE = 0.9  #: a walker waits when the robot's centre is this close ahead
+
+
+@dataclass
+class Walker:
+    """One person's walk: the way ahead and when they set off again."""
+
+    name: str
+    speed: float
+    heading: float = 0.0
+    path: list[tuple[float, float]] = field(default_factory=list)
+    destination: str | None = None
+    at_place: str | None = None
+    leaves_at: float = 0.0
+    carrying: str | None = None
+
+
+class PeopleWalking:
+    """Moves the chosen people of a simulation as time passes.
+
+    Args:
+        simulation: the home; its people move in its truth.
+        names: who walks (people standing in a doorway for a disturbance never do).
+        rng: the schedules' randomness.
+    """
+
+    def __init__(self, simulation: Simulation, names: list[str], rng: random.Random) -> None:
+        self.sim = simulation
+        self.rng = rng
+        self.places = sorted(p.name for p in simulation.world.placements.values()
+                             if p.model.kind is PlacementKind.FURNITURE)
+        self.walkers = [Walker(name, rng.uniform(*_SPEED),
+                               leaves_at=simulation.clock.now() + rng.uniform(0.0, _DWELL[1]))
+                        for name in names]
+
+    def legs(self) -> list[tuple[float, float]]:
+        """Where every person's two legs are (walkers and those standing still)."""
+        centres = []
+        headings = {walker.name: walker.heading for walker in self.walkers}
+        for name, state in sorted(self.sim.people.items()):
+            heading = headings.get(name, 0.0) + math.pi / 2
+            x, y = state.position
+            for side in (-1, 1):
+                centres.append((x + side * 0.1 * math.cos(heading),
+                                y + side * 0.1 * math.sin(heading)))
+        return centres
+
+    def advance(self, seconds: float, robot: tuple[float, float], keep_away: float) -> None:
+        """Let ``seconds`` pass for every walker; nobody steps within ``keep_away`` of the robot."""
+        now = self.sim.clock.now()
+        for walker in self.walkers:
+            state = self.sim.people.get(walker.name)
+            if state is None or state.blocking_door is not None:
+                continue
+            if not walker.path:
+                if now >= walker.leaves_at:
+                    self._set_off(walker, state.position)
+                continue
+            self._walk(walker, state.position, seconds, robot, keep_away)
+
+    def _set_off(self, walker: Walker, here: tuple[float, float]) -> None:
+        sim = self.sim
+        destination = self.rng.choice(self.places)
+        goal = self._spot_beside(destination)
+        plan = sim.navigator.plan(here, goal, sim.closed_doors()) if goal else None
+        if plan is None or plan.length < 0.5:
+            walker.leaves_at = sim.clock.now() + self.rng.uniform(*_DWELL)
+            return
+        walker.path = list(plan.waypoints[1:])
+        walker.destination = destination
+        origin, walker.at_place = walker.at_place, None
+        if origin is not None and self.rng.random() < _CARRY_CHANCE:
+            objects = sim.objects_on(origin)
+            if objects:
+                walker.carrying = self.rng.choice(objects)
+                sim.object_location[walker.carrying] = f"person:{walker.name}"
+                sim.events.record("sim.disturbance", what="object_carried",
+                                  object=walker.carrying, person=walker.name, origin=origin)
+
+    def _walk(self, walker: Walker, here: tuple[float, float], seconds: float,
+              robot: tuple[float, float], keep_away: float) -> None:
+        target = walker.path[0]
+        heading = math.atan2(target[1] - here[1], target[0] - here[0])
+        to_robot = (robot[0] - here[0], robot[1] - here[1])
+        ahead = to_robot[0] * math.cos(heading) + to_robot[1] * math.sin(heading)
+        if math.hypot(*to_robot) < _YIELD_DISTANCE and ahead > -0.1:
+            return  # the robot is in the way: wait for it to pass
+        walker.heading = heading
+        step = walker.speed * seconds
+        remaining = math.dist(here, target)
+        if step < remaining:
+            position = (here[0] + step * math.cos(heading), here[1] + step * math.sin(heading))
+        else:
+            position = target
+        if math.dist(position, robot) < keep_away:
+            return
+        if position == target:
+            walker.path.pop(0)
+        self.sim.move_person(walker.name, position)
+        if not walker.path:
+            self._arrive(walker)
+
+    def _arrive(self, walker: Walker) -> None:
+        sim = self.sim
+        walker.leaves_at = sim.clock.now() + self.rng.uniform(*_DWELL)
+        walker.at_place = walker.destination
+        if walker.carrying is not None and walker.destination is not None:
+            sim.object_location[walker.carrying] = walker.destination
+            sim.events.record("sim.disturbance", what="object_moved", object=walker.carrying,
+                              to=walker.destination, person=walker.name)
+            walker.carrying = None
+
+    def _spot_beside(self, placement: str) -> tuple[float, float] | None:
+        """Where a person stands at a placement: beside the robot's approach spot, not on it."""
+        sim = self.sim
+        x, y, theta = sim.world.placements[placement].approach
+        grid = sim.navigator.grid
+        for side in (1, -1):
+            spot = (x + side * _BESIDE * math.cos(theta + math.pi / 2),
+                    y + side * _BESIDE * math.sin(theta + math.pi / 2))
+            if sim.world.room_at(*spot) is not None and not grid.blocked[grid.cell_of(*spot)]:
+                return spot
+        return None

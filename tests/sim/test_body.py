@@ -1,0 +1,135 @@
+"""SimBody: the kinematic base, the ray-cast laser, drifting odometry and people who walk."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from homebot.navigation import Navigator
+from homebot.robot import BodyError, DriveKind, Pose, Twist, VelocityLimits
+from homebot.sim import Simulation
+from homebot.sim.body import SimBody
+from homebot.world import LaserModel, World
+
+QUIET_LASER = LaserModel(noise=0.0)
+
+
+def _body(world: World, navigator: Navigator, seed: int = 0, **options: object) -> SimBody:
+    return SimBody(Simulation(world, seed=seed, navigator=navigator), **options)  # type: ignore[arg-type]
+
+
+def test_the_laser_measures_the_distance_to_a_wall(apartment: World,
+                                                   apartment_navigator: Navigator) -> None:
+    body = _body(apartment, apartment_navigator, laser=QUIET_LASER)
+    # In the corridor (y from 4 to 6, walls 0.1 m thick), facing north from y = 5.
+    body.teleport(Pose(1.0, 5.0, math.pi / 2))
+    scan = body.scan()
+    straight_ahead = len(scan.ranges) // 2
+    # The sensor sits 0.15 m ahead of the centre; the wall's face is at y = 5.95.
+    assert scan.ranges[straight_ahead] == pytest.approx(0.95 - 0.15, abs=0.02)
+    # Facing east along the corridor, the far wall is at x = 11.95.
+    body.teleport(Pose(1.0, 5.0, 0.0))
+    assert body.scan().ranges[straight_ahead] == pytest.approx(10.8, abs=0.03) or \
+        math.isinf(body.scan().ranges[straight_ahead])
+
+
+def test_people_are_seen_by_their_legs(apartment: World, apartment_navigator: Navigator) -> None:
+    body = _body(apartment, apartment_navigator, laser=QUIET_LASER)
+    body.teleport(Pose(1.0, 5.0, 0.0))
+    ahead = len(body.scan().ranges) // 2
+    before = body.scan().ranges[ahead]
+    body.sim.move_person("John", (3.0, 5.1))
+    body.teleport(Pose(1.0, 5.0, 0.0))
+    assert body.scan().ranges[ahead] < min(before, 2.0)
+
+
+def test_spurious_readings_are_the_configured_share(apartment: World,
+                                                    apartment_navigator: Navigator) -> None:
+    clean = _body(apartment, apartment_navigator, laser=QUIET_LASER).scan().ranges
+    noisy = _body(apartment, apartment_navigator,
+                  laser=LaserModel(noise=0.0, spurious=0.5)).scan().ranges
+    both = np.isfinite(clean) & np.isfinite(noisy)
+    share = float(np.mean(np.abs(noisy[both] - clean[both]) > 1e-6))
+    assert 0.35 < share < 0.65
+
+
+def test_commands_are_clipped_and_a_differential_base_does_not_slide(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    body = _body(apartment, apartment_navigator)
+    assert body.drive is DriveKind.DIFFERENTIAL
+    body.teleport(Pose(6.0, 5.0, 0.0))
+    body.command_velocity(Twist(5.0, 1.0, 0.0))
+    body.tick(40)  # two seconds: enough to reach the limit
+    x, y, _ = body.sim.robot_pose
+    assert body.odometry().twist.vx == pytest.approx(apartment.robot.speed)
+    assert y == pytest.approx(5.0)
+    assert 6.5 < x < 7.0
+
+
+def test_the_emergency_stop_acts_within_one_tick(apartment: World,
+                                                 apartment_navigator: Navigator) -> None:
+    body = _body(apartment, apartment_navigator)
+    body.teleport(Pose(2.0, 5.0, 0.0))
+    body.command_velocity(Twist(0.5, 0.0, 0.0))
+    body.tick(30)
+    body.emergency_stop()
+    body.tick()
+    assert body.odometry().twist.is_zero()
+    stopped_at = body.sim.robot_pose
+    body.command_velocity(Twist(0.5, 0.0, 0.0))  # ignored while the stop is engaged
+    body.tick(10)
+    assert body.sim.robot_pose == stopped_at
+    body.emergency_stop(False)
+    body.command_velocity(Twist(0.5, 0.0, 0.0))
+    body.tick(10)
+    assert body.sim.robot_pose[0] > stopped_at[0]
+
+
+def test_the_bumper_stops_the_base_at_a_wall_and_counts_a_collision(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    body = _body(apartment, apartment_navigator)
+    body.teleport(Pose(1.0, 5.0, math.pi / 2))
+    body.command_velocity(Twist(0.5, 0.0, 0.0))
+    body.tick(100)
+    assert len(body.sim.collisions) == 1
+    assert body.sim.collisions[0]["with"] == "wall or furniture"
+    # The footprint never enters the wall (its face is at y = 5.95).
+    assert body.sim.robot_pose[1] <= 5.95 - apartment.robot.radius + 1e-9
+
+
+def test_odometry_drifts_from_the_truth(apartment: World,
+                                        apartment_navigator: Navigator) -> None:
+    body = _body(apartment, apartment_navigator)
+    body.teleport(Pose(0.5, 5.0, 0.0))
+    body.command_velocity(Twist(0.5, 0.0, 0.0))
+    body.tick(20 * 20)
+    true_x = body.sim.robot_pose[0] - 0.5
+    odometry = body.odometry().pose
+    assert odometry.x == pytest.approx(true_x, rel=0.05)
+    assert (odometry.x, odometry.y) != (pytest.approx(true_x, abs=1e-6), 0.0)
+
+
+def test_people_walk_on_seeded_schedules(apartment: World,
+                                         apartment_navigator: Navigator) -> None:
+    def positions(seed: int) -> dict[str, tuple[float, float]]:
+        body = _body(apartment, apartment_navigator, seed=seed, walkers=3)
+        body.tick(20 * 90)
+        return {name: state.position for name, state in body.sim.people.items()}
+
+    start = {name: person.position for name, person in apartment.people.items()}
+    after = positions(3)
+    assert after == positions(3)
+    moved = [name for name in after if after[name] != start[name]]
+    assert len(moved) >= 2
+    assert apartment.model.operator not in moved  # the operator walks last
+
+
+def test_bad_body_settings_are_errors(apartment: World, apartment_navigator: Navigator) -> None:
+    with pytest.raises(BodyError, match="20 Hz"):
+        _body(apartment, apartment_navigator, tick_rate=5.0)
+    with pytest.raises(BodyError, match="unknown walker"):
+        _body(apartment, apartment_navigator, walkers=["Nobody"])
+    with pytest.raises(BodyError, match="limit of 0"):
+        VelocityLimits(linear=0.0)
