@@ -3,8 +3,9 @@
 from __future__ import annotations
 
 from collections.abc import Sequence
+from functools import cache
 
-from PIL import Image, ImageDraw
+from PIL import Image, ImageDraw, ImageFont
 
 from homebot.world import DoorState, PlacementKind, World
 
@@ -21,6 +22,23 @@ _COLOURS = {
 }
 
 
+# Fonts that draw every Latin letter ("Patrícia", "Søren", "crème brûlée"), looked up in
+# the system's font folders; Pillow's own default font draws ASCII only.
+_FONTS = ("DejaVuSans.ttf", "NotoSans-Regular.ttf", "LiberationSans-Regular.ttf", "Arial.ttf")
+_FONT_SIZE = 11
+
+
+@cache
+def _font() -> ImageFont.FreeTypeFont | ImageFont.ImageFont:
+    """The first of ``_FONTS`` installed, else Pillow's default (accents may then drop)."""
+    for name in _FONTS:
+        try:
+            return ImageFont.truetype(name, _FONT_SIZE)
+        except OSError:
+            continue
+    return ImageFont.load_default()
+
+
 def render_map(world: World, path: Sequence[tuple[float, float]] = ()) -> Image.Image:
     """Draw the world (and the robot's path, if given) as an RGB image. Pure: writes nothing."""
     min_x, min_y, max_x, max_y = world.bounds()
@@ -28,6 +46,7 @@ def render_map(world: World, path: Sequence[tuple[float, float]] = ()) -> Image.
     height = int((max_y - min_y) * _PIXELS_PER_METRE) + 2 * _MARGIN
     image = Image.new("RGB", (width, height), "white")
     draw = ImageDraw.Draw(image)
+    draw.font = _font()
 
     def px(x: float, y: float) -> tuple[float, float]:
         return (_MARGIN + (x - min_x) * _PIXELS_PER_METRE,
