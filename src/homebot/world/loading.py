@@ -177,8 +177,27 @@ def _describe(document: LocatedDocument, model: type[BaseModel], detail: Any) ->
     elif kind == "missing":
         message = "required field is missing; add it"
     else:
-        message = f"{detail['msg']} (got {short_repr(detail.get('input'))})"
+        text = str(detail["msg"]).replace("Input should be", "must be", 1)
+        message = f"{text} (got {short_repr(detail.get('input'))})"
+        meaning = _description_at(model, location)
+        if meaning:
+            message += f"; {location[-1]} is {meaning}"
     return field_error(document, location, message)
+
+
+def _description_at(model: type[BaseModel], location: Sequence[str | int]) -> str | None:
+    """The ``description`` of the field at ``location`` under ``model``, if it has one."""
+    current: Any = model
+    description = None
+    for step in location:
+        if isinstance(step, int):
+            continue
+        field = current.model_fields.get(step) if hasattr(current, "model_fields") else None
+        if field is None:
+            return None
+        description = field.description
+        current = _inner_model(field.annotation)
+    return description
 
 
 def _is_union_tag(step: Any) -> bool:

@@ -178,8 +178,10 @@ class RobotModel(_Strict):
 
     pose: tuple[float, float, float]
     radius: float = Field(default=0.25, gt=0.05, le=1.0)
-    speed: float = Field(default=0.5, gt=0.0, le=3.0)
-    angular_speed: float = Field(default=1.2, gt=0.0, le=6.0)
+    speed: float = Field(default=0.5, gt=0.0, le=3.0, description=(
+        "the base's top linear speed, in m/s"))
+    angular_speed: float = Field(default=1.2, gt=0.0, le=6.0, description=(
+        "the base's top turning speed, in rad/s"))
     hands: list[Name] = Field(default_factory=lambda: ["left", "right"], min_length=1)
     #: how the base moves in the embodied fidelity (``homebot.robot.DriveKind``)
     drive: Literal["omnidirectional", "differential"] = "differential"

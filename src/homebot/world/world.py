@@ -11,6 +11,8 @@ from typing import Any
 
 import yaml
 from shapely.geometry import Point, Polygon, box
+from shapely.geometry.base import BaseGeometry
+from shapely.ops import unary_union
 from shapely.prepared import prep
 
 from homebot.errors import WorldError
@@ -88,6 +90,7 @@ class World:
         self.source = document.source if document else f"<world {model.name}>"
         self._document = document
         self._problems: list[str] = []
+        self._wall_lines: BaseGeometry | None = None
         self.rooms = {room.name: room for room in model.rooms}
         self.room_polygons = {room.name: Polygon(room.polygon) for room in model.rooms}
         self.doors = {door.name: door for door in model.doors}
@@ -375,10 +378,50 @@ class World:
         if self.model.operator is not None and self.model.operator not in self.people:
             self._problem(["operator"], _unknown("person", self.model.operator, self.people))
 
+    def footprint_problem(self, x: float, y: float, radius: float | None = None) -> str | None:
+        """Why the robot's disc centred at (x, y) does not fit on the floor; None when it fits.
+
+        The centre must lie in a room, and the disc (``radius``, the robot's by
+        default) must not overlap furniture or a wall. Walls run along every room
+        boundary except door openings and are ``wall_thickness`` thick, as the
+        occupancy grid draws them. The message reads after the point, e.g.
+        ``"is inside the sofa"``.
+        """
+        radius = self.model.robot.radius if radius is None else radius
+        if self.room_at(x, y) is None:
+            return "is outside every room"
+        point = Point(x, y)
+        for placement in self.placements.values():
+            if placement.model.kind is not PlacementKind.FURNITURE:
+                continue
+            if placement.footprint.covers(point):
+                return f"is inside the {placement.name}"
+            gap = placement.footprint.distance(point)
+            if gap < radius:
+                return (f"is {gap:.2f} m from the {placement.name}, closer than the robot's "
+                        f"radius {radius:g} m")
+        gap = self._walls().distance(point) - self.model.wall_thickness / 2
+        if gap <= 0:
+            return "is inside a wall"
+        if gap < radius:
+            return f"is {gap:.2f} m from a wall, closer than the robot's radius {radius:g} m"
+        return None
+
+    def _walls(self) -> BaseGeometry:
+        """The walls' centre lines: room boundaries without the door openings."""
+        if self._wall_lines is None:
+            lines = unary_union([polygon.exterior for polygon in self.room_polygons.values()])
+            openings = [Point(door.position).buffer(door.width / 2)
+                        for door in self.doors.values()]
+            self._wall_lines = lines.difference(unary_union(openings)) if openings else lines
+        return self._wall_lines
+
     def _check_robot(self) -> None:
         x, y, _ = self.model.robot.pose
-        if self.room_at(x, y) is None:
-            self._problem(["robot", "pose"], f"({x}, {y}) is outside every room")
+        problem = self.footprint_problem(x, y)
+        if problem is not None:
+            self._problem(["robot", "pose"], f"the robot at ({x:g}, {y:g}) {problem}; place it "
+                          "inside a room, at least its radius from walls and furniture")
 
 
 def _unknown(kind: str, name: str, known: Iterable[str]) -> str:

@@ -1,0 +1,70 @@
+"""Bad input of the robot's body: a robot in a wall or furniture, a zero speed limit,
+a point goal that cannot be reached, a map that does not match its YAML. Exit 2, one line."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from homebot.cli import main
+
+SUPERMARKET = Path(__file__).resolve().parents[2] / "src/homebot/data/worlds/supermarket.yaml"
+START = "pose: [1.5, 1.5, 0.0]"
+
+
+def _file(tmp_path: Path, name: str, text: str) -> Path:
+    path = tmp_path / name
+    path.write_text(text, encoding="utf-8")
+    return path
+
+
+def _fails_cleanly(capsys: pytest.CaptureFixture[str], status: int, expected: str) -> str:
+    captured = capsys.readouterr()
+    assert status == 2
+    assert expected in captured.err
+    assert "Traceback" not in captured.err + captured.out
+    assert len(captured.err.strip().splitlines()) == 1
+    return captured.err
+
+
+def _supermarket(tmp_path: Path, robot: str) -> Path:
+    text = SUPERMARKET.read_text(encoding="utf-8")
+    assert START in text
+    return _file(tmp_path, "w.yaml", text.replace(START, robot, 1))
+
+
+@pytest.mark.parametrize(("robot", "expected"), [
+    ("pose: [5.0, 0.5, 0.0]", "robot.pose: the robot at (5, 0.5) is inside the shelf bread"),
+    ("pose: [5.0, 1.0, 0.0]", "is 0.20 m from the shelf bread, closer than the robot's radius"),
+    ("pose: [10.0, 3.0, 0.0]", "robot.pose: the robot at (10, 3) is inside a wall"),
+    ("pose: [0.2, 4.0, 0.0]", "is 0.15 m from a wall"),
+    ("pose: [20.0, 3.0, 0.0]", "is outside every room"),
+])
+def test_a_robot_placed_in_a_wall_or_furniture_exits_2(
+        tmp_path: Path, robot: str, expected: str, capsys: pytest.CaptureFixture[str]) -> None:
+    world = _supermarket(tmp_path, robot)
+    _fails_cleanly(capsys, main(["world", "check", str(world)]), expected)
+    task = _file(tmp_path, "t.yaml", "- {skill: say, text: hello}\n")
+    _fails_cleanly(capsys, main(["run-task", str(task), "--world", str(world)]), expected)
+
+
+def test_a_robot_in_a_door_opening_is_fine(tmp_path: Path,
+                                           capsys: pytest.CaptureFixture[str]) -> None:
+    world = _supermarket(tmp_path, "pose: [10.0, 6.0, 0.0]")
+    assert main(["world", "check", str(world)]) == 0
+    assert "ok" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize(("robot", "expected"), [
+    (START + "\n  speed: 0", "robot.speed: must be greater than 0 (got 0); speed is the base's "
+                             "top linear speed, in m/s"),
+    (START + "\n  angular_speed: 0", "robot.angular_speed: must be greater than 0 (got 0); "
+                                     "angular_speed is the base's top turning speed, in rad/s"),
+    (START + "\n  speed: -0.5", "robot.speed: must be greater than 0 (got -0.5)"),
+])
+def test_a_velocity_limit_of_zero_exits_2(tmp_path: Path, robot: str, expected: str,
+                                          capsys: pytest.CaptureFixture[str]) -> None:
+    world = _supermarket(tmp_path, robot)
+    err = _fails_cleanly(capsys, main(["world", "check", str(world)]), expected)
+    assert "line 42" in err
