@@ -1,9 +1,9 @@
 """The home's solid matter as the simulator's ground truth: what a laser hits, what a base bumps.
 
 Two forms of the same geometry, built once per world and shared between runs:
-a fine raster (2 cm) with its distance field, for ray casting, and exact
+a fine raster (2 cm), for ray casting, and exact
 shapely shapes, for judging collisions. Door states change which door
-openings are filled; the raster's distance field is kept per set of shut doors.
+openings are filled; the raster is kept per set of shut doors.
 """
 
 from __future__ import annotations
@@ -13,7 +13,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 import shapely
-from scipy import ndimage
 from shapely.geometry import Point
 from shapely.geometry.base import BaseGeometry
 
@@ -35,7 +34,7 @@ class TrueGeometry:
     raster: OccupancyGrid = field(init=False)
     _walls: BaseGeometry = field(init=False)
     _door_leaves: dict[str, BaseGeometry] = field(init=False)
-    _fields: dict[frozenset[str], np.ndarray] = field(init=False, default_factory=dict)
+    _images: dict[frozenset[str], np.ndarray] = field(init=False, default_factory=dict)
     _solids: dict[frozenset[str], BaseGeometry] = field(init=False, default_factory=dict)
 
     @classmethod
@@ -64,15 +63,14 @@ class TrueGeometry:
         self._door_leaves = {name: opening.intersection(wall_band)
                              for name, opening in openings.items()}
 
-    def distance_field(self, shut_doors: frozenset[str]) -> np.ndarray:
-        """Metres from each raster cell centre to the nearest solid cell, these doors shut."""
-        if shut_doors not in self._fields:
+    def solid_image(self, shut_doors: frozenset[str]) -> np.ndarray:
+        """The raster with these doors shut: 1 where solid, 0 where free (uint8, row = y)."""
+        if shut_doors not in self._images:
             occupied = self.raster.occupied.ravel().copy()
             for door in shut_doors:
                 occupied[self.raster.door_passages[door]] = True
-            grid = occupied.reshape(self.raster.shape)
-            self._fields[shut_doors] = ndimage.distance_transform_edt(~grid) * TRUTH_RESOLUTION
-        return self._fields[shut_doors]
+            self._images[shut_doors] = occupied.reshape(self.raster.shape).astype(np.uint8)
+        return self._images[shut_doors]
 
     def solids(self, shut_doors: frozenset[str]) -> BaseGeometry:
         """Walls, furniture and the leaves of the shut doors, as one prepared shape."""
