@@ -6,6 +6,7 @@ Hierarchy::
     ├── WorldError               a world file or world reference is invalid
     ├── TaskError                a task file or task step is invalid
     ├── NavigationError          no route exists (bad target, unreachable place)
+    ├── MapError                 a map_server map (YAML + image) is malformed or does not fit
     ├── KnowledgeError           a knowledge-base file, query or update is invalid
     ├── GologError               a Golog program or action theory is malformed
     ├── PlanningError            an HTN domain, problem or planning goal is malformed
@@ -26,6 +27,7 @@ __all__ = [
     "HomebotError",
     "KnowledgeError",
     "LanguageError",
+    "MapError",
     "NavigationError",
     "PlanningError",
     "TaskError",
@@ -47,6 +49,10 @@ class TaskError(HomebotError):
 
 class NavigationError(HomebotError):
     """A navigation target is unknown or has no pose."""
+
+
+class MapError(HomebotError):
+    """A ROS ``map_server`` map (YAML + PGM) is malformed, or does not cover its world."""
 
 
 class KnowledgeError(HomebotError):

@@ -3,6 +3,7 @@ a point goal that cannot be reached, a map that does not match its YAML. Exit 2,
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import pytest
@@ -68,3 +69,56 @@ def test_a_velocity_limit_of_zero_exits_2(tmp_path: Path, robot: str, expected: 
     world = _supermarket(tmp_path, robot)
     err = _fails_cleanly(capsys, main(["world", "check", str(world)]), expected)
     assert "line 42" in err
+
+
+def test_world_map_writes_a_pair_that_map_check_reads(tmp_path: Path,
+                                                      capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["world", "map", "--world", "supermarket", "-o", str(tmp_path / "maps")]) == 0
+    assert "supermarket.yaml" in capsys.readouterr().out
+    yaml_path = tmp_path / "maps" / "supermarket.yaml"
+    assert (tmp_path / "maps" / "supermarket.pgm").exists()
+    assert main(["world", "map-check", str(yaml_path), "--world", "supermarket"]) == 0
+    out = capsys.readouterr().out
+    assert "288×168 cells at 0.05 m, origin (-0.2, -0.2, 0)" in out
+    assert "covers world 'supermarket'" in out
+    assert main(["world", "map-check", str(yaml_path), "--json"]) == 0
+    figures = json.loads(capsys.readouterr().out)
+    assert figures["width"] == 288 and figures["height"] == 168
+    assert figures["free"] + figures["occupied"] + figures["unknown"] == 288 * 168
+    assert figures["occupied"] > 0 and figures["unknown"] > 0
+
+
+@pytest.mark.parametrize(("change", "expected"), [
+    (("image: supermarket.pgm", "image: missing.pgm"), "image: the image"),
+    (("resolution: 0.05", "resolution: 0"), "resolution: must be greater than 0"),
+    (("origin: [-0.2, -0.2, 0.0]\n", ""), "'origin' is missing"),
+    (("mode: trinary", "mode: fuzzy"), "unknown mode 'fuzzy'"),
+    (("negate: 0", "negate: [0"), "YAML syntax error"),
+])
+def test_a_map_that_does_not_match_its_yaml_exits_2(
+        tmp_path: Path, change: tuple[str, str], expected: str,
+        capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["world", "map", "--world", "supermarket", "-o", str(tmp_path)]) == 0
+    capsys.readouterr()
+    yaml_path = tmp_path / "supermarket.yaml"
+    yaml_path.write_text(yaml_path.read_text(encoding="utf-8").replace(*change),
+                         encoding="utf-8")
+    err = _fails_cleanly(capsys, main(["world", "map-check", str(yaml_path)]), expected)
+    assert str(yaml_path) in err
+
+
+def test_a_map_too_small_for_the_world_exits_2(tmp_path: Path,
+                                               capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["world", "map", "--world", "supermarket", "-o", str(tmp_path)]) == 0
+    capsys.readouterr()
+    status = main(["world", "map-check", str(tmp_path / "supermarket.yaml"),
+                   "--world", "apartment"])
+    _fails_cleanly(capsys, status, "but world 'apartment' spans x 0..12, y 0..10 m")
+
+
+def test_a_broken_map_image_exits_2(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["world", "map", "--world", "supermarket", "-o", str(tmp_path)]) == 0
+    capsys.readouterr()
+    (tmp_path / "supermarket.pgm").write_bytes(b"P5\n288 168\n255\n" + bytes(100))
+    _fails_cleanly(capsys, main(["world", "map-check", str(tmp_path / "supermarket.yaml")]),
+                   "check it is a complete PGM file")

@@ -53,12 +53,16 @@ def register(subparsers: Any) -> None:
         from homebot.cli import world_robocup
 
         world_robocup.register_robocup(world_parsers)
+    from homebot.cli.world_map import register_map
+
+    register_map(world_parsers)
     parser.set_defaults(handler=lambda args: _no_command())
 
 
 def _no_command() -> int:
     raise WorldError("name a world command: check FILE, show [--world W], "
-                     "from-robocup DIR -o WORLD.yaml")
+                     "from-robocup DIR -o WORLD.yaml, map [--world W] -o DIR, "
+                     "map-check FILE.yaml")
 
 
 def _check(args: argparse.Namespace) -> int:
