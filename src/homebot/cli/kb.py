@@ -18,6 +18,7 @@ from homebot.knowledge.coherence import warnings
 from homebot.knowledge.knowledge_base import shipped_kb_path
 from homebot.knowledge.syntax import kb_warnings
 from homebot.knowledge.terms import format_literal, format_value
+from homebot.text import find_name
 
 __all__ = ["SERVICES", "register", "to_json"]
 
@@ -97,7 +98,7 @@ def _query(args: argparse.Namespace) -> int:
         )
     kb = KnowledgeBase.load(args.file)
     method: Callable[..., Any] = getattr(kb, service)
-    answer = method(*args.arguments)
+    answer = method(*(_as_in_kb(kb, argument) for argument in args.arguments))
     if args.json:
         print(json.dumps(to_json(answer), ensure_ascii=False))
     else:
@@ -105,8 +106,17 @@ def _query(args: argparse.Namespace) -> int:
     return 0
 
 
+def _as_in_kb(kb: KnowledgeBase, name: str) -> str:
+    """A class or individual as the KB spells it: "jose" finds josé (``homebot.text.fold``)."""
+    taxonomy = kb.taxonomy
+    if name in taxonomy.classes or name in taxonomy.individuals:
+        return name
+    return find_name(name, [*taxonomy.classes, *taxonomy.individuals]) or name
+
+
 def _explain(args: argparse.Namespace) -> int:
     kb = KnowledgeBase.load(args.file)
+    args.individual = _as_in_kb(kb, args.individual)
     explanations = kb.explanations(args.individual)
     if not explanations:
         print(f"{args.individual}: nothing to explain")

@@ -18,7 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from homebot.errors import TaskError
-from homebot.skills import check_step
+from homebot.skills import check_step, spelled_as_world
 from homebot.task import Step, Task
 from homebot.world import World
 from homebot.world.loading import LocatedDocument, load_yaml_document, parse_yaml_text
@@ -70,7 +70,7 @@ def _task(document: LocatedDocument, world: World) -> Task:
         if odd:
             raise TaskError(f"{where}: argument names are words, not {odd[0]!r}; "
                             "write {skill: NAME, ARG: VALUE}")
-        step = Step.from_dict(entry)
+        step = spelled_as_world(Step.from_dict(entry), world)  # "patricia" -> "Patrícia"
         check_step(step, world, where)
         steps.append(step)
     return Task(tuple(steps), description)

@@ -22,6 +22,7 @@ from homebot.htn.jshop import read_domain, read_domain_text
 from homebot.htn.state import Atom, State
 from homebot.knowledge import KnowledgeBase
 from homebot.task import Step
+from homebot.text import closest_names, fold
 from homebot.world import World
 
 __all__ = ["HOME_TASKS", "ROBOT", "Goal", "Names", "goals_from_steps", "home_domain",
@@ -228,14 +229,12 @@ def _known(text: str, world: World, names: Names) -> str:
         return names.of(world.model.operator)
     everything = {*world.objects, *world.people, *world.placements, *world.rooms,
                   *world.categories, *world.doors}
-    lookup = {symbol(name).lower(): name for name in everything}
-    found = lookup.get(symbol(text).lower())
+    lookup = {fold(symbol(name)): name for name in everything}
+    found = lookup.get(fold(symbol(text)))  # "patricia" and "Patrícia" alike
     if found is not None:
         return names.of(found)
-    import difflib
-
-    guess = difflib.get_close_matches(symbol(text).lower(), sorted(lookup), n=1)
-    hint = f"did you mean '{lookup[guess[0]]}'?" if guess else "check the world's names"
+    guess = closest_names(text.replace("_", " "), sorted(everything))
+    hint = f"did you mean '{guess[0]}'?" if guess else "check the world's names"
     raise PlanningError(f"'{text}' is not an object, person, place or category of world "
                         f"'{world.name}'; {hint}")
 

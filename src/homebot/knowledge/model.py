@@ -284,9 +284,9 @@ class Taxonomy:
 
 def _unknown_message(what: str, name: str, known: list[str]) -> str:
     """``unknown class 'x'`` with the closest known names as a hint."""
-    import difflib
+    from homebot.text import closest_names
 
     name = str(name)
-    close = difflib.get_close_matches(name, known, n=3)
+    close = closest_names(name, known, count=3)
     hint = f"; did you mean {', '.join(repr(c) for c in close)}?" if close else ""
     return f"unknown {what} '{name}'{hint}"

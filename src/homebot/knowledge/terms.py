@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 import re
+import unicodedata
 from typing import NamedTuple
 
 from homebot.errors import KnowledgeError
@@ -36,14 +37,15 @@ _TOKEN = re.compile(
       | '(?:[^'\\\n]|\\.|'')*'        # quoted atom
       | =>>|=>                        # the two operators
       | -?\d+(?:\.\d+)?(?:[eE][+-]?\d+)?   # number
-      | [a-z][A-Za-z0-9_]*            # atom
-      | [A-Z_][A-Za-z0-9_]*           # variable (rejected)
+      | [^\W\d]\w*                    # atom, or variable (capital or _ first; rejected)
       | [\[\](),.|-]                  # punctuation and the bare '-'
       | \S                            # anything else (rejected)
     """,
     re.VERBOSE | re.DOTALL,
 )
-_PLAIN_ATOM = re.compile(r"[a-z][A-Za-z0-9_]*\Z")
+# Letters of any script: an atom starts with a letter that is not a capital ("josé",
+# "søren"), a variable with a capital or "_" ("José" must be quoted: 'José').
+_PLAIN_ATOM = re.compile(r"[^\W\d_]\w*\Z")
 _NUMBER_START = frozenset("-0123456789")
 _END = ""  # sentinel token after the last one
 
@@ -64,6 +66,8 @@ class TermParser:
     __slots__ = ("index", "source", "text", "tokens")
 
     def __init__(self, text: str, source: str = "<text>") -> None:
+        if not text.isascii():  # "josé" typed with a combining accent is one word too
+            text = unicodedata.normalize("NFC", text)
         self.text = text
         self.source = source
         tokens = _TOKEN.findall(text)
@@ -144,7 +148,7 @@ class TermParser:
         tokens = self.tokens
         token = tokens[self.index]
         first = token[:1]
-        if "a" <= first <= "z":
+        if "a" <= first <= "z" or (first > "\x7f" and first.isalpha() and not first.isupper()):
             self.index += 1
             if tokens[self.index] == "(":
                 self.index += 1
@@ -181,7 +185,7 @@ class TermParser:
             inner = self.expression()
             self.expect(")", "')'")
             return inner
-        if first == "_" or "A" <= first <= "Z":
+        if first == "_" or first.isupper():
             raise self.error(
                 "an atom, a number or a list",
                 found=f"the variable {token} (atoms start with a lower-case letter; "
@@ -317,7 +321,7 @@ def parse_statement(text: str, weight: int = 0, source: str = "<statement>") -> 
 
 def format_atom(atom: str) -> str:
     """An atom as the reader reads it back: bare when possible, else quoted."""
-    if _PLAIN_ATOM.match(atom):
+    if _PLAIN_ATOM.match(atom) and not atom[0].isupper():
         return atom
     escaped = (
         atom.replace("\\", "\\\\").replace("'", "\\'").replace("\n", "\\n").replace("\t", "\\t")

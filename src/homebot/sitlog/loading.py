@@ -15,6 +15,7 @@ from __future__ import annotations
 import difflib
 import importlib
 import importlib.util
+import unicodedata
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
@@ -112,6 +113,8 @@ class _Reader:
             text = path.read_text(encoding="utf-8")
         except (OSError, UnicodeDecodeError) as error:
             raise DialogueError(f"{path}: cannot read it ({error}); check the path") from None
+        # Accents composed: "josé" written with a combining accent is still one atom.
+        text = unicodedata.normalize("NFC", text)
         if path.suffix in (".dm", ".pl"):
             self.read_dm(text, str(path), path.parent)
         else:

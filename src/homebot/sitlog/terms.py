@@ -171,12 +171,13 @@ def is_ground(term: Term) -> bool:
 
 # ---------------------------------------------------------------------------- printing
 
-_PLAIN_ATOM = re.compile(r"[a-z][A-Za-z0-9_]*\Z")
+_PLAIN_ATOM = re.compile(r"[^\W\d_]\w*\Z")  # "josé", "søren"; "José" is a Variable
 _SYMBOL_ATOM = re.compile(r"[-+*/\\^<>=~:.?@#&$]+\Z")
 
 
 def _format_atom(atom: str) -> str:
-    if _PLAIN_ATOM.match(atom) or _SYMBOL_ATOM.match(atom) or atom in ("[]", "!", ";"):
+    if (_PLAIN_ATOM.match(atom) and not atom[0].isupper()) or _SYMBOL_ATOM.match(atom) or (
+            atom in ("[]", "!", ";")):
         return atom
     return "'" + atom.replace("\\", "\\\\").replace("'", "\\'") + "'"
 
@@ -221,8 +222,7 @@ _TOKEN = re.compile(
       | (?P<number>\d+(?:\.\d+)?(?:[eE][+-]?\d+)?)
       | (?P<quoted>'(?:[^'\\]|\\.|'')*')
       | (?P<text>"(?:[^"\\]|\\.)*")
-      | (?P<var>[A-Z_][A-Za-z0-9_]*)
-      | (?P<name>[a-z][A-Za-z0-9_]*)
+      | (?P<word>[^\W\d]\w*)
       | (?P<symbol>[-+*/\\^<>=~:.?@#&$]+)
       | (?P<punct>[()\[\],|])
     """,
@@ -247,6 +247,9 @@ def _tokens(source: str, where: str, offset: int) -> list[_Token]:
                                 f"{source[position]!r}; write atoms, Variables, 'quoted atoms',"
                                 " \"texts\", numbers, f(args) or [lists]")
         kind = match.lastgroup or ""
+        if kind == "word":  # letters of any script: a capital or "_" first makes a Variable
+            text = match.group()
+            kind = "var" if text[0] == "_" or text[0].isupper() else "name"
         if kind != "space":
             result.append(_Token(kind, match.group(), position))
         position = match.end()

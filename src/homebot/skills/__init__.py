@@ -1,6 +1,6 @@
 """Monitored skills: each executes, monitors its effect by sensing, and reports."""
 
-from homebot.skills.catalogue import SKILLS, check_step, skill_named
+from homebot.skills.catalogue import SKILLS, check_step, skill_named, spelled_as_world
 from homebot.skills.places import OPERATOR
 from homebot.skills.skill import ErrorCode, Outcome, Skill, SkillContext, Status, speak
 
@@ -15,4 +15,5 @@ __all__ = [
     "check_step",
     "skill_named",
     "speak",
+    "spelled_as_world",
 ]

@@ -14,10 +14,11 @@ from homebot.skills.perception import Count, Describe, FindObject, FindPerson, L
 from homebot.skills.places import OPERATOR
 from homebot.skills.skill import Skill
 from homebot.task import Step
+from homebot.text import closest_names, find_name
 from homebot.world import World
 from homebot.world.loading import short_repr
 
-__all__ = ["SKILLS", "check_step", "skill_named"]
+__all__ = ["SKILLS", "check_step", "skill_named", "spelled_as_world"]
 
 SKILLS: Mapping[str, type[Skill]] = {
     skill.name: skill
@@ -60,6 +61,30 @@ def check_step(step: Step, world: World, where: str) -> None:
         _check_value(step.skill, name, value, world, where)
 
 
+def spelled_as_world(step: Step, world: World) -> Step:
+    """The step with each name written as the world writes it: a task file may say
+    "patricia" or "creme brulee" for "Patrícia" and "crème brûlée" (``homebot.text.fold``).
+    Names the world does not know are left as they are, for ``check_step`` to report."""
+    args: dict[str, Any] = {}
+    for name, value in step.args.items():
+        kind = "person" if name == "person" else _ARGUMENT_KINDS.get(name)
+        if name == "person" and isinstance(value, Mapping):
+            if isinstance(value.get("name"), str):
+                value = {**value, "name": _spelled(value["name"], world, "person", step.skill)}
+        elif name == "exclude" and isinstance(value, list):
+            value = [_spelled(v, world, "placement", step.skill) if isinstance(v, str) else v
+                     for v in value]
+        elif kind is not None and isinstance(value, str):
+            value = _spelled(value, world, kind, step.skill)
+        args[name] = value
+    return Step(step.skill, args)
+
+
+def _spelled(text: str, world: World, kind: str, skill: str) -> str:
+    known = _names(world, kind, skill)
+    return text if text in known else (find_name(text, known) or text)
+
+
 def _check_value(skill: str, name: str, value: Any, world: World, where: str) -> None:
     if name == "person" and isinstance(value, Mapping):
         unknown = sorted(map(str, set(value) - _PERSON_FIELDS))
@@ -88,7 +113,7 @@ def _check_value(skill: str, name: str, value: Any, world: World, where: str) ->
     text = str(value)
     known = _names(world, kind, skill)
     if text not in known:
-        guess = difflib.get_close_matches(text, sorted(known), n=1)
+        guess = closest_names(text, sorted(known))
         hint = f"did you mean '{guess[0]}'?" if guess else "check the world's names"
         raise TaskError(f"{where}: unknown {kind} '{text}' for {skill}.{name}; {hint}")
 

@@ -10,6 +10,7 @@ from homebot.robot import Detection, PersonPercept, Pose
 from homebot.skills.motion import drive
 from homebot.skills.places import near, resolve_target, sees_person_nearby
 from homebot.skills.skill import ErrorCode, Outcome, Skill, SkillContext, Status
+from homebot.text import fold
 
 __all__ = [
     "Count",
@@ -178,7 +179,7 @@ def matches_person(percept: PersonPercept, description: Mapping[str, Any]) -> bo
     """Whether a seen person fits every field of a description (name, posture...)."""
     for key, value in description.items():
         wanted = str(value).lower().replace(" ", "_") if key != "clothes" else str(value).lower()
-        if key == "name" and (percept.name or "").lower() != str(value).lower():
+        if key == "name" and fold(percept.name or "") != fold(str(value)):
             return False
         if key == "posture" and percept.posture != wanted:
             return False
