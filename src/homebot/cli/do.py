@@ -9,7 +9,7 @@ from typing import Any
 from rich.console import Console
 from rich.markup import escape
 
-from homebot.cli.options import load_world
+from homebot.cli.options import GPSR_TIME_LIMIT, load_world
 from homebot.cli.simulated import add_run_options, finish_run, keep_events, simulated_run
 from homebot.language import Vocabulary, parse_command
 
@@ -19,7 +19,7 @@ __all__ = ["register"]
 def register(subparsers: Any) -> None:
     parser = subparsers.add_parser("do", help="understand a command and carry it out")
     parser.add_argument("command", help='what to do, e.g. "bring me the cola from the fridge"')
-    add_run_options(parser)
+    add_run_options(parser, time_limit=GPSR_TIME_LIMIT)
     parser.add_argument("--planner", choices=("gpsr", "htn"), default="gpsr",
                         help="gpsr: run the parsed skill steps (default); htn: make the parse's "
                              "intent an HTN goal and plan it from the robot's beliefs")

@@ -3,12 +3,17 @@
 from __future__ import annotations
 
 import argparse
+import math
+import re
 
 from homebot.errors import HomebotError, TaskError
 from homebot.skills import SKILLS
 from homebot.world import World
 
-__all__ = ["add_retry_option", "add_world_options", "load_world", "retry_budgets"]
+__all__ = ["GPSR_TIME_LIMIT", "add_retry_option", "add_time_limit_option", "add_world_options",
+           "load_world", "retry_budgets", "time_limit"]
+
+GPSR_TIME_LIMIT = 300.0  #: seconds: the competition's 5 minutes for a GPSR command
 
 
 def add_world_options(parser: argparse.ArgumentParser) -> None:
@@ -47,3 +52,32 @@ def retry_budgets(text: str) -> dict[str, int]:
             raise TaskError(f"--retries: '{item}' needs a count from 0 to 100, e.g. {skill}=3")
         budgets[skill] = int(count)
     return budgets
+
+
+def add_time_limit_option(parser: argparse.ArgumentParser, default: float | None) -> None:
+    """``--time-limit T``: the task's budget in simulated time (``300``, ``90s``, ``5m``, ``none``).
+
+    For every command that runs a task (``run-task``, ``do``, and a conversation's
+    commands); ``default`` is None for no limit.
+    """
+    shown = "none" if default is None else f"{default:g} s"
+    parser.add_argument("--time-limit", type=time_limit, default=default, metavar="T",
+                        help="the task's budget in simulated time: seconds, or with s/m/h "
+                             f"(90s, 5m), or none (default: {shown}); searches stop at it")
+
+
+_DURATION = re.compile(r"\s*(\d+(?:\.\d*)?|\.\d+)\s*(s|sec|m|min|h)?\s*", re.IGNORECASE)
+_UNIT = {"": 1.0, "s": 1.0, "sec": 1.0, "m": 60.0, "min": 60.0, "h": 3600.0}
+
+
+def time_limit(text: str) -> float | None:
+    """Parse ``--time-limit``: ``300``, ``90s``, ``5m``, ``1h`` or ``none`` (no limit)."""
+    if text.strip().lower() in {"none", "off", "no"}:
+        return None
+    match = _DURATION.fullmatch(text)
+    seconds = float(match.group(1)) * _UNIT[(match.group(2) or "").lower()] if match else math.nan
+    if not match or not 0 < seconds <= 86_400:
+        raise argparse.ArgumentTypeError(
+            f"'{text}' is not a time limit; give simulated seconds above 0 and at most a day "
+            "(300, 90s, 5m) or none")
+    return seconds

@@ -9,7 +9,12 @@ from pathlib import Path
 from rich.console import Console
 from rich.markup import escape
 
-from homebot.cli.options import add_retry_option, add_world_options, retry_budgets
+from homebot.cli.options import (
+    add_retry_option,
+    add_time_limit_option,
+    add_world_options,
+    retry_budgets,
+)
 from homebot.cli.world import remember_last_run
 from homebot.errors import TaskError
 from homebot.events import EventLog
@@ -28,10 +33,15 @@ __all__ = [
 ]
 
 
-def add_run_options(parser: argparse.ArgumentParser) -> None:
-    """World, seed, retries, disturbances, interactive people, event log and JSON output."""
+def add_run_options(parser: argparse.ArgumentParser, *,
+                    time_limit: float | None = None) -> None:
+    """World, seed, retries, time limit, disturbances, interactive people, events and JSON.
+
+    ``time_limit`` is ``--time-limit``'s default in simulated seconds (None: no limit).
+    """
     add_world_options(parser)
     add_retry_option(parser)
+    add_time_limit_option(parser, time_limit)
     parser.add_argument("--disturb", type=disturbance_level, default=0.0, metavar="LEVEL",
                         help="switch disturbances on (1 = the benchmark's level)")
     parser.add_argument("--interactive", action="store_true",
@@ -48,7 +58,7 @@ def simulated_run(args: argparse.Namespace, world: World, *,
         disturbances=disturbed(args.disturb) if args.disturb else None,
         monitoring=monitoring,
         responder=InteractiveResponder() if args.interactive else None,
-        retries=retry_budgets(args.retries))
+        retries=retry_budgets(args.retries), time_limit=args.time_limit)
 
 
 def keep_events(args: argparse.Namespace, run: SimulatedRun) -> None:

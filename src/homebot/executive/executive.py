@@ -16,6 +16,7 @@ from homebot.skills import (
     skill_named,
     speak,
 )
+from homebot.skills.skill import time_left
 from homebot.task import Step, Task
 
 __all__ = ["Executive"]
@@ -39,18 +40,24 @@ class Executive:
     gave up; when an object is not where it was expected (a find or pick ends
     ``not_found``) it is called instead of the blind search protocol, since
     diagnosing where it went is what it is for.
+
+    ``time_limit`` (simulated seconds) is each task's time budget: a step is not
+    started once it is spent, recovery stops, and searches stop when a look and
+    the way back to the operator no longer fit in it.
     """
 
     def __init__(self, context: SkillContext, *, recovery: bool = True,
-                 inference: Protocol | None = None) -> None:
+                 inference: Protocol | None = None, time_limit: float | None = None) -> None:
         self.context = context
         self.recovery = recovery and context.monitoring
         self.inference = inference if self.recovery else None
+        self.time_limit = time_limit
 
     def run(self, task: Task) -> TaskReport:
         """Run every step in order; the report says whether all ended as expected."""
         context = self.context
         started = context.robot.now()
+        context.deadline = None if self.time_limit is None else started + self.time_limit
         first_event = len(context.events.events)
         context.events.record("task.start", description=task.description,
                               steps=task.to_dicts())
@@ -58,7 +65,11 @@ class Executive:
         reason = ""
         for index, step in enumerate(task.steps):
             args = self._bind(step.args)
-            outcome, recoveries = self._run_step(step.skill, args)
+            if time_left(context) <= 0:
+                outcome, recoveries = Outcome.failed(
+                    ErrorCode.OUT_OF_TIME, f"I ran out of time before I could {step.skill}"), []
+            else:
+                outcome, recoveries = self._run_step(step.skill, args)
             handled = outcome.data.get("object")
             if (step.skill == "pick" and recoveries and isinstance(handled, str)
                     and handled != args.get("object")):
@@ -104,7 +115,8 @@ class Executive:
         # Inference serves the task's own steps, not the steps a protocol runs.
         inference = self.inference if depth == 0 else None
         inferred = gave_up = False
-        while self.recovery and not outcome and len(recoveries) < _MAX_RECOVERIES:
+        while (self.recovery and not outcome and len(recoveries) < _MAX_RECOVERIES
+               and outcome.error is not ErrorCode.OUT_OF_TIME and time_left(self.context) > 0):
             protocol = self._protocol_for(skill, outcome, inference, inferred, gave_up)
             if protocol is None or (depth > 0 and outcome.error is ErrorCode.NOT_FOUND):
                 break  # a search a protocol runs does not start searches of its own
@@ -115,6 +127,8 @@ class Executive:
             recovered = protocol(self.context, skill, args, outcome, nested)
             if isinstance(recovered, Outcome):
                 outcome = recovered
+                if not outcome and protocol is not inference:
+                    break  # a protocol's own failure (where it searched) is the step's word
                 continue
             if not recovered:
                 if inference is not None and not inferred:

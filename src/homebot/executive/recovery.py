@@ -14,6 +14,7 @@ from typing import Any
 
 from homebot.robot import HelpRequest
 from homebot.skills import ErrorCode, Outcome, SkillContext, speak
+from homebot.skills.perception import looked_everywhere
 from homebot.skills.places import resolve_target
 
 __all__ = ["PROTOCOLS", "Protocol", "StepRunner"]
@@ -87,7 +88,14 @@ def _object_not_found(context: SkillContext, skill: str, args: Mapping[str, Any]
         speak(context, f"I will search the whole home once more for the {wanted}.")
         found = run("find_object", {"object": wanted})
     if not found:
-        return False
+        if found.error not in (ErrorCode.NOT_FOUND, ErrorCode.OUT_OF_TIME):
+            return False
+        # The search's word stands for the step: every place looked at, not the first.
+        looked = list(dict.fromkeys([*context.bindings.get(f"searched:{wanted}", ()), *searched]))
+        said = looked_everywhere(wanted, looked)
+        if found.error is ErrorCode.OUT_OF_TIME:
+            said = f"I ran out of time looking for the {wanted}; {said}"
+        return Outcome.failed(found.error, said, searched=looked)
     context.bindings[f"object:{wanted}"] = found.data["object"]
     context.bindings[f"placement:{found.data['object']}"] = found.data["placement"]
     return found if skill == "find_object" else True

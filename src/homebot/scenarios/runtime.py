@@ -70,10 +70,12 @@ class SimulatedRun:
                recovery: bool = True, responder: Responder | None = None,
                navigator: Navigator | None = None,
                retries: Mapping[str, int] | None = None,
-               inference: Protocol | None = None) -> SimulatedRun:
+               inference: Protocol | None = None,
+               time_limit: float | None = None) -> SimulatedRun:
         """Build a run. Pass a shared ``navigator`` to skip rasterising the world again.
 
-        ``inference`` plugs the daily-life inference cycle into the executive.
+        ``inference`` plugs the daily-life inference cycle into the executive;
+        ``time_limit`` is each task's budget in simulated seconds (None: none).
         """
         navigator = navigator or Navigator(world)
         simulation = Simulation(world, seed=seed, disturbances=disturbances,
@@ -83,7 +85,8 @@ class SimulatedRun:
         context = SkillContext(robot=robot, world=world, navigator=navigator, beliefs=beliefs,
                                events=simulation.events, monitoring=monitoring,
                                retries=dict(retries or {}))
-        executive = Executive(context, recovery=recovery, inference=inference)
+        executive = Executive(context, recovery=recovery, inference=inference,
+                              time_limit=time_limit)
         return cls(world, simulation, robot, context, executive)
 
     def run(self, task: Task) -> TaskReport:

@@ -21,7 +21,7 @@ from homebot.navigation import Navigator
 from homebot.robot import Robot
 from homebot.world import World
 
-__all__ = ["ErrorCode", "Outcome", "Skill", "SkillContext", "Status", "speak"]
+__all__ = ["ErrorCode", "Outcome", "Skill", "SkillContext", "Status", "speak", "time_left"]
 
 
 class Status(StrEnum):
@@ -56,6 +56,8 @@ class ErrorCode(StrEnum):
     LOST_PERSON = "lost_person"  #: the person followed or guided is no longer there
     DOOR_LOCKED = "door_locked"  #: the door did not open
     NO_ANSWER = "no_answer"  #: nobody answered
+    # cancelled
+    OUT_OF_TIME = "out_of_time"  #: the task's time budget ran out before the step was done
 
 
 @dataclass(frozen=True, slots=True)
@@ -97,7 +99,8 @@ class SkillContext:
 
     ``bindings`` holds what earlier steps found: ``person`` (the person last
     found), ``result`` (the text of the last count or description), and, per
-    requested object or category, the object actually found.
+    requested object or category, the object actually found. ``deadline`` is the
+    robot time (``robot.now()``) by which the task must be over, or None.
     """
 
     robot: Robot
@@ -108,6 +111,14 @@ class SkillContext:
     bindings: dict[str, Any] = field(default_factory=dict)
     monitoring: bool = True
     retries: dict[str, int] = field(default_factory=dict)
+    deadline: float | None = None
+
+
+def time_left(context: SkillContext) -> float:
+    """Seconds of the task's time budget still left (infinite without a budget)."""
+    if context.deadline is None:
+        return float("inf")
+    return context.deadline - context.robot.now()
 
 
 def speak(context: SkillContext, text: str) -> None:
