@@ -7,7 +7,7 @@ import importlib.util
 import json
 import os
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from rich.console import Console
 from rich.table import Table
@@ -16,6 +16,9 @@ from homebot.cli.options import load_world
 from homebot.errors import WorldError
 from homebot.events import EventLog
 from homebot.world import World
+
+if TYPE_CHECKING:
+    from homebot.viz import EmbodiedRun
 
 __all__ = ["last_run_path", "register", "remember_last_run", "world_summary"]
 
@@ -101,7 +104,9 @@ def _show(args: argparse.Namespace) -> int:
 
         if args.png.suffix.lower() != ".png":
             raise WorldError(f"{args.png}: the map is a PNG image; give a name ending in .png")
-        image = render_map(world, _path_from_events(args.events or last_run_path(), world))
+        events = args.events or last_run_path()
+        image = render_map(world, _path_from_events(events, world),
+                           _embodied_from_events(events, world))
         try:
             image.save(args.png)
         except OSError as error:
@@ -129,6 +134,20 @@ def _path_from_events(events: Path, world: World) -> list[tuple[float, float]]:
         raise WorldError(f"{events}: not a homebot event log (JSON lines); give the file "
                          "written by run-task --events") from None
     return path if len(path) > 1 else []
+
+
+def _embodied_from_events(events: Path, world: World) -> EmbodiedRun | None:
+    """The trajectory, particles and laser of an embodied run logged in ``events``."""
+    from homebot.viz import embodied_run
+
+    if not events.exists():
+        return None
+    try:
+        lines = events.read_text(encoding="utf-8").splitlines()
+        return embodied_run((json.loads(line) for line in lines if line.strip()), world.name)
+    except (OSError, ValueError, TypeError, KeyError, AttributeError) as error:
+        raise WorldError(f"{events}: not a homebot event log of an embodied run ({error}); "
+                         "give the file written by run-task --events") from None
 
 
 def _print_tables(world: World) -> None:

@@ -7,6 +7,7 @@ from functools import cache
 
 from PIL import Image, ImageDraw, ImageFont
 
+from homebot.viz.embodied import EmbodiedRun, draw_embodied_run
 from homebot.world import DoorState, PlacementKind, World
 
 __all__ = ["render_map"]
@@ -39,8 +40,10 @@ def _font() -> ImageFont.FreeTypeFont | ImageFont.ImageFont:
     return ImageFont.load_default()
 
 
-def render_map(world: World, path: Sequence[tuple[float, float]] = ()) -> Image.Image:
-    """Draw the world (and the robot's path, if given) as an RGB image. Pure: writes nothing."""
+def render_map(world: World, path: Sequence[tuple[float, float]] = (),
+               run: EmbodiedRun | None = None) -> Image.Image:
+    """Draw the world (and the robot's path, and an embodied run's trajectory, particles
+    and laser, if given) as an RGB image. Pure: writes nothing."""
     min_x, min_y, max_x, max_y = world.bounds()
     width = int((max_x - min_x) * _PIXELS_PER_METRE) + 2 * _MARGIN
     height = int((max_y - min_y) * _PIXELS_PER_METRE) + 2 * _MARGIN
@@ -86,6 +89,8 @@ def render_map(world: World, path: Sequence[tuple[float, float]] = ()) -> Image.
         draw.text((cx + 11, cy - 6), person.name, fill=_COLOURS["person"])
     if len(path) > 1:
         draw.line([px(x, y) for x, y in path], fill=_COLOURS["path"], width=3)
+    if run:
+        draw_embodied_run(draw, px, run)
     rx, ry = px(world.robot.pose[0], world.robot.pose[1])
     draw.rectangle((rx - 8, ry - 8, rx + 8, ry + 8), outline=_COLOURS["robot"], width=3)
     return image
