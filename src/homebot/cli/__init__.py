@@ -26,6 +26,7 @@ import importlib
 import sys
 from collections.abc import Callable, Sequence
 
+from homebot import __version__
 from homebot.cli.modules import LazySubcommands, lazy_subparsers
 from homebot.errors import HomebotError
 
@@ -53,6 +54,7 @@ def command_line_argument_parser() -> argparse.ArgumentParser:
         prog="homebot",
         description="A cognitive software stack for domestic service robots.",
     )
+    parser.add_argument("--version", action="version", version=f"homebot {__version__}")
     subparsers = lazy_subparsers(parser, dest="command", metavar="COMMAND")
     for command, (module, text) in COMMAND_GROUPS.items():
         subparsers.add_lazy(command, text, _group_register(module))
@@ -68,12 +70,13 @@ def _group_register(module: str) -> Callable[[LazySubcommands], None]:
 def main(argv: Sequence[str] | None = None) -> int:
     """Run the command line; returns (and, as a script, exits with) the status."""
     parser = command_line_argument_parser()
-    args = parser.parse_args(argv)
-    handler = getattr(args, "handler", None)
-    if handler is None:
-        parser.print_help()
-        return 2
     try:
+        # Inside the try: an argument type may raise a HomebotError (a bad benchmark size).
+        args = parser.parse_args(argv)
+        handler = getattr(args, "handler", None)
+        if handler is None:
+            parser.print_help()
+            return 2
         return int(handler(args))
     except HomebotError as error:
         from rich.console import Console
