@@ -29,7 +29,9 @@ def _fails_cleanly(capsys: pytest.CaptureFixture[str], status: int, expected: st
 @pytest.mark.parametrize(("task", "expected"), [
     ("- {skill: navigate, to: kitchen, 1: x}\n", "argument names are words, not 1"),
     ("{1: a, b: c}\n", "unknown field '1'"),
-    ("- {skill: navigate, to: [kitchen]}\n", "navigate.to is a name or text, not ['kitchen']"),
+    ("- {skill: navigate, to: [kitchen]}\n",
+     "navigate.to is a name or a point [x, y] / {x: X, y: Y}, not ['kitchen']"),
+    ("- {skill: guide, to: [1, 2]}\n", "guide.to is a name or text, not [1, 2]"),
     ("- {skill: say, text: {a: 1}}\n", "say.text is a name or text"),
     ("- {skill: find_person, person: {name: [1]}}\n", "find_person.person.name is a word"),
     ("- {skill: find_person, person: {1: x}}\n", "not '1'"),

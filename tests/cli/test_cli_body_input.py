@@ -122,3 +122,39 @@ def test_a_broken_map_image_exits_2(tmp_path: Path, capsys: pytest.CaptureFixtur
     (tmp_path / "supermarket.pgm").write_bytes(b"P5\n288 168\n255\n" + bytes(100))
     _fails_cleanly(capsys, main(["world", "map-check", str(tmp_path / "supermarket.yaml")]),
                    "check it is a complete PGM file")
+
+
+@pytest.mark.parametrize(("to", "expected"), [
+    ("[5.0, 0.5]", "step 2: navigate.to (5, 0.5) is inside the shelf bread"),
+    ("{x: 5.0, y: 0.5}", "step 2: navigate.to (5, 0.5) is inside the shelf bread"),
+    ("[10.0, 3.0]", "step 2: navigate.to (10, 3) is inside a wall"),
+    ("[20, 3]", "step 2: navigate.to (20, 3) is outside every room"),
+    ("[5.0, 1.0]", "is 0.20 m from the shelf bread, closer than the robot's radius 0.25 m"),
+    ("[1, 2, 3]", "navigate.to is a name or a point [x, y] / {x: X, y: Y}, not [1, 2, 3]"),
+    ("{x: 1}", "a point is {x: X, y: Y}, not keys ['x']"),
+    ("[1, .nan]", "a point's x and y are finite numbers"),
+    ("[true, 2]", "a point's x and y are finite numbers"),
+])
+def test_a_point_goal_where_the_robot_cannot_stand_exits_2(
+        tmp_path: Path, to: str, expected: str, capsys: pytest.CaptureFixture[str]) -> None:
+    task = _file(tmp_path, "t.yaml", "- {skill: say, text: hello}\n"
+                                     f"- {{skill: navigate, to: {to}}}\n")
+    status = main(["run-task", str(task), "--world", str(SUPERMARKET)])
+    err = _fails_cleanly(capsys, status, expected)
+    assert "t.yaml: line 2: step 2" in err
+
+
+@pytest.mark.parametrize("to", ["[12.0, 2.0]", "{x: 12.0, y: 2.0}"])
+def test_a_point_goal_on_free_floor_is_driven_to(tmp_path: Path, to: str,
+                                                 capsys: pytest.CaptureFixture[str]) -> None:
+    events = tmp_path / "events.jsonl"
+    task = _file(tmp_path, "t.yaml", f"- {{skill: navigate, to: {to}}}\n")
+    status = main(["run-task", str(task), "--world", str(SUPERMARKET), "--json",
+                   "--events", str(events)])
+    assert status == 0, capsys.readouterr()
+    report = json.loads(capsys.readouterr().out)
+    assert report["steps"][0]["status"] == "verified"
+    log = events.read_text(encoding="utf-8")
+    assert "I am at the point (12, 2)" in log
+    path = [json.loads(line) for line in log.splitlines() if '"robot.path"' in line]
+    assert path and path[-1]["points"][-1] == pytest.approx([12.0, 2.0], abs=0.05)

@@ -63,7 +63,7 @@ def _has_other_way(context: SkillContext, skill: str, args: Mapping[str, Any]) -
     target = args.get("to") or args.get("placement") or args.get("room")
     if target is None:
         return True
-    goal = resolve_target(context, str(target))
+    goal = resolve_target(context, target)
     if goal is None:
         return False
     plan = context.navigator.plan(context.robot.pose().xy(), goal.xy(),

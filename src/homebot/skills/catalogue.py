@@ -11,7 +11,7 @@ from homebot.skills.interaction import AnswerQuestion, Ask, Greet, Say
 from homebot.skills.manipulation import Give, Pick, Place
 from homebot.skills.motion import Follow, Guide, Navigate, OpenDoor
 from homebot.skills.perception import Count, Describe, FindObject, FindPerson, Look
-from homebot.skills.places import OPERATOR
+from homebot.skills.places import OPERATOR, point_goal
 from homebot.skills.skill import Skill
 from homebot.task import Step
 from homebot.text import closest_names, find_name
@@ -30,6 +30,8 @@ SKILLS: Mapping[str, type[Skill]] = {
 _ARGUMENT_KINDS = {"to": "target", "placement": "placement", "room": "room",
                    "object": "object", "door": "door"}
 _PERSON_FIELDS = {"name", "posture", "gesture", "clothes"}
+# Skills whose ``to`` may be a point goal, [x, y] or {x: X, y: Y}, besides a name.
+_POINT_GOAL_SKILLS = frozenset({"navigate"})
 
 
 def skill_named(name: str) -> Skill:
@@ -96,6 +98,9 @@ def _check_value(skill: str, name: str, value: Any, world: World, where: str) ->
                 raise TaskError(f"{where}: {skill}.person.{field} is a word such as 'waving', "
                                 f"not {short_repr(text)}")
         return
+    if name == "to" and skill in _POINT_GOAL_SKILLS and isinstance(value, (list, Mapping)):
+        _check_point_goal(skill, value, world, where)
+        return
     if name == "exclude" and isinstance(value, list):
         value = tuple(value)
     elif isinstance(value, (list, dict)):
@@ -116,6 +121,20 @@ def _check_value(skill: str, name: str, value: Any, world: World, where: str) ->
         guess = closest_names(text, sorted(known))
         hint = f"did you mean '{guess[0]}'?" if guess else "check the world's names"
         raise TaskError(f"{where}: unknown {kind} '{text}' for {skill}.{name}; {hint}")
+
+
+def _check_point_goal(skill: str, value: Any, world: World, where: str) -> None:
+    """A point goal is two finite numbers where the robot fits: on a room's free floor."""
+    try:
+        point = point_goal(value)
+    except ValueError as error:
+        raise TaskError(f"{where}: {skill}.to is a name or a point [x, y] / {{x: X, y: Y}}, "
+                        f"not {short_repr(value)}: {error}") from None
+    problem = world.footprint_problem(*point) if point is not None else None
+    if point is not None and problem is not None:
+        raise TaskError(f"{where}: {skill}.to ({point[0]:g}, {point[1]:g}) {problem}; give a "
+                        "point on free floor inside a room, at least the robot's radius from "
+                        "walls and furniture")
 
 
 def _names(world: World, kind: str, skill: str) -> set[str]:

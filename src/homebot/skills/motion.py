@@ -6,7 +6,13 @@ from collections.abc import Mapping
 from typing import Any
 
 from homebot.robot import Blocker, MoveReport, Pose
-from homebot.skills.places import near, person_name, resolve_target, sees_person_nearby
+from homebot.skills.places import (
+    near,
+    person_name,
+    resolve_target,
+    sees_person_nearby,
+    target_label,
+)
 from homebot.skills.skill import ErrorCode, Outcome, Skill, SkillContext, Status, speak
 
 __all__ = ["Follow", "Guide", "Navigate", "OpenDoor", "drive"]
@@ -44,7 +50,8 @@ def _motion_outcome(context: SkillContext, report: MoveReport) -> Outcome:
 
 
 class Navigate(Skill):
-    """Drive to a placement, room, person, ``operator`` or door.
+    """Drive to a placement, room, person, ``operator`` or door, or to a point goal
+    ``[x, y]`` / ``{x: X, y: Y}`` (metres, map frame).
 
     Preconditions: the target is known. Effects: the robot stands at the target's
     pose. Monitor: localisation says the robot is within 0.3 m of the goal.
@@ -55,9 +62,10 @@ class Navigate(Skill):
     retries = 1
 
     def execute(self, context: SkillContext, args: Mapping[str, Any]) -> Outcome:
-        goal = resolve_target(context, str(args["to"]))
+        goal = resolve_target(context, args["to"])
         if goal is None:
-            return Outcome.failed(ErrorCode.UNKNOWN_TARGET, f"I do not know where {args['to']} is")
+            return Outcome.failed(ErrorCode.UNKNOWN_TARGET,
+                                  f"I do not know where {target_label(args['to'])} is")
         outcome = drive(context, goal)
         if outcome.status is not Status.FINISHED:
             return outcome
@@ -67,8 +75,9 @@ class Navigate(Skill):
                 finished: Outcome) -> Outcome:
         goal = finished.data["goal"]
         if near(context, goal):
-            return Outcome.verified(f"I am at {args['to']}")
-        return Outcome.aborted(ErrorCode.NOT_REACHED, f"I did not get to {args['to']}")
+            return Outcome.verified(f"I am at {target_label(args['to'])}")
+        return Outcome.aborted(ErrorCode.NOT_REACHED,
+                               f"I did not get to {target_label(args['to'])}")
 
 
 class Follow(Skill):

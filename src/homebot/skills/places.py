@@ -13,9 +13,11 @@ __all__ = [
     "OPERATOR",
     "near",
     "person_name",
+    "point_goal",
     "pose_near_point",
     "resolve_target",
     "sees_person_nearby",
+    "target_label",
 ]
 
 OPERATOR = "operator"  #: how a task names the person who gave the command
@@ -62,9 +64,49 @@ def pose_near_point(context: SkillContext, point: tuple[float, float],
     return Pose(x, y, math.atan2(point[1] - y, point[0] - x))
 
 
-def resolve_target(context: SkillContext, target: str) -> Pose | None:
-    """The pose to drive to for a placement, room, person, ``operator`` or door name."""
+def point_goal(target: Any) -> tuple[float, float] | None:
+    """(x, y) of a point goal, ``[x, y]`` or ``{x: X, y: Y}`` in the map frame; else None.
+
+    Raises ``ValueError`` (saying what is wrong) for a list or mapping that is not a
+    point of two finite numbers.
+    """
+    if isinstance(target, Mapping):
+        if set(map(str, target)) != {"x", "y"}:
+            raise ValueError(f"a point is {{x: X, y: Y}}, not keys {sorted(map(str, target))}")
+        values = [target["x"], target["y"]]
+    elif isinstance(target, (list, tuple)):
+        if len(target) != 2:
+            raise ValueError(f"a point is [x, y], two numbers, not {len(target)}")
+        values = list(target)
+    else:
+        return None
+    if not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+               for v in values):
+        raise ValueError("a point's x and y are finite numbers in metres")
+    return (float(values[0]), float(values[1]))
+
+
+def target_label(target: Any) -> str:
+    """How a target is spoken of: its name, or ``the point (x, y)``."""
+    try:
+        point = point_goal(target)
+    except ValueError:
+        point = None
+    return f"the point ({point[0]:g}, {point[1]:g})" if point else str(target)
+
+
+def resolve_target(context: SkillContext, target: Any) -> Pose | None:
+    """The pose to drive to for a placement, room, person, ``operator`` or door name,
+    or a point goal (``[x, y]`` / ``{x: X, y: Y}``, faced in the direction of travel)."""
     world = context.world
+    try:
+        point = point_goal(target)
+    except ValueError:
+        return None
+    if point is not None:
+        here = context.robot.pose().xy()
+        return Pose(point[0], point[1], math.atan2(point[1] - here[1], point[0] - here[0]))
+    target = str(target)
     if target in world.placements:
         x, y, theta = world.placements[target].approach
         return Pose(x, y, theta)
