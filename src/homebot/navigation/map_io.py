@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import math
 import re
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -253,7 +254,10 @@ def _finite(value: Any, where: str) -> float:
 def _read_image(path: Path, where: str, mode: str) -> tuple[np.ndarray, np.ndarray]:
     """Brightness in [0, 1] per pixel (channels averaged, as map_server does) and opacity."""
     try:
-        with Image.open(path) as image:
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", Image.DecompressionBombWarning)
+            image = Image.open(path)
+        with image:
             image.load()
             if image.mode not in ("1", "L", "LA", "P", "RGB", "RGBA"):
                 raise MapError(f"{where}: {path} is a {image.mode} image; give an 8-bit grey "
@@ -264,6 +268,8 @@ def _read_image(path: Path, where: str, mode: str) -> tuple[np.ndarray, np.ndarr
     except FileNotFoundError:
         raise MapError(f"{where}: the image {path} does not exist; write it beside the YAML "
                        "or fix the name") from None
+    except (Image.DecompressionBombError, Image.DecompressionBombWarning) as error:
+        raise MapError(f"{where}: {path} is too large to read ({error})") from None
     except (UnidentifiedImageError, SyntaxError, ValueError) as error:
         raise MapError(f"{where}: {path} is not an image Pillow can read ({error}); give an "
                        "8-bit grey PGM (P5)") from None
