@@ -10,12 +10,14 @@ a prompt; ``homebot.sitlog.robot`` feeds them from the skills' outcomes.
 from __future__ import annotations
 
 import re
+import unicodedata
 from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Protocol
 
 from homebot.errors import DialogueError
 from homebot.sitlog.terms import Term, deref, parse_term
+from homebot.text import fold
 
 if TYPE_CHECKING:
     from homebot.sitlog.interpreter import Environment
@@ -55,18 +57,21 @@ def utterance_term(text: str, expectations: Sequence[Term] = ()) -> Term:
     """A typed or heard line as a term, read top-down against the expectations.
 
     SitLog notation is taken as written. Otherwise an expected atom whose words
-    occur in the utterance is what was meant ("Yes, Golem, please." meets ``yes``),
+    occur in the utterance, compared folded (``homebot.text.fold``: no case, no accents),
+    is what was meant ("Yes, Golem, please." meets ``yes``, "jose" meets ``josé``),
     the first such in the arcs' order; failing that, the words become one atom.
     """
-    stripped = text.strip().rstrip(".")
+    stripped = unicodedata.normalize("NFC", text.strip()).rstrip(".")
     try:
         return parse_term(stripped, "<input>")
     except DialogueError:
         pass
     words = re.sub(r"[^\w\s']", " ", stripped.lower()).split()
+    folded = [fold(word) for word in words]  # "Jose" meets the expectation josé
     for expectation in expectations:
         expected = deref(expectation)
-        if isinstance(expected, str) and expected and _contains(words, expected.split()):
+        if isinstance(expected, str) and expected and _contains(folded,
+                                                                fold(expected).split()):
             return expected
     return " ".join(words)
 

@@ -22,7 +22,8 @@ from typing import TYPE_CHECKING, Any
 from homebot.errors import DialogueError, TaskError
 from homebot.sitlog.evaluation import spoken
 from homebot.sitlog.terms import Struct, Term, Text, Var, deref, format_term, resolve
-from homebot.skills import Outcome, SkillContext, Status, skill_named
+from homebot.skills import Outcome, SkillContext, Status, skill_named, spelled_as_world
+from homebot.task import Step
 
 if TYPE_CHECKING:
     from homebot.sitlog.interpreter import Environment
@@ -118,6 +119,8 @@ class SkillPerception:
         return result
 
     def _run(self, name: str, arguments: Mapping[str, Any], env: Environment) -> Outcome:
+        # A model may say etagere or 'Patricia' for the world's étagère and Patrícia.
+        arguments = spelled_as_world(Step(name, dict(arguments)), self.context.world).args
         try:
             return skill_named(name).run(self.context, arguments)
         except TaskError as error:

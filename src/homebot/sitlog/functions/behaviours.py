@@ -7,14 +7,20 @@ from homebot.sitlog.interpreter import Environment
 from homebot.sitlog.model import UserFunction
 from homebot.sitlog.terms import EMPTY, Struct, Term, resolve
 from homebot.skills import SkillContext, speak
+from homebot.text import fold
 
 __all__ = ["datum", "first", "let_me_through", "member", "rest", "user_functions"]
 
 
 def member(env: Environment, item: Term, items: Term, then: Term, otherwise: Term) -> Term:
-    """``then`` if ``item`` is in the list ``items``, else ``otherwise`` (choose by a test)."""
-    values = resolve(items)
-    found = isinstance(values, tuple) and resolve(item) in values
+    """``then`` if ``item`` is in the list ``items``, else ``otherwise`` (choose by a test).
+
+    Atoms are compared folded (``homebot.text.fold``): ``'creme brulee'`` is in a list
+    the world spells ``['crème brûlée']``.
+    """
+    values, wanted = resolve(items), resolve(item)
+    found = isinstance(values, tuple) and (wanted in values or (isinstance(wanted, str) and any(
+        isinstance(value, str) and fold(value) == fold(wanted) for value in values)))
     return then if found else otherwise
 
 

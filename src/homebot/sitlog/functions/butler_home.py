@@ -12,6 +12,7 @@ from homebot.knowledge.store import KnowledgeStore
 from homebot.sitlog.interpreter import Environment
 from homebot.sitlog.terms import Struct, Term, Text, resolve
 from homebot.skills import SkillContext
+from homebot.text import fold
 
 __all__ = ["ButlerHome", "hear_choice", "hear_mood", "hear_request", "hear_yes_no", "home_of",
            "items_of"]
@@ -83,13 +84,14 @@ def home_of(env: Environment) -> ButlerHome:
 
 
 def _words(text: Term) -> list[str]:
-    return re.findall(r"[a-z']+", str(resolve(text)).lower())
+    """The words heard, folded (``homebot.text.fold``): "Crème" is heard as "creme"."""
+    return re.findall(r"(?:[^\W\d_]|')+", fold(str(resolve(text))))
 
 
 def _mentioned(home: ButlerHome, words: list[str]) -> list[str]:
-    """Objects named in the words, in order (spoken names and ids both count)."""
-    names = {home.spoken(entity): entity for entity in home.comestibles()}
-    names.update({entity: entity for entity in home.comestibles()})
+    """Objects named in the words, in order (spoken names and ids both count, folded)."""
+    names = {fold(home.spoken(entity)): entity for entity in home.comestibles()}
+    names.update({fold(entity): entity for entity in home.comestibles()})
     return [names[word] for word in words if word in names]
 
 

@@ -1,0 +1,61 @@
+"""The folded form names are compared in: accents, case and Unicode forms set aside."""
+
+from __future__ import annotations
+
+import unicodedata
+
+from hypothesis import given
+from hypothesis import strategies as st
+
+from homebot.text import closest_names, find_name, fold, folded_index
+
+
+def test_accented_and_plain_spellings_fold_alike() -> None:
+    assert fold("Patrícia") == fold("patricia") == fold("PATRÍCIA") == "patricia"
+    assert fold("Antônia") == "antonia"
+    assert fold("José") == "jose"
+    assert fold("Zoë") == "zoe"
+    assert fold("crème brûlée") == "creme brulee"
+    assert fold("Straße") == "strasse"
+
+
+def test_letters_without_a_decomposition_fold_to_what_keyboards_write() -> None:
+    assert fold("Søren") == fold("SØREN") == "soren"
+    assert fold("smørrebrød") == "smorrebrod"
+    assert fold("Æbleskiver") == "aebleskiver"
+    assert fold("Łukasz") == "lukasz"
+
+
+def test_composed_and_decomposed_and_compatibility_forms_fold_alike() -> None:
+    composed = unicodedata.normalize("NFC", "Patrícia")
+    decomposed = unicodedata.normalize("NFD", "Patrícia")
+    assert composed != decomposed
+    assert fold(composed) == fold(decomposed) == "patricia"
+    assert fold("ｃｏｌａ") == "cola"  # full-width letters
+    assert fold("ﬁsh") == "fish"  # a ligature
+
+
+def test_other_scripts_keep_their_letters() -> None:
+    assert fold("Анна") == "анна"
+    assert fold("Ἀθηνᾶ") == "αθηνα"
+
+
+@given(st.text())
+def test_folding_is_idempotent(text: str) -> None:
+    assert fold(fold(text)) == fold(text)
+
+
+@given(st.text())
+def test_folding_ignores_case_and_accents_already_removed(text: str) -> None:
+    assert fold(text.upper()) == fold(fold(text).upper())
+
+
+def test_names_are_found_as_written() -> None:
+    people = ["José", "Antônia", "Søren", "Patrícia"]
+    assert find_name("patricia", people) == "Patrícia"
+    assert find_name("SOREN", people) == "Søren"
+    assert find_name("Paula", people) is None
+    assert folded_index(people)["antonia"] == "Antônia"
+    assert closest_names("patrica", people) == ["Patrícia"]
+    assert closest_names("Jóse", people) == ["José"]
+    assert closest_names("xyz", people) == []
