@@ -11,7 +11,8 @@ Hierarchy::
     ├── GologError               a Golog program or action theory is malformed
     ├── PlanningError            an HTN domain, problem or planning goal is malformed
     ├── LanguageError            a command cannot be understood
-    └── DialogueError            a SitLog dialogue model is malformed or cannot go on
+    ├── DialogueError            a SitLog dialogue model is malformed or cannot go on
+    └── BenchmarkError           a benchmark's argument (a size, a seed, a file) is unusable
 
 Every message says what is wrong and how to fix it; the CLI prints it without a
 traceback and exits with status 2. Expected failures while acting in the world
@@ -22,6 +23,7 @@ traceback and exits with status 2. Expected failures while acting in the world
 from __future__ import annotations
 
 __all__ = [
+    "BenchmarkError",
     "DialogueError",
     "GologError",
     "HomebotError",
@@ -73,3 +75,7 @@ class GologError(HomebotError):
 
 class PlanningError(HomebotError):
     """An HTN domain or problem (file or Python) or a planning goal is malformed."""
+
+
+class BenchmarkError(HomebotError):
+    """A benchmark's argument is unusable: a size of 0 or absurd, a bad seed, a missing file."""

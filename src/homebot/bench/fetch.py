@@ -9,6 +9,7 @@ from typing import Any
 
 from rich.console import Console
 
+from homebot.bench.arguments import count, seed
 from homebot.bench.fetch_tasks import fetch_tasks
 from homebot.navigation import Navigator
 from homebot.scenarios import SimulatedRun
@@ -18,8 +19,9 @@ __all__ = ["add_arguments", "run"]
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--tasks", type=int, default=200, help="tasks to time")
-    parser.add_argument("--seed", type=int, default=3)
+    parser.add_argument("--tasks", type=count("--tasks", 1, 20_000), default=200,
+                        help="tasks to time")
+    parser.add_argument("--seed", type=seed, default=3)
 
 
 def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, Any]:

@@ -9,6 +9,7 @@ from typing import Any
 
 from rich.console import Console
 
+from homebot.bench.arguments import count
 from homebot.golog import State
 from homebot.golog.domains import CUPS, POSITIONS, cups_theory, maze_theory
 from homebot.golog.expressions import Const
@@ -24,9 +25,11 @@ HARDEST = {"red": "p2", "green": "p3", "blue": "p1"}
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--repeats", type=int, default=5, help="timed runs per figure")
-    parser.add_argument("--maze-horizon", type=int, default=8)
-    parser.add_argument("--cups-horizon", type=int, default=4)
+    parser.add_argument("--repeats", type=count("--repeats", 1, 1000), default=5,
+                        help="timed runs per figure")
+    # Horizons grow the search exponentially: the maze at 20 takes gigabytes.
+    parser.add_argument("--maze-horizon", type=count("--maze-horizon", 1, 12), default=8)
+    parser.add_argument("--cups-horizon", type=count("--cups-horizon", 1, 6), default=4)
 
 
 def _solve_of(theory: Theory, call: Call) -> Solve:

@@ -12,6 +12,7 @@ from typing import Any
 
 from rich.console import Console
 
+from homebot.bench.arguments import count, seed
 from homebot.language import Vocabulary, parse_command
 from homebot.language.generator import generate_commands
 from homebot.navigation import Navigator
@@ -110,8 +111,9 @@ def execute_commands(world: World, count: int, seed: int, level: float = 0.0) ->
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--commands", type=int, default=200, help="commands to carry out")
-    parser.add_argument("--seed", type=int, default=1)
+    parser.add_argument("--commands", type=count("--commands", 1, 100_000), default=200,
+                        help="commands to carry out")
+    parser.add_argument("--seed", type=seed, default=1)
     parser.add_argument("--world", default="apartment", help="world file or shipped name")
     parser.add_argument("--level", type=disturbance_level, default=0.0,
                         help="disturbance level (0: none, 1: the robustness benchmark's)")

@@ -24,6 +24,7 @@ from typing import Any
 from rich.console import Console
 
 from homebot.beliefs import Beliefs
+from homebot.bench.arguments import count, seed
 from homebot.bench.fetch_tasks import delivered, fetch_tasks
 from homebot.htn import (
     Goal,
@@ -285,23 +286,16 @@ def _execution(world: World, runs: int, seed: int, level: float) -> list[dict[st
     return rows
 
 
-def _at_least(low: int) -> Callable[[str], int]:
-    def whole(text: str) -> int:
-        if not text.strip().isdigit() or int(text) < low:
-            raise argparse.ArgumentTypeError(f"give a whole number from {low}, not '{text}'")
-        return int(text)
-    return whole
-
-
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--repeats", type=_at_least(1), default=300,
+    parser.add_argument("--repeats", type=count("--repeats", 1, 100_000), default=300,
                         help="plans timed per planner")
-    parser.add_argument("--sizes", type=_at_least(1), nargs="+", default=[25, 50, 100, 200],
+    parser.add_argument("--sizes", type=count("--sizes", 1, 5_000), nargs="+",
+                        default=[25, 50, 100, 200],
                         help="numbers of misplaced objects to tidy up")
-    parser.add_argument("--runs", type=_at_least(0), default=60,
+    parser.add_argument("--runs", type=count("--runs", 0, 20_000), default=60,
                         help="seeded bring tasks run under disturbances per mode (0: none)")
     parser.add_argument("--level", type=disturbance_level, default=1.0, help="disturbance level")
-    parser.add_argument("--seed", type=int, default=1, help="seed of tasks and disturbances")
+    parser.add_argument("--seed", type=seed, default=1, help="seed of tasks and disturbances")
 
 
 def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, Any]:

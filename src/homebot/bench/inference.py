@@ -12,6 +12,7 @@ from typing import Any
 
 from rich.console import Console
 
+from homebot.bench.arguments import count, seed
 from homebot.executive.recovery import Protocol, StepRunner
 from homebot.inference import InferenceCycle, Inventory, fetch_task
 from homebot.knowledge import KnowledgeBase
@@ -27,14 +28,16 @@ __all__ = ["add_arguments", "random_supermarket", "run", "run_world"]
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--worlds", type=int, default=300, help="seeded supermarkets")
-    parser.add_argument("--requests", type=int, default=3, help="client requests per world")
+    parser.add_argument("--worlds", type=count("--worlds", 1, 100_000), default=300,
+                        help="seeded supermarkets")
+    parser.add_argument("--requests", type=count("--requests", 1, 100), default=3,
+                        help="client requests per world")
     parser.add_argument("--misplaced", type=float, default=0.3,
                         help="chance that the assistant put a product on a wrong shelf")
     parser.add_argument("--missing", type=float, default=0.1,
                         help="chance that a product ran out")
     parser.add_argument("--r-max", type=float, default=240.0, help="decision budget (s)")
-    parser.add_argument("--seed", type=int, default=0, help="first world's seed")
+    parser.add_argument("--seed", type=seed, default=0, help="first world's seed")
     parser.add_argument("--noise", type=float, default=0.0,
                         help="disturbance level (0: only the assistant's misplacements)")
 

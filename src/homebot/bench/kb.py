@@ -15,6 +15,7 @@ from typing import Any
 
 from rich.console import Console
 
+from homebot.bench.arguments import count
 from homebot.knowledge import (
     AddStatement,
     ChangeValue,
@@ -34,11 +35,12 @@ PROLOG_CHAIN_15_SECONDS = 38.0
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--individuals", type=int, default=10_000,
+    parser.add_argument("--individuals", type=count("--individuals", 1, 1_000_000), default=10_000,
                         help="individuals in the generated KB (default 10000)")
     parser.add_argument("--chains", default="5,10,15,30,300,3000",
                         help="lengths of the chained-default KBs (comma separated)")
-    parser.add_argument("--repeat", type=int, default=5, help="repetitions of the small timings")
+    parser.add_argument("--repeat", type=count("--repeat", 1, 1000), default=5,
+                        help="repetitions of the small timings")
     parser.add_argument("--shared", type=Path, default=None,
                         help="the shared acceptance directory (default: ../shared of the repo)")
 

@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 from rich.console import Console
 
+from homebot.bench.arguments import count
 from homebot.navigation import Navigator, astar
 from homebot.world import World
 
@@ -17,7 +18,8 @@ __all__ = ["add_arguments", "run"]
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--repeat", type=int, default=50, help="searches per case")
+    parser.add_argument("--repeat", type=count("--repeat", 1, 10_000), default=50,
+                        help="searches per case")
 
 
 def _median_ms(samples: list[float]) -> float:

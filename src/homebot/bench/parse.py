@@ -11,6 +11,8 @@ from typing import Any
 
 from rich.console import Console
 
+from homebot.bench.arguments import count, readable_file, seed
+from homebot.errors import BenchmarkError
 from homebot.language import Vocabulary, parse_command
 from homebot.language.generator import generate_commands
 from homebot.world import World
@@ -25,25 +27,36 @@ TARGET_MS = 2.0
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--commands", type=Path,
-                        default=_SHARED / "gpsr" / "competition_template_commands.tsv",
-                        help="TSV of GPSR commands (command in the last column)")
+    parser.add_argument("--commands", type=readable_file("--commands"), default=None,
+                        help="TSV of GPSR commands (command in the last column; default: "
+                             "the shared competition commands when present, else generated)")
     parser.add_argument("--robocup", type=Path,
                         default=_SHARED / "robocup" / "CompetitionTemplate",
                         help="RoboCup@Home data directory the commands were made for")
-    parser.add_argument("--count", type=int, default=1000,
+    parser.add_argument("--count", type=count("--count", 1, 100_000), default=1000,
                         help="generated commands when the shared ones are absent")
-    parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--repeat", type=int, default=3, help="timed passes over the commands")
+    parser.add_argument("--seed", type=seed, default=0)
+    parser.add_argument("--repeat", type=count("--repeat", 1, 100), default=3,
+                        help="timed passes over the commands")
 
 
 def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, Any]:
     """Time ``parse_command`` on every command; print and return the figures."""
-    if args.commands.is_file() and args.robocup.is_dir():
+    commands = args.commands or _SHARED / "gpsr" / "competition_template_commands.tsv"
+    if args.commands is not None and not args.robocup.is_dir():
+        raise BenchmarkError(f"--robocup {args.robocup}: not a directory; --commands needs "
+                             "the RoboCup@Home data directory its commands were made for")
+    if commands.is_file() and args.robocup.is_dir():
         world = World.from_dict(world_from_robocup(args.robocup))
-        with args.commands.open(encoding="utf-8") as handle:
-            texts = [row[-1] for row in csv.reader(handle, delimiter="\t") if row]
-        source = str(args.commands.name)
+        try:
+            with commands.open(encoding="utf-8") as handle:
+                texts = [row[-1] for row in csv.reader(handle, delimiter="\t") if row]
+        except (OSError, UnicodeDecodeError) as error:
+            raise BenchmarkError(f"--commands {commands}: cannot be read ({error})") from None
+        if not texts:
+            raise BenchmarkError(f"--commands {commands}: holds no commands; give a TSV "
+                                 "with one command a line (in the last column)")
+        source = str(commands.name)
     else:
         world = World.load("apartment")
         texts = [text for text, _ in generate_commands(world, args.count, seed=args.seed)]

@@ -11,6 +11,7 @@ from typing import Any
 from rich.console import Console
 from rich.table import Table
 
+from homebot.bench.arguments import count, seed
 from homebot.bench.fetch_tasks import delivered, fetch_tasks
 from homebot.navigation import Navigator
 from homebot.scenarios import SimulatedRun, disturbance_level, disturbed
@@ -69,8 +70,9 @@ def compare_modes(world: World, tasks: int, seed: int, level: float = 1.0) -> li
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--tasks", type=int, default=200, help="tasks per mode (default 200)")
-    parser.add_argument("--seed", type=int, default=1, help="seed of tasks and disturbances")
+    parser.add_argument("--tasks", type=count("--tasks", 1, 20_000), default=200,
+                        help="tasks per mode (default 200)")
+    parser.add_argument("--seed", type=seed, default=1, help="seed of tasks and disturbances")
     parser.add_argument("--world", default="apartment", help="world file or shipped name")
     parser.add_argument("--level", type=disturbance_level, default=1.0,
                         help="disturbance level (1 = default)")

@@ -57,6 +57,9 @@ def _theory(args: argparse.Namespace) -> Theory:
 
 def _check(args: argparse.Namespace) -> int:
     procedures = load_procedures(args.file)
+    if not procedures:
+        raise GologError(f"{args.file}: the file is empty (it defines no procedure); write at "
+                         "least one 'proc NAME ... endproc'")
     if args.domain:
         theory = domain_theory(args.domain)
         theory.define(*procedures)

@@ -95,6 +95,10 @@ def _goal(args: argparse.Namespace, domain: Domain, world: World, names: Names,
 def plan(args: argparse.Namespace) -> int:
     if args.limit < 1:
         raise PlanningError(f"--limit {args.limit}: give the most plans to print, 1 or more")
+    for option, value in (("--max-depth", args.max_depth),
+                          ("--max-expansions", args.max_expansions)):
+        if value < 1:
+            raise PlanningError(f"{option} {value}: give a bound of 1 or more")
     world = load_world(args)
     domain = load_domain(args.domain)
     problem = _problem(args, domain)

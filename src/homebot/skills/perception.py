@@ -8,8 +8,8 @@ from typing import Any
 
 from homebot.robot import Detection, PersonPercept, Pose
 from homebot.skills.motion import drive
-from homebot.skills.places import near, resolve_target, sees_person_nearby
-from homebot.skills.skill import ErrorCode, Outcome, Skill, SkillContext, Status
+from homebot.skills.places import OPERATOR, near, resolve_target, sees_person_nearby
+from homebot.skills.skill import ErrorCode, Outcome, Skill, SkillContext, Status, time_left
 from homebot.text import fold
 
 __all__ = [
@@ -21,9 +21,13 @@ __all__ = [
     "candidate_placements",
     "go_and_look",
     "go_into_room",
+    "looked_everywhere",
     "matches_object",
     "matches_person",
 ]
+
+# Seconds allowed per look at a placement (turning to it, looking, looking again).
+_LOOK_ALLOWANCE = 15.0
 
 
 def matches_object(context: SkillContext, wanted: str, detection: Detection) -> bool:
@@ -147,10 +151,19 @@ class FindObject(Skill):
                 # so a retry searches them all again rather than nothing.
                 context.beliefs.not_at.pop(wanted, None)
                 candidates = candidate_placements(context, wanted, args.get("room"))
+        # Every placement looked at for ``wanted`` in this task, in order, for the
+        # message that says where the robot looked when it gives up.
+        looked: list[str] = context.bindings.setdefault(f"searched:{wanted}", [])
         for placement in candidates:
+            if not _affordable(context, placement):
+                return Outcome.failed(
+                    ErrorCode.OUT_OF_TIME, f"I ran out of time looking for the {wanted}; "
+                    f"{looked_everywhere(wanted, list(dict.fromkeys(looked)))}",
+                    searched=list(dict.fromkeys(looked)))
             outcome, detections = go_and_look(context, placement)
             if outcome.status is not Status.FINISHED:
                 return outcome
+            looked.append(placement)
             found = [d for d in detections if matches_object(context, wanted, d)]
             if found:
                 return Outcome.finished(f"I see the {found[0].label} on the {placement}",
@@ -159,10 +172,9 @@ class FindObject(Skill):
         if not candidates:
             return Outcome.failed(ErrorCode.NOT_FOUND,
                                   f"I did not find the {wanted} anywhere I looked", searched=[])
-        where = f"on the {candidates[0]}" if len(candidates) == 1 else (
-            f"in {len(candidates)} places")
-        return Outcome.failed(ErrorCode.NOT_FOUND, f"I did not find the {wanted} {where}",
-                              searched=candidates)
+        message = f"I did not find the {wanted} on the {candidates[0]}" if len(
+            candidates) == 1 else looked_everywhere(wanted, candidates)
+        return Outcome.failed(ErrorCode.NOT_FOUND, message, searched=candidates)
 
     def monitor(self, context: SkillContext, args: Mapping[str, Any],
                 finished: Outcome) -> Outcome:
@@ -173,6 +185,35 @@ class FindObject(Skill):
                 return Outcome.verified(finished.message, object=name, placement=placement)
         context.beliefs.missed_object(name, placement)
         return Outcome.aborted(ErrorCode.NOT_FOUND, f"the {name} is not on the {placement}")
+
+
+def looked_everywhere(wanted: str, searched: Sequence[str]) -> str:
+    """"I did not find the X anywhere I looked: the A, the B and the C" (or "nowhere yet")."""
+    if not searched:
+        return f"I did not get to look anywhere for the {wanted}"
+    places = [f"the {place}" for place in searched]
+    listed = places[0] if len(places) == 1 else ", ".join(places[:-1]) + " and " + places[-1]
+    return f"I did not find the {wanted} anywhere I looked: {listed}"
+
+
+def _affordable(context: SkillContext, placement: str) -> bool:
+    """Whether a look at ``placement`` and the way back to the operator fit the time left."""
+    left = time_left(context)
+    if math.isinf(left):
+        return True
+    here = context.robot.pose().xy()
+    there = context.world.placements[placement].approach[:2]
+    operator = resolve_target(context, OPERATOR)
+    back = operator.xy() if operator is not None else here
+    metres = _metres(context, here, there) + _metres(context, there, back)
+    return metres / context.world.robot.speed + _LOOK_ALLOWANCE <= left
+
+
+def _metres(context: SkillContext, start: tuple[float, float],
+            goal: tuple[float, float]) -> float:
+    """The route's length on the robot's map (a detour's guess through doors believed shut)."""
+    length = context.navigator.distance(start, goal, frozenset(context.beliefs.closed_doors))
+    return 1.5 * math.dist(start, goal) if math.isinf(length) else length
 
 
 def matches_person(percept: PersonPercept, description: Mapping[str, Any]) -> bool:

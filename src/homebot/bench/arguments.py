@@ -1,0 +1,55 @@
+"""Argument types for benchmarks: sizes, seeds and files, each refused in one line when unusable.
+
+They raise ``BenchmarkError`` (a ``HomebotError``), which the command line prints as one
+line with exit status 2, so ``--count 0`` never reaches ``statistics.median([])`` and
+``--count 10**12`` never starts an endless run.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from pathlib import Path
+
+from homebot.errors import BenchmarkError
+
+__all__ = ["MAX_SEED", "count", "readable_file", "seed"]
+
+MAX_SEED = 2**32 - 1
+
+
+def count(option: str, low: int = 1, high: int = 100_000) -> Callable[[str], int]:
+    """An argument type for ``option``: a whole number from ``low`` to ``high``."""
+    def whole(text: str) -> int:
+        stripped = text.strip()
+        number = int(stripped) if stripped.lstrip("-").isdigit() else None
+        if number is None or not low <= number <= high:
+            raise BenchmarkError(f"{option} {text!r}: give a whole number from {low} to "
+                                 f"{high:,}".replace(",", " "))
+        return number
+    whole.__name__ = option.lstrip("-")  # argparse names the type in its own messages
+    return whole
+
+
+def seed(text: str) -> int:
+    """An argument type for ``--seed``: a whole number from 0 to 2**32 - 1."""
+    stripped = text.strip()
+    if not stripped.isdigit() or int(stripped) > MAX_SEED:
+        raise BenchmarkError(f"--seed {text!r}: give a whole number from 0 to {MAX_SEED}")
+    return int(stripped)
+
+
+def readable_file(option: str) -> Callable[[str], Path]:
+    """An argument type for ``option``: a file that exists and can be read."""
+    def path(text: str) -> Path:
+        candidate = Path(text)
+        try:
+            with candidate.open("rb") as handle:
+                handle.read(1)
+        except IsADirectoryError:
+            raise BenchmarkError(f"{option} {text}: is a folder; give a file") from None
+        except OSError as error:
+            raise BenchmarkError(f"{option} {text}: cannot be read "
+                                 f"({error.strerror or error}); check the path") from None
+        return candidate
+    path.__name__ = option.lstrip("-")
+    return path
