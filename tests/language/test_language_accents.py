@@ -11,7 +11,6 @@ from typing import Any
 
 import pytest
 
-from conftest import ROBOCUP_DIRECTORY
 from homebot.cli import main
 from homebot.language import Vocabulary, parse_command
 from homebot.scenarios import SimulatedRun
@@ -19,6 +18,8 @@ from homebot.world import World
 from homebot.world.robocup import world_from_robocup
 
 CASA = Path(__file__).resolve().parents[1] / "world" / "data" / "casa.yaml"
+ROBOCUP_DIRECTORY = (Path(__file__).resolve().parents[3] / "shared" / "data" / "robocup"
+                     / "CompetitionTemplate")
 # One command per kind of name; the person's command names a room as well.
 TEMPLATES = {"person": "meet {} in the {} and follow them", "room": "go to the {}",
              "placement": "go to the {}", "object": "bring me the {}",
