@@ -6,6 +6,7 @@ import re
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 
+from homebot.text import fold
 from homebot.world import PersonModel
 
 __all__ = ["InteractiveResponder", "Responder", "ScriptedResponder", "normalise_question"]
@@ -14,8 +15,9 @@ Responder = Callable[[PersonModel, str], str | None]
 
 
 def normalise_question(question: str) -> str:
-    """Lower case, no punctuation, single spaces: the key under which answers are scripted."""
-    return " ".join(re.sub(r"[^\w\s']", " ", question.lower()).split())
+    """Folded (``homebot.text.fold``: no case, no accents), no punctuation, single spaces:
+    the key under which answers are scripted ("¿Qué comes?" is asked as "que comes")."""
+    return " ".join(re.sub(r"[^\w\s']", " ", fold(question)).split())
 
 
 @dataclass
