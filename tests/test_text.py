@@ -59,3 +59,17 @@ def test_names_are_found_as_written() -> None:
     assert closest_names("patrica", people) == ["Patrícia"]
     assert closest_names("Jóse", people) == ["José"]
     assert closest_names("xyz", people) == []
+
+
+def test_the_text_module_imports_nothing_of_homebot() -> None:
+    """Every layer folds names, the world included, so ``homebot.text`` sits below them all."""
+    import ast
+    from pathlib import Path
+
+    import homebot.text
+
+    tree = ast.parse(Path(homebot.text.__file__).read_text(encoding="utf-8"))
+    imported = {alias.name for node in ast.walk(tree) if isinstance(node, ast.Import)
+                for alias in node.names}
+    imported |= {node.module or "" for node in ast.walk(tree) if isinstance(node, ast.ImportFrom)}
+    assert not {name for name in imported if name.split(".")[0] == "homebot"}
