@@ -70,7 +70,7 @@ _TOKEN = re.compile(r"""
     (?P<space>[ \t\r\n]+) | (?P<comment>[%#][^\n]*)
   | (?P<number>\d+(?:\.\d+)?(?:[eE][-+]?\d+)?)
   | (?P<string>"[^"\n]*"|“[^”\n]*”)
-  | (?P<name>[A-Za-z_][A-Za-z0-9_]*)
+  | (?P<name>[^\W\d]\w*)
   | (?P<symbol>\|\||!=|<=|>=|[|;,(){}?=<>&!+\-*/:∧∨¬≠])
 """, re.VERBOSE)
 _SYMBOL_ALIASES = {"∧": "&", "∨": "|", "¬": "!", "≠": "!=", "and": "&", "or": "|", "not": "!"}
