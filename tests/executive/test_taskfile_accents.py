@@ -38,6 +38,6 @@ def test_names_are_bound_to_the_world_spelling_and_the_task_succeeds() -> None:
 
 
 def test_an_unknown_name_is_suggested_with_its_accents() -> None:
-    with pytest.raises(TaskError, match="unknown object 'creme brule' .*did you mean "
-                                        "'crème brûlée'"):
+    with pytest.raises(TaskError, match=r"unknown object 'creme brule' .*did you mean "
+                                        r"'crème brûlée'"):
         task_from_text("- {skill: pick, object: creme brule}\n", World.load(CASA))

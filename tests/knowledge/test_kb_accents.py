@@ -29,7 +29,7 @@ def test_a_capital_first_is_a_variable_in_any_script() -> None:
     assert format_atom("josé") == "josé"
     assert format_atom("José") == "'José'"
     assert format_atom("Ørsted") == "'Ørsted'"
-    with pytest.raises(KnowledgeError, match="the variable José .*quote it as 'José'"):
+    with pytest.raises(KnowledgeError, match=r"the variable José .*quote it as 'José'"):
         parse_statement("name=>José")
 
 
