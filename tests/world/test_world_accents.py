@@ -9,6 +9,7 @@ from typing import Any
 import pytest
 import yaml
 
+from homebot.cli import main
 from homebot.errors import WorldError
 from homebot.world import World
 from homebot.world.robocup import world_from_robocup
@@ -93,3 +94,12 @@ def test_robocup_data_keeps_accented_names(tmp_path: Path) -> None:
     assert set(world.people) == {"Patrícia", "Antônia", "Søren"}
     assert "salão" in world.rooms
     assert world.objects["crème brûlée"].placement == "étagère"
+
+
+def test_world_show_prints_names_as_written(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["world", "show", "--world", str(CASA), "--json"]) == 0
+    out = capsys.readouterr().out
+    assert "Søren" in out and "crème brûlée" in out and "\\u" not in out
+    assert main(["world", "show", "--world", str(CASA)]) == 0
+    out = capsys.readouterr().out
+    assert "Antônia" in out and "étagère" in out
