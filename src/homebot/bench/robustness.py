@@ -15,6 +15,7 @@ from homebot.bench.arguments import count, seed
 from homebot.bench.fetch_tasks import delivered, fetch_tasks
 from homebot.navigation import Navigator
 from homebot.scenarios import SimulatedRun, disturbance_level, disturbed
+from homebot.scenarios.embodied import Fidelity, add_fidelity_option
 from homebot.world import World
 
 __all__ = ["ModeResult", "add_arguments", "compare_modes", "run"]
@@ -44,7 +45,8 @@ class ModeResult:
         }
 
 
-def compare_modes(world: World, tasks: int, seed: int, level: float = 1.0) -> list[ModeResult]:
+def compare_modes(world: World, tasks: int, seed: int, level: float = 1.0,
+                  fidelity: Fidelity = Fidelity.SYMBOLIC) -> list[ModeResult]:
     """Run the same seeded tasks with monitoring and recovery, and as a plain sequence."""
     navigator = Navigator(world)
     results = []
@@ -53,7 +55,7 @@ def compare_modes(world: World, tasks: int, seed: int, level: float = 1.0) -> li
         for index, fetch in enumerate(fetch_tasks(world, tasks, seed)):
             run = SimulatedRun.create(world, seed=seed * 100_003 + index,
                                       disturbances=disturbed(level), monitoring=monitoring,
-                                      navigator=navigator)
+                                      navigator=navigator, fidelity=fidelity)
             started = time.perf_counter()
             report = run.run(fetch.task)
             result.wall_times.append(time.perf_counter() - started)
@@ -76,15 +78,17 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--world", default="apartment", help="world file or shipped name")
     parser.add_argument("--level", type=disturbance_level, default=1.0,
                         help="disturbance level (1 = default)")
+    add_fidelity_option(parser)
 
 
 def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, Any]:
     """Compare the modes and print a table; returns the figures."""
     world = World.load(args.world)
     results = [result.to_dict() for result in compare_modes(world, args.tasks, args.seed,
-                                                            args.level)]
+                                                            args.level, args.fidelity)]
     if console is not None:
-        table = Table(title=f"Fetch-and-deliver, {args.tasks} tasks, disturbances x{args.level}")
+        table = Table(title=f"Fetch-and-deliver, {args.tasks} tasks, disturbances "
+                            f"x{args.level}, {args.fidelity} robot")
         for column in ("mode", "verified delivery", "delivered", "failed", "told why",
                        "median sim time", "median wall time"):
             table.add_column(column)
@@ -94,4 +98,5 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
                           str(result["failed_and_told_why"]),
                           f"{result['median_sim_time_s']} s", f"{result['median_wall_ms']} ms")
         console.print(table)
-    return {"benchmark": "robustness", "tasks": args.tasks, "seed": args.seed, "modes": results}
+    return {"benchmark": "robustness", "tasks": args.tasks, "seed": args.seed,
+            "fidelity": str(args.fidelity), "modes": results}

@@ -11,6 +11,7 @@ from rich.table import Table
 from homebot.cli.world import remember_last_run
 from homebot.events import Event
 from homebot.scenarios.demo import DemoTask, run_demo
+from homebot.scenarios.embodied import add_fidelity_option
 from homebot.world import World
 
 __all__ = ["register"]
@@ -20,6 +21,7 @@ def register(subparsers: Any) -> None:
     parser = subparsers.add_parser("demo", help="watch the robot do a few tasks in the apartment")
     parser.add_argument("--world", default="apartment", help="world (default: apartment)")
     parser.add_argument("--quiet", action="store_true", help="print only the final table")
+    add_fidelity_option(parser)
     parser.set_defaults(handler=demo)
 
 
@@ -39,7 +41,7 @@ def demo(args: argparse.Namespace) -> int:
             console.print(f"{stamp}   [{colour}]{data['status']}[/]{detail}", highlight=False)
         elif event.kind == "speech":
             console.print(f"{stamp}   [cyan]robot says:[/] {data['text']}", highlight=False)
-        elif event.kind == "sim.blocked":
+        elif event.kind in ("sim.blocked", "robot.blocked"):
             console.print(f"{stamp}   [magenta]world:[/] the way through the {data['door']} "
                           f"is blocked ({data['blocker']})", highlight=False)
         elif event.kind == "recovery":
@@ -49,7 +51,7 @@ def demo(args: argparse.Namespace) -> int:
         console.rule(f"[bold]{task.title}")
 
     results = run_demo(world, None if args.quiet else narrate,
-                       None if args.quiet else announce)
+                       None if args.quiet else announce, fidelity=args.fidelity)
     table = Table(title="homebot demo: tasks, outcomes and simulated durations")
     for column in ("task", "outcome", "recoveries", "simulated time"):
         table.add_column(column)

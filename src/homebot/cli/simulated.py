@@ -20,6 +20,7 @@ from homebot.errors import TaskError
 from homebot.events import EventLog
 from homebot.executive import TaskReport
 from homebot.scenarios import SimulatedRun, disturbance_level, disturbed
+from homebot.scenarios.embodied import add_fidelity_option
 from homebot.sim import InteractiveResponder
 from homebot.world import World
 
@@ -48,6 +49,15 @@ def add_run_options(parser: argparse.ArgumentParser, *,
                         help="type the answers of the people the robot talks to")
     parser.add_argument("--events", type=Path, help="write the event log here (JSON lines)")
     parser.add_argument("--json", action="store_true", help="print the report as JSON")
+    add_fidelity_option(parser)
+    parser.add_argument("--walkers", type=_walker_count, default=0, metavar="N",
+                        help="embodied: how many people walk about on their own (default 0)")
+
+
+def _walker_count(text: str) -> int:
+    if not text.isdigit() or int(text) > 50:
+        raise argparse.ArgumentTypeError(f"a count of people from 0 to 50, not '{text}'")
+    return int(text)
 
 
 def simulated_run(args: argparse.Namespace, world: World, *,
@@ -57,6 +67,7 @@ def simulated_run(args: argparse.Namespace, world: World, *,
         world, seed=args.seed,
         disturbances=disturbed(args.disturb) if args.disturb else None,
         monitoring=monitoring,
+        fidelity=args.fidelity, walkers=args.walkers,
         responder=InteractiveResponder() if args.interactive else None,
         retries=retry_budgets(args.retries), time_limit=args.time_limit)
 

@@ -10,6 +10,7 @@ from homebot.events import Event
 from homebot.executive import TaskReport
 from homebot.executive.taskfile import validate_task
 from homebot.navigation import Navigator
+from homebot.scenarios.embodied import Fidelity
 from homebot.scenarios.runtime import SimulatedRun, disturbed
 from homebot.sim import Simulation
 from homebot.task import Step, Task
@@ -93,7 +94,8 @@ DEMO_TASKS: tuple[DemoTask, ...] = (
 
 def run_demo(world: World, on_event: Callable[[Event], None] | None = None,
              on_task: Callable[[DemoTask], None] | None = None,
-             level: float = 0.5) -> list[tuple[DemoTask, TaskReport, SimulatedRun]]:
+             level: float = 0.5, fidelity: Fidelity = Fidelity.SYMBOLIC,
+             ) -> list[tuple[DemoTask, TaskReport, SimulatedRun]]:
     """Run every demo task in a fresh home with light random disturbances on top.
 
     Raises ``WorldError`` or ``TaskError`` when ``world`` lacks what the tasks name.
@@ -110,7 +112,7 @@ def run_demo(world: World, on_event: Callable[[Event], None] | None = None,
     for demo in DEMO_TASKS:
         run = SimulatedRun.create(world, seed=demo.seed, disturbances=disturbed(level) if
                                   demo.setup is _nothing else disturbed(0.0),
-                                  navigator=navigator)
+                                  navigator=navigator, fidelity=fidelity)
         demo.setup(run.simulation)
         if on_task is not None:
             on_task(demo)

@@ -11,6 +11,8 @@ from homebot.beliefs import Beliefs
 from homebot.executive import Executive, TaskReport
 from homebot.executive.recovery import Protocol
 from homebot.navigation import Navigator
+from homebot.robot import Robot
+from homebot.scenarios.embodied import Fidelity, embodied_robot
 from homebot.sim import Responder, SimRobot, Simulation
 from homebot.skills import SkillContext
 from homebot.task import Task
@@ -60,7 +62,7 @@ class SimulatedRun:
 
     world: World
     simulation: Simulation
-    robot: SimRobot
+    robot: Robot
     context: SkillContext
     executive: Executive
 
@@ -71,16 +73,20 @@ class SimulatedRun:
                navigator: Navigator | None = None,
                retries: Mapping[str, int] | None = None,
                inference: Protocol | None = None,
-               time_limit: float | None = None) -> SimulatedRun:
+               time_limit: float | None = None,
+               fidelity: Fidelity = Fidelity.SYMBOLIC, walkers: int = 0) -> SimulatedRun:
         """Build a run. Pass a shared ``navigator`` to skip rasterising the world again.
 
         ``inference`` plugs the daily-life inference cycle into the executive;
         ``time_limit`` is each task's budget in simulated seconds (None: none).
+        ``fidelity`` embodied puts a ``BodyRobot`` on a ``SimBody`` under the skills, with
+        ``walkers`` people walking about on their own.
         """
         navigator = navigator or Navigator(world)
         simulation = Simulation(world, seed=seed, disturbances=disturbances,
                                 responder=responder, navigator=navigator)
-        robot = SimRobot(simulation)
+        robot: Robot = SimRobot(simulation) if fidelity is Fidelity.SYMBOLIC else \
+            embodied_robot(simulation, navigator, walkers=walkers)
         beliefs = Beliefs.from_world(world, simulation.events)
         context = SkillContext(robot=robot, world=world, navigator=navigator, beliefs=beliefs,
                                events=simulation.events, monitoring=monitoring,

@@ -160,22 +160,26 @@ class SimBody(Body):
     def true_pose(self) -> Pose:
         return Pose(*self.sim.robot_pose)
 
-    def flush_trajectory(self) -> list[tuple[float, float]]:
-        """The driven path since the last flush, recorded as a ``robot.trajectory`` event."""
-        points = self._trajectory
+    def _flush_trajectory(self) -> None:
+        """Once the base comes to rest: the path driven since, as a ``robot.trajectory`` event."""
+        points, here = self._trajectory, self._rounded_position()
+        if points[-1] != here:
+            points.append(here)
         if len(points) > 1:
             self.sim.events.record("robot.trajectory", points=[list(p) for p in points])
             self.sim.trail.extend(points[1:])
-        self._trajectory = [self._rounded_position()]
-        return points
+        self._trajectory = [here]
 
     # ------------------------------------------------------------ one tick
 
     def _tick_once(self) -> None:
         dt = self.tick_period
+        was_moving = not self._velocity.is_zero()
         target = Twist() if self._stopped else self._command
         self._velocity = Twist() if self._stopped else self._accelerate(target, dt)
         moved = self._move(dt)
+        if was_moving and self._velocity.is_zero():
+            self._flush_trajectory()
         self._odometry_step(*moved)
         self.people.advance(dt, self.sim.robot_pose[:2], self.radius + PERSON_RADIUS + 0.1)
         self.sim.clock.advance(dt)

@@ -192,12 +192,23 @@ class World:
 
     def point_before_door(self, door: str, room: str,
                           distance: float) -> tuple[float, float, float]:
-        """A point ``distance`` metres into ``room`` in front of ``door``, facing the door."""
+        """A point ``distance`` metres into ``room`` straight in front of ``door``, facing it.
+
+        "Straight in front" is along the normal of the room's wall at the door, so
+        the point stays clear of the wall even in a long, narrow room.
+        """
         x, y = self.doors[door].position
-        centre = self.room_polygons[room].centroid
-        dx, dy = centre.x - x, centre.y - y
-        norm = math.hypot(dx, dy) or 1.0
-        return (x + dx / norm * distance, y + dy / norm * distance, math.atan2(-dy, -dx))
+        polygon = self.room_polygons[room]
+        boundary = polygon.exterior
+        along = boundary.project(Point(x, y))
+        before = boundary.interpolate(max(along - 0.05, 0.0))
+        after = boundary.interpolate(min(along + 0.05, boundary.length))
+        tx, ty = after.x - before.x, after.y - before.y
+        norm = math.hypot(tx, ty) or 1.0
+        nx, ny = -ty / norm, tx / norm
+        if not polygon.covers(Point(x + 0.1 * nx, y + 0.1 * ny)):
+            nx, ny = -nx, -ny
+        return (x + nx * distance, y + ny * distance, math.atan2(-ny, -nx))
 
     def plural_of(self, category: str) -> str:
         """The plural of an object category (its declared plural, else ``category + s``)."""

@@ -24,6 +24,7 @@ from rich.console import Console
 from homebot.events import Event
 from homebot.knowledge import AddStatement, Kind, KnowledgeBase, parse_statement
 from homebot.knowledge.store import KnowledgeStore
+from homebot.scenarios.embodied import Fidelity
 from homebot.scenarios.runtime import SimulatedRun, disturbance_level, disturbed
 from homebot.scenarios.summary import scenario_summary
 from homebot.sim import InteractiveResponder, Responder, Simulation
@@ -136,12 +137,14 @@ def butler_world(tidy: bool = False) -> World:
 
 def run_butler(*, prefers: str = "malz", refuse_update: bool = False, tidy: bool = False,
                kb_store: Path | None = None, seed: int = 0,
-               typed: Responder | None = None, level: float = 0.0) -> dict[str, Any]:
+               typed: Responder | None = None, level: float = 0.0,
+               fidelity: Fidelity = Fidelity.SYMBOLIC) -> dict[str, Any]:
     """Run the dialogue once; returns the summary (``transcript``, ``speech``, KB figures)."""
     world = butler_world(tidy)
     luis = LuisScript(prefers=prefers, refuse_update=refuse_update, typed=typed)
     run = SimulatedRun.create(world, seed=seed, responder=luis,
-                              disturbances=disturbed(level) if level else None)
+                              disturbances=disturbed(level) if level else None,
+                              fidelity=fidelity)
     luis.simulation = run.simulation
     run.simulation.events.listeners.append(luis.notice)
     with tempfile.TemporaryDirectory() as scratch:
@@ -204,7 +207,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     """The dialogue of §9 with the variant the arguments choose."""
     summary = run_butler(prefers=args.prefers, refuse_update=args.refuse_update,
                          tidy=args.tidy, kb_store=Path(args.kb_store) if args.kb_store else None,
-                         seed=args.seed, level=args.level,
+                         seed=args.seed, level=args.level, fidelity=args.fidelity,
                          typed=InteractiveResponder() if args.interactive else None)
     if console is not None:
         for number, line in enumerate(summary["transcript"], start=1):

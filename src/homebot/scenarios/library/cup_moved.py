@@ -73,7 +73,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
             seen.extend(happened)
             return [] if unseen else happened
 
-        home = home_cups(START, args.seed, noticing=noticing)
+        home = home_cups(START, args.seed, noticing=noticing, fidelity=args.fidelity)
         executor = home.executor
         outcome = Interpreter(theory, executor, seed=args.seed).run(do("sort_cups", *GOAL, 4))
         final = home.truth()

@@ -24,7 +24,8 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     world = World.load("apartment")
     fetch = fetch_tasks(world, 1, args.seed)[0]
     simulation_run = SimulatedRun.create(world, seed=args.seed,
-                                         disturbances=disturbed(args.level))
+                                         disturbances=disturbed(args.level),
+                                         fidelity=args.fidelity)
     report = simulation_run.run(fetch.task)
     really = delivered(simulation_run.simulation, fetch)
     if console is not None:

@@ -43,7 +43,8 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
         table[task] = {"plans": len(plans), "shortest": min(len(plan) for plan in plans)}
     simulation_run = SimulatedRun.create(
         world, seed=args.seed,
-        disturbances=DisturbanceModel(grasp_slip=args.slip, door_closed=args.door_closed))
+        disturbances=DisturbanceModel(grasp_slip=args.slip, door_closed=args.door_closed),
+        fidelity=args.fidelity)
     actor = PlanActor(simulation_run.context, domain)
     actions: list[dict[str, Any]] = []
     speech: list[str] = []

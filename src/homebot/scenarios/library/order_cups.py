@@ -22,6 +22,7 @@ from homebot.golog import (
 )
 from homebot.golog.build import do
 from homebot.golog.domains import CUPS, POSITIONS, cups_theory, minimum_moves
+from homebot.scenarios.embodied import Fidelity
 from homebot.scenarios.runtime import SimulatedRun
 from homebot.scenarios.summary import scenario_summary
 from homebot.skills import skill_named
@@ -68,7 +69,8 @@ class HomeCups:
 
 
 def home_cups(initial: Mapping[str, str], seed: int,
-              noticing: Callable[[], list[tuple[Any, ...]]] | None = None) -> HomeCups:
+              noticing: Callable[[], list[tuple[Any, ...]]] | None = None,
+              fidelity: Fidelity = Fidelity.SYMBOLIC) -> HomeCups:
     """The apartment with a red, a green and a blue cup at ``initial`` positions, and a
     skill executor for the cups theory: moves are pick and place, perceiving is looking at
     the four placements; positions are read from the robot's beliefs after each action."""
@@ -76,7 +78,7 @@ def home_cups(initial: Mapping[str, str], seed: int,
     data["objects"] += [{"name": f"{cup} cup", "category": "dish",
                          "placement": PLACEMENTS[initial[cup]]} for cup in CUPS]
     world = World.from_dict(data, "apartment + three cups")
-    simulated = SimulatedRun.create(world, seed=seed)
+    simulated = SimulatedRun.create(world, seed=seed, fidelity=fidelity)
     context = simulated.context
     positions = {placement: position for position, placement in PLACEMENTS.items()}
 
@@ -120,7 +122,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     executor: Executor
     figures: dict[str, Any] = {}
     if getattr(args, "home", False):
-        home = home_cups(initial, args.seed)
+        home = home_cups(initial, args.seed, fidelity=args.fidelity)
         executor = home.executor
         outcome: Run = Interpreter(theory, executor, seed=args.seed).run(
             do("order_cups_demo", *goal, horizon), State())

@@ -62,7 +62,8 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     world = rips_world()
     level = getattr(args, "disturb", 0.0)
     simulation_run = SimulatedRun.create(world, seed=args.seed,
-                                         disturbances=disturbed(level) if level else None)
+                                         disturbances=disturbed(level) if level else None,
+                                         fidelity=args.fidelity)
     context = simulation_run.context
     waits: list[int] = []
 

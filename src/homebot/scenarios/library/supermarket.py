@@ -62,7 +62,8 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     cycle = InferenceCycle(inventory, r_max=args.r_max, seed=args.seed)
     simulated = SimulatedRun.create(
         world, seed=args.seed, inference=cycle,
-        responder=ScriptedResponder({"customer": _CUSTOMER_SAYS}))
+        responder=ScriptedResponder({"customer": _CUSTOMER_SAYS}),
+        fidelity=args.fidelity)
     inventory.clock = simulated.robot.now
     simulated.simulation.object_location.update(STORY_TRUTH)
     context = simulated.context

@@ -1,0 +1,5 @@
+"""The embodied robot: the Robot port over a Body, through localisation and navigation."""
+
+from homebot.embodied.robot import BodyRobot, Companions
+
+__all__ = ["BodyRobot", "Companions"]

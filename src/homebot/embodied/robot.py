@@ -1,0 +1,286 @@
+"""``BodyRobot``: the Robot port over a ``Body``, with the action/perception layer between.
+
+The robot localises itself with Monte Carlo localisation from its odometry and
+laser, plans a global path on the static map (stage 1) and drives it with a
+reactive local planner on the live scan (stage 2). ``pose`` is the estimate,
+never the truth, so a navigate monitor can find the robot is not where it
+meant to be. A route goes door by door: the robot stops in front of each door,
+looks whether it is open and whether someone stands in it, and reports a shut
+or blocked door so the executive's door protocol can act.
+
+Perception, manipulation and conversation stay symbolic until the perception
+and manipulation modules replace them: those calls go to ``percepts``, another
+Robot implementation over the same world.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Protocol
+
+import numpy as np
+
+from homebot.events import EventLog
+from homebot.navigation import Navigator
+from homebot.navigation.localisation import MonteCarloLocalisation
+from homebot.navigation.localmap import LocalController
+from homebot.robot import (
+    Blocker,
+    Body,
+    Detection,
+    HelpRequest,
+    MoveReport,
+    PersonPercept,
+    Pose,
+    Robot,
+    Twist,
+)
+from homebot.world import World
+
+__all__ = ["BodyRobot", "Companions"]
+
+_STOP_BEFORE_DOOR = 0.6  #: metres in front of a door where the robot stops to look at it
+_DOORWAY = 0.35  #: laser returns this close to a door's centre mean something stands in it
+_GOAL_TOLERANCE = 0.15  #: metres: a leg ends this close to its end point
+_HEADING_TOLERANCE = 0.1  #: radians: the final turn ends this close to the goal's heading
+_SECONDS_PER_METRE = 12.0  #: a leg is given up after this long per metre of path (plus slack)
+_PARTICLES_SHOWN = 500
+
+
+class Companions(Protocol):
+    """People who walk with the robot: a guided person keeps behind it, a followed one leads."""
+
+    def walk_to(self, person: str, point: tuple[float, float]) -> None:
+        """``person`` walks to ``point``."""
+
+
+@dataclass(frozen=True, slots=True)
+class _Leg:
+    """One stretch of a route: to a point in front of a door, or to the goal."""
+
+    target: Pose
+    door: str | None  #: the door the robot stands before at the end, if any
+
+
+class BodyRobot(Robot):
+    """A robot that drives its body through localisation and two-stage navigation.
+
+    Args:
+        body: the drivers.
+        world: the map and the names of places (what the robot was told, not the truth).
+        navigator: stage 1, on the static map.
+        localisation: the particle filter, already initialised (or left for a global start).
+        controller: stage 2, the local planner.
+        percepts: the symbolic robot that still answers perception, manipulation and
+            conversation.
+        companions: moves people who walk with the robot (guide, follow).
+        events: where the robot's laser, particles and motions are recorded.
+    """
+
+    def __init__(self, body: Body, world: World, navigator: Navigator,
+                 localisation: MonteCarloLocalisation, controller: LocalController,
+                 percepts: Robot, companions: Companions, events: EventLog) -> None:
+        self.body = body
+        self.world = world
+        self.navigator = navigator
+        self.localisation = localisation
+        self.controller = controller
+        self.percepts = percepts
+        self.companions = companions
+        self.events = events
+        self.localisation.update(body.odometry(), body.scan())
+
+    # ------------------------------------------------------------ state
+
+    @property
+    def hands(self) -> tuple[str, ...]:
+        return self.percepts.hands
+
+    def now(self) -> float:
+        return self.body.now()
+
+    def pose(self) -> Pose:
+        return self.localisation.estimate()
+
+    def _localise(self) -> Pose:
+        """Feed the filter the latest odometry and scan; the estimate."""
+        return self.localisation.update(self.body.odometry(), self.body.scan())
+
+    # ------------------------------------------------------------ motion
+
+    def move_to(self, goal: Pose, avoid_doors: frozenset[str] = frozenset(),
+                escort: str | None = None) -> MoveReport:
+        start = self.pose()
+        plan = self.navigator.plan(start.xy(), goal.xy(), avoid_doors)
+        if plan is None:
+            return MoveReport(False, start, 0.0, Blocker.NO_PATH)
+        legs = [_Leg(Pose(*self.world.point_before_door(door, plan.route.rooms[index],
+                                                         _STOP_BEFORE_DOOR)), door)
+                for index, door in enumerate(plan.doors)]
+        legs.append(_Leg(goal, None))
+        travelled = 0.0
+        passed: list[str] = []
+        for leg in legs:
+            report = self._drive_leg(leg.target, avoid_doors, final=leg.door is None)
+            travelled += report.distance
+            if not report.reached:
+                self._record_view()
+                return MoveReport(False, self.pose(), travelled, report.blocker, report.door,
+                                  report.person, tuple(passed))
+            if leg.door is not None:
+                blocked = self._door_blocker(leg.door)
+                if blocked is not None:
+                    self._record_view()
+                    self.events.record("robot.blocked", door=leg.door, blocker=blocked[0].value)
+                    return MoveReport(False, self.pose(), travelled, blocked[0], leg.door,
+                                      blocked[1], tuple(passed))
+                passed.append(leg.door)
+        self._turn_to(goal.theta)
+        if escort is not None:
+            here = self.pose()
+            self.companions.walk_to(escort, (here.x - 0.6 * math.cos(here.theta),
+                                             here.y - 0.6 * math.sin(here.theta)))
+        self._record_view()
+        return MoveReport(True, self.pose(), travelled, doors_passed=tuple(passed))
+
+    def _drive_leg(self, target: Pose, avoid_doors: frozenset[str], final: bool) -> MoveReport:
+        here = self.pose()
+        plan = self.navigator.plan(here.xy(), target.xy(), avoid_doors)
+        if plan is None:
+            return MoveReport(False, here, 0.0, Blocker.NO_PATH)
+        if math.dist(here.xy(), target.xy()) <= _GOAL_TOLERANCE:
+            return MoveReport(True, here, 0.0)
+        ticks = int((plan.length * _SECONDS_PER_METRE + 20.0) / self.body.tick_period)
+        body = self.body
+        travelled, last = 0.0, body.odometry().pose
+        reached = False
+        for _ in range(ticks):
+            here = self._localise()
+            if math.dist(here.xy(), target.xy()) <= _GOAL_TOLERANCE:
+                reached = True
+                break
+            odometry = body.odometry()
+            command = self.controller.plan(here, odometry.twist, body.scan(), plan.waypoints,
+                                           body.limits, body.drive, body.radius)
+            body.command_velocity(command)
+            body.tick()
+            now = body.odometry().pose
+            travelled += math.dist(now.xy(), last.xy())
+            last = now
+        body.command_velocity(Twist())
+        body.tick()
+        if reached:
+            return MoveReport(True, self.pose(), travelled)
+        person = self._person_near(self.pose().xy(), 1.5)
+        blocker = Blocker.PERSON if person else Blocker.NO_PATH
+        self.events.record("robot.stuck", person=person)
+        return MoveReport(False, self.pose(), travelled, blocker, None, person)
+
+    def _turn_to(self, heading: float) -> None:
+        """Turn on the spot to ``heading`` (proportional control, within the limits)."""
+        limit = self.body.limits.angular
+        for _ in range(int(2 * math.pi / limit / self.body.tick_period) + 40):
+            error = _wrap(heading - self._localise().theta)
+            if abs(error) <= _HEADING_TOLERANCE:
+                break
+            self.body.command_velocity(Twist(0.0, 0.0, max(-limit, min(limit, 2.0 * error))))
+            self.body.tick()
+        self.body.command_velocity(Twist())
+        self.body.tick()
+
+    def _door_blocker(self, door: str) -> tuple[Blocker, str | None] | None:
+        """Standing before ``door``: is it shut, or does someone stand in it?"""
+        if not self.percepts.door_is_open(door):
+            return (Blocker.DOOR_CLOSED, None)
+        position = self.world.doors[door].position
+        if self._laser_returns_near(position) == 0:
+            return None
+        person = self._person_near(position, 0.8)
+        return (Blocker.PERSON, person) if person else None
+
+    def _laser_returns_near(self, point: tuple[float, float]) -> int:
+        points = self._scan_on_map()
+        return int(np.count_nonzero(np.hypot(points[:, 0] - point[0],
+                                             points[:, 1] - point[1]) < _DOORWAY))
+
+    def _person_near(self, point: tuple[float, float], reach: float) -> str | None:
+        seen = [p for p in self.percepts.perceive_people()
+                if p.name and math.dist(p.position, point) <= reach]
+        seen.sort(key=lambda p: math.dist(p.position, point))
+        return seen[0].name if seen else None
+
+    def _scan_on_map(self) -> np.ndarray:
+        """The latest scan's returns on the map, placed by the pose estimate."""
+        pose = self.pose()
+        points = self.body.scan().points()
+        cos, sin = math.cos(pose.theta), math.sin(pose.theta)
+        return np.column_stack((pose.x + cos * points[:, 0] - sin * points[:, 1],
+                                pose.y + sin * points[:, 0] + cos * points[:, 1]))
+
+    def _record_view(self) -> None:
+        """Log what the robot saw and believed at the end of a motion, for the map picture."""
+        laser = np.round(self._scan_on_map(), 3)
+        particles = self.localisation.particles
+        if len(particles) > _PARTICLES_SHOWN:
+            particles = particles[:: math.ceil(len(particles) / _PARTICLES_SHOWN)]
+        self.events.record("robot.laser", points=laser.tolist())
+        self.events.record("robot.particles", points=np.round(particles, 3).tolist())
+
+    def follow(self, person: str, goal: Pose | None) -> MoveReport:
+        seen = [p for p in self.percepts.perceive_people() if p.name == person]
+        if not seen or math.dist(seen[0].position, self.pose().xy()) > 2.0:
+            return MoveReport(False, self.pose(), 0.0, Blocker.NO_PATH)
+        destination = goal.xy() if goal else seen[0].position
+        plan = self.navigator.plan(self.pose().xy(), destination)
+        if plan is None:
+            return MoveReport(False, self.pose(), 0.0, Blocker.NO_PATH)
+        # The person walks ahead; the robot keeps behind, stopping short of where they stop.
+        self.companions.walk_to(person, destination)
+        behind = plan.waypoints[-2] if len(plan.waypoints) > 1 else self.pose().xy()
+        dx, dy = destination[0] - behind[0], destination[1] - behind[1]
+        norm = math.hypot(dx, dy) or 1.0
+        stop = Pose(destination[0] - dx / norm * 0.8, destination[1] - dy / norm * 0.8,
+                    math.atan2(dy, dx))
+        return self.move_to(stop)
+
+    # ------------------------------------------------------------ the rest stays symbolic
+
+    def perceive_objects(self, placement: str) -> list[Detection]:
+        return self.percepts.perceive_objects(placement)
+
+    def perceive_people(self) -> list[PersonPercept]:
+        return self.percepts.perceive_people()
+
+    def grasp(self, detection: Detection, hand: str) -> None:
+        self.percepts.grasp(detection, hand)
+
+    def held(self, hand: str) -> Detection | None:
+        return self.percepts.held(hand)
+
+    def release(self, hand: str, placement: str) -> None:
+        self.percepts.release(hand, placement)
+
+    def hand_over(self, hand: str, person: str) -> bool:
+        return self.percepts.hand_over(hand, person)
+
+    def open_door(self, door: str) -> bool:
+        return self.percepts.open_door(door)
+
+    def door_is_open(self, door: str) -> bool | None:
+        return self.percepts.door_is_open(door)
+
+    def say(self, text: str) -> None:
+        self.percepts.say(text)
+
+    def ask(self, person: str, question: str) -> str | None:
+        return self.percepts.ask(person, question)
+
+    def request(self, person: str, request: HelpRequest, target: str) -> bool:
+        return self.percepts.request(person, request, target)
+
+
+def _wrap(angle: float) -> float:
+    return (angle + math.pi) % (2 * math.pi) - math.pi
+
+

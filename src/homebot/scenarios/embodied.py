@@ -1,0 +1,68 @@
+"""The two fidelities, and the wiring of the embodied robot over the simulated body."""
+
+from __future__ import annotations
+
+import argparse
+import importlib.util
+from enum import StrEnum
+
+import numpy as np
+
+from homebot.errors import HomebotError
+from homebot.navigation import Navigator
+from homebot.robot import Pose, Robot
+from homebot.sim import SimRobot, Simulation
+
+__all__ = ["Fidelity", "add_fidelity_option", "embodied_robot", "require_embodied"]
+
+# Seed stream of the robot's own filter, apart from the simulation's and the body's.
+_LOCALISATION_STREAM = 303
+
+
+class Fidelity(StrEnum):
+    """How the robot under the skills is simulated."""
+
+    SYMBOLIC = "symbolic"  #: percepts are seeded dice over the truth; motion jumps along paths
+    EMBODIED = "embodied"  #: a body with a laser, localisation and reactive navigation
+
+
+def add_fidelity_option(parser: argparse.ArgumentParser) -> None:
+    """``--fidelity symbolic|embodied``."""
+    parser.add_argument("--fidelity", type=Fidelity, choices=list(Fidelity),
+                        default=Fidelity.SYMBOLIC,
+                        help="symbolic (fast, the default) or embodied (the robot localises "
+                             "from its laser and drives with the reactive planner)")
+
+
+def require_embodied() -> None:
+    """Raise a clear error when the ``embodied`` extra is not installed."""
+    if importlib.util.find_spec("cv2") is None:
+        raise HomebotError("--fidelity embodied needs the 'embodied' extra: "
+                           "pip install 'homebot[embodied]'")
+
+
+def embodied_robot(simulation: Simulation, navigator: Navigator, *,
+                   walkers: int = 0, known_start: bool = True) -> Robot:
+    """A ``BodyRobot`` on a ``SimBody`` in ``simulation``.
+
+    Args:
+        walkers: how many people walk about on their own.
+        known_start: the robot is told where it starts (else it localises globally).
+    """
+    require_embodied()
+    from homebot.embodied import BodyRobot
+    from homebot.navigation.local_planner import MotionSearchPlanner
+    from homebot.navigation.localisation import MonteCarloLocalisation
+    from homebot.sim.body import SimBody
+
+    world = simulation.world
+    body = SimBody(simulation, walkers=walkers)
+    localisation = MonteCarloLocalisation(
+        navigator.grid, np.random.default_rng([simulation.seed, _LOCALISATION_STREAM]))
+    if known_start:
+        localisation.initialise(Pose(*world.robot.pose), spread=0.05, angle_spread=0.05)
+    else:
+        localisation.initialise_globally()
+    percepts = SimRobot(simulation)
+    return BodyRobot(body, world, navigator, localisation, MotionSearchPlanner(), percepts,
+                     percepts, simulation.events)

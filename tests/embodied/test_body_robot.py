@@ -1,0 +1,87 @@
+"""BodyRobot: skills on a body that localises from its laser and drives reactively.
+
+Success is judged by the simulation's truth: where the robot really is, who
+really holds the object, whether it ever touched anything.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from homebot.bench.fetch_tasks import delivered, fetch_tasks
+from homebot.navigation import Navigator
+from homebot.robot import Blocker, Pose
+from homebot.scenarios import SimulatedRun
+from homebot.scenarios.embodied import Fidelity
+from homebot.task import Step, Task
+from homebot.world import DoorState, World
+
+pytest.importorskip("cv2")
+
+
+def _run(world: World, navigator: Navigator, seed: int = 0, walkers: int = 0) -> SimulatedRun:
+    return SimulatedRun.create(world, seed=seed, navigator=navigator,
+                               fidelity=Fidelity.EMBODIED, walkers=walkers)
+
+
+def test_navigate_really_drives_and_the_pose_is_an_estimate(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    run = _run(apartment, apartment_navigator)
+    report = run.run(Task((Step("navigate", {"to": "bed"}),)))
+    assert report.success
+    truth = run.simulation.robot_pose
+    goal = apartment.placements["bed"].approach
+    assert math.dist(truth[:2], goal[:2]) < 0.3
+    assert run.simulation.collisions == []
+    estimate = run.robot.pose()
+    assert estimate.xy() != truth[:2]  # the robot knows only its estimate ...
+    assert math.dist(estimate.xy(), truth[:2]) < 0.15  # ... and it is a good one
+    kinds = {event.kind for event in run.simulation.events.events}
+    assert {"robot.trajectory", "robot.laser", "robot.particles"} <= kinds
+    # Driving takes simulated time by the robot's speed, not a jump.
+    assert report.sim_time > math.dist(apartment.robot.pose[:2], goal[:2]) / apartment.robot.speed
+
+
+def test_a_fetch_and_deliver_task_succeeds_by_ground_truth(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    fetch = fetch_tasks(apartment, 1, seed=5)[0]
+    run = _run(apartment, apartment_navigator, seed=5)
+    report = run.run(fetch.task)
+    assert report.success
+    assert delivered(run.simulation, fetch)
+    assert run.simulation.collisions == []
+
+
+def test_a_closed_door_stops_the_robot_in_front_and_the_protocol_opens_it(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    run = _run(apartment, apartment_navigator)
+    run.simulation.door_state["bedroom door"] = DoorState.CLOSED
+    report = run.run(Task((Step("navigate", {"to": "bed"}),)))
+    assert report.success
+    kinds = [(event.kind, event.data.get("door")) for event in run.simulation.events.events]
+    assert ("robot.blocked", "bedroom door") in kinds
+    assert run.simulation.door_state["bedroom door"] is DoorState.OPEN
+    assert run.simulation.collisions == []
+
+
+def test_the_robot_reports_a_shut_door_it_cannot_pass(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    run = _run(apartment, apartment_navigator)
+    run.simulation.door_state["bedroom door"] = DoorState.LOCKED
+    report = run.robot.move_to(Pose(*apartment.placements["bed"].approach))
+    assert not report.reached
+    assert report.blocker is Blocker.DOOR_CLOSED
+    assert report.door == "bedroom door"
+    assert math.dist(run.simulation.robot_pose[:2], apartment.doors["bedroom door"].position) < 1.2
+
+
+def test_embodied_runs_are_deterministic_by_seed(apartment: World,
+                                                apartment_navigator: Navigator) -> None:
+    def drive(seed: int) -> tuple[float, float, float]:
+        run = _run(apartment, apartment_navigator, seed=seed, walkers=2)
+        run.run(Task((Step("navigate", {"to": "fridge"}),)))
+        return run.simulation.robot_pose
+
+    assert drive(2) == drive(2)
