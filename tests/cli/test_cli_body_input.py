@@ -80,7 +80,7 @@ def test_world_map_writes_a_pair_that_map_check_reads(tmp_path: Path,
     assert main(["world", "map-check", str(yaml_path), "--world", "supermarket"]) == 0
     out = capsys.readouterr().out
     assert "288×168 cells at 0.05 m, origin (-0.2, -0.2, 0)" in out
-    assert "covers world 'supermarket'" in out
+    assert "covers world 'supermarket', free floor differs in 0 cells" in out
     assert main(["world", "map-check", str(yaml_path), "--json"]) == 0
     figures = json.loads(capsys.readouterr().out)
     assert figures["width"] == 288 and figures["height"] == 168

@@ -192,3 +192,24 @@ def test_writing_to_an_unwritable_place_is_a_map_error(tmp_path: Path, l_shape: 
     blocker.write_text("x", encoding="utf-8")
     with pytest.raises(MapError, match="cannot be written"):
         write_map(RosMap.from_world(l_shape), blocker / "map.yaml")
+
+
+def test_differing_cells_compare_maps_cell_by_cell(l_shape: World) -> None:
+    base = RosMap.from_world(l_shape)
+    assert base.differing_cells(base) == 0
+    with_box = World.from_yaml_text(L_SHAPED.replace(
+        "robot:", "  - {name: box, category: box, room: hall, center: [0.5, 0.5], "
+                  "size: [0.2, 0.2]}\nrobot:"), "box.yaml")
+    assert base.differing_cells(RosMap.from_world(with_box)) == 16  # 0.2 m square at 5 cm
+    # The same grid two cells over: only where the overlap's contents differ.
+    shifted = RosMap(base.occupied, base.unknown, (base.origin[0] + 0.1, base.origin[1], 0.0),
+                     base.resolution)
+    differing = base.differing_cells(shifted)
+    rows, columns = base.shape  # shifted's cell (r, c) lies on base's cell (r, c + 2)
+    expected = sum(base.free[r, c + 2] != base.free[r, c]
+                   for r in range(rows) for c in range(columns - 2))
+    assert differing == expected > 0
+    assert base.differing_cells(RosMap(base.occupied, base.unknown,
+                                       (base.origin[0] + 0.01, base.origin[1], 0.0),
+                                       base.resolution)) is None
+    assert base.differing_cells(RosMap(base.occupied, base.unknown, base.origin, 0.1)) is None

@@ -39,20 +39,25 @@ def _write(args: argparse.Namespace) -> int:
 
 
 def _check(args: argparse.Namespace) -> int:
-    from homebot.navigation.map_io import read_map
+    from homebot.navigation.map_io import RosMap, read_map
 
     ros_map = read_map(args.file)
+    differing = None
     if args.world:
-        ros_map.check_covers(World.load(args.world))
+        world = World.load(args.world)
+        ros_map.check_covers(world)
+        differing = ros_map.differing_cells(RosMap.from_world(world))
     rows, columns = ros_map.shape
     counts = ros_map.counts()
     if args.json:
         print(json.dumps({"file": str(args.file), "width": columns, "height": rows,
                           "resolution": ros_map.resolution, "origin": list(ros_map.origin),
-                          **counts, "world": args.world}))
+                          **counts, "world": args.world, "differing_cells": differing}))
         return 0
     x, y, yaw = ros_map.origin
     covers = f"; covers world '{args.world}'" if args.world else ""
+    if differing is not None:
+        covers += f", free floor differs in {differing} cells"
     print(f"{args.file}: {columns}×{rows} cells at {ros_map.resolution:g} m, origin "
           f"({x:g}, {y:g}, {yaw:g}); free {counts['free']}, occupied {counts['occupied']}, "
           f"unknown {counts['unknown']}{covers}")

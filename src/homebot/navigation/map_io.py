@@ -151,6 +151,26 @@ class RosMap:
                 f"(homebot world map --world WORLD -o DIR) or fix its origin and resolution")
 
 
+    def differing_cells(self, other: RosMap) -> int | None:
+        """How many cells the two maps both cover and see differently (free or not free).
+
+        None when their grids do not line up (other resolution, or origins apart by
+        a fraction of a cell).
+        """
+        if not math.isclose(self.resolution, other.resolution, rel_tol=1e-9):
+            return None
+        offsets = [(other.origin[i] - self.origin[i]) / self.resolution for i in (1, 0)]
+        if any(abs(offset - round(offset)) > 1e-6 for offset in offsets):
+            return None
+        row, column = (round(offset) for offset in offsets)
+        rows = slice(max(row, 0), min(self.shape[0], row + other.shape[0]))
+        columns = slice(max(column, 0), min(self.shape[1], column + other.shape[1]))
+        mine = self.free[rows, columns]
+        theirs = other.free[rows.start - row:rows.stop - row,
+                            columns.start - column:columns.stop - column]
+        return int(np.count_nonzero(mine != theirs))
+
+
 def map_file_stem(world: World) -> str:
     """The file name (without suffix) a world's map is written under."""
     return re.sub(r"[^A-Za-z0-9_-]+", "_", world.name).strip("_") or "map"
