@@ -78,7 +78,7 @@ def test_count_and_say_the_result(run: SimulatedRun) -> None:
     counted = _do(run, "count", object="drink", placement="fridge")
     assert counted and counted.data["count"] == 5
     said = _do(run, "say", text="$result")
-    assert said.data["text"] == "There are 5 drinks on the fridge."
+    assert said.data["text"] == "There are five drinks in the fridge."
 
 
 def test_find_person_by_gesture_then_describe(run: SimulatedRun) -> None:

@@ -65,6 +65,7 @@ class Executive:
         reason = ""
         for index, step in enumerate(task.steps):
             args = self._bind(step.args)
+            recoveries: list[str]
             if time_left(context) <= 0:
                 outcome, recoveries = Outcome.failed(
                     ErrorCode.OUT_OF_TIME, f"I ran out of time before I could {step.skill}"), []

@@ -16,6 +16,7 @@ from homebot.robot import HelpRequest
 from homebot.skills import ErrorCode, Outcome, SkillContext, speak
 from homebot.skills.perception import looked_everywhere
 from homebot.skills.places import resolve_target
+from homebot.skills.wording import be, is_plural
 
 __all__ = ["PROTOCOLS", "Protocol", "StepRunner"]
 
@@ -79,7 +80,7 @@ def _object_not_found(context: SkillContext, skill: str, args: Mapping[str, Any]
         return False
     searched = list(outcome.data.get("searched", ())) + (
         [str(outcome.data["placement"])] if outcome.data.get("placement") else [])
-    speak(context, f"The {wanted} is not where I expected. I will look elsewhere.")
+    speak(context, f"The {wanted} {be(wanted)} not where I expected. I will look elsewhere.")
     found = run("find_object", {"object": wanted, "exclude": searched})
     if not found and found.error is ErrorCode.NOT_FOUND:
         # The likely places were searched; a detection may have missed it where it
@@ -104,7 +105,9 @@ def _object_not_found(context: SkillContext, skill: str, args: Mapping[str, Any]
 def _slipped(context: SkillContext, skill: str, args: Mapping[str, Any],
              outcome: Outcome, run: StepRunner) -> bool | Outcome:
     """A grasp that slipped is worth another round of attempts after a fresh look."""
-    speak(context, f"The {args.get('object', 'object')} keeps slipping. Let me try again.")
+    thing = str(args.get("object", "object"))
+    speak(context, f"The {thing} {'keep' if is_plural(thing) else 'keeps'} slipping. "
+                   "Let me try again.")
     return True
 
 

@@ -7,6 +7,7 @@ from typing import Any
 
 from homebot.skills.places import person_name
 from homebot.skills.skill import ErrorCode, Outcome, Skill, SkillContext, speak
+from homebot.skills.wording import be, object_is_at, place_in
 
 __all__ = ["AnswerQuestion", "Ask", "Greet", "Say", "answer_about_home", "talk_about"]
 
@@ -48,9 +49,11 @@ def answer_about_home(context: SkillContext, question: str) -> str:
     if text.startswith("where is") or text.startswith("where are"):
         thing = " ".join(w for w in words[2:] if w not in {"the", "a", "an"})
         where = context.beliefs.object_at.get(thing)
-        if where:
-            return f"The {thing} is on the {where}."
-        return f"I do not know where the {thing} is."
+        if where and where in world.placements:
+            return object_is_at(thing, place_in(world, where))
+        if where and where.startswith("hand:"):
+            return f"I am holding the {thing}."
+        return f"I do not know where the {thing} {be(thing)}."
     if "time" in text or "day" in text:
         return talk_about(context, text)
     return "I am sorry, I do not know the answer."

@@ -10,6 +10,7 @@ from homebot.skills.motion import drive
 from homebot.skills.perception import go_and_look, matches_object
 from homebot.skills.places import person_name, resolve_target
 from homebot.skills.skill import ErrorCode, Outcome, Skill, SkillContext, Status, speak
+from homebot.skills.wording import be, here_is, place_in
 
 __all__ = ["Give", "Pick", "Place"]
 
@@ -50,8 +51,8 @@ class Pick(Skill):
         targets = [d for d in detections if d.label == wanted] or [
             d for d in detections if matches_object(context, wanted, d)]
         if not targets:
-            return Outcome.failed(ErrorCode.NOT_FOUND, f"the {wanted} is not on the {placement}",
-                                  placement=placement)
+            return Outcome.failed(ErrorCode.NOT_FOUND, f"the {wanted} {be(wanted)} not "
+                                  f"{place_in(context.world, placement)}", placement=placement)
         context.robot.grasp(targets[0], hand)
         return Outcome.finished(f"closed my {hand} hand on the {targets[0].label}", hand=hand,
                                 object=targets[0].label, placement=placement)
@@ -110,15 +111,18 @@ class Place(Skill):
         context.robot.release(hand, placement)
         context.beliefs.let_go(hand, placement)
         context.bindings[f"placed:{placement}"] = label
-        return Outcome.finished(f"put the {label} on the {placement}", object=label)
+        return Outcome.finished(f"put the {label} {place_in(context.world, placement)}",
+                                object=label)
 
     def monitor(self, context: SkillContext, args: Mapping[str, Any],
                 finished: Outcome) -> Outcome:
         name, placement = finished.data["object"], str(args["placement"])
         outcome, detections = go_and_look(context, placement)
         if outcome.status is Status.FINISHED and any(d.label == name for d in detections):
-            return Outcome.verified(f"the {name} is on the {placement}", object=name)
-        return Outcome.aborted(ErrorCode.NOT_PLACED, f"I do not see the {name} on the {placement}")
+            return Outcome.verified(f"the {name} {be(name)} {place_in(context.world, placement)}",
+                                    object=name)
+        return Outcome.aborted(ErrorCode.NOT_PLACED,
+                               f"I do not see the {name} {place_in(context.world, placement)}")
 
 
 class Give(Skill):
@@ -147,7 +151,7 @@ class Give(Skill):
             moved = drive(context, goal) if goal else None
             if moved is not None and moved.status is not Status.FINISHED:
                 return moved
-        speak(context, f"{person}, here is the {label}.")
+        speak(context, here_is(person, str(label)))
         context.robot.hand_over(hand, person)
         return Outcome.finished(f"offered it to {person}", hand=hand, person=person, object=label)
 

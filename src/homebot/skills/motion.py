@@ -7,6 +7,7 @@ from typing import Any
 
 from homebot.robot import Blocker, MoveReport, Pose
 from homebot.skills.places import (
+    OPERATOR,
     near,
     person_name,
     resolve_target,
@@ -14,6 +15,7 @@ from homebot.skills.places import (
     target_label,
 )
 from homebot.skills.skill import ErrorCode, Outcome, Skill, SkillContext, Status, speak
+from homebot.skills.wording import arrived, the
 
 __all__ = ["Follow", "Guide", "Navigate", "OpenDoor", "drive"]
 
@@ -75,7 +77,10 @@ class Navigate(Skill):
                 finished: Outcome) -> Outcome:
         goal = finished.data["goal"]
         if near(context, goal):
-            return Outcome.verified(f"I am at {target_label(args['to'])}")
+            target = args["to"]
+            said = arrived(context.world, target, operator=target == OPERATOR) if isinstance(
+                target, str) else f"I am at {target_label(target)}"
+            return Outcome.verified(said)
         return Outcome.aborted(ErrorCode.NOT_REACHED,
                                f"I did not get to {target_label(args['to'])}")
 
@@ -124,7 +129,7 @@ class Guide(Skill):
         goal = resolve_target(context, str(args["to"]))
         if goal is None:
             return Outcome.failed(ErrorCode.UNKNOWN_TARGET, f"I do not know where {args['to']} is")
-        speak(context, f"{person}, please follow me to the {args['to']}.")
+        speak(context, f"{person}, please follow me to {_destination(context, args['to'])}.")
         outcome = drive(context, goal, escort=person)
         if outcome.status is not Status.FINISHED:
             return outcome
@@ -133,6 +138,16 @@ class Guide(Skill):
     def monitor(self, context: SkillContext, args: Mapping[str, Any],
                 finished: Outcome) -> Outcome:
         return _person_nearby(context, finished.data["person"], "guided")
+
+
+def _destination(context: SkillContext, target: Any) -> str:
+    """How a guide names where it goes: "the kitchen", "Alex", "the point (2, 3)"."""
+    if not isinstance(target, str):
+        return target_label(target)
+    operator = context.world.operator
+    if target == OPERATOR and operator is not None:
+        return operator.name
+    return the(target)
 
 
 def _person_nearby(context: SkillContext, person: str, verb: str) -> Outcome:

@@ -10,6 +10,18 @@ from homebot.robot import Detection, PersonPercept, Pose
 from homebot.skills.motion import drive
 from homebot.skills.places import OPERATOR, near, resolve_target, sees_person_nearby
 from homebot.skills.skill import ErrorCode, Outcome, Skill, SkillContext, Status, time_left
+from homebot.skills.wording import (
+    a,
+    be,
+    count_objects,
+    count_people,
+    described_people,
+    listing,
+    person_fact,
+    place_in,
+    plural,
+    the,
+)
 from homebot.text import fold
 
 __all__ = [
@@ -117,7 +129,8 @@ class Look(Skill):
                 finished: Outcome) -> Outcome:
         labels = finished.data["objects"]
         listed = ", ".join(labels) if labels else "nothing"
-        return Outcome.verified(f"on the {args['placement']} I see {listed}", objects=labels)
+        return Outcome.verified(f"{place_in(context.world, str(args['placement']))} I see "
+                                f"{listed}", objects=labels)
 
 
 class FindObject(Skill):
@@ -166,13 +179,14 @@ class FindObject(Skill):
             looked.append(placement)
             found = [d for d in detections if matches_object(context, wanted, d)]
             if found:
-                return Outcome.finished(f"I see the {found[0].label} on the {placement}",
+                return Outcome.finished(f"I see the {found[0].label} "
+                                        f"{place_in(context.world, placement)}",
                                         object=found[0].label, placement=placement)
             context.beliefs.not_at.setdefault(wanted, set()).add(placement)
         if not candidates:
             return Outcome.failed(ErrorCode.NOT_FOUND,
                                   f"I did not find the {wanted} anywhere I looked", searched=[])
-        message = f"I did not find the {wanted} on the {candidates[0]}" if len(
+        message = f"I did not find the {wanted} {place_in(context.world, candidates[0])}" if len(
             candidates) == 1 else looked_everywhere(wanted, candidates)
         return Outcome.failed(ErrorCode.NOT_FOUND, message, searched=candidates)
 
@@ -184,16 +198,16 @@ class FindObject(Skill):
             if any(d.label == name for d in context.robot.perceive_objects(placement)):
                 return Outcome.verified(finished.message, object=name, placement=placement)
         context.beliefs.missed_object(name, placement)
-        return Outcome.aborted(ErrorCode.NOT_FOUND, f"the {name} is not on the {placement}")
+        return Outcome.aborted(ErrorCode.NOT_FOUND, f"the {name} {be(name)} not "
+                               f"{place_in(context.world, placement)}")
 
 
 def looked_everywhere(wanted: str, searched: Sequence[str]) -> str:
     """"I did not find the X anywhere I looked: the A, the B and the C" (or "nowhere yet")."""
     if not searched:
         return f"I did not get to look anywhere for the {wanted}"
-    places = [f"the {place}" for place in searched]
-    listed = places[0] if len(places) == 1 else ", ".join(places[:-1]) + " and " + places[-1]
-    return f"I did not find the {wanted} anywhere I looked: {listed}"
+    return f"I did not find the {wanted} anywhere I looked: " + listing(
+        [f"the {place}" for place in searched])
 
 
 def _affordable(context: SkillContext, placement: str) -> bool:
@@ -206,7 +220,8 @@ def _affordable(context: SkillContext, placement: str) -> bool:
     operator = resolve_target(context, OPERATOR)
     back = operator.xy() if operator is not None else here
     metres = _metres(context, here, there) + _metres(context, there, back)
-    return metres / context.world.robot.speed + _LOOK_ALLOWANCE <= left
+    speed: float = context.world.robot.speed
+    return metres / speed + _LOOK_ALLOWANCE <= left
 
 
 def _metres(context: SkillContext, start: tuple[float, float],
@@ -263,7 +278,8 @@ class FindPerson(Skill):
                         return moved
                     return Outcome.finished(f"I found {seen.name}", person=seen.name)
         return Outcome.failed(ErrorCode.NOT_FOUND,
-                              f"I did not find {_describe(description)} in {', '.join(rooms)}")
+                              f"I did not find {_describe(description)} in "
+                              f"{listing([the(room) for room in rooms])}")
 
     @staticmethod
     def _likely_rooms(context: SkillContext, description: Mapping[str, Any]) -> list[str]:
@@ -286,7 +302,7 @@ def _describe(description: Mapping[str, Any]) -> str:
         return str(description["name"])
     if not description:
         return "anyone"
-    return "a person " + " ".join(f"{key} {value}" for key, value in description.items())
+    return a(described_people(description, 1))
 
 
 class Count(Skill):
@@ -337,16 +353,11 @@ class Count(Skill):
 def _count_sentence(context: SkillContext, args: Mapping[str, Any], count: int) -> str:
     if args.get("placement"):
         thing = str(args.get("object") or "object")
-        if thing in context.world.categories:
-            thing = context.world.plural_of(thing) if count != 1 else thing
-        elif count != 1:
-            thing = f"{thing}s" if not thing.endswith("s") else thing
-        return f"There {'is' if count == 1 else 'are'} {count} {thing} on the {args['placement']}."
-    people = "person" if count == 1 else "people"
-    who = _describe(_description(args.get("person")))
-    suffix = "" if not args.get("person") else f" ({who})"
-    verb = "is" if count == 1 else "are"
-    return f"There {verb} {count} {people}{suffix} in the {args['room']}."
+        many = context.world.plural_of(thing) if thing in context.world.categories else (
+            plural(thing))
+        return count_objects(count, thing, many,
+                             place_in(context.world, str(args["placement"])))
+    return count_people(count, _description(args.get("person")), str(args["room"]))
 
 
 class Describe(Skill):
@@ -380,7 +391,8 @@ class Describe(Skill):
         known = [d for d in detections if d.label in context.world.objects and (
             wanted == "object" or matches_object(context, wanted, d))]
         if not known:
-            return Outcome.failed(ErrorCode.NOT_FOUND, f"I see no {wanted} on the {placement}")
+            return Outcome.failed(ErrorCode.NOT_FOUND, f"I see no {wanted} "
+                                  f"{place_in(context.world, placement)}")
         prop = str(args["property"])
         measure = {"biggest": "size", "largest": "size", "smallest": "size",
                    "heaviest": "weight", "lightest": "weight", "thinnest": "size"}
@@ -388,7 +400,8 @@ class Describe(Skill):
         pick_max = prop in {"biggest", "largest", "heaviest"}
         choose = max if pick_max else min
         best = choose(known, key=lambda d: getattr(context.world.objects[d.label], field))
-        text = f"The {prop} {wanted} on the {placement} is the {best.label}."
+        text = (f"The {prop} {wanted} {place_in(context.world, placement)} is the "
+                f"{best.label}.")
         return Outcome.finished(text, result=text)
 
     def monitor(self, context: SkillContext, args: Mapping[str, Any],
@@ -398,14 +411,7 @@ class Describe(Skill):
 
 
 def _person_fact(seen: PersonPercept, info: str) -> str:
-    name = seen.name or "The person"
-    if info in {"pose", "posture"}:
-        return f"{name} is {seen.posture}."
-    if info == "gesture":
-        return f"{name} is {seen.gesture.replace('_', ' ')}."
-    if info == "clothes":
-        return f"{name} is wearing {' and '.join(seen.clothes) or 'nothing I can recognise'}."
-    return f"This is {name}."
+    return person_fact(seen.name, info, seen.posture, seen.gesture, seen.clothes)
 
 
 def _description(person: Any) -> dict[str, Any]:
