@@ -56,6 +56,9 @@ def register(subparsers: Any) -> None:
         from homebot.cli import world_robocup
 
         world_robocup.register_robocup(world_parsers)
+    from homebot.cli.world_pyrobosim import register_pyrobosim
+
+    register_pyrobosim(world_parsers)
     from homebot.cli.world_map import register_map
 
     register_map(world_parsers)
