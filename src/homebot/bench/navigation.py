@@ -1,25 +1,78 @@
-"""A* timing: a 15 m path on a 5 cm grid, and planned paths across the apartment."""
+"""Navigation: stage-1 A* timing, and 200 goals driven through the apartment with people walking.
+
+**Timing** (as before): raw A* for 15 m paths on a 5 cm grid (open floor, and
+round a long wall), and ``Navigator.plan`` between every placement pair.
+
+**Driving** (``--goals N``): the embodied robot (``SimBody``, three people
+walking) drives to N seeded goals in turn, half placement approach poses and
+half random free points, each with ``NavigateToPose`` along stage 1's path and
+a local controller: CAESAR's stage 2 (``MotionSearchPlanner``) and the Dynamic
+Window Approach baseline, each in its own simulation with the same seed and
+goals. Everything is judged by the simulator's truth: collisions are
+``simulation.collisions`` (walls, furniture, people); a goal is reached when
+the true position ends within 0.3 m of it. When a goal was missed, the robot
+is carried (truth only) to that goal before the next one, so both controllers
+always face the same start and goal. Smoothness is the mean absolute angular
+acceleration of the base (rad/s², from the velocity at each 20 Hz tick while
+driving); also reported: mean absolute linear acceleration. Cycle times are
+wall-clock per ``plan`` call on whatever core this runs on (``taskset -c 0``).
+The pose the controllers steer by is ``--pose``: the truth (default, fast) or
+odometry anchored at each goal's start (it drifts during the goal).
+"""
 
 from __future__ import annotations
 
 import argparse
+import itertools
+import math
+import random
 import statistics
 import time
+from collections.abc import Sequence
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 from rich.console import Console
+from scipy import ndimage
 
-from homebot.bench.arguments import count
+from homebot.bench.arguments import count, seed
 from homebot.navigation import Navigator, astar
-from homebot.world import World
+from homebot.navigation.dwa import DynamicWindowPlanner
+from homebot.navigation.local_planner import MotionSearchPlanner
+from homebot.navigation.localmap import LocalController
+from homebot.navigation.navigate import (
+    NavigateToPose,
+    NavigationError,
+    NavigationFeedback,
+    NavigationGoal,
+    OdometryPose,
+)
+from homebot.robot import DriveKind, LaserScan, Pose, Twist, VelocityLimits
+from homebot.sim.body import SimBody
+from homebot.sim.simulation import Simulation
+from homebot.world import PlacementKind, World
 
 __all__ = ["add_arguments", "run"]
+
+_REACHED = 0.3  #: metres from the goal, by the truth
+_GOAL_CLEARANCE = 0.45  #: a random free goal keeps this far from walls and furniture
+_PLANNERS = {"stage2": MotionSearchPlanner, "dwa": DynamicWindowPlanner}
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--repeat", type=count("--repeat", 1, 10_000), default=50,
-                        help="searches per case")
+                        help="searches per A* timing case")
+    parser.add_argument("--goals", type=count("--goals", 0, 5000), default=20,
+                        help="goals to drive to per controller (0: timing only; the issue's "
+                             "figure is --goals 200)")
+    parser.add_argument("--planner", choices=["stage2", "dwa", "both"], default="both",
+                        help="which local controller drives")
+    parser.add_argument("--pose", choices=["truth", "odometry"], default="truth",
+                        help="the pose the controllers steer by")
+    parser.add_argument("--walkers", type=count("--walkers", 0, 20), default=3,
+                        help="people walking about")
+    parser.add_argument("--seed", type=seed, default=1, help="seeds goals, people and sensors")
 
 
 def _median_ms(samples: list[float]) -> float:
@@ -27,6 +80,17 @@ def _median_ms(samples: list[float]) -> float:
 
 
 def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, Any]:
+    """A* timing, then (with ``--goals``) the driving comparison."""
+    figures = _astar_timing(args.repeat)
+    if args.goals:
+        figures["driving"] = _driving(args)
+    if console is not None:
+        for name, values in figures.items():
+            console.print(f"{name}: {values}")
+    return {"benchmark": "navigation", "figures": figures}
+
+
+def _astar_timing(repeat: int) -> dict[str, Any]:
     """Time raw A* on open grids and ``Navigator.plan`` (uncached) in the apartment."""
     side = 400  # 20 m at 5 cm
     free = np.zeros((side, side), dtype=bool)
@@ -43,7 +107,7 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
     for name, (grid, start, goal) in cases.items():
         flat = grid.ravel()
         samples, length = [], 0
-        for _ in range(args.repeat):
+        for _ in range(repeat):
             began = time.perf_counter()
             path = astar(flat, grid.shape, start[0] * side + start[1], goal[0] * side + goal[1])
             samples.append(time.perf_counter() - began)
@@ -67,7 +131,152 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
         "pairs": len(pairs), "longest_m": round(max(lengths), 2)}
     figures["apartment grid rasterisation"] = {"ms": round(1000 * grid_seconds, 1),
                                                "cells": int(np.prod(navigator.grid.shape))}
-    if console is not None:
-        for name, values in figures.items():
-            console.print(f"{name}: {values}")
-    return {"benchmark": "navigation", "figures": figures}
+    return figures
+
+
+# ---------------------------------------------------------------------- driving
+
+
+@dataclass
+class _Timed:
+    """A controller whose ``plan`` calls are timed (wall clock)."""
+
+    controller: LocalController
+    seconds: list[float] = field(default_factory=list)
+
+    def plan(self, pose: Pose, velocity: Twist, scan: LaserScan,
+             path: Sequence[tuple[float, float]], limits: VelocityLimits, drive: DriveKind,
+             radius: float) -> Twist:
+        began = time.perf_counter()
+        command = self.controller.plan(pose, velocity, scan, path, limits, drive, radius)
+        self.seconds.append(time.perf_counter() - began)
+        return command
+
+
+def _goals(world: World, navigator: Navigator, count: int, rng: random.Random) -> list[Pose]:
+    """Half placement approach poses, half random free points (kept clear of obstacles)."""
+    grid = navigator.grid
+    clearance = ndimage.distance_transform_edt(~grid.occupied) * grid.resolution
+    spots = sorted(p.name for p in world.placements.values()
+                   if p.model.kind is PlacementKind.FURNITURE)
+    min_x, min_y, max_x, max_y = world.bounds()
+    goals: list[Pose] = []
+    while len(goals) < count:
+        if len(goals) % 2 == 0:
+            x, y, theta = world.placements[rng.choice(spots)].approach
+            goals.append(Pose(x, y, theta))
+            continue
+        x, y = rng.uniform(min_x, max_x), rng.uniform(min_y, max_y)
+        if world.room_at(x, y) is None or clearance[grid.cell_of(x, y)] < _GOAL_CLEARANCE:
+            continue
+        goals.append(Pose(x, y, rng.uniform(-math.pi, math.pi)))
+    return goals
+
+
+def _driving(args: argparse.Namespace) -> dict[str, Any]:
+    world = World.load("apartment")
+    navigator = Navigator(world)
+    targets = _goals(world, navigator, args.goals, random.Random(f"goals:{args.seed}"))
+    names = ["stage2", "dwa"] if args.planner == "both" else [args.planner]
+    outcomes = {name: _drive(name, world, navigator, targets, args) for name in names}
+    figures: dict[str, Any] = {
+        name: outcome.summary() for name, outcome in outcomes.items()}
+    figures["pose source"] = args.pose
+    figures["walkers"] = args.walkers
+    if len(outcomes) == 2:
+        stage2, dwa = outcomes["stage2"], outcomes["dwa"]
+        both = [i for i in range(len(targets)) if stage2.reached[i] and dwa.reached[i]]
+        if both:
+            time_stage2 = statistics.fmean(stage2.durations[i] for i in both)
+            time_dwa = statistics.fmean(dwa.durations[i] for i in both)
+            figures["stage2 vs dwa"] = {
+                "goals reached by both": len(both),
+                "mean time on them, s": [round(time_stage2, 2), round(time_dwa, 2)],
+                "time ratio": round(time_stage2 / time_dwa, 3),
+                "angular acceleration ratio": round(
+                    stage2.summary()["mean |angular acceleration|, rad/s2"] /
+                    max(dwa.summary()["mean |angular acceleration|, rad/s2"], 1e-9), 3)}
+    return figures
+
+
+@dataclass
+class _Outcome:
+    reached: list[bool] = field(default_factory=list)
+    durations: list[float] = field(default_factory=list)
+    reasons: dict[str, int] = field(default_factory=dict)
+    collisions: list[dict[str, object]] = field(default_factory=list)
+    angular: list[float] = field(default_factory=list)
+    linear: list[float] = field(default_factory=list)
+    cycles: list[float] = field(default_factory=list)
+    travelled: float = 0.0
+    wall_seconds: float = 0.0
+
+    def summary(self) -> dict[str, Any]:
+        goals = len(self.reached)
+        return {
+            "goals": goals,
+            "reached (truth, 0.3 m)": sum(self.reached),
+            "reached share": round(sum(self.reached) / goals, 4) if goals else 0.0,
+            "collisions": len(self.collisions),
+            "collided with": sorted({str(c["with"]) for c in self.collisions}),
+            "stop reasons": dict(sorted(self.reasons.items())),
+            "mean time per goal, s": round(statistics.fmean(self.durations), 2),
+            "mean |angular acceleration|, rad/s2": round(statistics.fmean(self.angular), 4)
+            if self.angular else 0.0,
+            "mean |linear acceleration|, m/s2": round(statistics.fmean(self.linear), 4)
+            if self.linear else 0.0,
+            "travelled, m": round(self.travelled, 1),
+            "cycle median ms": _median_ms(self.cycles) if self.cycles else None,
+            "cycle p95 ms": round(1000 * float(np.percentile(self.cycles, 95)), 3)
+            if self.cycles else None,
+            "wall seconds": round(self.wall_seconds, 1),
+        }
+
+
+def _drive(name: str, world: World, navigator: Navigator, targets: list[Pose],
+           args: argparse.Namespace) -> _Outcome:
+    """Drive to every target in turn with one controller; everything judged by the truth."""
+    began = time.perf_counter()
+    sim = Simulation(world, seed=args.seed, navigator=navigator)
+    body = SimBody(sim, walkers=args.walkers)
+    controller = _Timed(_PLANNERS[name]())
+    outcome = _Outcome()
+    previous: Pose | None = None
+    for target in targets:
+        if previous is not None and math.dist(sim.robot_pose[:2], previous.xy()) > _REACHED:
+            body.teleport(previous)  # the last goal was missed: start where it should have
+        truth = Pose(*sim.robot_pose)
+        velocities: list[Twist] = []
+
+        def sample(_: NavigationFeedback, velocities: list[Twist] = velocities) -> None:
+            velocities.append(body.odometry().twist)
+
+        pose = (lambda: Pose(*sim.robot_pose)) if args.pose == "truth" else \
+            OdometryPose(body, truth)
+        try:
+            goal = NavigationGoal.planned(navigator, truth, target, sim.closed_doors())
+        except NavigationError:
+            outcome.reached.append(False)
+            outcome.durations.append(0.0)
+            outcome.reasons["no path"] = outcome.reasons.get("no path", 0) + 1
+            previous = target
+            continue
+        collisions = len(sim.collisions)
+        action = NavigateToPose(goal, body, controller, pose, on_feedback=sample)
+        result = action.run(max_steps=int(2 * action.timeout / body.tick_period) + 100)
+        reached = math.dist(sim.robot_pose[:2], target.xy()) <= _REACHED
+        outcome.reached.append(reached)
+        outcome.durations.append(result.duration)
+        reason = str(result.reason) if reached or result.reason is None else \
+            f"{result.reason} (missed)"
+        outcome.reasons[reason] = outcome.reasons.get(reason, 0) + 1
+        outcome.collisions.extend(sim.collisions[collisions:])
+        outcome.travelled += result.travelled
+        for before, after in itertools.pairwise(velocities):
+            outcome.angular.append(abs(after.wz - before.wz) / body.tick_period)
+            outcome.linear.append(math.hypot(after.vx - before.vx, after.vy - before.vy) /
+                                  body.tick_period)
+        previous = target
+    outcome.cycles = controller.seconds
+    outcome.wall_seconds = time.perf_counter() - began
+    return outcome

@@ -1,0 +1,312 @@
+"""CAESAR's stage 2: A* over the robot's motion commands in a local grid from the scan.
+
+Each control cycle (20 Hz) builds a robot-centred grid from the current laser
+scan (``LocalGrid``), grows the obstacles by the robot's radius plus a margin
+that rises with the speed a motion would have (CAESAR's dynamic obstacle
+extension: the faster the robot, the larger the obstacles), and then searches
+in two steps, as CAESAR does:
+
+1. by length: one Dijkstra sweep in the local grid out from the lookahead
+   point of the global path gives every cell's remaining path length;
+2. by time: A* over sequences of velocity commands, each held for ``step``
+   seconds and reachable from the one before within the acceleration limits
+   (a lattice of (v, ω), or (vx, vy, ω) on an omnidirectional base). A
+   sequence's cost is the time it takes; its heuristic is the least time to
+   cover the remaining path length from its end speed, or to turn to the
+   path's direction, whichever is longer. A motion is admissible only if the
+   robot stays clear of every grown obstacle all along it.
+
+The first command of the best sequence, moved towards from the current
+velocity within one period's acceleration, is the command. Since a faster
+motion needs more clearance, the robot slows down near obstacles (Cosero's
+collision-aware velocity limits, §4.1) and in doorways. When the lookahead
+point is the goal, the speed is capped so the robot can stop on it.
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from homebot.navigation.localmap import LocalGrid, LocalPlannerError, check_request, lookahead
+from homebot.robot import DriveKind, LaserScan, Pose, Twist, VelocityLimits
+
+__all__ = ["MotionSearchPlanner", "PlannerCycle"]
+
+# Fractions of one step's largest velocity change: finer for the first command,
+# which is the one executed, coarser deeper in the search.
+_FIRST_LINEAR = (-1.0, -0.5, -0.2, 0.0, 0.2, 0.5, 1.0)
+_FIRST_ANGULAR = (-1.0, -0.5, -0.2, 0.0, 0.2, 0.5, 1.0)
+_DEEP_LINEAR = (-1.0, 0.0, 1.0)
+_DEEP_ANGULAR = (-1.0, -0.4, 0.0, 0.4, 1.0)
+_OMNI_FIRST = (-1.0, -0.5, 0.0, 0.5, 1.0)
+_OMNI_DEEP = (-1.0, 0.0, 1.0)
+
+
+@dataclass(frozen=True, slots=True)
+class PlannerCycle:
+    """What the last cycle did, for benchmarks and debugging."""
+
+    expansions: int
+    depth: int
+    blocked: bool  #: no admissible motion: the robot brakes (and turns towards the path)
+    target: tuple[float, float]  #: the lookahead point, robot frame
+
+
+def _validate_positive(value: float, what: str) -> None:
+    if not (math.isfinite(value) and value > 0):
+        raise LocalPlannerError(f"{what} must be a positive number, not {value!r}")
+
+
+@dataclass
+class MotionSearchPlanner:
+    """Stage 2 of CAESAR's collision avoidance (see the module docstring).
+
+    Args:
+        period: the control period, seconds (20 Hz).
+        step: how long each motion of the lattice is held, seconds.
+        depth: how many motions a sequence holds.
+        lookahead: how far along the global path the robot steers for, metres.
+        safety: clearance kept beyond the robot's radius at a standstill, metres.
+        speed_margin: extra clearance per m/s of speed, seconds.
+        grid_size: side of the local grid, metres; ``resolution`` its cell size.
+        max_expansions: the search's node budget per cycle.
+        goal_tolerance: a sequence ending this close to the lookahead point is done.
+        greed: the heuristic's weight (weighted A*: 1 is optimal in time, more is faster
+            to search at a bounded loss).
+        substeps: collision checks per motion.
+    """
+
+    period: float = 0.05
+    step: float = 0.3
+    depth: int = 4
+    lookahead: float = 1.4
+    safety: float = 0.05
+    speed_margin: float = 0.25
+    grid_size: float = 4.0
+    resolution: float = 0.05
+    max_expansions: int = 50
+    goal_tolerance: float = 0.1
+    greed: float = 2.5
+    substeps: int = 3
+    last: PlannerCycle | None = field(default=None, init=False)
+
+    def __post_init__(self) -> None:
+        for value, what in ((self.period, "period"), (self.step, "step"),
+                            (self.lookahead, "lookahead"), (self.grid_size, "grid_size"),
+                            (self.resolution, "resolution"),
+                            (self.goal_tolerance, "goal_tolerance")):
+            _validate_positive(value, f"the local planner's {what}")
+        if not (math.isfinite(self.greed) and self.greed >= 1.0):
+            raise LocalPlannerError(f"greed must be at least 1, not {self.greed!r}")
+        if self.depth < 1 or self.max_expansions < 1 or self.substeps < 1:
+            raise LocalPlannerError("depth, max_expansions and substeps must be at least 1")
+        if self.safety < 0 or self.speed_margin < 0:
+            raise LocalPlannerError("safety and speed_margin cannot be negative")
+
+    def plan(self, pose: Pose, velocity: Twist, scan: LaserScan,
+             path: Sequence[tuple[float, float]], limits: VelocityLimits, drive: DriveKind,
+             radius: float) -> Twist:
+        """The velocity to command now (robot frame); see ``LocalController.plan``."""
+        check_request(path, radius)
+        grid = LocalGrid.from_scan(scan, self.grid_size, self.resolution)
+        reach = min(self.lookahead, grid.half_size - 0.25)
+        target, final = lookahead(pose, path, reach)
+        grown = radius + self.safety
+        distances = grid.distance_field(target, grown)
+        search = _Search(self, grid, distances, target, final, limits, drive, radius, velocity)
+        command, expansions, depth = search.run()
+        self.last = PlannerCycle(expansions, depth, command is None, target)
+        if command is None:
+            command = search.brake()
+        return _towards(velocity, command, limits, drive, self.period)
+
+
+def _ramp_time(distance: np.ndarray, speed: np.ndarray, top: float,
+               acceleration: float) -> np.ndarray:
+    """Least time to cover ``distance`` from ``speed`` (may be negative) within ``top``."""
+    speed = np.minimum(speed, top)
+    ramp_time = (top - speed) / acceleration
+    ramp_distance = (top**2 - np.sign(speed) * speed**2) / (2 * acceleration)
+    short = (-speed + np.sqrt(np.maximum(speed**2 + 2 * acceleration * distance, 0.0))) / \
+        acceleration
+    long = ramp_time + (distance - ramp_distance) / top
+    result: np.ndarray = np.where(distance <= ramp_distance, short, long)
+    return result
+
+
+def _towards(now: Twist, target: Twist, limits: VelocityLimits, drive: DriveKind,
+             period: float) -> Twist:
+    """``target`` as far as one period's acceleration allows from ``now``, within the limits."""
+    linear = limits.linear_acceleration * period
+    angular = limits.angular_acceleration * period
+    step = Twist(now.vx + max(-linear, min(linear, target.vx - now.vx)),
+                 now.vy + max(-linear, min(linear, target.vy - now.vy)),
+                 now.wz + max(-angular, min(angular, target.wz - now.wz)))
+    return limits.clip(step, drive)
+
+
+class _Search:
+    """One cycle's A* over motion sequences; node states live in preallocated arrays."""
+
+    def __init__(self, planner: MotionSearchPlanner, grid: LocalGrid, distances: np.ndarray,
+                 target: tuple[float, float], final: bool, limits: VelocityLimits,
+                 drive: DriveKind, radius: float, velocity: Twist) -> None:
+        self.p = planner
+        self.grid = grid
+        self.distances = distances
+        self.target = target
+        self.final = final
+        self.limits = limits
+        self.omni = drive is DriveKind.OMNIDIRECTIONAL
+        self.velocity = velocity
+        finite = np.where(np.isfinite(distances), distances, 1e3)
+        gradient_rows, gradient_columns = np.gradient(finite)
+        self.downhill = np.arctan2(-gradient_rows, -gradient_columns)
+        start_clearance = float(grid.clearance_at(np.zeros(1), np.zeros(1))[0])
+        static = radius + planner.safety
+        # Already inside the margin (pushed there by a person): do not get any closer.
+        self.static = static if start_clearance >= static else max(radius + 0.005,
+                                                                  start_clearance - 0.01)
+        self.first_lattice = self._lattice(True)
+        self.deep_lattice = self._lattice(False)
+        capacity = 1 + len(self.first_lattice) + planner.max_expansions * len(self.deep_lattice)
+        # Columns: x, y, theta, vx, vy, wz, remaining path length.
+        self.state = np.zeros((capacity, 7))
+        self.first = np.zeros(capacity, dtype=np.intp)
+        self.depth = np.zeros(capacity, dtype=np.intp)
+        self.size = 0
+
+    def _lattice(self, first: bool) -> np.ndarray:
+        """Velocity changes one motion may make, as (n, 3) rows of (dvx, dvy, dwz)."""
+        dv = self.limits.linear_acceleration * self.p.step
+        dw = self.limits.angular_acceleration * self.p.step
+        angular = dw * np.asarray(_FIRST_ANGULAR if first else _DEEP_ANGULAR)
+        if self.omni:
+            linear = dv * np.asarray(_OMNI_FIRST if first else _OMNI_DEEP)
+            turns = angular if first else angular[::2]
+            grid = np.meshgrid(linear, linear, turns, indexing="ij")
+            return np.column_stack([axis.ravel() for axis in grid])
+        linear = dv * np.asarray(_FIRST_LINEAR if first else _DEEP_LINEAR)
+        forward, turn = np.meshgrid(linear, angular, indexing="ij")
+        return np.column_stack((forward.ravel(), np.zeros(forward.size), turn.ravel()))
+
+    # ---------------------------------------------------------------- the search
+
+    def run(self) -> tuple[Twist | None, int, int]:
+        p = self.p
+        v = self.velocity
+        self.state[0] = (0.0, 0.0, 0.0, v.vx, v.vy if self.omni else 0.0, v.wz, np.inf)
+        self.size = 1
+        frontier: list[tuple[float, int]] = [(0.0, 0)]
+        best: tuple[int, float, int] | None = None  # (−depth, f, node)
+        expansions = 0
+        while frontier and expansions < p.max_expansions:
+            _, node = heapq.heappop(frontier)
+            depth = int(self.depth[node])
+            if node and (depth >= p.depth or self.state[node, 6] <= p.goal_tolerance):
+                return self._command(node), expansions, depth
+            expansions += 1
+            children, scores = self._expand(node, depth)
+            for child, score in zip(children.tolist(), scores.tolist(), strict=True):
+                heapq.heappush(frontier, (score, child))
+                key = (-(depth + 1), score, child)
+                if best is None or key < best:
+                    best = key
+        if best is None:
+            return None, expansions, 0
+        return self._command(best[2]), expansions, -best[0]
+
+    def _command(self, node: int) -> Twist:
+        vx, vy, wz = self.state[self.first[node], 3:6]
+        return Twist(float(vx), float(vy), float(wz))
+
+    def _expand(self, node: int, depth: int) -> tuple[np.ndarray, np.ndarray]:
+        """Add the admissible children of ``node``; their indices and A* scores."""
+        p, limits = self.p, self.limits
+        x0, y0, th0, vx0, vy0, w0, _ = self.state[node]
+        targets = (self.first_lattice if depth == 0 else self.deep_lattice) + (vx0, vy0, w0)
+        targets[:, 2] = np.minimum(np.maximum(targets[:, 2], -limits.angular), limits.angular)
+        if self.omni:
+            # Hardly backwards: the laser sees ahead and to the sides.
+            targets[:, 0] = np.minimum(np.maximum(targets[:, 0], -0.1), limits.linear)
+            targets = targets[np.hypot(targets[:, 0], targets[:, 1]) <= limits.linear + 1e-9]
+        else:
+            targets[:, 0] = np.minimum(np.maximum(targets[:, 0], 0.0), limits.linear)
+        k = p.substeps
+        dt = p.step / k
+        linear, angular = limits.linear_acceleration, limits.angular_acceleration
+        rates = np.array((linear, linear, angular))
+        change = targets - (vx0, vy0, w0)
+        # Velocity at the middle of each substep, ramping at the acceleration limits: (k, n, 3).
+        bound = ((np.arange(1, k + 1) - 0.5) * dt)[:, None, None] * rates
+        velocity = np.minimum(np.maximum(change, -bound), bound) + np.array((vx0, vy0, w0))
+        turn = velocity[:, :, 2] * dt
+        th_all = th0 + np.cumsum(turn, axis=0)
+        middle = th_all - turn / 2
+        cos, sin = np.cos(middle), np.sin(middle)
+        vx, vy = velocity[:, :, 0], velocity[:, :, 1]
+        x_all = x0 + np.cumsum((vx * cos - vy * sin) * dt, axis=0)
+        y_all = y0 + np.cumsum((vx * sin + vy * cos) * dt, axis=0)
+        clearance = self.grid.clearance_at(x_all, y_all)
+        ok = np.all(clearance >= self.static + p.speed_margin * np.hypot(vx, vy), axis=0)
+        x, y, th = x_all[-1], y_all[-1], th_all[-1]
+        full = p.step * rates
+        end = np.minimum(np.maximum(change, -full), full) + np.array((vx0, vy0, w0))
+        rows, columns = self.grid.index(x, y)
+        remaining = self.distances[rows, columns]
+        end_speed = np.hypot(end[:, 0], end[:, 1])
+        if self.final:
+            # Able to stop on the goal: v² ≤ 2·a·(distance left).
+            ok &= end_speed <= np.sqrt(2 * linear * np.maximum(remaining - 0.02, 0.0)) + 0.05
+        keep = np.flatnonzero(ok)
+        count = len(keep)
+        children = np.arange(self.size, self.size + count)
+        self.state[children, 0], self.state[children, 1] = x[keep], y[keep]
+        self.state[children, 2] = th[keep]
+        self.state[children, 3:6] = end[keep]
+        self.state[children, 6] = remaining[keep]
+        self.first[children] = children if depth == 0 else self.first[node]
+        self.depth[children] = depth + 1
+        self.size += count
+        heuristic = self._time_to_go(remaining[keep], end[keep], th[keep], rows[keep],
+                                     columns[keep])
+        scores: np.ndarray = (depth + 1) * p.step + p.greed * heuristic
+        return children, scores
+
+    def _time_to_go(self, remaining: np.ndarray, end: np.ndarray, heading: np.ndarray,
+                    rows: np.ndarray, columns: np.ndarray) -> np.ndarray:
+        """A lower bound on the time left: cover the distance from this speed, or turn.
+
+        A differential base must also face the way down the distance field; its
+        speed counts only along that way.
+        """
+        limits = self.limits
+        if self.omni:
+            return _ramp_time(remaining, np.hypot(end[:, 0], end[:, 1]), limits.linear,
+                              limits.linear_acceleration)
+        error = (self.downhill[rows, columns] - heading + np.pi) % (2 * np.pi) - np.pi
+        error = np.where(remaining > 0.15, error, 0.0)
+        along = np.maximum(end[:, 0] * np.cos(error), 0.0)
+        travel = _ramp_time(remaining, along, limits.linear, limits.linear_acceleration)
+        turning = _ramp_time(np.abs(error), end[:, 2] * np.sign(error), limits.angular,
+                             limits.angular_acceleration)
+        result: np.ndarray = np.maximum(travel, turning)
+        return result
+
+    # ---------------------------------------------------------------- no way on
+
+    def brake(self) -> Twist:
+        """Stop the base; a differential base turns on the spot towards the path meanwhile."""
+        if self.omni:
+            return Twist()
+        rows, columns = self.grid.index(np.zeros(1), np.zeros(1))
+        direction = float(self.downhill[rows[0], columns[0]])
+        if not math.isfinite(direction) or abs(direction) < 0.2:
+            return Twist()
+        return Twist(0.0, 0.0, math.copysign(min(self.limits.angular, 2 * abs(direction)),
+                                             direction))

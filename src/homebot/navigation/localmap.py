@@ -1,0 +1,213 @@
+"""What a local controller sees: a robot-centred grid from one laser scan, and the path ahead.
+
+CAESAR's collision avoidance uses only a local map built from the current
+laser reading, so it works among things the static map does not hold (people,
+a chair moved). ``LocalGrid`` rasterises the scan's returns into a square
+grid round the robot (base_link frame) and keeps, per cell, the clearance:
+the distance to the nearest return. Growing obstacles by a radius (and by a
+margin that rises with speed) is then a comparison with that clearance.
+``lookahead`` picks the point of the global path the controller steers for.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Protocol
+
+import numpy as np
+import tcod.path
+from scipy import ndimage
+
+from homebot.errors import HomebotError
+from homebot.robot import DriveKind, LaserScan, Pose, Twist, VelocityLimits
+
+__all__ = [
+    "LocalController",
+    "LocalGrid",
+    "LocalPlannerError",
+    "check_request",
+    "lookahead",
+    "to_robot_frame",
+]
+
+
+class LocalPlannerError(HomebotError):
+    """A local controller asked wrongly: an empty path, a radius or period that is not positive."""
+
+
+class LocalController(Protocol):
+    """A local controller (Nav2's controller server): velocity from the scan and the path."""
+
+    def plan(self, pose: Pose, velocity: Twist, scan: LaserScan,
+             path: Sequence[tuple[float, float]], limits: VelocityLimits, drive: DriveKind,
+             radius: float) -> Twist:
+        """The next command.
+
+        Args:
+            pose: the localisation estimate, map frame.
+            velocity: the base's current velocity (odometry), robot frame.
+            scan: the latest laser sweep.
+            path: the global path's waypoints (map frame), the goal last.
+            limits: the base's velocity and acceleration limits.
+            drive: omnidirectional or differential.
+            radius: the base's footprint radius (metres).
+
+        Returns:
+            The velocity to command now, robot frame, within ``limits`` and reachable
+            from ``velocity`` in one control period.
+        """
+        ...
+
+
+def check_request(path: Sequence[tuple[float, float]], radius: float) -> None:
+    """Raise ``LocalPlannerError`` for a path or radius no controller can use."""
+    if len(path) == 0:
+        raise LocalPlannerError("the path is empty; give at least the goal as one waypoint")
+    if not (math.isfinite(radius) and radius > 0):
+        raise LocalPlannerError(f"the robot radius must be a positive number of metres, "
+                                f"not {radius!r}")
+    for point in path:
+        if len(point) != 2 or not all(math.isfinite(value) for value in point):
+            raise LocalPlannerError(f"path waypoint {point!r} is not a finite (x, y) point")
+
+
+@dataclass(frozen=True)
+class LocalGrid:
+    """A square grid centred on the robot (base_link frame), built from one scan.
+
+    ``clearance[row, column]`` is the distance in metres from the cell's centre
+    to the nearest laser return (rows along y, columns along x). Outside the
+    grid nothing is known; ``clearance_at`` reports ``outside`` there.
+    """
+
+    resolution: float
+    half_size: float
+    clearance: np.ndarray
+    outside: float = 10.0
+
+    @classmethod
+    def from_scan(cls, scan: LaserScan, size: float = 4.0,
+                  resolution: float = 0.05) -> LocalGrid:
+        """Rasterise the scan's returns into a ``size`` × ``size`` metre grid."""
+        cells = round(size / resolution)
+        half = cells * resolution / 2
+        occupied = np.zeros((cells, cells), dtype=bool)
+        points = scan.points()
+        if len(points):
+            columns = np.floor((points[:, 0] + half) / resolution).astype(np.intp)
+            rows = np.floor((points[:, 1] + half) / resolution).astype(np.intp)
+            inside = (columns >= 0) & (columns < cells) & (rows >= 0) & (rows < cells)
+            occupied[rows[inside], columns[inside]] = True
+        if occupied.any():
+            clearance = ndimage.distance_transform_edt(~occupied) * resolution
+            # A return anywhere in its cell: the nearest one may be half a cell nearer.
+            clearance = np.maximum(clearance - resolution / 2, 0.0)
+        else:
+            clearance = np.full((cells, cells), 10.0)
+        return cls(resolution, half, np.asarray(clearance, dtype=float))
+
+    @property
+    def cells(self) -> int:
+        return int(self.clearance.shape[0])
+
+    def index(self, x: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(rows, columns) of the cells nearest to robot-frame points (clamped into the grid)."""
+        last = self.cells - 1
+        scale = 1.0 / self.resolution
+        columns = np.minimum(np.maximum((x + self.half_size) * scale, 0), last).astype(np.intp)
+        rows = np.minimum(np.maximum((y + self.half_size) * scale, 0), last).astype(np.intp)
+        return rows, columns
+
+    def clearance_at(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
+        """Clearance at robot-frame points (``outside`` beyond the grid)."""
+        padded = self._padded
+        last = self.cells + 1
+        scale = 1.0 / self.resolution
+        columns = np.minimum(np.maximum((x + self.half_size) * scale + 1, 0), last).astype(np.intp)
+        rows = np.minimum(np.maximum((y + self.half_size) * scale + 1, 0), last).astype(np.intp)
+        values: np.ndarray = padded[rows, columns]
+        return values
+
+    @functools.cached_property
+    def _padded(self) -> np.ndarray:
+        """The clearance with a one-cell border of ``outside`` (nothing known there)."""
+        padded: np.ndarray = np.pad(self.clearance, 1, constant_values=self.outside)
+        return padded
+
+    def centre_of(self, row: int, column: int) -> tuple[float, float]:
+        return ((column + 0.5) * self.resolution - self.half_size,
+                (row + 0.5) * self.resolution - self.half_size)
+
+    def distance_field(self, target: tuple[float, float], grown: float) -> np.ndarray:
+        """Path length (metres) from every cell to ``target`` among cells clearer than ``grown``.
+
+        CAESAR's first local search (by length), done as one Dijkstra sweep out
+        from the target so that every motion the second search tries can look
+        up its remaining distance. A target inside grown obstacles moves to the
+        nearest clear cell; cells that are not clear get the field of their
+        nearest clear cell plus the way to it (so the robot can leave them).
+        """
+        free = self.clearance >= grown
+        if not free.any():
+            return np.full(self.clearance.shape, np.inf)
+        rows, columns = self.index(np.array([target[0]]), np.array([target[1]]))
+        root = (int(rows[0]), int(columns[0]))
+        if not free[root]:
+            candidates = np.argwhere(free)
+            nearest = np.argmin(np.hypot(candidates[:, 0] - root[0], candidates[:, 1] - root[1]))
+            root = (int(candidates[nearest, 0]), int(candidates[nearest, 1]))
+        graph = tcod.path.SimpleGraph(cost=free.view(np.int8), cardinal=100, diagonal=141)
+        finder = tcod.path.Pathfinder(graph)
+        finder.add_root(root)
+        finder.resolve()
+        raw = finder.distance
+        unreached = raw == np.iinfo(raw.dtype).max
+        field = np.where(unreached, np.inf, raw * (self.resolution / 100.0))
+        reached = ~unreached
+        if not reached.all():
+            gap, (near_rows, near_columns) = ndimage.distance_transform_edt(
+                ~reached, return_indices=True)
+            field = np.where(reached, field,
+                             field[near_rows, near_columns] + gap * self.resolution)
+        result: np.ndarray = field
+        return result
+
+
+def to_robot_frame(pose: Pose, points: np.ndarray) -> np.ndarray:
+    """Map-frame (n, 2) points in the robot's frame."""
+    cos, sin = math.cos(pose.theta), math.sin(pose.theta)
+    dx, dy = points[:, 0] - pose.x, points[:, 1] - pose.y
+    return np.column_stack((cos * dx + sin * dy, -sin * dx + cos * dy))
+
+
+def lookahead(pose: Pose, path: Sequence[tuple[float, float]],
+              distance: float) -> tuple[tuple[float, float], bool]:
+    """The point ``distance`` metres along ``path`` past the point nearest the robot.
+
+    Returns the point in the robot's frame and whether it is the path's end
+    (the goal, where the robot must stop rather than pass through).
+    """
+    points = to_robot_frame(pose, np.asarray(path, dtype=float).reshape(-1, 2))
+    if len(points) == 1:
+        goal = (float(points[0, 0]), float(points[0, 1]))
+        return goal, True
+    starts, ends = points[:-1], points[1:]
+    segment = ends - starts
+    lengths = np.hypot(segment[:, 0], segment[:, 1])
+    safe = np.where(lengths > 0, lengths, 1.0)
+    along = np.clip(-(starts * segment).sum(axis=1) / safe**2, 0.0, 1.0)
+    nearest = starts + along[:, None] * segment
+    index = int(np.argmin(np.hypot(nearest[:, 0], nearest[:, 1])))
+    left = distance
+    position = along[index] * lengths[index]
+    for i in range(index, len(segment)):
+        remaining = lengths[i] - (position if i == index else 0.0)
+        if remaining >= left:
+            fraction = ((position if i == index else 0.0) + left) / safe[i]
+            point = starts[i] + fraction * segment[i]
+            return (float(point[0]), float(point[1])), False
+        left -= remaining
+    return (float(points[-1, 0]), float(points[-1, 1])), True
