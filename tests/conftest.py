@@ -30,5 +30,6 @@ def supermarket() -> World:
 @pytest.fixture(autouse=True)
 def _private_cache(tmp_path_factory: pytest.TempPathFactory,
                    monkeypatch: pytest.MonkeyPatch) -> None:
-    """Runs remember their event log in the user's cache; tests keep theirs private."""
+    """Runs remember their event log in the project (and caches); tests keep theirs private."""
     monkeypatch.setenv("XDG_CACHE_HOME", str(tmp_path_factory.mktemp("cache")))
+    monkeypatch.setenv("HOMEBOT_PROJECT", str(tmp_path_factory.mktemp("project")))

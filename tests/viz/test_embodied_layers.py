@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from homebot.cli import main
-from homebot.viz import EmbodiedRun, embodied_run, render_map
+from homebot.viz import Canvas, EmbodiedRun, embodied_run, render_map
 from homebot.viz.embodied import EMBODIED_COLOURS
 from homebot.world import World
 
@@ -58,8 +58,10 @@ def test_malformed_points_are_refused(points: object) -> None:
 
 
 def test_the_layers_are_drawn_where_the_run_was(apartment: World) -> None:
-    plain = np.asarray(render_map(apartment))
-    drawn = np.asarray(render_map(apartment, run=embodied_run(EVENTS)))
+    # The map above the legend strip (the legend shows each layer's colour too).
+    above_legend = Canvas.for_world(apartment).map_height
+    plain = np.asarray(render_map(apartment))[:above_legend]
+    drawn = np.asarray(render_map(apartment, run=embodied_run(EVENTS)))[:above_legend]
     assert plain.shape == drawn.shape
     centres = {}
     for layer in ("trajectory", "particles", "laser"):

@@ -29,6 +29,7 @@ __all__ = [
     "finish_run",
     "keep_events",
     "print_report",
+    "record_final_state",
     "simulated_run",
     "write_events",
 ]
@@ -74,6 +75,7 @@ def simulated_run(args: argparse.Namespace, world: World, *,
 
 def keep_events(args: argparse.Namespace, run: SimulatedRun) -> None:
     """Remember the run for ``world show`` and write ``--events`` if asked."""
+    record_final_state(run)
     remember_last_run(run.simulation.events)
     if args.events:
         write_events(run.simulation.events, args.events)
@@ -87,6 +89,17 @@ def finish_run(args: argparse.Namespace, run: SimulatedRun, report: TaskReport) 
     else:
         print_report(Console(), report)
     return 0 if report.success else 1
+
+
+def record_final_state(run: SimulatedRun) -> None:
+    """Log where the run left things (``sim.final``: the simulator's truth), for the map."""
+    sim = run.simulation
+    sim.events.record("sim.final", world=sim.world.name,
+                      objects=dict(sim.object_location),
+                      people={name: [round(value, 3) for value in state.position]
+                              for name, state in sim.people.items()},
+                      doors={name: str(state) for name, state in sim.door_state.items()},
+                      robot=[round(value, 4) for value in sim.robot_pose])
 
 
 def write_events(events: EventLog, path: Path) -> None:

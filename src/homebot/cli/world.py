@@ -18,15 +18,20 @@ from homebot.events import EventLog
 from homebot.world import World
 
 if TYPE_CHECKING:
-    from homebot.viz import EmbodiedRun
+    from homebot.viz import EmbodiedRun, FinalState
 
 __all__ = ["last_run_path", "register", "remember_last_run", "world_summary"]
 
 
 def last_run_path() -> Path:
-    """Where the event log of the last simulated run is kept (for ``world show``)."""
-    cache = Path(os.environ.get("XDG_CACHE_HOME", Path.home() / ".cache"))
-    return cache / "homebot" / "last-run.jsonl"
+    """Where the current project's last simulated run is kept (for ``world show``).
+
+    The project is the folder homebot runs in (``$HOMEBOT_PROJECT`` when set): its
+    ``.homebot/last-run.jsonl``, so two projects (or two checkouts) never draw each
+    other's runs. ``--events FILE`` names any other run.
+    """
+    project = Path(os.environ.get("HOMEBOT_PROJECT") or Path.cwd())
+    return project / ".homebot" / "last-run.jsonl"
 
 
 def remember_last_run(events: EventLog) -> None:
@@ -47,9 +52,12 @@ def register(subparsers: Any) -> None:
     check.set_defaults(handler=_check)
     show = world_parsers.add_parser("show", help="list a world, or draw it as a PNG")
     show.add_argument("--world", default="apartment", help="world file or shipped name")
-    show.add_argument("--png", type=Path, help="draw the map (with the last run's path) here")
+    show.add_argument("--png", type=Path,
+                      help="draw the map here: legend, scale, the robot's heading, and the "
+                           "run's path and where it left objects, people and doors")
     show.add_argument("--events", type=Path,
-                      help="event log whose robot path to draw (default: the last run)")
+                      help="event log of the run to draw (default: this project's last run, "
+                           ".homebot/last-run.jsonl in the current folder)")
     show.add_argument("--json", action="store_true", help="print the world's entities as JSON")
     show.set_defaults(handler=_show)
     if importlib.util.find_spec("homebot.cli.world_robocup") is not None:
@@ -108,8 +116,12 @@ def _show(args: argparse.Namespace) -> int:
         if args.png.suffix.lower() != ".png":
             raise WorldError(f"{args.png}: the map is a PNG image; give a name ending in .png")
         events = args.events or last_run_path()
+        if args.events is not None and not args.events.is_file():
+            raise WorldError(f"--events {args.events}: no such file; give the file written "
+                             "by run-task or do --events")
         image = render_map(world, _path_from_events(events, world),
-                           _embodied_from_events(events, world))
+                           _embodied_from_events(events, world),
+                           _final_from_events(events, world))
         try:
             image.save(args.png)
         except OSError as error:
@@ -151,6 +163,20 @@ def _embodied_from_events(events: Path, world: World) -> EmbodiedRun | None:
     except (OSError, ValueError, TypeError, KeyError, AttributeError) as error:
         raise WorldError(f"{events}: not a homebot event log of an embodied run ({error}); "
                          "give the file written by run-task --events") from None
+
+
+def _final_from_events(events: Path, world: World) -> FinalState | None:
+    """Where the run logged in ``events`` left objects, people, doors and the robot."""
+    from homebot.viz import final_state
+
+    if not events.exists():
+        return None
+    try:
+        lines = events.read_text(encoding="utf-8").splitlines()
+        return final_state((json.loads(line) for line in lines if line.strip()), world.name)
+    except (OSError, ValueError, TypeError, KeyError, AttributeError) as error:
+        raise WorldError(f"{events}: its final state cannot be read ({error}); give the file "
+                         "written by run-task --events") from None
 
 
 def _print_tables(world: World) -> None:
