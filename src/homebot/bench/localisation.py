@@ -86,10 +86,11 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
 ##########################################################################################
 
 
-def _clearance_ahead(scan: LaserScan, half_angle: float) -> float:
+def _clearance_ahead(scan: LaserScan, half_angle: float, quantile: float = 0.0) -> float:
+    """The ``quantile`` of the ranges ahead (0: the nearest return)."""
     angles = scan.angles() + scan.mount.theta
     ahead = (np.abs(angles) <= half_angle) & scan.valid()
-    return float(scan.ranges[ahead].min()) if ahead.any() else scan.range_max
+    return float(np.quantile(scan.ranges[ahead], quantile)) if ahead.any() else scan.range_max
 
 
 def _front_and_open(scan: LaserScan) -> tuple[float, float]:
@@ -140,7 +141,8 @@ def _pursue(estimate: Pose, target: tuple[float, float], scan: LaserScan) -> Twi
     bearing = (bearing + math.pi) % (2 * math.pi) - math.pi
     turn = max(-1.2, min(1.2, 2.0 * bearing))
     speed = 0.5 * max(0.0, math.cos(bearing)) ** 2 if abs(bearing) < 0.9 else 0.0
-    if _clearance_ahead(scan, math.radians(12)) < 0.3:
+    # The median, so that spurious short returns do not stop the robot for nothing.
+    if _clearance_ahead(scan, math.radians(12), 0.5) < 0.3:
         speed = 0.0  # someone (or something) right ahead: wait, turning
     return Twist(speed, 0.0, turn)
 
@@ -275,17 +277,19 @@ def _timing(setting: _Setting) -> dict[str, Any]:
         parameters = MclParameters(min_particles=particles, max_particles=particles)
         mcl = MonteCarloLocalisation(setting.grid, np.random.default_rng(0), parameters)
         mcl.initialise(Pose(*simulation.robot_pose), 0.1, 0.1)
-        samples = []
+        wall, cpu = [], []
         for _ in range(100):
             body.command_velocity(Twist(0.0, 0.0, 1.2))  # turns enough to update every tick
             body.tick(2)
             odometry, scan = body.odometry(), body.scan()
-            began = time.perf_counter()
+            began, began_cpu = time.perf_counter(), time.thread_time()
             mcl.update(odometry, scan)
-            samples.append(time.perf_counter() - began)
+            cpu.append(time.thread_time() - began_cpu)
+            wall.append(time.perf_counter() - began)
         figures[f"{particles} particles"] = {
-            "median_ms": round(1000 * statistics.median(samples), 2),
-            "p95_ms": round(1000 * float(np.percentile(samples, 95)), 2),
+            "median_ms": round(1000 * statistics.median(wall), 2),
+            "p95_ms": round(1000 * float(np.percentile(wall, 95)), 2),
+            "cpu_median_ms": round(1000 * statistics.median(cpu), 2),
             "beams": len(scan.ranges), "updates": mcl.updates}
     return figures
 

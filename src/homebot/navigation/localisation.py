@@ -369,8 +369,11 @@ class MonteCarloLocalisation:
         p = self.parameters
         origin = _compose(predicted, scan.mount)
         angles = origin.theta + scan.angles()
-        expected = self.field.raycast(origin.x, origin.y, angles, scan.range_max)
         ranges = np.where(np.isnan(scan.ranges), 0.0, scan.ranges)
+        # Only what lies within the farthest return (and the margin) can tell.
+        reach = scan.range_max if not np.isfinite(ranges).all() else min(
+            scan.range_max, float(ranges.max()) + p.short_reading_margin)
+        expected = self.field.raycast(origin.x, origin.y, angles, reach)
         seen = np.isfinite(expected)
         long = seen & (ranges > expected + p.short_reading_margin)
         share = float(long.sum() / max(int(seen.sum()), 1))
@@ -415,7 +418,9 @@ class MonteCarloLocalisation:
         beams = self._beams(scan)
         if self._converged and p.short_reading_margin > 0 and len(beams):
             short = self._check_against_map(scan, beams, predicted)
-            if (~short).sum() >= p.min_beams:
+            # A lost filter's estimate cannot say which beams are unexpected: leaving
+            # out the ones that disagree with it would keep it in the wrong place.
+            if not self.lost and (~short).sum() >= p.min_beams:
                 beams = beams[~short]
         else:
             self._long_share = 0.0
