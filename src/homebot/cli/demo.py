@@ -8,6 +8,7 @@ from typing import Any
 from rich.console import Console
 from rich.table import Table
 
+from homebot.cli.simulated import record_final_state
 from homebot.cli.world import remember_last_run
 from homebot.events import Event
 from homebot.scenarios.demo import DemoTask, run_demo
@@ -60,5 +61,6 @@ def demo(args: argparse.Namespace) -> int:
         outcome = "[green]done[/]" if report.success else f"[red]failed[/]: {report.reason}"
         table.add_row(task.title, outcome, str(recoveries), f"{report.sim_time:.0f} s")
     console.print(table)
+    record_final_state(results[-1][2])
     remember_last_run(results[-1][2].simulation.events)
     return 0
