@@ -533,7 +533,7 @@ class MonteCarloLocalisation:
         centre = (np.average(x[members], weights=w[members] + 1e-300),
                   np.average(y[members], weights=w[members] + 1e-300))
         for _ in range(2):  # mean shift: re-centre on the mode's neighbourhood
-            near = np.hypot(x - centre[0], y - centre[1]) <= p.cluster_radius
+            near = (np.hypot(x - centre[0], y - centre[1]) <= p.cluster_radius) | members
             weights = w[near] + 1e-300
             centre = (np.average(x[near], weights=weights), np.average(y[near], weights=weights))
         heading = math.atan2(float(np.dot(weights, np.sin(theta[near]))),
