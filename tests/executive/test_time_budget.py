@@ -72,3 +72,22 @@ def test_time_limits_parse(text: str, seconds: float | None) -> None:
 def test_bad_time_limits_are_refused(text: str) -> None:
     with pytest.raises(argparse.ArgumentTypeError, match="not a time limit"):
         time_limit(text)
+
+
+def test_a_person_search_stops_at_the_budget_naming_the_rooms(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    run = SimulatedRun.create(apartment, navigator=apartment_navigator, time_limit=90.0)
+    report = run.run(Task((Step("find_person", {"person": {"gesture": "pointing_left"}}),)))
+    assert not report.success and report.sim_time <= 90.0
+    assert report.steps[0].error == "out_of_time"
+    assert "I ran out of time looking for a person pointing to the left; I looked in the" in (
+        report.reason)
+
+
+def test_engines_that_run_steps_themselves_get_the_budget(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    run = SimulatedRun.create(apartment, navigator=apartment_navigator, time_limit=60.0)
+    run.simulation.object_location["red wine"] = None
+    outcome = run.executive.run_step("find_object", {"object": "red wine"})
+    assert outcome.error is not None and outcome.error.value == "out_of_time"
+    assert run.robot.now() <= 60.0

@@ -174,3 +174,33 @@ def test_a_plural_object_that_is_gone_is_spoken_of_in_the_plural(
         _check_sentence(text)
     assert "the biscuits in the pantry" in report.steps[0].message or (
         "anywhere I looked: the pantry" in report.reason)
+
+
+TASKS = [
+    (Step("find_person", {"person": {"name": "Maria"}, "room": "kitchen"}),
+     Step("describe", {"info": "gesture"}), Step("say", {"text": "$result"}),
+     Step("describe", {"info": "clothes"}), Step("say", {"text": "$result"}),
+     Step("greet", {}), Step("guide", {"to": "office"})),
+    (Step("count", {"object": "fruit", "placement": "kitchen table"}),
+     Step("say", {"text": "$result"}),
+     Step("count", {"person": {"gesture": "waving"}, "room": "office"}),
+     Step("say", {"text": "$result"}),
+     Step("describe", {"property": "biggest", "object": "drink", "placement": "fridge"}),
+     Step("say", {"text": "$result"})),
+    (Step("find_person", {"person": {"posture": "lying"}, "room": "kitchen"}),),
+    (Step("find_object", {"object": "noodles", "placement": "fridge"}),),
+    (Step("navigate", {"to": "pantry"}), Step("pick", {"object": "pringles"}),
+     Step("navigate", {"to": "operator"}), Step("give", {"person": "operator"})),
+]
+
+
+@pytest.mark.parametrize("steps", TASKS, ids=[steps[0].skill + str(i) for i, steps in
+                                                enumerate(TASKS)])
+def test_everything_said_in_a_run_passes_the_checks(
+        apartment: World, apartment_navigator: Navigator, steps: tuple[Step, ...]) -> None:
+    run = SimulatedRun.create(apartment, navigator=apartment_navigator, time_limit=300)
+    report = run.run(Task(steps))
+    assert report.speech
+    for text in report.speech:
+        for sentence in re.split(r"(?<=[.?!]) ", text):
+            _check_sentence(sentence)

@@ -57,7 +57,7 @@ class Executive:
         """Run every step in order; the report says whether all ended as expected."""
         context = self.context
         started = context.robot.now()
-        context.deadline = None if self.time_limit is None else started + self.time_limit
+        self.start_budget()
         first_event = len(context.events.events)
         context.events.record("task.start", description=task.description,
                               steps=task.to_dicts())
@@ -94,12 +94,22 @@ class Executive:
                   if event.kind == "speech"]
         return TaskReport(success, reports, speech, context.robot.now() - started, reason)
 
+    def start_budget(self) -> None:
+        """Start the time budget now (``run`` does; engines that call ``run_step`` may)."""
+        if self.time_limit is not None:
+            self.context.deadline = self.context.robot.now() + self.time_limit
+        else:
+            self.context.deadline = None
+
     def run_step(self, skill: str, args: Mapping[str, Any]) -> Outcome:
         """Run one skill step with retries and recovery, as a task's step would be.
 
         For engines that sequence skills themselves (HTN, Golog, SitLog) and want the
-        executive's recovery protocols without its task-level reporting.
+        executive's recovery protocols without its task-level reporting. The first step
+        starts the time budget when ``start_budget`` was not called.
         """
+        if self.time_limit is not None and self.context.deadline is None:
+            self.start_budget()
         return self._run_step(skill, self._bind(args))[0]
 
     def _run_step(self, skill: str, args: Mapping[str, Any],

@@ -212,11 +212,16 @@ def looked_everywhere(wanted: str, searched: Sequence[str]) -> str:
 
 def _affordable(context: SkillContext, placement: str) -> bool:
     """Whether a look at ``placement`` and the way back to the operator fit the time left."""
+    x, y, _ = context.world.placements[placement].approach
+    return _affordable_at(context, (x, y))
+
+
+def _affordable_at(context: SkillContext, there: tuple[float, float]) -> bool:
+    """Whether going to ``there``, a look, and the way back to the operator fit the time left."""
     left = time_left(context)
     if math.isinf(left):
         return True
     here = context.robot.pose().xy()
-    there = context.world.placements[placement].approach[:2]
     operator = resolve_target(context, OPERATOR)
     back = operator.xy() if operator is not None else here
     metres = _metres(context, here, there) + _metres(context, there, back)
@@ -262,9 +267,16 @@ class FindPerson(Skill):
         rooms = [str(args["room"])] if args.get("room") else (
             [context.world.placements[str(args["placement"])].room] if args.get("placement")
             else self._likely_rooms(context, description))
+        searched: list[str] = []
         for room in rooms:
             if room not in context.world.rooms:
                 return Outcome.failed(ErrorCode.UNKNOWN_TARGET, f"I do not know the {where}")
+            entrance = resolve_target(context, room)
+            if entrance is not None and not _affordable_at(context, entrance.xy()):
+                looked = listing([the(place) for place in searched]) or "nowhere yet"
+                return Outcome.failed(ErrorCode.OUT_OF_TIME, f"I ran out of time looking for "
+                                      f"{_describe(description)}; I looked in {looked}")
+            searched.append(room)
             moved = go_into_room(context, room,
                                  str(where) if where and len(rooms) == 1 else room)
             if moved is not None:

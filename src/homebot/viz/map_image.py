@@ -298,9 +298,12 @@ def _draw_legend(canvas: Canvas, path: bool, run: EmbodiedRun | None) -> None:
     entries.append(("person", dot(_COLOURS["person"], 6)))
     entries.append(("object", dot(_COLOURS["object"], 3)))
     entries.append(("object handed over or held", dot(_COLOURS["carried"], 3)))
-    entries.append(("robot, heading", lambda x, y: (
-        draw.ellipse((x - 6, y - 6, x + 6, y + 6), outline=_COLOURS["robot"], width=2),
-        draw.line([(x, y), (x + 11, y)], fill=_COLOURS["robot"], width=2))[0] and None))
+
+    def robot(x: float, y: float) -> None:
+        draw.ellipse((x - 6, y - 6, x + 6, y + 6), outline=_COLOURS["robot"], width=2)
+        draw.line([(x, y), (x + 11, y)], fill=_COLOURS["robot"], width=2)
+
+    entries.append(("robot, heading", robot))
     if path:
         entries.append(("path", lambda x, y: draw.line([(x - 7, y), (x + 7, y)],
                                                        fill=_COLOURS["path"], width=3)))
