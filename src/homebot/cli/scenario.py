@@ -8,7 +8,6 @@ from typing import Any
 import homebot.scenarios.library
 from homebot.cli.modules import add_module_commands, lazy_subparsers, module_names
 from homebot.errors import HomebotError
-from homebot.scenarios.embodied import add_fidelity_option
 
 __all__ = ["register", "scenario_names"]
 
@@ -30,7 +29,6 @@ def register(subparsers: Any) -> None:
 def _add_common(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--seed", type=int, default=0, help="seed for every random choice")
     parser.add_argument("--json", action="store_true", help="print the summary as JSON")
-    add_fidelity_option(parser)
 
 
 def _missing() -> int:

@@ -20,11 +20,13 @@ from dataclasses import dataclass
 from typing import Protocol
 
 import numpy as np
+from scipy import ndimage
 
 from homebot.events import EventLog
 from homebot.navigation import Navigator
 from homebot.navigation.localisation import MonteCarloLocalisation
 from homebot.navigation.localmap import LocalController
+from homebot.navigation.navigate import NavigateToPose, NavigationGoal, StopReason
 from homebot.robot import (
     Blocker,
     Body,
@@ -43,8 +45,13 @@ __all__ = ["BodyRobot", "Companions"]
 _STOP_BEFORE_DOOR = 0.6  #: metres in front of a door where the robot stops to look at it
 _DOORWAY = 0.35  #: laser returns this close to a door's centre mean something stands in it
 _GOAL_TOLERANCE = 0.15  #: metres: a leg ends this close to its end point
-_HEADING_TOLERANCE = 0.1  #: radians: the final turn ends this close to the goal's heading
-_SECONDS_PER_METRE = 12.0  #: a leg is given up after this long per metre of path (plus slack)
+_HEADING_TOLERANCE = 0.2  #: radians: the final turn ends this close to the goal's heading
+_STOP_TICKS = 60  #: control periods allowed beyond a goal's timeout to come to rest
+_SECONDS_PER_METRE = 6.0  #: a leg is given up after this long per metre of path ...
+_WAIT_BUDGET = 40.0  #: ... plus this long for waiting and going round
+_STUCK_SECONDS = 3.0  #: without headway this long, stage 1 plans round what the laser sees
+_OBSTACLE_MARGIN = 0.12  #: metres kept from an unexpected return beyond the robot's radius
+_UNEXPLAINED = 0.15  #: a return this far from the static map's obstacles is unexpected
 _PARTICLES_SHOWN = 500
 
 
@@ -89,6 +96,8 @@ class BodyRobot(Robot):
         self.percepts = percepts
         self.companions = companions
         self.events = events
+        grid = navigator.grid
+        self._static_clearance = ndimage.distance_transform_edt(~grid.occupied) * grid.resolution
         self.localisation.update(body.odometry(), body.scan())
 
     # ------------------------------------------------------------ state
@@ -136,7 +145,6 @@ class BodyRobot(Robot):
                     return MoveReport(False, self.pose(), travelled, blocked[0], leg.door,
                                       blocked[1], tuple(passed))
                 passed.append(leg.door)
-        self._turn_to(goal.theta)
         if escort is not None:
             here = self.pose()
             self.companions.walk_to(escort, (here.x - 0.6 * math.cos(here.theta),
@@ -145,49 +153,71 @@ class BodyRobot(Robot):
         return MoveReport(True, self.pose(), travelled, doors_passed=tuple(passed))
 
     def _drive_leg(self, target: Pose, avoid_doors: frozenset[str], final: bool) -> MoveReport:
+        """Drive to ``target`` with the local planner along a stage-1 path.
+
+        When the robot makes no headway for a while (someone in the way, a chair
+        moved), stage 1 plans again round what the laser sees that the map lacks
+        (CAESAR's dynamic obstacle extension); when no way round exists the robot
+        waits for the way to clear. It gives up when the leg's time budget is spent.
+        """
         here = self.pose()
         plan = self.navigator.plan(here.xy(), target.xy(), avoid_doors)
         if plan is None:
             return MoveReport(False, here, 0.0, Blocker.NO_PATH)
-        if math.dist(here.xy(), target.xy()) <= _GOAL_TOLERANCE:
-            return MoveReport(True, here, 0.0)
-        ticks = int((plan.length * _SECONDS_PER_METRE + 20.0) / self.body.tick_period)
         body = self.body
-        travelled, last = 0.0, body.odometry().pose
-        reached = False
-        for _ in range(ticks):
+        deadline = body.now() + plan.length * _SECONDS_PER_METRE + _WAIT_BUDGET
+        path: tuple[tuple[float, float], ...] | None = plan.waypoints
+        travelled = 0.0
+        while body.now() < deadline:
+            if path is None:
+                self._wait(_STUCK_SECONDS)
+            else:
+                budget = max(deadline - body.now(), body.tick_period)
+                goal = NavigationGoal(target, path, _GOAL_TOLERANCE,
+                                      _HEADING_TOLERANCE if final else None, timeout=budget)
+                action = NavigateToPose(goal, body, self.controller, self._localise,
+                                        stuck_after=_STUCK_SECONDS)
+                result = action.run(int(budget / body.tick_period) + _STOP_TICKS)
+                travelled += result.travelled
+                if result.reached:
+                    return MoveReport(True, self.pose(), travelled)
+                if result.reason is not StopReason.BLOCKED:
+                    break
             here = self._localise()
-            if math.dist(here.xy(), target.xy()) <= _GOAL_TOLERANCE:
-                reached = True
-                break
-            odometry = body.odometry()
-            command = self.controller.plan(here, odometry.twist, body.scan(), plan.waypoints,
-                                           body.limits, body.drive, body.radius)
-            body.command_velocity(command)
-            body.tick()
-            now = body.odometry().pose
-            travelled += math.dist(now.xy(), last.xy())
-            last = now
-        body.command_velocity(Twist())
-        body.tick()
-        if reached:
-            return MoveReport(True, self.pose(), travelled)
+            path = self.navigator.plan_around(here.xy(), target.xy(), avoid_doors,
+                                              self._unexpected_returns(),
+                                              body.radius + _OBSTACLE_MARGIN)
+            self.events.record("robot.replan", found=path is not None)
         person = self._person_near(self.pose().xy(), 1.5)
         blocker = Blocker.PERSON if person else Blocker.NO_PATH
         self.events.record("robot.stuck", person=person)
         return MoveReport(False, self.pose(), travelled, blocker, None, person)
 
-    def _turn_to(self, heading: float) -> None:
-        """Turn on the spot to ``heading`` (proportional control, within the limits)."""
-        limit = self.body.limits.angular
-        for _ in range(int(2 * math.pi / limit / self.body.tick_period) + 40):
-            error = _wrap(heading - self._localise().theta)
-            if abs(error) <= _HEADING_TOLERANCE:
+    def _wait(self, seconds: float) -> None:
+        """Stand still for ``seconds`` (someone may move out of the way)."""
+        self._halt()
+        self.body.tick(max(1, int(seconds / self.body.tick_period)))
+
+    def _unexpected_returns(self) -> np.ndarray:
+        """Laser returns on the map that the static map does not explain."""
+        points = self._scan_on_map()
+        grid = self.navigator.grid
+        rows, columns = grid.shape
+        column = np.clip(((points[:, 0] - grid.origin[0]) / grid.resolution).astype(int),
+                         0, columns - 1)
+        row = np.clip(((points[:, 1] - grid.origin[1]) / grid.resolution).astype(int),
+                      0, rows - 1)
+        unexplained: np.ndarray = points[self._static_clearance[row, column] > _UNEXPLAINED]
+        return unexplained
+
+    def _halt(self) -> None:
+        """Command a stop and let the base decelerate to rest."""
+        body = self.body
+        body.command_velocity(Twist())
+        for _ in range(int(1.0 / body.tick_period)):  # a second is ample at any limit
+            if body.odometry().twist.is_zero():
                 break
-            self.body.command_velocity(Twist(0.0, 0.0, max(-limit, min(limit, 2.0 * error))))
-            self.body.tick()
-        self.body.command_velocity(Twist())
-        self.body.tick()
+            body.tick()
 
     def _door_blocker(self, door: str) -> tuple[Blocker, str | None] | None:
         """Standing before ``door``: is it shut, or does someone stand in it?"""

@@ -91,6 +91,43 @@ class Navigator:
         waypoints = (start, *_simplify(points)[1:-1], goal)
         return NavigationPlan(waypoints, length, route.doors, route)
 
+    def plan_around(self, start: tuple[float, float], goal: tuple[float, float],
+                    closed_doors: frozenset[str], obstacles: np.ndarray,
+                    clearance: float) -> tuple[tuple[float, float], ...] | None:
+        """Waypoints of a path that also keeps ``clearance`` from ``obstacles`` ((n, 2) points on the map).
+
+        CAESAR's dynamic obstacle extension: what the laser sees that the static map
+        lacks (people, a chair moved) is drawn into the grid, and A* plans round it.
+        One search over the whole grid, uncached, since the obstacles change.
+        """
+        mask = self._mask(closed_doors).copy()
+        grid = self.grid
+        if len(obstacles):
+            reach = int(np.ceil(clearance / grid.resolution))
+            rows, columns = grid.shape
+            offsets = np.arange(-reach, reach + 1)
+            dr, dc = np.meshgrid(offsets, offsets, indexing="ij")
+            disc = np.hypot(dr, dc) * grid.resolution <= clearance
+            dr, dc = dr[disc], dc[disc]
+            cells = np.array([grid.cell_of(x, y) for x, y in obstacles])
+            r = (cells[:, 0, None] + dr[None, :]).ravel()
+            c = (cells[:, 1, None] + dc[None, :]).ravel()
+            keep = (r >= 0) & (r < rows) & (c >= 0) & (c < columns)
+            mask[r[keep] * columns + c[keep]] = True
+        start_cell = grid.nearest_free(mask, *grid.cell_of(*start))
+        goal_cell = grid.nearest_free(self._mask(closed_doors), *grid.cell_of(*goal))
+        if start_cell is None or goal_cell is None:
+            return None
+        columns = grid.shape[1]
+        goal_index = goal_cell[0] * columns + goal_cell[1]
+        if mask[goal_index]:
+            return None  # something stands on the goal itself
+        cells_path = astar(mask, grid.shape, start_cell[0] * columns + start_cell[1], goal_index)
+        if cells_path is None:
+            return None
+        points = [grid.center_of(*divmod(cell, columns)) for cell in cells_path]
+        return (start, *_simplify(points)[1:-1], goal)
+
     def distance(self, start: tuple[float, float], goal: tuple[float, float],
                  closed_doors: frozenset[str] = frozenset()) -> float:
         """Path length from start to goal (infinite when unreachable)."""

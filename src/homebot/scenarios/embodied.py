@@ -13,7 +13,13 @@ from homebot.navigation import Navigator
 from homebot.robot import Pose, Robot
 from homebot.sim import SimRobot, Simulation
 
-__all__ = ["Fidelity", "add_fidelity_option", "embodied_robot", "require_embodied"]
+__all__ = [
+    "Fidelity",
+    "add_fidelity_option",
+    "embodied_robot",
+    "fidelity_of",
+    "require_embodied",
+]
 
 # Seed stream of the robot's own filter, apart from the simulation's and the body's.
 _LOCALISATION_STREAM = 303
@@ -32,6 +38,11 @@ def add_fidelity_option(parser: argparse.ArgumentParser) -> None:
                         default=Fidelity.SYMBOLIC,
                         help="symbolic (fast, the default) or embodied (the robot localises "
                              "from its laser and drives with the reactive planner)")
+
+
+def fidelity_of(args: argparse.Namespace) -> Fidelity:
+    """The ``--fidelity`` asked for (symbolic when the arguments have none)."""
+    return Fidelity(getattr(args, "fidelity", Fidelity.SYMBOLIC))
 
 
 def require_embodied() -> None:

@@ -40,7 +40,8 @@ _LASER_MOUNT = Pose(0.15, 0.0, 0.0)
 _PAN_LIMIT = 2.6
 _TILT_LIMITS = (-0.4, 0.9)
 _CONTACT_HYSTERESIS = 0.03  #: metres clear of an obstacle before a new touch counts again
-_TRAJECTORY_STEP = 0.1  #: metres between recorded trajectory points
+_TRAJECTORY_STEP = 0.1
+_CATCH_UP_STEP = 0.5  #: seconds per walking step when time passed outside the ticks  #: metres between recorded trajectory points
 # Seeds of the body's own random streams, apart from the simulation's disturbances.
 _SENSOR_STREAM, _WALKER_STREAM = 101, 202
 
@@ -93,6 +94,7 @@ class SimBody(Body):
         self._odometry = (0.0, 0.0, 0.0)
         self._head = HeadState()
         self._in_contact = False
+        self._last_tick_end = simulation.clock.now()
         self._scan: LaserScan | None = None
         self._travelled_since_point = 0.0
         self._trajectory: list[tuple[float, float]] = [self._rounded_position()]
@@ -172,7 +174,17 @@ class SimBody(Body):
 
     # ------------------------------------------------------------ one tick
 
+    def _catch_up_people(self) -> None:
+        """Time that passed outside the ticks (the robot grasping, talking) passes for walkers."""
+        gap = self.sim.clock.now() - self._last_tick_end
+        robot = self.sim.robot_pose[:2]
+        while gap > 1e-9:
+            step = min(gap, _CATCH_UP_STEP)
+            self.people.advance(step, robot, self.radius + PERSON_RADIUS + 0.1)
+            gap -= step
+
     def _tick_once(self) -> None:
+        self._catch_up_people()
         dt = self.tick_period
         was_moving = not self._velocity.is_zero()
         target = Twist() if self._stopped else self._command
@@ -182,7 +194,7 @@ class SimBody(Body):
             self._flush_trajectory()
         self._odometry_step(*moved)
         self.people.advance(dt, self.sim.robot_pose[:2], self.radius + PERSON_RADIUS + 0.1)
-        self.sim.clock.advance(dt)
+        self._last_tick_end = self.sim.clock.advance(dt)
 
     def _accelerate(self, target: Twist, dt: float) -> Twist:
         linear = self.limits.linear_acceleration * dt

@@ -24,7 +24,7 @@ from rich.console import Console
 from homebot.events import Event
 from homebot.knowledge import AddStatement, Kind, KnowledgeBase, parse_statement
 from homebot.knowledge.store import KnowledgeStore
-from homebot.scenarios.embodied import Fidelity
+from homebot.scenarios.embodied import Fidelity, add_fidelity_option, fidelity_of
 from homebot.scenarios.runtime import SimulatedRun, disturbance_level, disturbed
 from homebot.scenarios.summary import scenario_summary
 from homebot.sim import InteractiveResponder, Responder, Simulation
@@ -42,6 +42,7 @@ _ON_THE_COUCH = (1.3, 2.6)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
+    add_fidelity_option(parser)
     parser.add_argument("--prefers", choices=("malz", "coke"), default="malz",
                         help="the drink Luis likes best (default malz, as in the paper)")
     parser.add_argument("--refuse-update", action="store_true",
@@ -207,7 +208,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     """The dialogue of §9 with the variant the arguments choose."""
     summary = run_butler(prefers=args.prefers, refuse_update=args.refuse_update,
                          tidy=args.tidy, kb_store=Path(args.kb_store) if args.kb_store else None,
-                         seed=args.seed, level=args.level, fidelity=args.fidelity,
+                         seed=args.seed, level=args.level, fidelity=fidelity_of(args),
                          typed=InteractiveResponder() if args.interactive else None)
     if console is not None:
         for number, line in enumerate(summary["transcript"], start=1):

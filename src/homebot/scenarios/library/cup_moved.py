@@ -11,6 +11,7 @@ from homebot.errors import GologError
 from homebot.golog import Executor, Interpreter, SimulatedExecutor, State
 from homebot.golog.build import do
 from homebot.golog.domains import CUPS, POSITIONS, cups_theory, minimum_moves
+from homebot.scenarios.embodied import add_fidelity_option, fidelity_of
 from homebot.scenarios.library.order_cups import PLACEMENTS, home_cups
 from homebot.scenarios.summary import scenario_summary
 
@@ -22,6 +23,7 @@ GOAL = ("red", "green", "blue")
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
+    add_fidelity_option(parser)
     parser.add_argument("--after", type=int, default=1,
                         help="how many robot actions before the person moves a cup")
     parser.add_argument("--unseen", action="store_true",
@@ -73,7 +75,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
             seen.extend(happened)
             return [] if unseen else happened
 
-        home = home_cups(START, args.seed, noticing=noticing, fidelity=args.fidelity)
+        home = home_cups(START, args.seed, noticing=noticing, fidelity=fidelity_of(args))
         executor = home.executor
         outcome = Interpreter(theory, executor, seed=args.seed).run(do("sort_cups", *GOAL, 4))
         final = home.truth()

@@ -8,6 +8,7 @@ from typing import Any
 from rich.console import Console
 
 from homebot.bench.fetch_tasks import delivered, fetch_tasks
+from homebot.scenarios.embodied import add_fidelity_option, fidelity_of
 from homebot.scenarios.runtime import SimulatedRun, disturbance_level, disturbed
 from homebot.scenarios.summary import report_actions, scenario_summary
 from homebot.world import World
@@ -16,6 +17,7 @@ __all__ = ["add_arguments", "run"]
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
+    add_fidelity_option(parser)
     parser.add_argument("--level", type=disturbance_level, default=1.0, help="disturbance level")
 
 
@@ -25,7 +27,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     fetch = fetch_tasks(world, 1, args.seed)[0]
     simulation_run = SimulatedRun.create(world, seed=args.seed,
                                          disturbances=disturbed(args.level),
-                                         fidelity=args.fidelity)
+                                         fidelity=fidelity_of(args))
     report = simulation_run.run(fetch.task)
     really = delivered(simulation_run.simulation, fetch)
     if console is not None:

@@ -13,6 +13,7 @@ from rich.console import Console
 
 from homebot.beliefs import Beliefs
 from homebot.htn import Goal, Names, PlanActor, Planner, home_domain, state_from_beliefs
+from homebot.scenarios.embodied import add_fidelity_option, fidelity_of
 from homebot.scenarios.runtime import SimulatedRun, probability
 from homebot.scenarios.summary import scenario_summary
 from homebot.world import DisturbanceModel, World
@@ -24,6 +25,7 @@ _SCENARIOS = (("bring_object", ["pringles", "Alex"]), ("guide_person", ["Alex", 
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
+    add_fidelity_option(parser)
     parser.add_argument("--slip", type=probability, default=0.5,
                         help="probability that a grasp slips (the paper's retried grasp)")
     parser.add_argument("--door-closed", type=probability, default=0.0,
@@ -44,7 +46,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     simulation_run = SimulatedRun.create(
         world, seed=args.seed,
         disturbances=DisturbanceModel(grasp_slip=args.slip, door_closed=args.door_closed),
-        fidelity=args.fidelity)
+        fidelity=fidelity_of(args))
     actor = PlanActor(simulation_run.context, domain)
     actions: list[dict[str, Any]] = []
     speech: list[str] = []

@@ -22,7 +22,7 @@ from homebot.golog import (
 )
 from homebot.golog.build import do
 from homebot.golog.domains import CUPS, POSITIONS, cups_theory, minimum_moves
-from homebot.scenarios.embodied import Fidelity
+from homebot.scenarios.embodied import Fidelity, add_fidelity_option, fidelity_of
 from homebot.scenarios.runtime import SimulatedRun
 from homebot.scenarios.summary import scenario_summary
 from homebot.skills import skill_named
@@ -37,6 +37,7 @@ PLACEMENTS = {"p1": "kitchen table", "p2": "kitchen counter", "p3": "dishwasher"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
+    add_fidelity_option(parser)
     parser.add_argument("--goal", default="red,green,blue",
                         help="the cups wanted at p1, p2, p3, comma separated")
     parser.add_argument("--horizon", type=int, default=4, help="horizon of solve")
@@ -122,7 +123,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     executor: Executor
     figures: dict[str, Any] = {}
     if getattr(args, "home", False):
-        home = home_cups(initial, args.seed, fidelity=args.fidelity)
+        home = home_cups(initial, args.seed, fidelity=fidelity_of(args))
         executor = home.executor
         outcome: Run = Interpreter(theory, executor, seed=args.seed).run(
             do("order_cups_demo", *goal, horizon), State())

@@ -11,6 +11,7 @@ from homebot.golog import Interpreter, State
 from homebot.golog.build import do
 from homebot.golog.domains import rips_theory
 from homebot.golog.skill_executor import SkillExecutor
+from homebot.scenarios.embodied import add_fidelity_option, fidelity_of
 from homebot.scenarios.runtime import SimulatedRun, disturbance_level, disturbed
 from homebot.scenarios.summary import scenario_summary
 from homebot.skills import speak
@@ -27,6 +28,7 @@ COMMITTEE = "Sophie"  #: the Technical Committee member, at the registration des
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
+    add_fidelity_option(parser)
     parser.add_argument("--disturb", type=disturbance_level, default=0.0,
                         help="disturbance level (0: a perfect world)")
 
@@ -63,7 +65,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     level = getattr(args, "disturb", 0.0)
     simulation_run = SimulatedRun.create(world, seed=args.seed,
                                          disturbances=disturbed(level) if level else None,
-                                         fidelity=args.fidelity)
+                                         fidelity=fidelity_of(args))
     context = simulation_run.context
     waits: list[int] = []
 

@@ -15,6 +15,7 @@ from homebot.inference import (
     fetch_task,
     requested_product,
 )
+from homebot.scenarios.embodied import add_fidelity_option, fidelity_of
 from homebot.scenarios.runtime import SimulatedRun
 from homebot.scenarios.summary import report_actions, scenario_summary
 from homebot.sim import ScriptedResponder
@@ -37,6 +38,7 @@ _CUSTOMER_SAYS = {
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
+    add_fidelity_option(parser)
     parser.add_argument("--r-max", type=_budget, default=240.0,
                         help="the most (expected) seconds a decision may cost (r_max)")
     parser.add_argument("--kb-store", metavar="FILE", default=None,
@@ -63,7 +65,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     simulated = SimulatedRun.create(
         world, seed=args.seed, inference=cycle,
         responder=ScriptedResponder({"customer": _CUSTOMER_SAYS}),
-        fidelity=args.fidelity)
+        fidelity=fidelity_of(args))
     inventory.clock = simulated.robot.now
     simulated.simulation.object_location.update(STORY_TRUTH)
     context = simulated.context
