@@ -74,8 +74,7 @@ def test_reading_from_a_file(tmp_path: Path) -> None:
     ("(defdomain d ((:operator (!a) () () ())", "1:1", "never closed"),
     ("(defdomain d ())) ", "1:17", "without a matching"),
     ("(defdomain d (\n  (:operator (!a) () ())))", "2:3", "4 or 5 parts"),
-    ("(defdomain d (\n  (:method (t) () ((!missing)))))", "2:3", "'!missing' is neither"),
-    ("(defdomain d (\n  (:method (t)\n     (:unordered (a) (b)) nil)))", "3:6", ":unordered"),
+    ("(defdomain d (\n  (:method (t) () ((missing)))))", "2:3", "'missing' is neither"),
     ("(defdomain d ((:operator (!a) ((assign x 1)) () ())))", "1:15", "needs a variable"),
     ("(defdomain d ((:operator (!a) ((call frob 1)) () ())))", "1:15", "unknown function"),
     ("(defdomain d ((:bogus)))", "1:15", "unknown domain item"),
@@ -83,8 +82,6 @@ def test_reading_from_a_file(tmp_path: Path) -> None:
     ("(defdomain d ((:operator (a) () () ())))", "1:15", "must start with '!'"),
     ("(defdomain d ((:method (t) name-only)))", "1:15", "needs a precondition"),
     ('(defdomain d ((:operator (!a) () () ("x))))', "1:38", "close the string"),
-    ("(defdomain d ((:operator (!a ?x) () () ())\n  (:method (t ?x) () ((!a ?y)))))", "2:3",
-     "?y, bound neither by the head nor by the precondition"),
     ("(defdomain d ((:operator (!a ?x) () () ())\n  (:method (t ?x) () ((!a ?x ?x)))))", "2:3",
      "(!a ?x ?x) has 2 argument(s); '!a' is (!a ?x)"),
 ])
@@ -162,5 +159,3 @@ def test_a_variable_effect_must_hold_atoms() -> None:
     domain = read_domain_text("(defdomain d ((:operator (!!note ?x) () () ?x)))")
     with pytest.raises(PlanningError, match="list of atoms"):
         find_plans(domain, State(), [("!!note", "oops")])
-    with pytest.raises(PlanningError, match="forall effects are not supported"):
-        read_domain_text("(defdomain d ((:operator (!a) () () ((forall (?x) ((p ?x)) ((q ?x)))))))")

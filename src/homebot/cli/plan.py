@@ -24,6 +24,7 @@ from homebot.htn import (
     State,
     goals_from_steps,
     load_domain,
+    load_functions,
     plan_dot,
     plans_json,
     read_problems,
@@ -31,6 +32,7 @@ from homebot.htn import (
     task_network_text,
 )
 from homebot.htn.domain import task_data
+from homebot.htn.logic import term_text
 from homebot.knowledge import KnowledgeBase
 from homebot.world import World
 
@@ -51,6 +53,11 @@ def register(subparsers: Any) -> None:
                              "of the home domain")
     parser.add_argument("--problem", type=Path,
                         help="a JSHOP2 (defproblem ...) file: its atoms are the initial state")
+    parser.add_argument("--functions", type=Path, action="append", default=[],
+                        metavar="FILE.py",
+                        help="Python functions for the domain's (call NAME ...) and :sort-by "
+                             "beyond JSHOP2's standard library (JSHOP2 takes them as Java "
+                             "classes); repeatable")
     parser.add_argument("--kb", help="a knowledge base saying where objects belong (loc=>PLACE):"
                                      " a file or a shipped KB, e.g. apartment_places")
     parser.add_argument("--all", action="store_true", help="every plan (one per task network)")
@@ -87,7 +94,10 @@ def _goal(args: argparse.Namespace, domain: Domain, world: World, names: Names,
     if args.task in HOME_TASKS and args.task in domain.methods:
         goal = Goal.of(args.task, args.args, world, names, domain)
         return [goal.task], list(goal.atoms)
-    task = task_data([args.task, *args.args])
+    name = args.task
+    if not domain.is_task(name) and domain.is_task(name.lower()):
+        name = name.lower()  # JSHOP2 symbols are case-insensitive
+    task = task_data([name, *args.args])
     domain.check_task(task, "task")
     return [task], []
 
@@ -100,7 +110,12 @@ def plan(args: argparse.Namespace) -> int:
         if value < 1:
             raise PlanningError(f"{option} {value}: give a bound of 1 or more")
     world = load_world(args)
-    domain = load_domain(args.domain)
+    functions: dict[str, Any] = {}
+    for path in args.functions:
+        functions.update(load_functions(path))
+    domain = load_domain(args.domain, functions)
+    for note in domain.notes:
+        Console(stderr=True).print(f"note: {note}", highlight=False, markup=False)
     problem = _problem(args, domain)
     names = Names()
     if problem is not None:
@@ -114,14 +129,16 @@ def plan(args: argparse.Namespace) -> int:
         state.add(atom)
     planner = Planner(domain, max_depth=args.max_depth, max_expansions=args.max_expansions,
                       trace=args.trace)
+    layout = problem.layout if problem is not None and args.task is None else None
     if args.cheapest:
-        result = planner.search(state, tasks, limit=None, cheapest=True)
+        result = planner.search(state, tasks, limit=None, cheapest=True, layout=layout)
     else:
-        result = planner.search(state, tasks, limit=args.limit if args.all else 1)
+        result = planner.search(state, tasks, limit=args.limit if args.all else 1,
+                                layout=layout)
     if args.json:
         print(json.dumps(plans_json(result.plans, names.name), ensure_ascii=False))
     elif args.dot:
-        print(plan_dot(result.plans, " ".join(str(item) for item in tasks[0])), end="")
+        print(plan_dot(result.plans, " ".join(term_text(item) for item in tasks[0])), end="")
     else:
         console = Console()
         if result.trace is not None:
@@ -134,7 +151,7 @@ def plan(args: argparse.Namespace) -> int:
 
 def _print(console: Console, plans: list[Any], expansions: int, stopped: str | None,
            tasks: list[tuple[Any, ...]]) -> None:
-    goal = " ".join("(" + " ".join(str(item) for item in task) + ")" for task in tasks)
+    goal = " ".join("(" + " ".join(term_text(item) for item in task) + ")" for task in tasks)
     if not plans:
         why = f" (search stopped: {stopped} bound)" if stopped else ""
         console.print(f"[red]no plan[/] for {goal}{why}", highlight=False)
@@ -179,7 +196,7 @@ def carry_out_with_htn(args: argparse.Namespace, world: World, run: Any,
 
 def print_htn_run(console: Console, goal: Goal, done: HtnRun) -> None:
     """Each operator with its skill's final status and attempts, and what the robot said."""
-    task = "(" + " ".join(str(item) for item in goal.task) + ")"
+    task = "(" + " ".join(term_text(item) for item in goal.task) + ")"
     replans = f", {done.replans} replan{'s' * (done.replans != 1)}" if done.replans else ""
     console.print(f"[bold]{task}[/]: {len(done.plans)} plan{'s' * (len(done.plans) != 1)}"
                   f"{replans}", highlight=False)

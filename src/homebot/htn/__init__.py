@@ -11,6 +11,7 @@ from homebot.htn.home import (
     home_domain,
     home_domain_path,
     load_domain,
+    load_functions,
     state_from_beliefs,
     symbol,
 )
@@ -58,6 +59,7 @@ __all__ = [
     "home_domain",
     "home_domain_path",
     "load_domain",
+    "load_functions",
     "plan_dot",
     "plans_json",
     "read_domain",

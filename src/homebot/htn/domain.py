@@ -24,17 +24,26 @@ from homebot.htn.logic import (
     Axiom,
     Call,
     Expression,
+    Functions,
+    Proof,
     expression,
     ground,
     is_ground,
-    list_term,
+    substitute,
     template,
     term,
+    term_data,
+    term_text,
     unify,
 )
 from homebot.htn.state import Atom, Term, is_variable
 
-__all__ = ["Branch", "Domain", "Method", "Operator", "Problem", "task_data"]
+__all__ = ["Branch", "Domain", "Layout", "Method", "Operator", "Problem", "task_data"]
+
+#: How a task list is ordered, for JSHOP2's ``:unordered`` and ``:immediate``:
+#: ``("ordered" | "unordered", (item, ...))``, an item being ``("task", INDEX, IMMEDIATE)``
+#: (INDEX into the flat list of subtasks) or a nested layout. None: plainly ordered.
+Layout = tuple[str, tuple[Any, ...]]
 
 
 def _name_and_params(head: Sequence[Any], what: str) -> tuple[str, tuple[Term, ...]]:
@@ -43,11 +52,11 @@ def _name_and_params(head: Sequence[Any], what: str) -> tuple[str, tuple[Term, .
     items = list(head) if not isinstance(head, str) else head.split()
     if not items or not isinstance(items[0], str):
         raise PlanningError(f"a {what} head is (NAME ?param ...), got '{head}'")
-    return items[0], tuple(list_term(item) for item in items[1:])
+    return items[0], tuple(term_data(item) for item in items[1:])
 
 
 def _positions(patterns: tuple[Any, ...]) -> tuple[tuple[int, ...], ...]:
-    return tuple(() if isinstance(pattern, str) else template(pattern)[1]
+    return tuple(template(pattern)[1] if isinstance(pattern, tuple) else ()
                  for pattern in patterns)
 
 
@@ -72,14 +81,18 @@ def _bind_head(params: tuple[Term, ...], variables: tuple[bool, ...],
     return bindings
 
 
-def task_data(task: Sequence[Any]) -> tuple[Term, ...]:
-    """A task or atom from plain data: names, numbers, variables, lists (``nil`` is ``()``)."""
+def task_data(task: Sequence[Any], functions: Functions | None = None) -> tuple[Term, ...]:
+    """A task or atom from plain data: names, numbers, variables, lists (``nil`` is ``()``).
+
+    An argument ``(call F ARG...)`` is a call, evaluated when the task or atom is made
+    ground (``functions`` adds to the functions it may name).
+    """
     if not isinstance(task, str | Sequence):
         raise PlanningError(f"a task is (NAME ARG...), got '{task}'")
     items = tuple(task.split()) if isinstance(task, str) else tuple(task)
     if not items or not isinstance(items[0], str):
         raise PlanningError(f"a task is (NAME ARG...), got '{task}'")
-    return (items[0], *(list_term(item) for item in items[1:]))
+    return (items[0], *(term_data(item, functions) for item in items[1:]))
 
 
 @dataclass(frozen=True)
@@ -106,28 +119,66 @@ class Operator:
         object.__setattr__(self, "_param_variables", tuple(map(is_variable, self.params)))
 
     def effects(self, bindings: dict[str, Term]) -> tuple[list[Atom], list[Atom]]:
-        """The ground delete and add lists under ``bindings``."""
+        """The ground delete and add lists under ``bindings`` (atoms only: no forall)."""
         return (_effect_atoms(self.name, self.delete, self._delete_variables, bindings),
                 _effect_atoms(self.name, self.add, self._add_variables, bindings))
 
+    def apply(self, proof: Proof, bindings: dict[str, Term]
+              ) -> tuple[list[Atom], list[Atom]] | None:
+        """Apply the effects to ``proof.state``: the atoms deleted and added, as JSHOP2 does.
+
+        The delete list goes first, then the add list, each element in order; a
+        ``forall`` effect is evaluated in the state as it is when its turn comes. None
+        (with the state partly changed: the caller undoes it) when the operator would
+        delete a protected atom.
+        """
+        state = proof.state
+        deletes: list[Atom] = []
+        for pattern, where in zip(self.delete, self._delete_variables, strict=True):
+            if isinstance(pattern, Protection):
+                state.unprotect(pattern.atom(self.name, bindings))
+                continue
+            for atom in _element_atoms(self.name, pattern, where, proof, bindings):
+                if state.is_protected(atom):
+                    return None
+                if atom in state:
+                    state.remove(atom)
+                    deletes.append(atom)
+        adds: list[Atom] = []
+        for pattern, where in zip(self.add, self._add_variables, strict=True):
+            if isinstance(pattern, Protection):
+                state.protect(pattern.atom(self.name, bindings))
+                continue
+            for atom in _element_atoms(self.name, pattern, where, proof, bindings):
+                if atom not in state:
+                    state.add(atom)
+                    adds.append(atom)
+        return deletes, adds
+
     @classmethod
     def declare(cls, head: Sequence[Any], precondition: Any = (), delete: Iterable[Any] = (),
-                add: Iterable[Any] = (), cost: Any = 1.0) -> Operator:
-        """An operator from plain data: ``Operator.declare(("!pickup", "?o"), [...], ...)``."""
+                add: Iterable[Any] = (), cost: Any = 1.0,
+                functions: Functions | None = None) -> Operator:
+        """An operator from plain data: ``Operator.declare(("!pickup", "?o"), [...], ...)``.
+
+        An effect element is an atom, a variable bound to an atom or to a list of
+        atoms, ``(forall (?v...) CONDITION (ATOM...))`` or ``(:protection ATOM)``.
+        """
         name, params = _name_and_params(head, "operator")
         if not name.startswith("!"):
             raise PlanningError(f"operator '{name}' must start with '!' (e.g. '!{name}')")
         cost_term: Term = cost
         if isinstance(cost, Sequence) and not isinstance(cost, str):
-            made = expression(cost)
+            made = expression(cost, functions)
             if not isinstance(made, Call):
                 raise PlanningError(f"the cost of '{name}' must be a number, a variable or "
                                     "(call ...)")
             cost_term = made
         elif not isinstance(cost, int | float) and not is_variable(cost):
             raise PlanningError(f"the cost of '{name}' must be a number, got '{cost}'")
-        return cls(name, params, expression(precondition),
-                   _effect_list(name, delete), _effect_list(name, add), cost_term)
+        return cls(name, params, expression(precondition, functions),
+                   _effect_list(name, delete, functions), _effect_list(name, add, functions),
+                   cost_term)
 
     @property
     def internal(self) -> bool:
@@ -144,21 +195,65 @@ class Operator:
         return float(value)
 
 
-def _effect_list(operator: str, data: Any) -> tuple[Any, ...]:
-    """Effect atoms; a variable stands for a list of atoms bound by the time it applies."""
+@dataclass(frozen=True)
+class ForAllEffect:
+    """``(forall (?v...) CONDITION (ATOM...))`` in a delete or add list."""
+
+    condition: Expression
+    atoms: tuple[tuple[Term, ...], ...]
+
+
+@dataclass(frozen=True)
+class Protection:
+    """``(:protection ATOM)``: protects the atom (add list) or lifts a protection (delete)."""
+
+    pattern: Any  #: an atom pattern, or a variable bound to an atom
+
+    def atom(self, operator: str, bindings: dict[str, Term]) -> Atom:
+        value = substitute(self.pattern, bindings)
+        if not isinstance(value, tuple) or not value or not is_ground(value):
+            raise PlanningError(f"operator '{operator}': (:protection {self.pattern}) needs a "
+                                f"ground atom, got '{value}'")
+        return value
+
+
+def _effect_list(operator: str, data: Any, functions: Functions | None = None
+                 ) -> tuple[Any, ...]:
+    """Effect elements; a variable stands for an atom or a list of atoms bound by then."""
     if is_variable(data):
         return (data,)
-    effects = []
+    effects: list[Any] = []
     for atom in _atoms(data):
         if is_variable(atom):
             effects.append(atom)
             continue
-        made = task_data(atom)
-        if made[0] == "forall":
-            raise PlanningError(f"operator '{operator}': forall effects are not supported; "
-                                "list the atoms, or bind a list variable in the precondition")
-        effects.append(made)
+        made = task_data(atom, functions)
+        keyword = made[0].lower()
+        if keyword == "forall":
+            if len(made) != 4:
+                raise PlanningError(f"operator '{operator}': write a forall effect as "
+                                    "(forall (?v ...) CONDITION (ATOM ...))")
+            effects.append(ForAllEffect(expression(atom[2], functions),
+                                        tuple(task_data(a, functions) for a in _atoms(atom[3]))))
+        elif keyword == ":protection":
+            if len(made) != 2:
+                raise PlanningError(f"operator '{operator}': write (:protection ATOM)")
+            effects.append(Protection(made[1]))
+        else:
+            effects.append(made)
     return tuple(effects)
+
+
+def _element_atoms(operator: str, pattern: Any, where: tuple[int, ...], proof: Proof,
+                   bindings: dict[str, Term]) -> list[Atom]:
+    """The ground atoms one effect element stands for under ``bindings``."""
+    if isinstance(pattern, ForAllEffect):
+        atoms: list[Atom] = []
+        for solution in list(pattern.condition.solve(proof, bindings)):
+            atoms.extend(_effect_atoms(operator, pattern.atoms, _positions(pattern.atoms),
+                                       solution))
+        return atoms
+    return _effect_atoms(operator, (pattern,), (where,), bindings)
 
 
 def _effect_atoms(operator: str, patterns: tuple[Any, ...], positions: tuple[tuple[int, ...], ...],
@@ -167,10 +262,14 @@ def _effect_atoms(operator: str, patterns: tuple[Any, ...], positions: tuple[tup
     for pattern, where in zip(patterns, positions, strict=True):
         if isinstance(pattern, str):
             value = bindings.get(pattern)
+            if isinstance(value, tuple) and value and isinstance(value[0], str) and is_ground(
+                    value):
+                atoms.append(value)  # one atom, as (!!assert (goal ?g)) with add list (?g)
+                continue
             if not isinstance(value, tuple) or not all(
                     isinstance(atom, tuple) and atom for atom in value):
-                raise PlanningError(f"operator '{operator}': {pattern} must be bound to a list "
-                                    f"of atoms, got '{value}'")
+                raise PlanningError(f"operator '{operator}': {pattern} must be bound to an atom "
+                                    f"or a list of atoms, got '{value}'")
             atoms.extend(value)
         else:
             atom = ground(pattern, bindings, where)
@@ -205,6 +304,10 @@ class Branch:
     name: str
     precondition: Expression
     subtasks: tuple[tuple[Term, ...], ...]
+    #: variables of the subtasks bound neither by the head nor by the precondition: left
+    #: open, to be bound by a later operator (JSHOP2's propagation of bindings)
+    open_variables: tuple[str, ...] = ()
+    layout: Layout | None = None  #: None: the subtasks in order, none immediate
     _variables: tuple[tuple[int, ...], ...] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -229,8 +332,13 @@ class Method:
         object.__setattr__(self, "_param_variables", tuple(map(is_variable, self.params)))
 
     @classmethod
-    def declare(cls, head: Sequence[Any], *branches: tuple[str, Any, Iterable[Any]]) -> Method:
-        """A method from plain data: ``Method.declare(("bring", "?o"), (name, pre, tasks))``."""
+    def declare(cls, head: Sequence[Any], *branches: tuple[Any, ...],
+                functions: Functions | None = None, open_variables: bool = False) -> Method:
+        """A method from plain data: ``Method.declare(("bring", "?o"), (name, pre, tasks))``.
+
+        A subtask variable bound neither by the head nor by the precondition is an
+        error, unless ``open_variables`` (JSHOP2 files): then a later operator binds it.
+        """
         task, params = _name_and_params(head, "method")
         if task.startswith("!"):
             raise PlanningError(f"method head '{task}' names an operator; methods decompose "
@@ -239,11 +347,13 @@ class Method:
             raise PlanningError(f"method '{task}' needs at least one branch: "
                                 "a precondition and a list of subtasks")
         built = []
-        for index, (name, precondition, subtasks) in enumerate(branches):
-            branch = Branch(name or f"{task}-{index + 1}", expression(precondition),
-                            tuple(task_data(sub) for sub in _atoms(subtasks)))
-            unbound = _variables(branch.subtasks) - _variables(params) - _variables(precondition)
-            if unbound:
+        for index, (name, precondition, subtasks, *layout) in enumerate(branches):
+            made = tuple(task_data(sub, functions) for sub in _atoms(subtasks))
+            unbound = _variables(made) - _variables(params) - _variables(precondition)
+            branch = Branch(name or f"{task}-{index + 1}", expression(precondition, functions),
+                            made, tuple(sorted(unbound)) if open_variables else (),
+                            layout[0] if layout else None)
+            if unbound and not open_variables:
                 raise PlanningError(f"method '{task}' branch '{branch.name}': the subtasks use "
                                     f"{', '.join(sorted(unbound))}, bound neither by the head "
                                     "nor by the precondition; bind it there")
@@ -262,6 +372,7 @@ class Domain:
     operators: dict[str, Operator] = field(default_factory=dict)
     methods: dict[str, list[Method]] = field(default_factory=dict)
     axioms: dict[tuple[str, int], list[Axiom]] = field(default_factory=dict)
+    notes: list[str] = field(default_factory=list)  #: what a reader accepted but may surprise
 
     #### declare
 
@@ -277,11 +388,12 @@ class Domain:
         self.methods.setdefault(method.task, []).append(method)
         return method
 
-    def declare_axiom(self, head: Sequence[Any], *branches: tuple[str, Any]) -> Axiom:
+    def declare_axiom(self, head: Sequence[Any], *branches: tuple[str, Any],
+                      functions: Functions | None = None) -> Axiom:
         """Add an axiom: ``declare_axiom(("same", "?x", "?x"), ("", ()))``."""
         predicate, params = _name_and_params(head, "axiom")
         axiom = Axiom(predicate, params, tuple(
-            (name or f"{predicate}-{index + 1}", expression(tail))
+            (name or f"{predicate}-{index + 1}", expression(tail, functions))
             for index, (name, tail) in enumerate(branches or (("", ()),))))
         self.axioms.setdefault((predicate, len(params)), []).append(axiom)
         return axiom
@@ -343,7 +455,8 @@ class Problem:
     domain: str
     atoms: tuple[Atom, ...]
     tasks: tuple[tuple[Term, ...], ...]
+    layout: Layout | None = None  #: how the tasks are ordered (None: in order)
 
 
 def _text(task: Sequence[Any]) -> str:
-    return "(" + " ".join(str(item) for item in task) + ")"
+    return "(" + " ".join(term_text(item) for item in task) + ")"

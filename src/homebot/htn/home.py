@@ -9,7 +9,7 @@ World names become planning symbols with spaces written as underscores
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Callable, Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
@@ -80,25 +80,51 @@ def home_domain() -> Domain:
     return read_domain_text(path.read_text(encoding="utf-8"), str(path))
 
 
-def load_domain(path: str | Path | None) -> Domain:
-    """The home domain (None), a JSHOP2 file, or a Python file defining ``domain() -> Domain``."""
+def load_domain(path: str | Path | None,
+                functions: Mapping[str, Callable[..., Any]] | None = None) -> Domain:
+    """The home domain (None), a JSHOP2 file, or a Python file defining ``domain() -> Domain``.
+
+    ``functions`` adds to the functions a JSHOP2 file's ``call`` knows (see ``load_functions``).
+    """
     if path is None:
         return home_domain()
     path = Path(path)
     if path.suffix == ".py":
         return _python_domain(path)
-    return read_domain(path)
+    return read_domain(path, functions)
 
 
-def _python_domain(path: Path) -> Domain:
+def load_functions(path: str | Path) -> dict[str, Callable[..., Any]]:
+    """The public functions of a Python file, by lower-case name, for JSHOP2's ``call``.
+
+    JSHOP2 takes a domain's own functions as Java classes (``CheckNull``, a comparator
+    for ``:sort-by``); homebot takes them as Python functions: ``def checknull(x, y)``,
+    and for ``:sort-by`` a function ``(a, b) -> int``.
+    """
+    module = _python_module(Path(path), "functions")
+    return {name.lower(): value for name, value in vars(module).items()
+            if callable(value) and not name.startswith("_")
+            and getattr(value, "__module__", None) == module.__name__}
+
+
+def _python_module(path: Path, what: str) -> Any:
     import importlib.util
 
-    spec = importlib.util.spec_from_file_location(f"homebot_domain_{path.stem}", path)
+    spec = importlib.util.spec_from_file_location(f"homebot_{what}_{path.stem}", path)
     if spec is None or spec.loader is None or not path.exists():
-        raise PlanningError(f"cannot load the Python domain '{path}'; check the path")
+        raise PlanningError(f"cannot load the Python {what} file '{path}'; check the path")
     module = importlib.util.module_from_spec(spec)
     try:
         spec.loader.exec_module(module)
+    except Exception as error:  # a person's file may fail in any way; report, do not crash
+        raise PlanningError(f"{path}: the Python {what} file failed: "
+                            f"{type(error).__name__}: {error}") from None
+    return module
+
+
+def _python_domain(path: Path) -> Domain:
+    module = _python_module(path, "domain")
+    try:
         made = module.domain() if hasattr(module, "domain") else None
     except PlanningError:
         raise

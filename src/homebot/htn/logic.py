@@ -3,16 +3,24 @@
 A precondition is built from plain data, the same for Python domains and for
 JSHOP2 files: a sequence whose first item is a string is an atom ``("at", "?r",
 "?p")`` or a special form (``and``, ``or``, ``not``, ``imply``, ``forall``,
-``call``, ``assign``, ``:first``); any other sequence (or ``nil``) is a
+``call``, ``assign``, ``:first``, ``:sort-by``); any other sequence (or ``nil``) is a
 conjunction. ``solve`` yields every binding (a dict from variable to value)
 under which the expression holds, lazily, in the order of the state.
+
+``call`` knows JSHOP2's standard library (``FUNCTIONS``: ``+ - * / ^ < <= > >= = !=
+member``, comparisons chained over every argument as JSHOP2's do) and any function a
+domain is given (``homebot plan --functions FILE.py``), looked up case-insensitively. A
+call holds as a precondition unless it returns false, None or the empty list (``nil``),
+as in JSHOP2, where 0 is true.
 """
 
 from __future__ import annotations
 
 import operator as op
 from collections.abc import Callable, Iterator, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from functools import cmp_to_key
+from itertools import pairwise
 from typing import Any, Protocol
 
 from homebot.errors import PlanningError
@@ -28,9 +36,11 @@ __all__ = [
     "Expression",
     "First",
     "ForAll",
+    "Functions",
     "Not",
     "Or",
     "Proof",
+    "SortBy",
     "expression",
     "ground",
     "is_ground",
@@ -38,18 +48,13 @@ __all__ = [
     "substitute",
     "template",
     "term",
+    "term_data",
+    "term_text",
     "unify",
 ]
 
 Bindings = dict[str, Term]
-
-#: The functions ``call`` knows, as in JSHOP2's standard Lisp calls.
-FUNCTIONS: Mapping[str, Callable[..., Any]] = {
-    "+": lambda *values: sum(values), "-": lambda a, *b: a - sum(b) if b else -a,
-    "*": lambda *values: _product(values), "/": op.truediv, "<": op.lt, ">": op.gt,
-    "<=": op.le, ">=": op.ge, "=": op.eq, "/=": op.ne, "eq": op.eq, "equal": op.eq,
-    "max": max, "min": min, "abs": abs,
-}
+Functions = Mapping[str, Callable[..., Any]]  #: function names (lower case) to callables
 
 
 def _product(values: Sequence[Any]) -> Any:
@@ -57,6 +62,35 @@ def _product(values: Sequence[Any]) -> Any:
     for value in values:
         result *= value
     return result
+
+
+def _fold(function: Callable[[Any, Any], Any]) -> Callable[..., Any]:
+    def folded(first: Any, *rest: Any) -> Any:
+        for value in rest:
+            first = function(first, value)
+        return first
+    return folded
+
+
+def _chain(relation: Callable[[Any, Any], Any]) -> Callable[..., bool]:
+    """A comparison over every neighbouring pair, as JSHOP2's ``(call < 1 2 3)``."""
+    def chained(*values: Any) -> bool:
+        return all(relation(a, b) for a, b in pairwise(values))
+    return chained
+
+
+def _member(value: Any, items: Any) -> bool:
+    return isinstance(items, tuple) and value in items
+
+
+#: The functions ``call`` knows: JSHOP2's standard library and a few of Lisp's.
+FUNCTIONS: Functions = {
+    "+": lambda *values: sum(values), "-": lambda a, *b: a - sum(b) if b else -a,
+    "*": lambda *values: _product(values), "/": _fold(op.truediv), "^": _fold(op.pow),
+    "<": _chain(op.lt), ">": _chain(op.gt), "<=": _chain(op.le), ">=": _chain(op.ge),
+    "=": _chain(op.eq), "!=": _chain(op.ne), "/=": _chain(op.ne), "eq": op.eq,
+    "equal": op.eq, "member": _member, "max": max, "min": min, "abs": abs,
+}
 
 
 class Proof(Protocol):
@@ -84,7 +118,18 @@ def term(value: Term, bindings: Mapping[str, Term]) -> Term:
         return value.evaluate(bindings)
     if is_variable(value):
         return bindings.get(value, value)
+    if isinstance(value, tuple):
+        return substitute(value, bindings)
     return value
+
+
+def term_text(value: Term) -> str:
+    """A term as JSHOP2 writes it: a list term ``(a b . c)``, the empty list ``nil``."""
+    if isinstance(value, tuple):
+        return "(" + " ".join(term_text(item) for item in value) + ")" if value else "nil"
+    if isinstance(value, Call):
+        return "(call " + " ".join(term_text(a) for a in (value.function, *value.args)) + ")"
+    return str(value)
 
 
 def is_ground(value: Term) -> bool:
@@ -94,10 +139,10 @@ def is_ground(value: Term) -> bool:
             if isinstance(item, str):
                 if item[:1] == "?":
                     return False
-            elif isinstance(item, tuple) and not is_ground(item):
+            elif (isinstance(item, tuple) and not is_ground(item)) or isinstance(item, Call):
                 return False
         return True
-    return not (isinstance(value, str) and value[:1] == "?")
+    return not ((isinstance(value, str) and value[:1] == "?") or isinstance(value, Call))
 
 
 def substitute(value: Term, bindings: Mapping[str, Term]) -> Term:
@@ -140,8 +185,8 @@ def template(items: Sequence[Term]) -> tuple[tuple[Term, ...], tuple[int, ...]]:
     """A pattern and the positions of its variables and list terms with variables."""
     pattern = tuple(items)
     return pattern, tuple(i for i, item in enumerate(pattern)
-                          if is_variable(item) or (isinstance(item, tuple)
-                                                   and not is_ground(item)))
+                          if is_variable(item) or isinstance(item, Call) or (
+                              isinstance(item, tuple) and not is_ground(item)))
 
 
 def ground(pattern: Sequence[Term], bindings: Mapping[str, Term],
@@ -229,7 +274,7 @@ class AtomPattern(Expression):
                     yield new
 
     def __str__(self) -> str:
-        return "(" + " ".join(str(item) for item in (self.predicate, *self.args)) + ")"
+        return "(" + " ".join(term_text(item) for item in (self.predicate, *self.args)) + ")"
 
 
 def _match_state(state: State, predicate: str, resolved: tuple[Term, ...],
@@ -304,6 +349,29 @@ class First(Expression):
 
 
 @dataclass(frozen=True, slots=True)
+class SortBy(Expression):
+    """JSHOP2's ``(:sort-by ?v [<|>|COMPARATOR] EXPR)``: every satisfier, sorted by ``?v``.
+
+    ``compare`` is None for ascending numbers (``<``, the default), or a function
+    ``(a, b) -> int`` over two values of the variable (``>`` is descending).
+    """
+
+    variable: str
+    compare: Callable[[Any, Any], int] | None
+    part: Expression
+
+    def solve(self, proof: Proof, bindings: Bindings) -> Iterator[Bindings]:
+        found = list(self.part.solve(proof, bindings))
+        variable = self.variable
+        if self.compare is None:
+            found.sort(key=lambda solution: solution.get(variable, 0))
+        else:
+            compare = self.compare
+            found.sort(key=cmp_to_key(lambda a, b: compare(a.get(variable), b.get(variable))))
+        yield from found
+
+
+@dataclass(frozen=True, slots=True)
 class ForAll(Expression):
     """``(forall (?v...) condition consequent)``: every satisfier of one satisfies the other."""
 
@@ -323,20 +391,24 @@ class Call(Expression):
 
     function: str
     args: tuple[Term, ...]
+    run: Callable[..., Any] = field(default=_product, compare=False, repr=False)
 
     def evaluate(self, bindings: Mapping[str, Term]) -> Any:
-        values = [term(a, bindings) for a in self.args]
-        if any(is_variable(v) for v in values):
-            raise PlanningError(f"(call {self.function} ...) uses an unbound variable; bind "
-                                "it earlier in the precondition")
+        values = [substitute(a, bindings) for a in self.args]
         try:
-            return FUNCTIONS[self.function](*values)
-        except (TypeError, ValueError, ZeroDivisionError) as error:
+            # An unbound variable is passed as it is, as JSHOP2 does: (call = 4 ?x) is
+            # false; arithmetic on it is an error.
+            return self.run(*values)
+        except (TypeError, ValueError, ZeroDivisionError, OverflowError) as error:
+            if any(not is_ground(v) for v in values):
+                raise PlanningError(f"(call {self.function} ...) uses an unbound variable; "
+                                    "bind it earlier in the precondition") from None
             raise PlanningError(f"(call {self.function} {' '.join(map(str, values))}) "
                                 f"failed: {error}") from None
 
     def solve(self, proof: Proof, bindings: Bindings) -> Iterator[Bindings]:
-        if self.evaluate(bindings):
+        value = self.evaluate(bindings)
+        if value is not None and value is not False and value != () and value != "nil":
             yield bindings
 
 
@@ -370,9 +442,7 @@ class Axiom:
         local: Bindings = {}
         links: list[tuple[Term, Term]] = []
         for head, wanted in zip(self.args, goal, strict=True):
-            if not is_ground(wanted):
-                links.append((wanted, head))
-            elif not unify(head, wanted, local):
+            if not _link(head, wanted, local, links):
                 return
         for _, tail in self.branches:
             proved = False
@@ -392,11 +462,28 @@ class Axiom:
                 return
 
 
-_SPECIAL = {"and", "or", "not", "imply", "forall", "call", "assign", ":first"}
+def _link(head: Term, wanted: Term, local: Bindings, links: list[tuple[Term, Term]]) -> bool:
+    """Match an axiom's head argument with a goal's: ground parts bind the head's variables,
+    the goal's variables are linked to what the head makes of them (calls are evaluated)."""
+    if isinstance(head, Call):
+        head = head.evaluate(local)
+    if is_ground(wanted):
+        return unify(head, wanted, local)
+    if (isinstance(wanted, tuple) and isinstance(head, tuple) and len(head) == len(wanted)
+            and "." not in head and "." not in wanted):
+        return all(_link(h, w, local, links) for h, w in zip(head, wanted, strict=True))
+    links.append((wanted, head))
+    return True
 
 
-def expression(data: Any) -> Expression:
-    """Build an expression from plain data (see the module docstring); raises ``PlanningError``."""
+_SPECIAL = {"and", "or", "not", "imply", "forall", "call", "assign", ":first", ":sort-by"}
+
+
+def expression(data: Any, functions: Functions | None = None) -> Expression:
+    """Build an expression from plain data (see the module docstring); raises ``PlanningError``.
+
+    ``functions`` adds to (or overrides) ``FUNCTIONS`` for ``call``.
+    """
     if data is None or data == "nil":
         return And(())
     if isinstance(data, str) or not isinstance(data, Sequence):
@@ -407,52 +494,83 @@ def expression(data: Any) -> Expression:
         return And(())
     head = items[0]
     if not isinstance(head, str):
-        return _conjunction(items)
+        return _conjunction(items, functions)
     keyword = head.lower()
     if keyword not in _SPECIAL:
         if head == "nil" and len(items) == 1:
             return And(())
         for item in items[1:]:
             _check_term(item, head)
-        args = tuple(_term_data(item) for item in items[1:])
+        args = tuple(term_data(item, functions) for item in items[1:])
         return AtomPattern(head, args, any(isinstance(a, Call) for a in args))
     rest = items[1:]
     if keyword == "and":
-        return _conjunction(rest)
+        return _conjunction(rest, functions)
     if keyword == ":first":
-        return First(_conjunction(rest))
+        return First(_conjunction(rest, functions))
+    if keyword == ":sort-by":
+        return _sort_by(rest, functions)
     if keyword == "or":
-        return Or(tuple(expression(item) for item in rest))
+        return Or(tuple(expression(item, functions) for item in rest))
     if keyword == "not":
         _arity(keyword, rest, 1)
-        return Not(expression(rest[0]))
+        return Not(expression(rest[0], functions))
     if keyword == "imply":
         _arity(keyword, rest, 2)
-        return Or((Not(expression(rest[0])), expression(rest[1])))
+        return Or((Not(expression(rest[0], functions)), expression(rest[1], functions)))
     if keyword == "forall":
         _arity(keyword, rest, 3)
-        return ForAll(expression(rest[1]), expression(rest[2]))
+        return ForAll(expression(rest[1], functions), expression(rest[2], functions))
     if keyword == "assign":
         _arity(keyword, rest, 2)
         if not is_variable(rest[0]):
             raise PlanningError(f"assign needs a variable first, got '{rest[0]}'")
-        return Assign(rest[0], _term_data(rest[1]))
-    return call(rest)
+        return Assign(rest[0], term_data(rest[1], functions))
+    return call(rest, functions)
 
 
-def call(rest: Sequence[Any]) -> Call:
+def _function(name: str, functions: Functions | None) -> Callable[..., Any]:
+    """The function called ``name`` (case-insensitively), or ``PlanningError`` naming them all."""
+    name = name[2:] if name.startswith("#'") else name
+    for table in (functions or {}, FUNCTIONS):
+        found = table.get(name, table.get(name.lower()))
+        if found is not None:
+            return found
+    known = sorted({*FUNCTIONS, *(functions or {})})
+    raise PlanningError(f"unknown function '{name}' in call; known: {' '.join(known)}; define "
+                        "others in a Python file given with --functions")
+
+
+def call(rest: Sequence[Any], functions: Functions | None = None) -> Call:
     """``(call FUNCTION ARG...)`` from its items after ``call``."""
     if not rest or not isinstance(rest[0], str):
         raise PlanningError("call needs a function name: (call + ?x 1)")
+    run = _function(rest[0], functions)
     name = rest[0][2:] if rest[0].startswith("#'") else rest[0]
-    if name not in FUNCTIONS:
-        raise PlanningError(f"unknown function '{name}' in call; known: "
-                            f"{' '.join(sorted(FUNCTIONS))}")
-    return Call(name, tuple(_term_data(item) for item in rest[1:]))
+    return Call(name, tuple(term_data(item, functions) for item in rest[1:]), run)
 
 
-def _conjunction(items: Sequence[Any]) -> Expression:
-    parts = tuple(expression(item) for item in items)
+def _sort_by(rest: Sequence[Any], functions: Functions | None) -> SortBy:
+    if len(rest) not in (2, 3) or not is_variable(rest[0]):
+        raise PlanningError("write (:sort-by ?VARIABLE [< | > | COMPARATOR] CONDITION)")
+    compare: Callable[[Any, Any], int] | None = None
+    if len(rest) == 3:
+        name = rest[1]
+        if not isinstance(name, str):
+            raise PlanningError(f":sort-by takes <, > or a comparator's name, got '{name}'")
+        if name == ">":
+            compare = _descending
+        elif name != "<":
+            compare = _function(name, functions)
+    return SortBy(rest[0], compare, expression(rest[-1], functions))
+
+
+def _descending(a: Any, b: Any) -> int:
+    return -1 if a > b else 1 if a < b else 0
+
+
+def _conjunction(items: Sequence[Any], functions: Functions | None = None) -> Expression:
+    parts = tuple(expression(item, functions) for item in items)
     return parts[0] if len(parts) == 1 else And(parts)
 
 
@@ -469,20 +587,24 @@ def _check_term(item: Any, predicate: str) -> None:
                         f"variables or lists, got '{item}'")
 
 
-def _term_data(item: Any) -> Term:
+def term_data(item: Any, functions: Functions | None = None) -> Term:
+    """A term from plain data; ``(call F ARG...)`` is a call (see ``list_term``)."""
     if isinstance(item, Sequence) and not isinstance(item, str) and item and item[0] == "call":
-        return call(item[1:])
-    return list_term(item)
+        return call(item[1:], functions)
+    return list_term(item, functions)
 
 
-def list_term(item: Any) -> Term:
-    """A term from plain data: lists become tuples (list terms), ``nil`` the empty list."""
+def list_term(item: Any, functions: Functions | None = None) -> Term:
+    """A term from plain data: lists become tuples (list terms), ``nil`` the empty list.
+
+    A ``(call ...)`` inside a list is a call, evaluated when the list is used.
+    """
     if item == "nil":
         return ()
-    if isinstance(item, str | int | float):
+    if isinstance(item, str | int | float | Call):
         return item
     if isinstance(item, Sequence):
-        items = tuple(list_term(part) for part in item)
+        items = tuple(term_data(part, functions) for part in item)
         if "." in items[:-2] or (items[-1:] == (".",)):
             raise PlanningError(f"a dotted list is (item ... . ?rest), got '{item}'")
         return items

@@ -17,8 +17,8 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from homebot.errors import PlanningError
-from homebot.htn.domain import Domain, task_data
-from homebot.htn.logic import Axiom
+from homebot.htn.domain import Domain, Layout, task_data
+from homebot.htn.logic import Axiom, substitute, term_text
 from homebot.htn.state import Atom, State, Term, is_variable
 
 __all__ = ["DecompositionNode", "Plan", "PlanStep", "Planner", "PlanningResult",
@@ -43,7 +43,7 @@ class PlanStep:
         return {"operator": self.operator, "args": list(self.args)}
 
     def __str__(self) -> str:
-        return "(" + " ".join(str(item) for item in (self.operator, *self.args)) + ")"
+        return "(" + " ".join(term_text(item) for item in (self.operator, *self.args)) + ")"
 
 
 @dataclass(frozen=True, slots=True)
@@ -110,18 +110,91 @@ class PlanningResult:
 
 
 class _Proof:
-    """What expressions are evaluated against: the state and the domain's axioms."""
+    """What expressions are evaluated against: the state and the domain's axioms.
 
-    __slots__ = ("axioms", "state")
+    ``fresh`` numbers the variables a method leaves open in its subtasks (renamed
+    ``?v#N`` so that two applications never share one).
+    """
+
+    __slots__ = ("axioms", "fresh", "state")
 
     def __init__(self, state: State,
                  axioms: Mapping[tuple[str, int], Sequence[Axiom]]) -> None:
         self.state = state
         self.axioms = axioms
+        self.fresh = 0
 
 
-# An agenda is a linked list: (task, parent node, depth, rest) or None.
-_Agenda = tuple[tuple[Term, ...], int, int, Any] | None
+# An agenda is a linked list of nodes (task, parent node, depth, rest, immediate), or None.
+# JSHOP2's unordered task lists are group nodes (None, (agenda, ...), 0, rest, False): the
+# first task of any of the group's agendas may go next (an immediate one goes first).
+_Agenda = tuple[Any, Any, int, Any, bool] | None
+_MISSING: Any = object()
+
+
+def _firsts(agenda: _Agenda) -> list[Any]:
+    """The task nodes that may be refined next, in JSHOP2's order (its ``getFirst``)."""
+    found: list[Any] = []
+    _collect(agenda, found)
+    return found
+
+
+def _collect(agenda: _Agenda, found: list[Any]) -> bool:
+    """Add the first task nodes of ``agenda``; True when an immediate one decides alone."""
+    while agenda is not None:
+        if agenda[0] is not None:
+            if agenda[4]:
+                found.clear()
+                found.append(agenda)
+                return True
+            found.append(agenda)
+            return False
+        before = len(found)
+        for sub in agenda[1]:
+            if _collect(sub, found):
+                return True
+        if len(found) != before:
+            return False
+        agenda = agenda[3]  # an exhausted group: the tasks after it
+    return False
+
+
+def _replace(agenda: _Agenda, target: Any, replacement: _Agenda) -> Any:
+    """``agenda`` with the node ``target`` and its rest replaced (``_MISSING`` if absent)."""
+    if agenda is None:
+        return _MISSING
+    if agenda is target:
+        return replacement
+    if agenda[0] is not None:
+        return _MISSING  # only a first task can be the target
+    subs = agenda[1]
+    for index, sub in enumerate(subs):
+        new = _replace(sub, target, replacement)
+        if new is not _MISSING:
+            changed = (*subs[:index], new, *subs[index + 1:])
+            if all(item is None for item in changed):
+                return agenda[3]
+            return (None, changed, 0, agenda[3], False)
+    rest = _replace(agenda[3], target, replacement)
+    return rest if rest is _MISSING else (None, subs, 0, rest, False)
+
+
+def _network_agenda(layout: Any, tasks: Sequence[tuple[Term, ...]], parent: int, depth: int,
+                    rest: _Agenda) -> _Agenda:
+    """The agenda of a task list laid out as ``layout`` (see ``Layout``), before ``rest``."""
+    kind, items = layout
+    if kind == "unordered":
+        subs = tuple(agenda for agenda in (
+            _network_agenda(("ordered", (item,)), tasks, parent, depth, None)
+            for item in items) if agenda is not None)
+        return (None, subs, 0, rest, False) if subs else rest
+    agenda = rest
+    for item in reversed(items):
+        if item[0] == "task":
+            agenda = (tasks[item[1]], parent, depth, agenda, item[2])
+        else:
+            agenda = _network_agenda(item, tasks, parent, depth, agenda)
+    return agenda
 
 
 class Planner:
@@ -150,8 +223,13 @@ class Planner:
     def _refine(self, proof: _Proof, task: tuple[Term, ...], parent: int, depth: int,
                 rest: _Agenda, plan: list[PlanStep], costs: list[float],
                 network: list[DecompositionNode],
-                trace: list[str] | None) -> Iterator[_Agenda]:
-        """Every way to refine ``task``, each applied when asked for (undone by the caller)."""
+                trace: list[str] | None) -> Iterator[tuple[_Agenda, Any]]:
+        """Every way to refine ``task``, each applied when asked for (undone by the caller).
+
+        Each is the new agenda and its focus, what JSHOP2 refines next: after a method,
+        the first of its subtasks (a node, or a list of nodes for unordered subtasks);
+        after an operator, None (any first task of the whole agenda).
+        """
         name = task[0]
         operator = self.domain.operators.get(name)
         state = proof.state
@@ -159,28 +237,39 @@ class Planner:
             start = operator.bind(task)
             if start is None:
                 return
+            # A task argument that is still a variable is bound by the operator.
+            links = [(param, value) for param, value in start.items() if is_variable(value)]
+            for param, _ in links:
+                del start[param]
             applied = False
             for bindings in operator.precondition.solve(proof, start):
+                mark = state.mark()
+                effects = operator.apply(proof, bindings)
+                if effects is None:  # it would delete a protected atom
+                    state.undo(mark)
+                    continue
                 applied = True
                 if trace is not None:
                     trace.append(f"{'  ' * depth}{_text(task)}: applied")
-                deletes, adds = operator.effects(bindings)
-                for atom in deletes:
-                    state.remove(atom)
-                for atom in adds:
-                    state.add(atom)
+                deletes, adds = effects
                 cost = operator.cost_of(bindings)
-                network.append(DecompositionNode(parent, task, None))
-                plan.append(PlanStep(name, task[1:], cost, len(network) - 1, tuple(deletes),
+                done = task
+                if links:  # the step shows the values; later tasks keep the variable,
+                    # as in JSHOP2 (its propagation example plans (!consumer1 VAR0))
+                    values = {variable: bindings[param] for param, variable in links
+                              if param in bindings}
+                    done = tuple(substitute(item, values) for item in task)
+                network.append(DecompositionNode(parent, done, None))
+                plan.append(PlanStep(name, done[1:], cost, len(network) - 1, tuple(deletes),
                                      tuple(adds)))
                 costs.append(costs[-1] + cost)
-                yield rest
+                yield rest, None
             if trace is not None and not applied:
                 trace.append(f"{'  ' * depth}{_text(task)}: precondition does not hold")
             return
         methods = self.domain.methods.get(name)
-        if methods is None:
-            self.domain.check_task(task)
+        if methods is None and not (isinstance(name, str) and name.startswith("!")):
+            self.domain.check_task(task)  # an undeclared primitive task just never applies
         for method in methods or ():
             start = method.bind(task)
             if start is None:
@@ -193,23 +282,48 @@ class Planner:
                         trace.append(f"{'  ' * depth}{_text(task)}: {branch.name}")
                     network.append(DecompositionNode(parent, task, branch.name))
                     node = len(network) - 1
-                    agenda = rest
-                    for subtask in reversed(branch.ground_subtasks(bindings)):
-                        agenda = (subtask, node, depth + 1, agenda)
-                    yield agenda
+                    if branch.open_variables:
+                        bindings = dict(bindings)
+                        for variable in branch.open_variables:
+                            if variable not in bindings:
+                                proof.fresh += 1
+                                bindings[variable] = f"{variable}#{proof.fresh}"
+                    if branch.layout is None:
+                        agenda = rest
+                        for subtask in reversed(branch.ground_subtasks(bindings)):
+                            agenda = (subtask, node, depth + 1, agenda, False)
+                        # JSHOP2 goes on with the first subtask (all tasks when none)
+                        yield agenda, agenda if branch.subtasks else None
+                    else:
+                        sub = _network_agenda(branch.layout, branch.ground_subtasks(bindings),
+                                              node, depth + 1, None)
+                        focus = _firsts(sub)
+                        yield (None, (sub,), 0, rest, False) if sub is not None else rest, (
+                            focus or None)
                 if applicable:
                     break
                 if trace is not None:
                     trace.append(f"{'  ' * depth}{_text(task)}: {branch.name} does not apply")
 
+    def _refine_any(self, proof: _Proof, agenda: _Agenda, firsts: list[Any],
+                    plan: list[PlanStep], costs: list[float], network: list[DecompositionNode],
+                    trace: list[str] | None) -> Iterator[tuple[_Agenda, Any]]:
+        """Every way to refine any of the first tasks of an agenda with unordered groups."""
+        for node in firsts:
+            task, parent, depth, rest, _ = node
+            for tail, focus in self._refine(proof, task, parent, depth, rest, plan, costs,
+                                            network, trace):
+                yield _replace(agenda, node, tail), focus
+
     #### find_plan and seek_plan
 
     def search(self, state: State, tasks: Sequence[Sequence[Any]], *, limit: int | None = 1,
-               cheapest: bool = False) -> PlanningResult:
+               cheapest: bool = False, layout: Layout | None = None) -> PlanningResult:
         """Plans for ``tasks`` from ``state`` (left unchanged).
 
         ``limit`` plans at most (None: every plan); ``cheapest`` keeps searching
-        with branch and bound and returns only the cheapest plan.
+        with branch and bound and returns only the cheapest plan. ``layout`` orders
+        the tasks as a JSHOP2 problem's ``:unordered`` lists do (None: in order).
         """
         goal = [task_data(task) for task in tasks]
         for task in goal:
@@ -220,7 +334,7 @@ class Planner:
         proof = _Proof(state, self.domain.axioms)
         mark = state.mark()
         try:
-            self._seek(proof, goal, result, limit, cheapest)
+            self._seek(proof, goal, result, limit, cheapest, layout)
         except RecursionError:  # the search is iterative: only a proof can recurse this deep
             raise PlanningError("proving a precondition recursed without end: an axiom proves "
                                 "its head from itself (such as (:- (p ?x) ((p ?x)))); put a "
@@ -230,15 +344,19 @@ class Planner:
         return result
 
     def _seek(self, proof: _Proof, goal: list[tuple[Term, ...]], result: PlanningResult,
-              limit: int | None, cheapest: bool) -> None:
+              limit: int | None, cheapest: bool, layout: Layout | None) -> None:
         state = proof.state
         agenda: _Agenda = None
-        for task in reversed(goal):
-            agenda = (task, -1, 0, agenda)
+        if layout is None:
+            for task in reversed(goal):
+                agenda = (task, -1, 0, agenda, False)
+        else:
+            agenda = _network_agenda(layout, goal, -1, 0, None)
         plan: list[PlanStep] = []
         costs: list[float] = [0.0]
         network: list[DecompositionNode] = []
-        stack: list[tuple[Iterator[_Agenda], int, int, int]] = []
+        stack: list[tuple[Iterator[tuple[_Agenda, Any]], int, int, int]] = []
+        focus: Any = None
         began = self.clock() if self.time_limit is not None else 0.0
         best = float("inf")
         while True:
@@ -256,8 +374,17 @@ class Planner:
                             return
             elif cheapest and costs[-1] >= best:
                 pass  # branch and bound: this branch cannot beat the best plan
+            elif focus is None and agenda[0] is None and not (candidates := _firsts(agenda)):
+                agenda = None  # only exhausted groups are left: a plan
+                continue
             else:
-                task, parent, depth, rest = agenda
+                firsts: list[Any] | None = None
+                if focus is agenda or (focus is None and agenda[0] is not None):
+                    task, parent, depth, rest, _ = agenda  # the common, ordered case
+                else:  # unordered groups: one choice point over every possible first task
+                    firsts = candidates if focus is None else (
+                        focus if isinstance(focus, list) else [focus])
+                    task, parent, depth, rest, _ = firsts[0]
                 if depth > self.max_depth:
                     result.stopped = "depth"
                 else:
@@ -269,15 +396,18 @@ class Planner:
                             self.clock() - began > self.time_limit):
                         result.stopped = "time"
                         return
-                    stack.append((self._refine(proof, task, parent, depth, rest, plan, costs,
-                                               network, result.trace),
-                                  state.mark(), len(plan), len(network)))
+                    alternatives = (self._refine(proof, task, parent, depth, rest, plan, costs,
+                                                 network, result.trace) if firsts is None else
+                                    self._refine_any(proof, agenda, firsts, plan, costs,
+                                                     network, result.trace))
+                    stack.append((alternatives, state.mark(), len(plan), len(network)))
             while stack:
                 alternatives, mark, planned, noted = stack[-1]
                 state.undo(mark)
                 del plan[planned:], costs[planned + 1:], network[noted:]
-                agenda = next(alternatives, _EXHAUSTED)
-                if agenda is not _EXHAUSTED:
+                chosen = next(alternatives, _EXHAUSTED)
+                if chosen is not _EXHAUSTED:
+                    agenda, focus = chosen
                     break
                 stack.pop()
             else:
@@ -288,7 +418,7 @@ _EXHAUSTED: Any = object()
 
 
 def _text(task: Sequence[Any]) -> str:
-    return "(" + " ".join(str(item) for item in task) + ")"
+    return "(" + " ".join(term_text(item) for item in task) + ")"
 
 
 def find_plan(domain: Domain, state: State, tasks: Sequence[Sequence[Any]],

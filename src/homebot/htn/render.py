@@ -9,13 +9,14 @@ import itertools
 from collections.abc import Callable, Sequence
 from typing import Any
 
+from homebot.htn.logic import term_text
 from homebot.htn.planner import DecompositionNode, Plan
 
 __all__ = ["plan_dot", "plans_json", "task_network_text"]
 
 
 def _text(task: Sequence[Any]) -> str:
-    return "(" + " ".join(str(item) for item in task) + ")"
+    return "(" + " ".join(term_text(item) for item in task) + ")"
 
 
 def _children(network: Sequence[DecompositionNode]) -> dict[int, list[int]]:

@@ -1,8 +1,9 @@
 """An S-expression reader that remembers where every form starts (line and column).
 
-Symbols are kept as written (case-sensitive); numbers become ``int`` or
-``float``; ``"strings"`` become ``Text``; ``;`` starts a comment to the end of
-the line. ``#'name`` (Lisp's function quote) reads as the symbol ``#'name``.
+Symbols are kept as written (case-sensitive), or in lower case with ``fold_case``
+(JSHOP2 is case-insensitive); numbers become ``int`` or ``float``; ``"strings"``
+become ``Text``; ``;`` starts a comment to the end of the line. ``#'name`` (Lisp's
+function quote) reads as the symbol ``#'name``.
 """
 
 from __future__ import annotations
@@ -56,8 +57,11 @@ def _atom(token: str) -> Any:
     return token
 
 
-def read_forms(text: str, source: str = "<text>") -> list[Any]:
-    """Every top-level form of ``text``; malformed text raises ``PlanningError`` with its place."""
+def read_forms(text: str, source: str = "<text>", fold_case: bool = False) -> list[Any]:
+    """Every top-level form of ``text``; malformed text raises ``PlanningError`` with its place.
+
+    With ``fold_case`` every symbol is read in lower case (strings stay as written).
+    """
     stack: list[tuple[list[Any], int]] = []
     top: list[Any] = []
     position = 0
@@ -87,7 +91,8 @@ def read_forms(text: str, source: str = "<text>") -> list[Any]:
             raise PlanningError(f"{source}:{line}:{column}: unexpected '{character}'; {hint}")
         else:
             token = match.group()
-            value = Text(token[1:-1]) if kind == "string" else _atom(token)
+            value = Text(token[1:-1]) if kind == "string" else _atom(
+                token.lower() if fold_case else token)
             (stack[-1][0] if stack else top).append(value)
     if stack:
         line, column = _location(text, stack[-1][1])

@@ -28,70 +28,132 @@ class State:
 
     ``mark()`` returns a point on the undo trail and ``undo(mark)`` takes every
     change after it back, so the planner backtracks without copying.
+
+    Order is part of the state, as in JSHOP2: atoms are listed (and matched) in the
+    order they became true; an atom made true again goes to the end; ``undo`` puts a
+    removed atom back exactly where it was, so planning twice from equal states gives
+    the same plan. Each atom carries the number of the insertion that made it true; a
+    bucket an undo put out of order is sorted again the next time it is read.
+
+    Protections (JSHOP2's ``:protection``) are counted per atom: an operator may not
+    delete a protected atom. They are on the same trail.
     """
 
-    __slots__ = ("_by_argument", "_by_predicate", "_trail")
+    __slots__ = ("_by_argument", "_by_predicate", "_count", "_protected", "_trail",
+                 "_unsorted")
 
     def __init__(self, atoms: Iterable[Atom] = ()) -> None:
-        self._by_predicate: dict[tuple[Any, int], dict[Atom, None]] = {}
-        self._by_argument: dict[tuple[tuple[Any, int], int, Any], dict[Atom, None]] = {}
-        self._trail: list[tuple[bool, Atom]] = []
+        self._by_predicate: dict[tuple[Any, int], dict[Atom, int]] = {}
+        self._by_argument: dict[tuple[tuple[Any, int], int, Any], dict[Atom, int]] = {}
+        # (kind, atom, number): kind 0 added, 1 removed, 2 protected, 3 unprotected
+        self._trail: list[tuple[int, Atom, int]] = []
+        self._count = 0
+        self._protected: dict[Atom, int] = {}
+        self._unsorted: set[Any] = set()
         for atom in atoms:
-            self._insert(tuple(atom))
+            self._insert(tuple(atom), self._next())
+
+    def _next(self) -> int:
+        self._count += 1
+        return self._count
 
     # -- changes --------------------------------------------------------------------------
 
     def add(self, atom: Atom) -> None:
-        """Make ``atom`` true (recorded on the trail)."""
-        if self._insert(atom):
-            self._trail.append((True, atom))
+        """Make ``atom`` true (recorded on the trail); it goes after every true atom."""
+        number = self._count + 1
+        if self._insert(atom, number):
+            self._count = number
+            self._trail.append((0, atom, number))
 
     def remove(self, atom: Atom) -> None:
         """Make ``atom`` false (recorded on the trail); removing a false atom does nothing."""
-        if self._delete(atom):
-            self._trail.append((False, atom))
+        number = self._delete(atom)
+        if number:
+            self._trail.append((1, atom, number))
+
+    def protect(self, atom: Atom) -> None:
+        """Protect ``atom`` once more (JSHOP2's ``(:protection ATOM)`` in an add list)."""
+        self._protected[atom] = self._protected.get(atom, 0) + 1
+        self._trail.append((2, atom, 0))
+
+    def unprotect(self, atom: Atom) -> None:
+        """Take one protection of ``atom`` away (nothing when it has none)."""
+        count = self._protected.get(atom, 0)
+        if count:
+            if count == 1:
+                del self._protected[atom]
+            else:
+                self._protected[atom] = count - 1
+            self._trail.append((3, atom, 0))
+
+    def is_protected(self, atom: Atom) -> bool:
+        """Whether some operator protects ``atom`` (it may then not be deleted)."""
+        return atom in self._protected
 
     def mark(self) -> int:
         """A point to come back to with ``undo``."""
         return len(self._trail)
 
     def undo(self, mark: int) -> None:
-        """Take back every change made since ``mark``."""
+        """Take back every change made since ``mark``, restoring the order of the atoms."""
         trail = self._trail
         while len(trail) > mark:
-            added, atom = trail.pop()
-            if added:
+            kind, atom, number = trail.pop()
+            if kind == 0:
                 self._delete(atom)
+            elif kind == 1:
+                self._insert(atom, number, restore=True)
+            elif kind == 2:
+                count = self._protected[atom]
+                if count == 1:
+                    del self._protected[atom]
+                else:
+                    self._protected[atom] = count - 1
             else:
-                self._insert(atom)
+                self._protected[atom] = self._protected.get(atom, 0) + 1
 
-    def _insert(self, atom: Atom) -> bool:
+    def _insert(self, atom: Atom, number: int, restore: bool = False) -> bool:
         predicate = (atom[0], len(atom))
         bucket = self._by_predicate.get(predicate)
         if bucket is None:
             bucket = self._by_predicate[predicate] = {}
         elif atom in bucket:
             return False
-        bucket[atom] = None
+        if restore and bucket and next(reversed(bucket.values())) > number:
+            self._unsorted.add(predicate)
+        bucket[atom] = number
         index = self._by_argument
         for position in range(1, len(atom)):
             key = (predicate, position, atom[position])
             entries = index.get(key)
             if entries is None:
-                index[key] = {atom: None}
+                index[key] = {atom: number}
             else:
-                entries[atom] = None
+                if restore and entries and next(reversed(entries.values())) > number:
+                    self._unsorted.add(key)
+                entries[atom] = number
         return True
 
-    def _delete(self, atom: Atom) -> bool:
+    def _delete(self, atom: Atom) -> int:
+        """Remove ``atom``; its insertion number, or 0 when it was not true."""
         predicate = (atom[0], len(atom))
         bucket = self._by_predicate.get(predicate)
-        if bucket is None or atom not in bucket:
-            return False
-        del bucket[atom]
-        for position in range(1, len(atom)):
-            del self._by_argument[(predicate, position, atom[position])][atom]
-        return True
+        if bucket is None:
+            return 0
+        number = bucket.pop(atom, 0)
+        if number:
+            for position in range(1, len(atom)):
+                del self._by_argument[(predicate, position, atom[position])][atom]
+        return number
+
+    def _sorted(self, key: Any, bucket: dict[Atom, int]) -> dict[Atom, int]:
+        """``bucket`` in insertion order again (after an undo put an atom back)."""
+        self._unsorted.discard(key)
+        ordered = sorted(bucket.items(), key=lambda item: item[1])
+        bucket.clear()
+        bucket.update(ordered)
+        return bucket
 
     # -- queries --------------------------------------------------------------------------
 
@@ -102,39 +164,49 @@ class State:
         return bucket is not None and atom in bucket
 
     def __iter__(self) -> Iterator[Atom]:
-        for bucket in self._by_predicate.values():
-            yield from bucket
+        unsorted = self._unsorted
+        for key, bucket in self._by_predicate.items():
+            yield from (self._sorted(key, bucket) if unsorted and key in unsorted else bucket)
 
     def __len__(self) -> int:
         return sum(len(bucket) for bucket in self._by_predicate.values())
 
     def atoms(self, predicate: Any) -> list[Atom]:
         """The atoms of one predicate (any arity), in the order they became true."""
-        return [atom for (name, _), bucket in self._by_predicate.items() if name == predicate
-                for atom in bucket]
+        unsorted = self._unsorted
+        return [atom for key, bucket in self._by_predicate.items() if key[0] == predicate
+                for atom in (self._sorted(key, bucket) if unsorted and key in unsorted
+                             else bucket)]
 
     def candidates(self, predicate: Any, arity: int,
                    bound: Sequence[tuple[int, Any]]) -> Sequence[Atom]:
         """Atoms that may match: the smallest index bucket among the bound positions.
 
         ``bound`` lists (position, value) pairs, positions counted from 1. The
-        result is a snapshot, safe to iterate while the state changes.
+        result is a snapshot in the order the atoms became true, safe to iterate
+        while the state changes.
         """
         key = (predicate, arity + 1)
-        best: dict[Atom, None] | None = self._by_predicate.get(key)
+        best: dict[Atom, int] | None = self._by_predicate.get(key)
         if best is None:
             return ()
+        best_key: Any = key
         for position, value in bound:
-            entries = self._by_argument.get((key, position, value))
+            index_key = (key, position, value)
+            entries = self._by_argument.get(index_key)
             if entries is None:
                 return ()
             if len(entries) < len(best):
-                best = entries
+                best, best_key = entries, index_key
+        if self._unsorted and best_key in self._unsorted:
+            self._sorted(best_key, best)
         return list(best)
 
     def copy(self) -> State:
-        """An independent state with the same atoms and an empty trail."""
-        return State(self)
+        """An independent state with the same atoms (in order), protections and an empty trail."""
+        copied = State(self)
+        copied._protected = dict(self._protected)
+        return copied
 
     def to_sorted_list(self) -> list[Atom]:
         """Every atom, sorted by their text (for printing and tests)."""
