@@ -231,10 +231,15 @@ def _draw_people(canvas: Canvas, positions: Mapping[str, tuple[float, float]]) -
     for person in canvas.world.people.values():
         cx, cy = canvas.px(*positions.get(person.name, person.position))
         canvas.draw.ellipse((cx - 9, cy - 9, cx + 9, cy + 9), fill=_COLOURS["person"])
+        width = canvas.draw.textlength(person.name)
+        spots = [(cx + 11, cy - 7), (cx - 11 - width, cy - 7), (cx - width / 2, cy - 24),
+                 (cx - width / 2, cy + 10)]
+        spot = next((xy for xy in spots if not any(
+            _overlap(canvas.text_box(xy, person.name), taken) for taken in canvas.taken)),
+            spots[0])
         canvas.taken.append((cx - 9, cy - 9, cx + 9, cy + 9))
-        box = _label(canvas, (cx + 11, cy - 7), person.name, _COLOURS["person"],
-                     background=True)
-        canvas.taken.append(box)
+        canvas.taken.append(_label(canvas, spot, person.name, _COLOURS["person"],
+                                   background=True))
 
 
 def _draw_robot(canvas: Canvas, pose: Sequence[float]) -> None:
@@ -252,28 +257,31 @@ def _draw_robot(canvas: Canvas, pose: Sequence[float]) -> None:
 
 
 def _draw_room_labels(canvas: Canvas) -> None:
-    """Each room's name where it covers no furniture, inside the image, on a white box."""
+    """Each room's name on a white box: inside its room where it fits, off furniture and
+    other labels, and always inside the image (a narrow hallway's name may stick out)."""
     font = _font(13)
     for name, polygon in canvas.world.room_polygons.items():
         left, bottom, right, top = polygon.bounds
+        centre = polygon.centroid
+        inner = polygon.buffer(-0.1)
         best: tuple[float, tuple[float, float]] | None = None
-        steps = 8
+        steps = 10
         for i in range(steps + 1):
             for j in range(steps + 1):
                 x = left + (right - left) * i / steps
                 y = bottom + (top - bottom) * j / steps
                 px, py = canvas.px(x, y)
                 box = canvas.draw.textbbox((px, py), name, font=font, anchor="mm")
-                inside = polygon.buffer(-0.1).contains(_box_polygon(canvas, box))
-                if not inside or box[0] < 2 or box[2] > canvas.image.width - 2:
+                if box[0] < 2 or box[1] < 2 or box[2] > canvas.image.width - 2 or (
+                        box[3] > canvas.map_height - 2):
                     continue
+                outside = 0.0 if inner.contains(_box_polygon(canvas, box)) else 1.0
                 overlap = sum(_overlap(box, taken) for taken in canvas.taken)
-                centre = polygon.centroid
-                score = overlap * 100 + math.dist((x, y), (centre.x, centre.y))
+                score = outside * 1e6 + overlap * 100 + math.dist((x, y), (centre.x, centre.y))
                 if best is None or score < best[0]:
                     best = (score, (px, py))
         if best is None:
-            best = (0.0, canvas.px(polygon.centroid.x, polygon.centroid.y))
+            best = (0.0, canvas.px(centre.x, centre.y))
         box = canvas.draw.textbbox(best[1], name, font=font, anchor="mm")
         canvas.draw.rectangle((box[0] - 3, box[1] - 2, box[2] + 3, box[3] + 2),
                               fill=_COLOURS["label"], outline=_COLOURS["wall"])
