@@ -273,7 +273,8 @@ def _effect_atoms(operator: str, patterns: tuple[Any, ...], positions: tuple[tup
             atoms.extend(value)
         else:
             atom = ground(pattern, bindings, where)
-            if not all(is_ground(atom[i]) for i in where):
+            # an open variable of a method (``?v#N``) may stay, as JSHOP2's VAR0 does
+            if not all(is_ground(atom[i]) or "#" in str(atom[i]) for i in where):
                 raise PlanningError(f"operator '{operator}' has an effect {atom} with an unbound"
                                     " variable; bind it in the head or the precondition")
             atoms.append(atom)

@@ -243,6 +243,8 @@ class Planner:
                 del start[param]
             applied = False
             for bindings in operator.precondition.solve(proof, start):
+                if links:  # what the precondition left unbound stays the task's variable
+                    bindings = {**{param: variable for param, variable in links}, **bindings}
                 mark = state.mark()
                 effects = operator.apply(proof, bindings)
                 if effects is None:  # it would delete a protected atom
