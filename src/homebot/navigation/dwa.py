@@ -23,7 +23,13 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from homebot.navigation.localmap import LocalGrid, LocalPlannerError, check_request, lookahead
+from homebot.navigation.localmap import (
+    LocalGrid,
+    LocalPlannerError,
+    check_request,
+    lookahead,
+    visible_lookahead,
+)
 from homebot.robot import DriveKind, LaserScan, Pose, Twist, VelocityLimits
 
 __all__ = ["DynamicWindowPlanner"]
@@ -73,7 +79,15 @@ class DynamicWindowPlanner:
         """The velocity to command now (robot frame); see ``LocalController.plan``."""
         check_request(path, radius)
         grid = LocalGrid.from_scan(scan, self.grid_size, self.resolution)
-        target, final = lookahead(pose, path, min(self.lookahead, grid.half_size - 0.25))
+        grown = _grown(grid, radius + self.safety)
+        goal, final = lookahead(pose, path, min(self.lookahead, grid.half_size - 0.25))
+        # The carrot: the furthest point in straight sight along the local path to the
+        # lookahead point (the same local path by length as stage 2's first search).
+        field = grid.distance_field(goal, radius + self.safety, pool=1)
+        target = visible_lookahead(grid, field, self.lookahead, min(radius, grown))
+        if final and math.hypot(goal[0] - target[0], goal[1] - target[1]) < 0.05:
+            target = goal
+        final = final and target == goal
         omni = drive is DriveKind.OMNIDIRECTIONAL
         dv = limits.linear_acceleration * self.period
         dw = limits.angular_acceleration * self.period
@@ -90,7 +104,7 @@ class DynamicWindowPlanner:
             grid_v = np.meshgrid(vx, np.zeros(1), wz, indexing="ij")
         window = np.column_stack([axis.ravel() for axis in grid_v])
         window = window[np.hypot(window[:, 0], window[:, 1]) <= limits.linear + 1e-9]
-        score, clear_distance = self._evaluate(window, grid, target, final, limits, radius)
+        score, clear_distance = self._evaluate(window, grid, target, final, limits, grown)
         speed = np.hypot(window[:, 0], window[:, 1])
         # Admissible: able to stop before the nearest obstacle on the arc.
         admissible = speed <= np.sqrt(2 * limits.linear_acceleration * clear_distance)
@@ -108,7 +122,7 @@ class DynamicWindowPlanner:
 
     def _evaluate(self, window: np.ndarray, grid: LocalGrid, target: tuple[float, float],
                   final: bool, limits: VelocityLimits,
-                  radius: float) -> tuple[np.ndarray, np.ndarray]:
+                  grown: float) -> tuple[np.ndarray, np.ndarray]:
         """The objective of each velocity, and the free distance along its arc."""
         steps = max(round(self.horizon / 0.1), 1)
         dt = self.horizon / steps
@@ -119,10 +133,6 @@ class DynamicWindowPlanner:
         cos, sin = np.cos(middle), np.sin(middle)
         x = np.cumsum((window[:, 0] * cos - window[:, 1] * sin) * dt, axis=0)
         y = np.cumsum((window[:, 0] * sin + window[:, 1] * cos) * dt, axis=0)
-        start = float(grid.clearance_at(np.zeros(1), np.zeros(1))[0])
-        grown = radius + self.safety
-        if start < grown:  # already inside the margin: do not get any closer
-            grown = max(radius + 0.005, start - 0.01)
         clearance = grid.clearance_at(x, y) - grown
         speed = np.hypot(window[:, 0], window[:, 1])
         hit = clearance <= 0.0
@@ -143,6 +153,17 @@ class DynamicWindowPlanner:
         score = (self.heading * _normalise(heading) + self.clearance * _normalise(nearest) +
                  self.velocity * _normalise(velocity))
         return score, np.broadcast_to(free, (n,)).copy()
+
+
+def _grown(grid: LocalGrid, grown: float) -> float:
+    """The clearance to keep: ``grown``, or a little less than now when already closer.
+
+    The laser's local grid puts returns a few centimetres nearer than they are,
+    so a robot can find itself inside its own margin; it may then move, but
+    not closer to anything.
+    """
+    start = float(grid.clearance_at(np.zeros(1), np.zeros(1))[0])
+    return grown if start >= grown else start - 0.02
 
 
 def _normalise(values: np.ndarray) -> np.ndarray:

@@ -79,6 +79,7 @@ class MotionSearchPlanner:
         greed: the heuristic's weight (weighted A*: 1 is optimal in time, more is faster
             to search at a bounded loss).
         substeps: collision checks per motion.
+        batch: nodes expanded together (one vectorised step) from the front of the queue.
     """
 
     period: float = 0.05
@@ -90,8 +91,9 @@ class MotionSearchPlanner:
     grid_size: float = 4.0
     resolution: float = 0.05
     max_expansions: int = 50
-    goal_tolerance: float = 0.1
+    goal_tolerance: float = 0.05
     greed: float = 2.5
+    batch: int = 4
     substeps: int = 3
     last: PlannerCycle | None = field(default=None, init=False)
 
@@ -103,8 +105,9 @@ class MotionSearchPlanner:
             _validate_positive(value, f"the local planner's {what}")
         if not (math.isfinite(self.greed) and self.greed >= 1.0):
             raise LocalPlannerError(f"greed must be at least 1, not {self.greed!r}")
-        if self.depth < 1 or self.max_expansions < 1 or self.substeps < 1:
-            raise LocalPlannerError("depth, max_expansions and substeps must be at least 1")
+        if min(self.depth, self.max_expansions, self.substeps, self.batch) < 1:
+            raise LocalPlannerError("depth, max_expansions, substeps and batch must be at "
+                                    "least 1")
         if self.safety < 0 or self.speed_margin < 0:
             raise LocalPlannerError("safety and speed_margin cannot be negative")
 
@@ -170,11 +173,12 @@ class _Search:
         start_clearance = float(grid.clearance_at(np.zeros(1), np.zeros(1))[0])
         static = radius + planner.safety
         # Already inside the margin (pushed there by a person): do not get any closer.
-        self.static = static if start_clearance >= static else max(radius + 0.005,
-                                                                  start_clearance - 0.01)
+        # (The scan's grid puts returns a few centimetres nearer than they are.)
+        self.static = static if start_clearance >= static else start_clearance - 0.02
         self.first_lattice = self._lattice(True)
         self.deep_lattice = self._lattice(False)
-        capacity = 1 + len(self.first_lattice) + planner.max_expansions * len(self.deep_lattice)
+        capacity = 1 + len(self.first_lattice) + (planner.max_expansions + planner.batch) * \
+            len(self.deep_lattice)
         # Columns: x, y, theta, vx, vy, wz, remaining path length.
         self.state = np.zeros((capacity, 7))
         self.first = np.zeros(capacity, dtype=np.intp)
@@ -198,6 +202,12 @@ class _Search:
     # ---------------------------------------------------------------- the search
 
     def run(self) -> tuple[Twist | None, int, int]:
+        """Best-first over motion sequences; pops up to ``batch`` nodes per vectorised expansion.
+
+        A node whose sequence is ``depth`` motions long, or ends at the target, is
+        final: the first one popped wins. Without one within the budget, the
+        deepest, then cheapest, node seen wins.
+        """
         p = self.p
         v = self.velocity
         self.state[0] = (0.0, 0.0, 0.0, v.vx, v.vy if self.omni else 0.0, v.wz, np.inf)
@@ -206,15 +216,25 @@ class _Search:
         best: tuple[int, float, int] | None = None  # (−depth, f, node)
         expansions = 0
         while frontier and expansions < p.max_expansions:
-            _, node = heapq.heappop(frontier)
-            depth = int(self.depth[node])
-            if node and (depth >= p.depth or self.state[node, 6] <= p.goal_tolerance):
-                return self._command(node), expansions, depth
-            expansions += 1
-            children, scores = self._expand(node, depth)
-            for child, score in zip(children.tolist(), scores.tolist(), strict=True):
+            parents: list[int] = []
+            while frontier and len(parents) < p.batch and expansions < p.max_expansions:
+                score, node = heapq.heappop(frontier)
+                depth = int(self.depth[node])
+                if node and (depth >= p.depth or self.state[node, 6] <= p.goal_tolerance):
+                    if not parents:
+                        return self._command(node), expansions, depth
+                    heapq.heappush(frontier, (score, node))  # after this batch
+                    break
+                parents.append(node)
+                expansions += 1
+                if node == 0:
+                    break  # the root expands alone, with the finer first lattice
+            children, scores = self._expand(np.asarray(parents, dtype=np.intp))
+            depths = self.depth[children].tolist()
+            for child, score, depth in zip(children.tolist(), scores.tolist(), depths,
+                                           strict=True):
                 heapq.heappush(frontier, (score, child))
-                key = (-(depth + 1), score, child)
+                key = (-depth, score, child)
                 if best is None or key < best:
                     best = key
         if best is None:
@@ -225,44 +245,54 @@ class _Search:
         vx, vy, wz = self.state[self.first[node], 3:6]
         return Twist(float(vx), float(vy), float(wz))
 
-    def _expand(self, node: int, depth: int) -> tuple[np.ndarray, np.ndarray]:
-        """Add the admissible children of ``node``; their indices and A* scores."""
+    def _expand(self, parents: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Add the admissible children of ``parents``; their indices and A* scores."""
         p, limits = self.p, self.limits
-        x0, y0, th0, vx0, vy0, w0, _ = self.state[node]
-        targets = (self.first_lattice if depth == 0 else self.deep_lattice) + (vx0, vy0, w0)
+        root = parents[0] == 0
+        lattice = self.first_lattice if root else self.deep_lattice
+        base = self.state[parents]
+        size = len(lattice)
+        parent = np.repeat(parents, size)
+        start = np.repeat(base, size, axis=0)  # (n, 7)
+        targets = (base[:, None, 3:6] + lattice[None, :, :]).reshape(-1, 3)
         targets[:, 2] = np.minimum(np.maximum(targets[:, 2], -limits.angular), limits.angular)
         if self.omni:
             # Hardly backwards: the laser sees ahead and to the sides.
             targets[:, 0] = np.minimum(np.maximum(targets[:, 0], -0.1), limits.linear)
-            targets = targets[np.hypot(targets[:, 0], targets[:, 1]) <= limits.linear + 1e-9]
+            inside = np.hypot(targets[:, 0], targets[:, 1]) <= limits.linear + 1e-9
+            targets, start, parent = targets[inside], start[inside], parent[inside]
         else:
             targets[:, 0] = np.minimum(np.maximum(targets[:, 0], 0.0), limits.linear)
         k = p.substeps
         dt = p.step / k
-        linear, angular = limits.linear_acceleration, limits.angular_acceleration
-        rates = np.array((linear, linear, angular))
-        change = targets - (vx0, vy0, w0)
-        # Velocity at the middle of each substep, ramping at the acceleration limits: (k, n, 3).
+        rates = np.array((limits.linear_acceleration, limits.linear_acceleration,
+                          limits.angular_acceleration))
+        now = start[:, 3:6]
+        change = targets - now
+        # Velocity in the middle of each substep, ramping at the acceleration limits: (k, n, 3).
         bound = ((np.arange(1, k + 1) - 0.5) * dt)[:, None, None] * rates
-        velocity = np.minimum(np.maximum(change, -bound), bound) + np.array((vx0, vy0, w0))
+        velocity = np.minimum(np.maximum(change, -bound), bound) + now
         turn = velocity[:, :, 2] * dt
-        th_all = th0 + np.cumsum(turn, axis=0)
+        th_all = start[:, 2] + np.cumsum(turn, axis=0)
         middle = th_all - turn / 2
         cos, sin = np.cos(middle), np.sin(middle)
         vx, vy = velocity[:, :, 0], velocity[:, :, 1]
-        x_all = x0 + np.cumsum((vx * cos - vy * sin) * dt, axis=0)
-        y_all = y0 + np.cumsum((vx * sin + vy * cos) * dt, axis=0)
+        x_all = start[:, 0] + np.cumsum((vx * cos - vy * sin) * dt, axis=0)
+        y_all = start[:, 1] + np.cumsum((vx * sin + vy * cos) * dt, axis=0)
         clearance = self.grid.clearance_at(x_all, y_all)
         ok = np.all(clearance >= self.static + p.speed_margin * np.hypot(vx, vy), axis=0)
         x, y, th = x_all[-1], y_all[-1], th_all[-1]
         full = p.step * rates
-        end = np.minimum(np.maximum(change, -full), full) + np.array((vx0, vy0, w0))
+        end = np.minimum(np.maximum(change, -full), full) + now
         rows, columns = self.grid.index(x, y)
-        remaining = self.distances[rows, columns]
-        end_speed = np.hypot(end[:, 0], end[:, 1])
+        # The field is coarse; the straight distance is a bound that is exact near the target.
+        remaining = np.maximum(self.distances[rows, columns],
+                               np.hypot(x - self.target[0], y - self.target[1]))
         if self.final:
             # Able to stop on the goal: v² ≤ 2·a·(distance left).
-            ok &= end_speed <= np.sqrt(2 * linear * np.maximum(remaining - 0.02, 0.0)) + 0.05
+            end_speed = np.hypot(end[:, 0], end[:, 1])
+            ok &= end_speed <= np.sqrt(2 * limits.linear_acceleration *
+                                       np.maximum(remaining - 0.02, 0.0)) + 0.05
         keep = np.flatnonzero(ok)
         count = len(keep)
         children = np.arange(self.size, self.size + count)
@@ -270,12 +300,13 @@ class _Search:
         self.state[children, 2] = th[keep]
         self.state[children, 3:6] = end[keep]
         self.state[children, 6] = remaining[keep]
-        self.first[children] = children if depth == 0 else self.first[node]
-        self.depth[children] = depth + 1
+        self.first[children] = children if root else self.first[parent[keep]]
+        depth = self.depth[parent[keep]] + 1
+        self.depth[children] = depth
         self.size += count
         heuristic = self._time_to_go(remaining[keep], end[keep], th[keep], rows[keep],
                                      columns[keep])
-        scores: np.ndarray = (depth + 1) * p.step + p.greed * heuristic
+        scores: np.ndarray = depth * p.step + p.greed * heuristic
         return children, scores
 
     def _time_to_go(self, remaining: np.ndarray, end: np.ndarray, heading: np.ndarray,

@@ -31,6 +31,7 @@ __all__ = [
     "check_request",
     "lookahead",
     "to_robot_frame",
+    "visible_lookahead",
 ]
 
 
@@ -141,20 +142,28 @@ class LocalGrid:
         return ((column + 0.5) * self.resolution - self.half_size,
                 (row + 0.5) * self.resolution - self.half_size)
 
-    def distance_field(self, target: tuple[float, float], grown: float) -> np.ndarray:
+    def distance_field(self, target: tuple[float, float], grown: float,
+                       pool: int = 2) -> np.ndarray:
         """Path length (metres) from every cell to ``target`` among cells clearer than ``grown``.
 
         CAESAR's first local search (by length), done as one Dijkstra sweep out
         from the target so that every motion the second search tries can look
-        up its remaining distance. A target inside grown obstacles moves to the
-        nearest clear cell; cells that are not clear get the field of their
-        nearest clear cell plus the way to it (so the robot can leave them).
+        up its remaining distance. The sweep runs on cells ``pool`` times coarser
+        (a coarse cell is clear when any of its cells is), which is plenty for a
+        heuristic. A target inside grown obstacles moves to the nearest clear
+        cell; cells that are not clear get the field of their nearest clear cell
+        plus the way to it (so the robot can leave them).
         """
-        free = self.clearance >= grown
+        cells = self.cells - self.cells % pool
+        clear = self.clearance[:cells, :cells] >= grown
+        free: np.ndarray = np.any(clear.reshape(cells // pool, pool, cells // pool, pool),
+                                  axis=(1, 3))
+        resolution = self.resolution * pool
         if not free.any():
             return np.full(self.clearance.shape, np.inf)
-        rows, columns = self.index(np.array([target[0]]), np.array([target[1]]))
-        root = (int(rows[0]), int(columns[0]))
+        column = int(min(max((target[0] + self.half_size) / resolution, 0), free.shape[1] - 1))
+        row = int(min(max((target[1] + self.half_size) / resolution, 0), free.shape[0] - 1))
+        root = (row, column)
         if not free[root]:
             candidates = np.argwhere(free)
             nearest = np.argmin(np.hypot(candidates[:, 0] - root[0], candidates[:, 1] - root[1]))
@@ -164,14 +173,16 @@ class LocalGrid:
         finder.add_root(root)
         finder.resolve()
         raw = finder.distance
-        unreached = raw == np.iinfo(raw.dtype).max
-        field = np.where(unreached, np.inf, raw * (self.resolution / 100.0))
-        reached = ~unreached
+        reached = raw != np.iinfo(raw.dtype).max
+        coarse = np.where(reached, raw * (resolution / 100.0), np.inf)
         if not reached.all():
             gap, (near_rows, near_columns) = ndimage.distance_transform_edt(
                 ~reached, return_indices=True)
-            field = np.where(reached, field,
-                             field[near_rows, near_columns] + gap * self.resolution)
+            coarse = np.where(reached, coarse,
+                              coarse[near_rows, near_columns] + gap * resolution)
+        field = np.repeat(np.repeat(coarse, pool, axis=0), pool, axis=1)
+        if cells < self.cells:
+            field = np.pad(field, ((0, self.cells - cells), (0, self.cells - cells)), mode="edge")
         result: np.ndarray = field
         return result
 
@@ -211,3 +222,39 @@ def lookahead(pose: Pose, path: Sequence[tuple[float, float]],
             return (float(point[0]), float(point[1])), False
         left -= remaining
     return (float(points[-1, 0]), float(points[-1, 1])), True
+
+
+def visible_lookahead(grid: LocalGrid, field: np.ndarray, distance: float,
+                      clearance: float) -> tuple[float, float]:
+    """The carrot: the furthest point of the local path (down ``field``) in straight sight.
+
+    The local path runs from the robot's cell down the distance field (stage 2's
+    first search, by length) for at most ``distance`` metres; the carrot is its
+    furthest point whose straight line from the robot keeps ``clearance`` from
+    every return (or its first step, when none does).
+    """
+    rows, columns = grid.index(np.zeros(1), np.zeros(1))
+    row, column = int(rows[0]), int(columns[0])
+    last = grid.cells - 1
+    points: list[tuple[float, float]] = []
+    travelled = 0.0
+    while travelled < distance:
+        best = (float(field[row, column]), row, column)
+        for dr in (-1, 0, 1):
+            for dc in (-1, 0, 1):
+                r, c = row + dr, column + dc
+                if 0 <= r <= last and 0 <= c <= last and field[r, c] < best[0]:
+                    best = (float(field[r, c]), r, c)
+        if best[1:] == (row, column):
+            break
+        travelled += grid.resolution * math.hypot(best[1] - row, best[2] - column)
+        row, column = best[1], best[2]
+        points.append(grid.centre_of(row, column))
+    if not points:
+        return (0.0, 0.0)
+    for point in reversed(points):
+        samples = max(int(math.hypot(*point) / (grid.resolution / 2)), 1)
+        t = np.linspace(0.0, 1.0, samples + 1)[1:]
+        if np.all(grid.clearance_at(t * point[0], t * point[1]) >= clearance):
+            return point
+    return points[0]
