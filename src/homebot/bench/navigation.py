@@ -28,7 +28,7 @@ import math
 import random
 import statistics
 import time
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -57,7 +57,8 @@ __all__ = ["add_arguments", "run"]
 
 _REACHED = 0.3  #: metres from the goal, by the truth
 _GOAL_CLEARANCE = 0.45  #: a random free goal keeps this far from walls and furniture
-_PLANNERS = {"stage2": MotionSearchPlanner, "dwa": DynamicWindowPlanner}
+_PLANNERS: dict[str, Callable[[], LocalController]] = {
+    "stage2": MotionSearchPlanner, "dwa": DynamicWindowPlanner}
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
