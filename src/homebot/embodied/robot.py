@@ -254,8 +254,10 @@ class BodyRobot(Robot):
         particles = self.localisation.particles
         if len(particles) > _PARTICLES_SHOWN:
             particles = particles[:: math.ceil(len(particles) / _PARTICLES_SHOWN)]
-        self.events.record("robot.laser", points=laser.tolist())
-        self.events.record("robot.particles", points=np.round(particles, 3).tolist())
+        world = self.world.name
+        self.events.record("robot.laser", world=world, points=laser.tolist())
+        self.events.record("robot.particles", world=world,
+                           points=np.round(particles, 3).tolist())
 
     def follow(self, person: str, goal: Pose | None) -> MoveReport:
         seen = [p for p in self.percepts.perceive_people() if p.name == person]

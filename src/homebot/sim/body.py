@@ -40,8 +40,8 @@ _LASER_MOUNT = Pose(0.15, 0.0, 0.0)
 _PAN_LIMIT = 2.6
 _TILT_LIMITS = (-0.4, 0.9)
 _CONTACT_HYSTERESIS = 0.03  #: metres clear of an obstacle before a new touch counts again
-_TRAJECTORY_STEP = 0.1
-_CATCH_UP_STEP = 0.5  #: seconds per walking step when time passed outside the ticks  #: metres between recorded trajectory points
+_TRAJECTORY_STEP = 0.1  #: metres between recorded trajectory points
+_CATCH_UP_STEP = 0.5  #: seconds per walking step when time passed outside the ticks
 # Seeds of the body's own random streams, apart from the simulation's disturbances.
 _SENSOR_STREAM, _WALKER_STREAM = 101, 202
 
@@ -168,7 +168,8 @@ class SimBody(Body):
         if points[-1] != here:
             points.append(here)
         if len(points) > 1:
-            self.sim.events.record("robot.trajectory", points=[list(p) for p in points])
+            self.sim.events.record("robot.trajectory", world=self.sim.world.name,
+                                   points=[list(p) for p in points])
             self.sim.trail.extend(points[1:])
         self._trajectory = [here]
 
