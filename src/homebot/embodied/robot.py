@@ -20,7 +20,6 @@ from dataclasses import dataclass
 from typing import Protocol
 
 import numpy as np
-from scipy import ndimage
 
 from homebot.events import EventLog
 from homebot.navigation import Navigator
@@ -51,6 +50,7 @@ _SECONDS_PER_METRE = 6.0  #: a leg is given up after this long per metre of path
 _WAIT_BUDGET = 40.0  #: ... plus this long for waiting and going round
 _STUCK_SECONDS = 3.0  #: without headway this long, stage 1 plans round what the laser sees
 _OBSTACLE_MARGIN = 0.12  #: metres kept from an unexpected return beyond the robot's radius
+_STATIC_MARGIN = 0.07  #: metres kept from walls and furniture beyond it, going round
 _UNEXPLAINED = 0.15  #: a return this far from the static map's obstacles is unexpected
 _PARTICLES_SHOWN = 500
 
@@ -96,8 +96,6 @@ class BodyRobot(Robot):
         self.percepts = percepts
         self.companions = companions
         self.events = events
-        grid = navigator.grid
-        self._static_clearance = ndimage.distance_transform_edt(~grid.occupied) * grid.resolution
         self.localisation.update(body.odometry(), body.scan())
 
     # ------------------------------------------------------------ state
@@ -186,7 +184,8 @@ class BodyRobot(Robot):
             here = self._localise()
             path = self.navigator.plan_around(here.xy(), target.xy(), avoid_doors,
                                               self._unexpected_returns(),
-                                              body.radius + _OBSTACLE_MARGIN)
+                                              body.radius + _OBSTACLE_MARGIN,
+                                              body.radius + _STATIC_MARGIN)
             self.events.record("robot.replan", found=path is not None)
         person = self._person_near(self.pose().xy(), 1.5)
         blocker = Blocker.PERSON if person else Blocker.NO_PATH
@@ -207,7 +206,8 @@ class BodyRobot(Robot):
                          0, columns - 1)
         row = np.clip(((points[:, 1] - grid.origin[1]) / grid.resolution).astype(int),
                       0, rows - 1)
-        unexplained: np.ndarray = points[self._static_clearance[row, column] > _UNEXPLAINED]
+        clearance = self.navigator.clearance()
+        unexplained: np.ndarray = points[clearance[row, column] > _UNEXPLAINED]
         return unexplained
 
     def _halt(self) -> None:

@@ -7,6 +7,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy import ndimage
 
 from homebot.navigation.astar import astar
 from homebot.navigation.grid import OccupancyGrid
@@ -47,6 +48,7 @@ class Navigator:
     _masks: dict[frozenset[str], np.ndarray] = field(init=False, default_factory=dict)
     _cache: dict[tuple[int, int, frozenset[str]], list[int] | None] = field(
         init=False, default_factory=dict)
+    _static_clearance: np.ndarray | None = field(init=False, default=None)
 
     def __post_init__(self) -> None:
         self.grid = OccupancyGrid.from_world(self.world)
@@ -93,15 +95,20 @@ class Navigator:
 
     def plan_around(self, start: tuple[float, float], goal: tuple[float, float],
                     closed_doors: frozenset[str], obstacles: np.ndarray,
-                    clearance: float) -> tuple[tuple[float, float], ...] | None:
-        """Waypoints of a path that also keeps ``clearance`` from ``obstacles`` ((n, 2) points on the map).
+                    clearance: float, static_clearance: float | None = None,
+                    ) -> tuple[tuple[float, float], ...] | None:
+        """Waypoints of a path keeping ``clearance`` from ``obstacles`` ((n, 2) map points).
 
         CAESAR's dynamic obstacle extension: what the laser sees that the static map
         lacks (people, a chair moved) is drawn into the grid, and A* plans round it.
         One search over the whole grid, uncached, since the obstacles change.
+        ``static_clearance`` (default: the robot's radius) is kept from walls and
+        furniture: a local planner that keeps a safety margin needs the same here.
         """
-        mask = self._mask(closed_doors).copy()
         grid = self.grid
+        mask = self._mask(closed_doors).copy()
+        if static_clearance is not None:
+            mask |= (self.clearance() < static_clearance).ravel()
         if len(obstacles):
             reach = int(np.ceil(clearance / grid.resolution))
             rows, columns = grid.shape
@@ -127,6 +134,13 @@ class Navigator:
             return None
         points = [grid.center_of(*divmod(cell, columns)) for cell in cells_path]
         return (start, *_simplify(points)[1:-1], goal)
+
+    def clearance(self) -> np.ndarray:
+        """Metres from each cell centre to the nearest wall or furniture cell."""
+        if self._static_clearance is None:
+            self._static_clearance = ndimage.distance_transform_edt(
+                ~self.grid.occupied) * self.grid.resolution
+        return self._static_clearance
 
     def distance(self, start: tuple[float, float], goal: tuple[float, float],
                  closed_doors: frozenset[str] = frozenset()) -> float:
