@@ -133,3 +133,17 @@ def test_bad_body_settings_are_errors(apartment: World, apartment_navigator: Nav
         _body(apartment, apartment_navigator, walkers=["Nobody"])
     with pytest.raises(BodyError, match="limit of 0"):
         VelocityLimits(linear=0.0)
+
+
+def test_an_omnidirectional_base_moves_sideways(apartment: World) -> None:
+    data = apartment.to_dict()
+    data["robot"]["drive"] = "omnidirectional"
+    world = World.from_dict(data, "apartment, omnidirectional")
+    body = SimBody(Simulation(world, seed=0))
+    assert body.drive is DriveKind.OMNIDIRECTIONAL
+    body.teleport(Pose(6.0, 5.0, 0.0))
+    body.command_velocity(Twist(0.0, 0.3, 0.0))
+    body.tick(40)
+    x, y, theta = body.sim.robot_pose
+    assert x == pytest.approx(6.0) and theta == pytest.approx(0.0)
+    assert 5.4 < y < 5.7
