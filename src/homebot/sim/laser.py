@@ -48,6 +48,9 @@ class LaserSimulator:
         self._beam_angles = self.angle_min + self.angle_increment * np.arange(model.beams)
         # Distances along a beam at which the raster is sampled, in cells.
         self._steps = np.arange(1, int(model.range_max / TRUTH_RESOLUTION) + 2, dtype=np.float32)
+        # The sample coordinates of one sweep, reused: (beams, samples) in raster cells.
+        self._columns = np.empty((model.beams, len(self._steps)), dtype=np.float32)
+        self._rows = np.empty_like(self._columns)
 
     def scan(self, stamp: float, robot: tuple[float, float, float],
              shut_doors: frozenset[str], legs: Sequence[tuple[float, float]]) -> LaserScan:
@@ -73,8 +76,12 @@ class LaserSimulator:
         column0 = np.float32((origin[0] - raster.origin[0]) / TRUTH_RESOLUTION - 0.5)
         row0 = np.float32((origin[1] - raster.origin[1]) / TRUTH_RESOLUTION - 0.5)
         steps = self._steps
-        columns = (np.outer(directions[:, 0], steps) + column0).astype(np.float32)
-        rows = (np.outer(directions[:, 1], steps) + row0).astype(np.float32)
+        columns, rows = self._columns, self._rows
+        cos, sin = directions.astype(np.float32).T
+        np.multiply(cos[:, None], steps[None, :], out=columns)
+        np.multiply(sin[:, None], steps[None, :], out=rows)
+        columns += column0
+        rows += row0
         # Outside the raster counts as solid: the home ends there.
         samples = cv2.remap(solid, columns, rows, cv2.INTER_NEAREST,
                             borderMode=cv2.BORDER_CONSTANT, borderValue=1)
