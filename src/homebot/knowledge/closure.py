@@ -58,6 +58,7 @@ class Closure:
         "_holding",
         "_memo",
         "_own_levels",
+        "_rank",
         "inherited",
         "name",
         "rules",
@@ -83,6 +84,7 @@ class Closure:
             None,
         ]
         self.inherited = inherited
+        self._rank: dict[int, int] | None = None
         self._own_levels = own_levels(own) if own is not None else ({}, {})
         own_rules = []
         if own is not None and not all(
@@ -177,31 +179,35 @@ class Closure:
         inherited = self.inherited
         if inherited is None:
             seen: set[str] = set()
-            for name in self.fact_names(namespace):
-                seen.add(name)
-                result.extend(self.resolve(namespace, name).literals)
-            for key_namespace, name in self.graph.order:
-                if key_namespace == namespace and name not in seen:
-                    seen.add(name)
-                    result.extend(self.resolve(namespace, name).literals)
+            for _, literals in self._stated(namespace, seen):
+                result.extend(literals)
+            for _, literals in self._derived(namespace, seen):
+                result.extend(literals)
         else:
             # The class's answer, re-evaluated only where this individual makes a difference.
             own = self._own_levels[namespace]
-            for name in own:
-                result.extend(self.resolve(namespace, name).literals)
+            for name, stated in own.items():
+                # what the individual states here; what its classes add, where they say it
+                result.extend(x for x in self.resolve(namespace, name).literals if x in stated)
             flat, spans = inherited.flat_entries(namespace)
-            replaced = sorted(
-                (*spans[name], name)
-                for name in {k[1] for k in self._affected_keys() if k[0] == namespace}
-                if name in spans
-            )
+            facts, boundary = inherited.fact_boundary(namespace)
+            affected = {k[1] for k in self._affected_keys() if k[0] == namespace}
+            # A derived key this individual changes may move (derived keys are listed by
+            # the default that concluded them): then the derived part is listed afresh.
+            fresh = any(name in spans and spans[name][0] >= facts for name in affected)
+            replaced = sorted((*spans[name], name) for name in affected
+                              if name in spans and not (fresh and spans[name][0] >= facts))
             position = 0
             for _index, start, end, name in replaced:
                 result.extend(flat[position:start])
-                if name not in own:
-                    result.extend(self.resolve(namespace, name).literals)
+                stated = own.get(name, ())
+                result.extend(x for x in self.resolve(namespace, name).literals
+                              if x not in stated)
                 position = end
-            result.extend(flat[position:])
+            result.extend(flat[position:boundary if fresh else len(flat)])
+            if fresh:
+                for _, literals in self._derived(namespace, set(self.fact_names(namespace))):
+                    result.extend(literals)
         holding = tuple(result)
         self._holding[namespace] = holding
         return holding
@@ -212,16 +218,62 @@ class Closure:
         if cached is not None:
             return cached
         seen: set[str] = set()
+        result = self._stated(namespace, seen)
+        result.extend(self._derived(namespace, seen))
+        self._entries[namespace] = result
+        return result
+
+    def _stated(self, namespace: int, seen: set[str]) -> list[tuple[str, tuple[Literal, ...]]]:
+        """The stated keys' literals where SitLog lists them: each where it is stated.
+
+        An individual's own statements come first; what its classes add to the same key
+        (an inherited ``not(p=>v)`` beside its own ``p=>w``) comes at the class's place.
+        """
         result: list[tuple[str, tuple[Literal, ...]]] = []
-        for name in self.fact_names(namespace):
+        own = self._own_levels[namespace]
+        for name, stated in own.items():
             seen.add(name)
-            result.append((name, self.resolve(namespace, name).literals))
+            result.append((name, tuple(x for x in self.resolve(namespace, name).literals
+                                       if x in stated)))
+        for name in self.table.facts[namespace]:
+            stated = own.get(name)
+            if stated is None:
+                seen.add(name)
+                result.append((name, self.resolve(namespace, name).literals))
+            else:
+                rest = tuple(x for x in self.resolve(namespace, name).literals
+                             if x not in stated)
+                if rest:
+                    result.append((name, rest))
+        return result
+
+    def fact_boundary(self, namespace: int) -> tuple[int, int]:
+        """How many of ``entries`` are stated names, and where they end in ``flat_entries``."""
+        facts = len(self.fact_names(namespace))
+        flat, spans = self.flat_entries(namespace)
+        starts = [start for index, start, _ in spans.values() if index >= facts]
+        return facts, min(starts, default=len(flat))
+
+    def _derived(self, namespace: int, seen: set[str]) -> list[tuple[str, tuple[Literal, ...]]]:
+        """The derived keys not in ``seen``, ordered by the default that concluded each.
+
+        SitLog's KB service appends conclusions as it tries the defaults in priority
+        order, so a key is listed where its first firing default comes.
+        """
+        rank = self._rank
+        if rank is None:
+            rank = self._rank = {id(rule): index for index, rule in enumerate(self.rules)}
+        last = len(rank)
+        found: list[tuple[int, int, str, tuple[Literal, ...]]] = []
         for key_namespace, name in self.graph.order:
             if key_namespace == namespace and name not in seen:
                 seen.add(name)
-                result.append((name, self.resolve(namespace, name).literals))
-        self._entries[namespace] = result
-        return result
+                resolution = self.resolve(namespace, name)
+                position = last if resolution.rule is None else rank.get(id(resolution.rule),
+                                                                         last)
+                found.append((position, len(found), name, resolution.literals))
+        found.sort()
+        return [(name, literals) for _, _, name, literals in found]
 
     def flat_entries(
         self, namespace: int

@@ -84,30 +84,49 @@ def effective(level: Iterable[Literal]) -> tuple[Literal, ...]:
     return tuple(kept)
 
 
+def _exclusion(literal: Literal) -> bool:
+    return literal.negated and literal.value is not None
+
+
 def resolve_levels(levels: Levels) -> Resolution:
     """Specificity: the most specific level that settles the key decides it.
 
     ``not(p=>v)`` only excludes ``v`` and lets less specific levels speak; ``p``,
-    ``not(p)`` and ``p=>w`` (``w`` not excluded) settle the key.
+    ``not(p)`` and ``p=>w`` (``w`` not excluded) settle the key. As in SitLog's KB
+    service, the first exclusion of the key (at any level) is kept beside the value
+    when it does not contradict it (``a=>v1`` with an inherited ``not(a=>v3)``), and the
+    literals are listed in the order they are stated, most specific first.
     """
     if levels and len(levels[0]) == 1:  # the common case: one literal settles it
         only = levels[0][0]
-        if not (only.negated and only.value is not None):
+        if not _exclusion(only) and (len(levels) == 1 or not any(
+                _exclusion(literal) for level in levels[1:] for literal in level)):
             return Resolution(levels[0], True)
     exclusions: list[Literal] = []
+    decided: list[Literal] = []
     for level in levels:
-        decided = []
         for literal in level:
-            if literal.negated and literal.value is not None:
+            if _exclusion(literal):
                 if literal not in exclusions:
                     exclusions.append(literal)
             elif not _excluded_by(literal, exclusions):
                 decided.append(literal)
         if decided:
-            return Resolution((*decided, *exclusions), True)
-    if not exclusions:
+            break
+    if not decided and not exclusions:
         return EMPTY
-    return Resolution(tuple(exclusions), False)
+    values = {literal.value for literal in decided}
+    shown: list[Literal] = []
+    negation_shown = False
+    for level in levels:
+        for literal in level:
+            if _exclusion(literal):
+                if not negation_shown and literal.value not in values:
+                    shown.append(literal)
+                    negation_shown = True
+            elif literal in decided and literal not in shown:
+                shown.append(literal)
+    return Resolution(tuple(shown), bool(decided))
 
 
 def _excluded_by(literal: Literal, exclusions: list[Literal]) -> bool:
@@ -117,8 +136,13 @@ def _excluded_by(literal: Literal, exclusions: list[Literal]) -> bool:
 
 
 def sort_rules(preferences: Iterable[tuple[Preference, int]], source: str) -> list[Rule]:
-    """One entity's conditional defaults by weight (stable: ties keep their order)."""
+    """One entity's conditional defaults by weight; of equal weights the last listed first.
+
+    SitLog's KB service orders one level's preferences by a permutation sort of the
+    level's list reversed, so that of two equal weights the one listed last wins.
+    """
     rules = [Rule.of(p, source, namespace) for p, namespace in preferences]
+    rules.reverse()
     rules.sort(key=lambda rule: rule.preference.weight)
     return rules
 
