@@ -236,13 +236,13 @@ class Closure:
             result.append((name, tuple(x for x in self.resolve(namespace, name).literals
                                        if x in stated)))
         for name in self.table.facts[namespace]:
-            stated = own.get(name)
-            if stated is None:
+            mine = own.get(name)
+            if mine is None:
                 seen.add(name)
                 result.append((name, self.resolve(namespace, name).literals))
             else:
                 rest = tuple(x for x in self.resolve(namespace, name).literals
-                             if x not in stated)
+                             if x not in mine)
                 if rest:
                     result.append((name, rest))
         return result
