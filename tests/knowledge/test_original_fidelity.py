@@ -45,3 +45,18 @@ def test_derived_conclusions_are_listed_in_the_order_their_defaults_fire() -> No
     kb = KnowledgeBase.from_text(
         "[class(top,none,[[p,0],['-'=>>late,5],[p=>>early,1]],[],[[id=>w,[],[]]])]")
     assert _answer(kb, "w") == ["p", "early", "late"]
+
+
+def test_the_harness_counts_identical_reordered_and_different_answers() -> None:
+    from homebot.bench.kb_original import compare_answers, split_prolog_list
+
+    assert split_prolog_list("[a=>'x,y',not(b=>[c,d]),e]") == ["a=>'x,y'", "not(b=>[c,d])", "e"]
+    kb = KnowledgeBase.from_text(KB)
+    counts = compare_answers(kb, {
+        "x": "[colour=>red,b1,not(colour=>blue),d1,loc=>shelf_c]",
+        "y": "[loc=>shelf_c,not(colour=>blue)]",
+    })
+    assert (counts["identical"], counts["same_literals_other_order"], counts["different"]) == (
+        1, 1, 0)
+    counts = compare_answers(kb, {"y": "[loc=>shelf_a]", "x": "failed"})
+    assert (counts["different"], counts["original_failed_or_timed_out"]) == (1, 1)
