@@ -78,12 +78,22 @@ def test_stage2_drives_an_omnidirectional_base_round_an_obstacle() -> None:
 
 
 def test_local_grid_marks_returns_and_their_clearance() -> None:
-    body = FakeBody(Pose(0.0, 0.0, 0.0), [(1.0, 0.0, 0.1)])
+    body = FakeBody(Pose(0.0, 0.0, 0.0), [(1.3, 0.0, 0.4)])
     grid = LocalGrid.from_scan(body.scan())
     near = grid.clearance_at(np.array([0.9, 0.0, 5.0]), np.array([0.0, 0.0, 0.0]))
-    assert near[0] < 0.06  # on the obstacle's surface
-    assert 0.8 < near[1] < 0.95
+    assert near[0] < 0.04  # on the obstacle's surface
+    assert near[1] == pytest.approx(0.9, abs=0.04)
     assert near[2] == grid.outside  # beyond the grid nothing is known
+
+
+def test_legs_are_kept_further_away_than_walls() -> None:
+    legs = FakeBody(Pose(0.0, 0.0, 0.0), [(1.0, 0.1, 0.06), (1.0, -0.1, 0.06)])
+    post = FakeBody(Pose(0.0, 0.0, 0.0), [(1.3, 0.0, 0.36)])  # its face is as near
+    at_robot = [float(LocalGrid.from_scan(body.scan()).clearance_at(np.zeros(1),
+                                                                    np.zeros(1))[0])
+                for body in (legs, post)]
+    assert at_robot[1] == pytest.approx(0.94, abs=0.04)
+    assert at_robot[0] < at_robot[1] - 0.08
 
 
 @pytest.mark.parametrize("planner", PLANNERS)

@@ -231,6 +231,8 @@ class _Outcome:
             "cycle p95 ms": round(1000 * float(np.percentile(self.cycles, 95)), 3)
             if self.cycles else None,
             "wall seconds": round(self.wall_seconds, 1),
+            "per goal": {"reached": [int(r) for r in self.reached],
+                         "seconds": [round(d, 2) for d in self.durations]},
         }
 
 

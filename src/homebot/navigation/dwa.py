@@ -10,9 +10,11 @@ obstacle on their arc (admissible velocities), and picks the one maximising
 each term normalised over the window: ``heading`` is how well the robot
 faces the lookahead point at the arc's end, ``clearance`` the distance to the
 nearest obstacle on the arc (capped), ``velocity`` the forward speed. The
-obstacles come from the same scan-built ``LocalGrid`` as stage 2, grown by
-the robot's radius and the same static safety margin (no speed-dependent
-growth: braking is what DWA's admissibility checks).
+obstacles come from the same scan-built ``LocalGrid`` as stage 2. A velocity
+is admissible when the robot can brake before its footprint (plus
+``contact``) touches a return on the arc; the safety margin only shapes the
+local path the carrot is taken from (no speed-dependent growth: braking is
+what DWA's admissibility checks).
 """
 
 from __future__ import annotations
@@ -46,23 +48,26 @@ class DynamicWindowPlanner:
         heading, clearance, velocity: the objective's weights (α, β, γ).
         clearance_cap: clearance beyond this counts as this, metres.
         lookahead: how far along the path the robot steers for, metres.
-        safety: clearance kept beyond the robot's radius, metres.
+        safety: clearance the local path keeps beyond the robot's radius, metres.
+        contact: clearance beyond the radius that counts as touching, metres.
     """
 
     period: float = 0.05
     horizon: float = 1.5
     samples_linear: int = 7
     samples_angular: int = 15
-    heading: float = 0.8
-    clearance: float = 0.2
-    velocity: float = 0.2
+    heading: float = 0.6
+    clearance: float = 0.3
+    velocity: float = 0.3
     clearance_cap: float = 1.0
     lookahead: float = 1.4
     safety: float = 0.05
+    contact: float = 0.04
     grid_size: float = 4.0
     resolution: float = 0.05
     goal_tolerance: float = 0.1
     last_blocked: bool = field(default=False, init=False)
+    _inside: float | None = field(default=None, init=False, repr=False)
 
     def __post_init__(self) -> None:
         for value, what in ((self.period, "period"), (self.horizon, "horizon"),
@@ -79,7 +84,7 @@ class DynamicWindowPlanner:
         """The velocity to command now (robot frame); see ``LocalController.plan``."""
         check_request(path, radius)
         grid = LocalGrid.from_scan(scan, self.grid_size, self.resolution)
-        grown = _grown(grid, radius + self.safety)
+        grown, self._inside = _grown(grid, radius + self.contact)
         goal, final = lookahead(pose, path, min(self.lookahead, grid.half_size - 0.25))
         # The carrot: the furthest point in straight sight along the local path to the
         # lookahead point (the same local path by length as stage 2's first search).
@@ -133,9 +138,13 @@ class DynamicWindowPlanner:
         cos, sin = np.cos(middle), np.sin(middle)
         x = np.cumsum((window[:, 0] * cos - window[:, 1] * sin) * dt, axis=0)
         y = np.cumsum((window[:, 0] * sin + window[:, 1] * cos) * dt, axis=0)
-        clearance = grid.clearance_at(x, y) - grown
+        absolute = grid.clearance_at(x, y)
+        clearance = absolute - grown
         speed = np.hypot(window[:, 0], window[:, 1])
         hit = clearance <= 0.0
+        if self._inside is not None:
+            # Already too close: only arcs that end no closer than now are free at all.
+            hit[0] |= absolute[-1] < self._inside
         first_hit = np.where(hit.any(axis=0), hit.argmax(axis=0), steps)
         # Free distance along the arc before the first contact.
         free = np.where(first_hit < steps, speed * dt * first_hit, np.inf)
@@ -155,15 +164,15 @@ class DynamicWindowPlanner:
         return score, np.broadcast_to(free, (n,)).copy()
 
 
-def _grown(grid: LocalGrid, grown: float) -> float:
-    """The clearance to keep: ``grown``, or a little less than now when already closer.
+def _grown(grid: LocalGrid, grown: float) -> tuple[float, float | None]:
+    """The clearance to keep, and the clearance now when the robot is already closer.
 
-    The laser's local grid puts returns a few centimetres nearer than they are,
-    so a robot can find itself inside its own margin; it may then move, but
-    not closer to anything.
+    A robot can find itself inside its own margin (a person stepped up, the
+    laser's noise); it may then move, but never closer than half a centimetre
+    to what it is now, and only so that it ends no closer than it starts.
     """
     start = float(grid.clearance_at(np.zeros(1), np.zeros(1))[0])
-    return grown if start >= grown else start - 0.02
+    return (grown, None) if start >= grown else (start - 0.005, start)
 
 
 def _normalise(values: np.ndarray) -> np.ndarray:

@@ -45,6 +45,7 @@ _DEEP_LINEAR = (-1.0, 0.0, 1.0)
 _DEEP_ANGULAR = (-1.0, -0.4, 0.0, 0.4, 1.0)
 _OMNI_FIRST = (-1.0, -0.5, 0.0, 0.5, 1.0)
 _OMNI_DEEP = (-1.0, 0.0, 1.0)
+_POOL = 2  #: the distance field's cells are this many grid cells wide
 
 
 @dataclass(frozen=True, slots=True)
@@ -80,6 +81,8 @@ class MotionSearchPlanner:
             to search at a bounded loss).
         substeps: collision checks per motion.
         batch: nodes expanded together (one vectorised step) from the front of the queue.
+        turn_cost: seconds added per rad/s of change in turn rate, so that of two
+            equally fast sequences the steadier one wins.
     """
 
     period: float = 0.05
@@ -90,10 +93,11 @@ class MotionSearchPlanner:
     speed_margin: float = 0.25
     grid_size: float = 4.0
     resolution: float = 0.05
-    max_expansions: int = 50
+    max_expansions: int = 80
     goal_tolerance: float = 0.05
-    greed: float = 2.5
+    greed: float = 4.0
     batch: int = 4
+    turn_cost: float = 0.1
     substeps: int = 3
     last: PlannerCycle | None = field(default=None, init=False)
 
@@ -108,8 +112,8 @@ class MotionSearchPlanner:
         if min(self.depth, self.max_expansions, self.substeps, self.batch) < 1:
             raise LocalPlannerError("depth, max_expansions, substeps and batch must be at "
                                     "least 1")
-        if self.safety < 0 or self.speed_margin < 0:
-            raise LocalPlannerError("safety and speed_margin cannot be negative")
+        if min(self.safety, self.speed_margin, self.turn_cost) < 0:
+            raise LocalPlannerError("safety, speed_margin and turn_cost cannot be negative")
 
     def plan(self, pose: Pose, velocity: Twist, scan: LaserScan,
              path: Sequence[tuple[float, float]], limits: VelocityLimits, drive: DriveKind,
@@ -120,13 +124,24 @@ class MotionSearchPlanner:
         reach = min(self.lookahead, grid.half_size - 0.25)
         target, final = lookahead(pose, path, reach)
         grown = radius + self.safety
-        distances = grid.distance_field(target, grown)
+        # Collision-aware speed limits (Cosero): the faster, the more clearance a motion
+        # needs, so a cell with little clearance can only be crossed slowly. The field is
+        # then the least time to the target (in metres at top speed) along the local path.
+        allowed = (grid.clearance - grown) / max(self.speed_margin, 1e-6)
+        slowness = limits.linear / np.clip(allowed, 0.05, limits.linear)
+        distances = grid.distance_field(target, grown, pool=_POOL, slowness=slowness)
         search = _Search(self, grid, distances, target, final, limits, drive, radius, velocity)
         command, expansions, depth = search.run()
         self.last = PlannerCycle(expansions, depth, command is None, target)
         if command is None:
-            command = search.brake()
-        return _towards(velocity, command, limits, drive, self.period)
+            return _towards(velocity, search.brake(), limits, drive, self.period)
+        # Each motion changes the velocity at a constant rate over its step: now, the
+        # first motion's velocity one period in.
+        share = min(self.period / self.step, 1.0)
+        ramped = Twist(velocity.vx + share * (command.vx - velocity.vx),
+                       velocity.vy + share * (command.vy - velocity.vy),
+                       velocity.wz + share * (command.wz - velocity.wz))
+        return _towards(velocity, ramped, limits, drive, self.period)
 
 
 def _ramp_time(distance: np.ndarray, speed: np.ndarray, top: float,
@@ -139,6 +154,37 @@ def _ramp_time(distance: np.ndarray, speed: np.ndarray, top: float,
         acceleration
     long = ramp_time + (distance - ramp_distance) / top
     result: np.ndarray = np.where(distance <= ramp_distance, short, long)
+    return result
+
+
+def _rest_to_rest(angle: np.ndarray, top: float, acceleration: float) -> np.ndarray:
+    """Least time to turn by ``angle`` from rest to rest."""
+    result: np.ndarray = np.where(angle <= top**2 / acceleration,
+                                  2 * np.sqrt(np.maximum(angle, 0.0) / acceleration),
+                                  top / acceleration + angle / top)
+    return result
+
+
+def _turn_time(angle: np.ndarray, rate: np.ndarray, top: float,
+               acceleration: float) -> np.ndarray:
+    """Least time to turn by ``angle`` (≥ 0) and stop there, turning at ``rate`` towards it now.
+
+    Bang-bang: speed up (to ``top`` at most), slow down; when the turn already
+    under way cannot stop in time, stop past the heading and come back.
+    """
+    toward = np.maximum(rate, 0.0)
+    stopping = toward**2 / (2 * acceleration)
+    peak = np.sqrt(acceleration * angle + toward**2 / 2)
+    triangle = (2 * peak - toward) / acceleration
+    cruise = (top - toward) / acceleration + top / acceleration + \
+        (angle - (top**2 - toward**2) / (2 * acceleration) - top**2 / (2 * acceleration)) / top
+    reachable = np.where(peak <= top, triangle, cruise)
+    overshoot = toward / acceleration + _rest_to_rest(stopping - angle, top, acceleration)
+    ahead = np.where(stopping <= angle, reachable, overshoot)
+    away = np.abs(np.minimum(rate, 0.0))
+    back = away / acceleration + _rest_to_rest(angle + away**2 / (2 * acceleration), top,
+                                               acceleration)
+    result: np.ndarray = np.where(rate >= 0, ahead, back)
     return result
 
 
@@ -167,14 +213,21 @@ class _Search:
         self.limits = limits
         self.omni = drive is DriveKind.OMNIDIRECTIONAL
         self.velocity = velocity
+        self.spin = 0.0 if abs(velocity.wz) < 0.05 else math.copysign(1.0, velocity.wz)
         finite = np.where(np.isfinite(distances), distances, 1e3)
-        gradient_rows, gradient_columns = np.gradient(finite)
-        self.downhill = np.arctan2(-gradient_rows, -gradient_columns)
+        # The field is constant within each coarse cell: take its slope between them.
+        coarse = finite[::_POOL, ::_POOL]
+        gradient_rows, gradient_columns = np.gradient(coarse)
+        downhill = np.arctan2(-gradient_rows, -gradient_columns)
+        self.downhill = np.repeat(np.repeat(downhill, _POOL, axis=0), _POOL, axis=1)
         start_clearance = float(grid.clearance_at(np.zeros(1), np.zeros(1))[0])
         static = radius + planner.safety
         # Already inside the margin (pushed there by a person): do not get any closer.
-        # (The scan's grid puts returns a few centimetres nearer than they are.)
-        self.static = static if start_clearance >= static else start_clearance - 0.02
+        # Then it may move, never closer than half a centimetre to what it is now, and
+        # only so that each motion ends no closer than it starts.
+        self.inside = start_clearance < static
+        self.start_clearance = start_clearance
+        self.static = static if not self.inside else start_clearance - 0.005
         self.first_lattice = self._lattice(True)
         self.deep_lattice = self._lattice(False)
         capacity = 1 + len(self.first_lattice) + (planner.max_expansions + planner.batch) * \
@@ -183,6 +236,7 @@ class _Search:
         self.state = np.zeros((capacity, 7))
         self.first = np.zeros(capacity, dtype=np.intp)
         self.depth = np.zeros(capacity, dtype=np.intp)
+        self.cost = np.zeros(capacity)
         self.size = 0
 
     def _lattice(self, first: bool) -> np.ndarray:
@@ -265,13 +319,11 @@ class _Search:
             targets[:, 0] = np.minimum(np.maximum(targets[:, 0], 0.0), limits.linear)
         k = p.substeps
         dt = p.step / k
-        rates = np.array((limits.linear_acceleration, limits.linear_acceleration,
-                          limits.angular_acceleration))
         now = start[:, 3:6]
         change = targets - now
-        # Velocity in the middle of each substep, ramping at the acceleration limits: (k, n, 3).
-        bound = ((np.arange(1, k + 1) - 0.5) * dt)[:, None, None] * rates
-        velocity = np.minimum(np.maximum(change, -bound), bound) + now
+        # Velocity in the middle of each substep, changing at a constant rate: (k, n, 3).
+        fraction = ((np.arange(1, k + 1) - 0.5) / k)[:, None, None]
+        velocity = now + fraction * change
         turn = velocity[:, :, 2] * dt
         th_all = start[:, 2] + np.cumsum(turn, axis=0)
         middle = th_all - turn / 2
@@ -281,9 +333,10 @@ class _Search:
         y_all = start[:, 1] + np.cumsum((vx * sin + vy * cos) * dt, axis=0)
         clearance = self.grid.clearance_at(x_all, y_all)
         ok = np.all(clearance >= self.static + p.speed_margin * np.hypot(vx, vy), axis=0)
+        if self.inside:
+            ok &= clearance[-1] >= self.start_clearance
         x, y, th = x_all[-1], y_all[-1], th_all[-1]
-        full = p.step * rates
-        end = np.minimum(np.maximum(change, -full), full) + now
+        end = targets
         rows, columns = self.grid.index(x, y)
         # The field is coarse; the straight distance is a bound that is exact near the target.
         remaining = np.maximum(self.distances[rows, columns],
@@ -306,12 +359,15 @@ class _Search:
         self.size += count
         heuristic = self._time_to_go(remaining[keep], end[keep], th[keep], rows[keep],
                                      columns[keep])
-        scores: np.ndarray = depth * p.step + p.greed * heuristic
+        # Time is the cost, plus a little for every change of turn rate (smooth motion).
+        cost = self.cost[parent[keep]] + p.step + p.turn_cost * np.abs(change[keep, 2])
+        self.cost[children] = cost
+        scores: np.ndarray = cost + p.greed * heuristic
         return children, scores
 
     def _time_to_go(self, remaining: np.ndarray, end: np.ndarray, heading: np.ndarray,
                     rows: np.ndarray, columns: np.ndarray) -> np.ndarray:
-        """A lower bound on the time left: cover the distance from this speed, or turn.
+        """The time left: cover the distance from this speed, after turning where needed.
 
         A differential base must also face the way down the distance field; its
         speed counts only along that way.
@@ -321,12 +377,20 @@ class _Search:
             return _ramp_time(remaining, np.hypot(end[:, 0], end[:, 1]), limits.linear,
                               limits.linear_acceleration)
         error = (self.downhill[rows, columns] - heading + np.pi) % (2 * np.pi) - np.pi
+        if self.spin:
+            # The way lies behind: either turn will do, so keep turning the way it turns now
+            # (otherwise the choice flips from cycle to cycle and the robot dithers).
+            error = np.where((np.abs(error) > 2.5) & (error * self.spin < 0),
+                             error + self.spin * 2 * np.pi, error)
         error = np.where(remaining > 0.15, error, 0.0)
         along = np.maximum(end[:, 0] * np.cos(error), 0.0)
         travel = _ramp_time(remaining, along, limits.linear, limits.linear_acceleration)
-        turning = _ramp_time(np.abs(error), end[:, 2] * np.sign(error), limits.angular,
+        # Facing more than 45° off the way, a differential base turns on the spot (more or
+        # less) before it gets anywhere: that part of the turn adds to the travel.
+        turning = _turn_time(np.maximum(np.abs(error) - math.pi / 4, 0.0),
+                             end[:, 2] * np.sign(error), limits.angular,
                              limits.angular_acceleration)
-        result: np.ndarray = np.maximum(travel, turning)
+        result: np.ndarray = travel + turning
         return result
 
     # ---------------------------------------------------------------- no way on

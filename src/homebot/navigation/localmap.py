@@ -24,6 +24,10 @@ from scipy import ndimage
 from homebot.errors import HomebotError
 from homebot.robot import DriveKind, LaserScan, Pose, Twist, VelocityLimits
 
+_CLUSTER_JUMP = 0.1  #: metres: a bigger range step between beams starts a new cluster
+_SMALL = 0.2  #: metres: clusters narrower than this (and in front of their surroundings) are small
+_LEG_EXTRA = 0.12  #: metres more clearance kept from small clusters (legs under a body)
+
 __all__ = [
     "LocalController",
     "LocalGrid",
@@ -92,22 +96,22 @@ class LocalGrid:
     @classmethod
     def from_scan(cls, scan: LaserScan, size: float = 4.0,
                   resolution: float = 0.05) -> LocalGrid:
-        """Rasterise the scan's returns into a ``size`` × ``size`` metre grid."""
-        cells = round(size / resolution)
+        """Rasterise the scan's returns into a ``size`` × ``size`` metre grid.
+
+        The robot sits in the middle of the centre cell (the cell count is odd).
+        Each cell's clearance is the exact distance from its centre to the return
+        kept in the nearest occupied cell, so it is off by at most the distance
+        between two returns in neighbouring cells, not by whole cells.
+        """
+        cells = round(size / resolution) | 1
         half = cells * resolution / 2
-        occupied = np.zeros((cells, cells), dtype=bool)
-        points = scan.points()
-        if len(points):
-            columns = np.floor((points[:, 0] + half) / resolution).astype(np.intp)
-            rows = np.floor((points[:, 1] + half) / resolution).astype(np.intp)
-            inside = (columns >= 0) & (columns < cells) & (rows >= 0) & (rows < cells)
-            occupied[rows[inside], columns[inside]] = True
-        if occupied.any():
-            clearance = ndimage.distance_transform_edt(~occupied) * resolution
-            # A return anywhere in its cell: the nearest one may be half a cell nearer.
-            clearance = np.maximum(clearance - resolution / 2, 0.0)
-        else:
-            clearance = np.full((cells, cells), 10.0)
+        points, small = _returns(scan)
+        clearance = _clearance(points, cells, half, resolution)
+        if small.any():
+            # Small free-standing things are legs, most likely: the person above them is
+            # wider than their legs, so they are grown by a little more.
+            legs = _clearance(points[small], cells, half, resolution) - _LEG_EXTRA
+            clearance = np.minimum(clearance, np.maximum(legs, 0.0))
         return cls(resolution, half, np.asarray(clearance, dtype=float))
 
     @property
@@ -143,7 +147,7 @@ class LocalGrid:
                 (row + 0.5) * self.resolution - self.half_size)
 
     def distance_field(self, target: tuple[float, float], grown: float,
-                       pool: int = 2) -> np.ndarray:
+                       pool: int = 2, slowness: np.ndarray | None = None) -> np.ndarray:
         """Path length (metres) from every cell to ``target`` among cells clearer than ``grown``.
 
         CAESAR's first local search (by length), done as one Dijkstra sweep out
@@ -152,7 +156,10 @@ class LocalGrid:
         (a coarse cell is clear when any of its cells is), which is plenty for a
         heuristic. A target inside grown obstacles moves to the nearest clear
         cell; cells that are not clear get the field of their nearest clear cell
-        plus the way to it (so the robot can leave them).
+        plus the way to it (so the robot can leave them). With ``slowness`` (per
+        cell, ≥ 1: how many times slower than top speed the robot may cross it)
+        a step costs its length times the slowness of the cell it enters, so the
+        field is in metres at top speed: time × top speed.
         """
         cells = self.cells - self.cells % pool
         clear = self.clearance[:cells, :cells] >= grown
@@ -168,13 +175,21 @@ class LocalGrid:
             candidates = np.argwhere(free)
             nearest = np.argmin(np.hypot(candidates[:, 0] - root[0], candidates[:, 1] - root[1]))
             root = (int(candidates[nearest, 0]), int(candidates[nearest, 1]))
-        graph = tcod.path.SimpleGraph(cost=free.view(np.int8), cardinal=100, diagonal=141)
+        if slowness is None:
+            cost = free.astype(np.int32)
+        else:
+            # A coarse cell is as slow as its fastest clear cell (a bound, not a guess).
+            slow = np.where(clear, slowness[:cells, :cells], np.inf)
+            fastest = slow.reshape(cells // pool, pool, cells // pool, pool).min(axis=(1, 3))
+            cost = np.where(free, np.round(np.minimum(fastest, 50.0) * 10), 0).astype(np.int32)
+        unit = 100 if slowness is None else 1000  # raw distance per cell at top speed
+        graph = tcod.path.SimpleGraph(cost=cost, cardinal=100, diagonal=141)
         finder = tcod.path.Pathfinder(graph)
         finder.add_root(root)
         finder.resolve()
         raw = finder.distance
         reached = raw != np.iinfo(raw.dtype).max
-        coarse = np.where(reached, raw * (resolution / 100.0), np.inf)
+        coarse = np.where(reached, raw * (resolution / unit), np.inf)
         if not reached.all():
             gap, (near_rows, near_columns) = ndimage.distance_transform_edt(
                 ~reached, return_indices=True)
@@ -185,6 +200,55 @@ class LocalGrid:
             field = np.pad(field, ((0, self.cells - cells), (0, self.cells - cells)), mode="edge")
         result: np.ndarray = field
         return result
+
+
+def _returns(scan: LaserScan) -> tuple[np.ndarray, np.ndarray]:
+    """The scan's returns (robot frame) and which belong to small free-standing clusters."""
+    keep = scan.valid()
+    ranges = np.where(keep, scan.ranges, np.nan)
+    angles = scan.angles() + scan.mount.theta
+    points = np.column_stack((scan.mount.x + ranges * np.cos(angles),
+                              scan.mount.y + ranges * np.sin(angles)))
+    count = len(ranges)
+    if count == 0:
+        return points[keep], np.zeros(0, dtype=bool)
+    # Clusters: runs of neighbouring beams whose ranges differ by less than a jump.
+    jump = np.ones(count, dtype=bool)
+    jump[1:] = ~(np.abs(np.diff(ranges)) < _CLUSTER_JUMP)
+    label = np.cumsum(jump) - 1
+    starts = np.flatnonzero(jump)
+    ends = np.append(starts[1:], count) - 1
+    extent = np.hypot(points[ends, 0] - points[starts, 0], points[ends, 1] - points[starts, 1])
+    # In front of what is beside it on both sides (or nothing there).
+    before = np.where(starts > 0, ranges[np.maximum(starts - 1, 0)], np.inf)
+    after = np.where(ends < count - 1, ranges[np.minimum(ends + 1, count - 1)], np.inf)
+    nearer = (np.nan_to_num(before, nan=np.inf) > ranges[starts] + _CLUSTER_JUMP) & \
+        (np.nan_to_num(after, nan=np.inf) > ranges[ends] + _CLUSTER_JUMP)
+    small_cluster = (extent < _SMALL) & nearer & np.isfinite(ranges[starts])
+    small = small_cluster[label]
+    return points[keep], small[keep]
+
+
+def _clearance(points: np.ndarray, cells: int, half: float, resolution: float) -> np.ndarray:
+    """Per cell, the distance from its centre to the return kept in the nearest occupied cell."""
+    if not len(points):
+        return np.full((cells, cells), 10.0)
+    occupied = np.zeros((cells, cells), dtype=bool)
+    kept = np.zeros((cells, cells, 2))
+    columns = np.floor((points[:, 0] + half) / resolution).astype(np.intp)
+    rows = np.floor((points[:, 1] + half) / resolution).astype(np.intp)
+    inside = (columns >= 0) & (columns < cells) & (rows >= 0) & (rows < cells)
+    if not inside.any():
+        return np.full((cells, cells), 10.0)
+    occupied[rows[inside], columns[inside]] = True
+    kept[rows[inside], columns[inside]] = points[inside]
+    near_rows, near_columns = ndimage.distance_transform_edt(
+        ~occupied, return_distances=False, return_indices=True)
+    centres = (np.arange(cells) + 0.5) * resolution - half
+    nearest = kept[near_rows, near_columns]
+    clearance: np.ndarray = np.hypot(nearest[:, :, 0] - centres[None, :],
+                                     nearest[:, :, 1] - centres[:, None])
+    return clearance
 
 
 def to_robot_frame(pose: Pose, points: np.ndarray) -> np.ndarray:
