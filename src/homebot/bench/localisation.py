@@ -173,46 +173,54 @@ def _tracking(setting: _Setting, runs: int, seconds: float, spurious: float) -> 
     worst: list[float] = []
     distance = 0.0
     for seed in range(runs):
-        simulation, body = _body(setting, seed, spurious)
-        mcl = MonteCarloLocalisation(setting.grid, np.random.default_rng([seed, 11]),
-                                     setting.parameters)
-        mcl.initialise(Pose(*simulation.robot_pose), 0.05, 0.05)
-        route = np.random.default_rng([seed, 12])
-        names = sorted(setting.world.placements)
-        closed = frozenset(name for name, door in setting.world.doors.items()
-                        if door.state is not DoorState.OPEN)
-        waypoints: list[tuple[float, float]] = []
-        stuck_since = 0.0
-        last = simulation.robot_pose
-        run_errors = []
-        estimate = mcl.update(body.odometry(), body.scan())
-        while body.now() < seconds:
-            if not waypoints:
-                goal = setting.world.placements[names[int(route.integers(len(names)))]]
-                plan = setting.navigator.plan(estimate.xy(), goal.approach[:2], closed)
-                waypoints = list(plan.waypoints[1:]) if plan else []
-                continue
-            if math.dist(estimate.xy(), waypoints[0]) < 0.3:
-                waypoints.pop(0)
-                continue
-            body.command_velocity(_pursue(estimate, waypoints[0], body.scan()))
-            before = simulation.robot_pose
-            body.tick()
-            distance += math.dist(before[:2], simulation.robot_pose[:2])
-            estimate = mcl.update(body.odometry(), body.scan())
-            run_errors.append(_error(estimate, simulation))
-            if math.dist(simulation.robot_pose[:2], last[:2]) > 0.2:
-                last, stuck_since = simulation.robot_pose, body.now()
-            elif body.now() - stuck_since > 6.0:  # someone in the way: go elsewhere
-                waypoints, stuck_since = [], body.now()
-
+        run_errors, driven = _tracking_run(setting, seed, seconds, spurious)
         errors.extend(run_errors)
         worst.append(max(run_errors))
+        distance += driven
     return {"median_cm": _cm(float(np.median(errors))),
             "p95_cm": _cm(float(np.percentile(errors, 95))),
             "max_cm": _cm(max(worst)),
             "runs_ever_over_20cm": sum(w > _CONVERGED for w in worst),
             "samples": len(errors), "driven_m_per_run": round(distance / runs, 1)}
+
+
+def _tracking_run(setting: _Setting, seed: int, seconds: float,
+                  spurious: float) -> tuple[list[float], float]:
+    """One seeded drive along placements: the error at every tick, and the distance driven."""
+    simulation, body = _body(setting, seed, spurious)
+    mcl = MonteCarloLocalisation(setting.grid, np.random.default_rng([seed, 11]),
+                                 setting.parameters)
+    mcl.initialise(Pose(*simulation.robot_pose), 0.05, 0.05)
+    route = np.random.default_rng([seed, 12])
+    names = sorted(setting.world.placements)
+    closed = frozenset(name for name, door in setting.world.doors.items()
+                       if door.state is not DoorState.OPEN)
+    waypoints: list[tuple[float, float]] = []
+    stuck_since = 0.0
+    last = simulation.robot_pose
+    errors = []
+    distance = 0.0
+    estimate = mcl.update(body.odometry(), body.scan())
+    while body.now() < seconds:
+        if not waypoints:
+            goal = setting.world.placements[names[int(route.integers(len(names)))]]
+            plan = setting.navigator.plan(estimate.xy(), goal.approach[:2], closed)
+            waypoints = list(plan.waypoints[1:]) if plan else []
+            continue
+        if math.dist(estimate.xy(), waypoints[0]) < 0.3:
+            waypoints.pop(0)
+            continue
+        body.command_velocity(_pursue(estimate, waypoints[0], body.scan()))
+        before = simulation.robot_pose
+        body.tick()
+        distance += math.dist(before[:2], simulation.robot_pose[:2])
+        estimate = mcl.update(body.odometry(), body.scan())
+        errors.append(_error(estimate, simulation))
+        if math.dist(simulation.robot_pose[:2], last[:2]) > 0.2:
+            last, stuck_since = simulation.robot_pose, body.now()
+        elif body.now() - stuck_since > 6.0:  # someone in the way: go elsewhere
+            waypoints, stuck_since = [], body.now()
+    return errors, distance
 
 
 def _random_free_pose(setting: _Setting, body: SimBody, rng: np.random.Generator,

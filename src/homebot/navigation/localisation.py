@@ -63,8 +63,10 @@ class MclParameters:
     laser_likelihood_max_dist: float = 2.0  #: distances beyond this count as this far
     laser_max_beams: int | None = None  #: use at most this many beams (None: the full scan)
     laser_independent_beams: float = 60.0  #: a scan counts as at most this many beams
-    short_reading_margin: float = 0.3  #: once converged, drop beams this much shorter than
+    short_reading_margin: float = 0.15  #: once converged, drop beams this much shorter than
     #: the map shows from the estimate (0: never)
+    long_reading_margin: float = 0.3  #: beams this much longer than the map shows count as
+    #: passing its walls (the lost test)
     min_beams: int = 10  #: ... unless fewer than this many beams would be left
     update_min_d: float = 0.05  #: filter only after this much translation, metres
     update_min_a: float = 0.1  #: ... or this much rotation, radians
@@ -94,6 +96,7 @@ class MclParameters:
                      "lost_random_share"):
             _check(name, getattr(self, name), low=0.0, high=1.0)
         for name in ("alpha1", "alpha2", "alpha3", "alpha4", "alpha5", "short_reading_margin",
+                     "long_reading_margin",
                      "update_min_d", "update_min_a"):
             _check(name, getattr(self, name), low=0.0)
         if not 0.0 < self.pf_z < 1.0:
@@ -372,10 +375,11 @@ class MonteCarloLocalisation:
         ranges = np.where(np.isnan(scan.ranges), 0.0, scan.ranges)
         # Only what lies within the farthest return (and the margin) can tell.
         reach = scan.range_max if not np.isfinite(ranges).all() else min(
-            scan.range_max, float(ranges.max()) + p.short_reading_margin)
+            scan.range_max, float(ranges.max()) + max(p.short_reading_margin,
+                                                      p.long_reading_margin))
         expected = self.field.raycast(origin.x, origin.y, angles, reach)
         seen = np.isfinite(expected)
-        long = seen & (ranges > expected + p.short_reading_margin)
+        long = seen & (ranges > expected + p.long_reading_margin)
         share = float(long.sum() / max(int(seen.sum()), 1))
         self._long_share += 0.5 * (share - self._long_share)
         short: np.ndarray = scan.ranges[beams] < expected[beams] - p.short_reading_margin
