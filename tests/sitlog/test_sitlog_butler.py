@@ -57,8 +57,9 @@ def _words(text: str) -> str:
 
 
 def _same(said: str, paper: str) -> bool:
-    """Equal in words; a hand-over may name whom it addresses first ("Luis, here is ...")."""
-    said_words, paper_words = _words(said), _words(paper)
+    """Equal in words; a hand-over may name whom it addresses first ("Luis, here is ..."),
+    and says "here are" for a plural ("here are the noodles"; the paper has "here is")."""
+    said_words, paper_words = _words(said).replace("here are", "here is"), _words(paper)
     return said_words in (paper_words, f"luis {paper_words}")
 
 

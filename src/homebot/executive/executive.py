@@ -58,7 +58,7 @@ class Executive:
         context = self.context
         started = context.robot.now()
         self.start_budget()
-        first_event = len(context.events.events)
+        first_event = context.events.count
         context.events.record("task.start", description=task.description,
                               steps=task.to_dicts())
         reports: list[StepReport] = []
@@ -90,7 +90,7 @@ class Executive:
         if success and context.monitoring:
             speak(context, "I have done what you asked.")
         context.events.record("task.end", success=success, reason=reason)
-        speech = [event.data["text"] for event in context.events.events[first_event:]
+        speech = [event.data["text"] for event in context.events.since(first_event)
                   if event.kind == "speech"]
         return TaskReport(success, reports, speech, context.robot.now() - started, reason)
 
@@ -138,9 +138,11 @@ class Executive:
             recovered = protocol(self.context, skill, args, outcome, nested)
             if isinstance(recovered, Outcome):
                 outcome = recovered
-                if not outcome and protocol is not inference:
-                    break  # a protocol's own failure (where it searched) is the step's word
-                continue
+                if outcome or protocol is inference:
+                    continue
+                # A protocol's own failure (where it searched) is the step's word now;
+                # as when it gives up, inference may still try once.
+                recovered = False
             if not recovered:
                 if inference is not None and not inferred:
                     gave_up = True  # the protocols gave up: let inference try once
