@@ -7,11 +7,11 @@ import math
 import pytest
 from fake_body import FakeBody, wall
 
+from homebot.errors import NavigationError
 from homebot.navigation import Navigator
 from homebot.navigation.local_planner import MotionSearchPlanner
 from homebot.navigation.navigate import (
     NavigateToPose,
-    NavigationError,
     NavigationFeedback,
     NavigationGoal,
     OdometryPose,

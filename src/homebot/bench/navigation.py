@@ -37,13 +37,13 @@ from rich.console import Console
 from scipy import ndimage
 
 from homebot.bench.arguments import count, seed
+from homebot.errors import NavigationError
 from homebot.navigation import Navigator, astar
 from homebot.navigation.dwa import DynamicWindowPlanner
 from homebot.navigation.local_planner import MotionSearchPlanner
 from homebot.navigation.localmap import LocalController
 from homebot.navigation.navigate import (
     NavigateToPose,
-    NavigationError,
     NavigationFeedback,
     NavigationGoal,
     OdometryPose,

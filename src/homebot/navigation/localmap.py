@@ -21,7 +21,7 @@ import numpy as np
 import tcod.path
 from scipy import ndimage
 
-from homebot.errors import HomebotError
+from homebot.errors import NavigationError
 from homebot.robot import DriveKind, LaserScan, Pose, Twist, VelocityLimits
 
 _CLUSTER_JUMP = 0.1  #: metres: a bigger range step between beams starts a new cluster
@@ -39,7 +39,7 @@ __all__ = [
 ]
 
 
-class LocalPlannerError(HomebotError):
+class LocalPlannerError(NavigationError):
     """A local controller asked wrongly: an empty path, a radius or period that is not positive."""
 
 

@@ -18,14 +18,13 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from enum import StrEnum
 
-from homebot.errors import HomebotError
+from homebot.errors import NavigationError
 from homebot.navigation.localmap import LocalController
 from homebot.navigation.navigator import Navigator
 from homebot.robot import Action, ActionStatus, Body, Pose, Twist
 
 __all__ = [
     "NavigateToPose",
-    "NavigationError",
     "NavigationFeedback",
     "NavigationGoal",
     "NavigationResult",
@@ -37,10 +36,6 @@ __all__ = [
 _PROGRESS = 0.1
 # Ticks allowed for the base to come to rest when stopping.
 _STOP_TICKS = 60
-
-
-class NavigationError(HomebotError):
-    """A navigation goal that cannot be driven: no path, a bad tolerance or time budget."""
 
 
 class StopReason(StrEnum):
