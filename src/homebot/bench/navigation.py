@@ -64,7 +64,7 @@ _PLANNERS: dict[str, Callable[[], LocalController]] = {
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--repeat", type=count("--repeat", 1, 10_000), default=50,
                         help="searches per A* timing case")
-    parser.add_argument("--goals", type=count("--goals", 0, 5000), default=20,
+    parser.add_argument("--goals", type=count("--goals", 0, 5000), default=0,
                         help="goals to drive to per controller (0: timing only; the issue's "
                              "figure is --goals 200)")
     parser.add_argument("--planner", choices=["stage2", "dwa", "both"], default="both",
