@@ -75,7 +75,8 @@ def register(subparsers: Any) -> None:
 
 def _no_command() -> int:
     raise WorldError("name a world command: check FILE, show [--world W], "
-                     "from-robocup DIR -o WORLD.yaml, map [--world W] -o DIR, "
+                     "from-robocup DIR -o WORLD.yaml, from-pyrobosim FILE -o WORLD.yaml, "
+                     "map [--world W] -o DIR, "
                      "map-check FILE.yaml")
 
 
