@@ -21,6 +21,8 @@ BAD = [
     (["bench", "robustness", "--tasks", "-1"], "--tasks '-1'"),
     (["bench", "gpsr", "--commands", "0"], "--commands '0'"),
     (["bench", "navigation", "--repeat", "0"], "--repeat '0'"),
+    (["bench", "navigation", "--goals", "-1"], "--goals '-1'"),
+    (["bench", "navigation", "--walkers", "99"], "--walkers '99'"),
     (["bench", "golog", "--repeats", "0"], "--repeats '0'"),
     (["bench", "golog", "--maze-horizon", "40"], "--maze-horizon '40'"),
     (["bench", "htn", "--sizes", "25", "0"], "--sizes '0'"),
