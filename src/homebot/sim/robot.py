@@ -89,7 +89,11 @@ class SimRobot(Robot):
 
     def _trail(self, points: list[tuple[float, float]] | tuple[tuple[float, float], ...]) -> None:
         rounded = [(round(x, 3), round(y, 3)) for x, y in points]
-        self.sim.trail.extend(rounded)
+        trail = self.sim.trail
+        trail.extend(rounded)
+        keep = self.sim.trail_keep
+        if keep is not None and len(trail) > 2 * keep:
+            del trail[:len(trail) - keep]
         self.sim.events.record("robot.path", world=self.sim.world.name,
                                points=[list(point) for point in rounded])
 

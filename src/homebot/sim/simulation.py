@@ -67,6 +67,9 @@ class Simulation:
         x, y, theta = world.robot.pose
         self.robot_pose = (x, y, theta)
         self.trail: list[tuple[float, float]] = [(x, y)]  #: where the robot has driven
+        #: keep at least this many of the latest trail points, at most twice as many (None:
+        #: all), so that a long-running simulation's memory stays flat
+        self.trail_keep: int | None = None
         #: every time the robot's body touched a wall, furniture or a person (embodied runs)
         self.collisions: list[dict[str, object]] = []
         self.hands: dict[str, str | None] = {hand: None for hand in world.robot.hands}

@@ -1,0 +1,98 @@
+"""A long-running simulation: memory over thousands of consecutive tasks in one home.
+
+One ``SimulatedRun`` carries out fetch-and-deliver tasks one after the other (10 000 by
+default) with its event log bounded (``EventLog.keep``: only the latest events stay in
+memory; give ``--events FILE`` to stream every event to a file as well). The resident
+set size is read from ``/proc/self/status`` after a warm-up and at the end; its growth is
+the figure. Nothing is asserted.
+"""
+
+from __future__ import annotations
+
+import argparse
+import gc
+import time
+from pathlib import Path
+from typing import Any
+
+from rich.console import Console
+
+from homebot.bench.arguments import count, seed
+from homebot.bench.fetch_tasks import fetch_tasks
+from homebot.navigation import Navigator
+from homebot.scenarios import SimulatedRun
+from homebot.world import World
+
+__all__ = ["add_arguments", "resident_mb", "run"]
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--tasks", type=count("--tasks", 1, 1_000_000), default=10_000,
+                        help="consecutive tasks (default 10000)")
+    parser.add_argument("--warm-up", type=count("--warm-up", 0, 100_000), default=200,
+                        help="tasks before the first reading (default 200)")
+    parser.add_argument("--keep", type=count("--keep", 1, 10_000_000), default=5000,
+                        help="events kept in memory (default 5000)")
+    parser.add_argument("--events", type=Path, default=None,
+                        help="stream every event to this JSON-lines file")
+    parser.add_argument("--seed", type=seed, default=5)
+
+
+def resident_mb() -> float | None:
+    """This process's resident set size in MB (Linux), or None where it cannot be read."""
+    try:
+        with open("/proc/self/status", encoding="ascii") as status:
+            for line in status:
+                if line.startswith("VmRSS:"):
+                    return int(line.split()[1]) / 1024
+    except OSError:
+        return None
+    return None
+
+
+def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, Any]:
+    """Run the tasks; report the resident memory after the warm-up and at the end."""
+    world = World.load("apartment")
+    navigator = Navigator(world)
+    simulation_run = SimulatedRun.create(world, seed=args.seed, navigator=navigator)
+    events = simulation_run.simulation.events
+    events.keep = args.keep
+    simulation_run.simulation.trail_keep = args.keep  # the robot's drawn path, likewise
+    stream = args.events.open("w", encoding="utf-8") if args.events is not None else None
+    events.stream = stream
+    tasks = fetch_tasks(world, min(args.tasks, 500), args.seed)
+    succeeded = 0
+    before: float | None = None
+    began = time.perf_counter()
+    try:
+        for index in range(args.warm_up + args.tasks):
+            if index == args.warm_up:
+                gc.collect()
+                before = resident_mb()
+                began = time.perf_counter()
+            report = simulation_run.run(tasks[index % len(tasks)].task)
+            succeeded += index >= args.warm_up and report.success
+    finally:
+        if stream is not None:
+            stream.close()
+    seconds = time.perf_counter() - began
+    gc.collect()
+    after = resident_mb()
+    growth = None if before is None or after is None else round(after - before, 2)
+    figures: dict[str, Any] = {
+        "benchmark": "long_run", "tasks": args.tasks, "warm_up": args.warm_up,
+        "events_kept": args.keep, "events_recorded": events.count,
+        "events_in_memory": len(events.events), "succeeded": succeeded,
+        "rss_mb_after_warm_up": None if before is None else round(before, 1),
+        "rss_mb_at_end": None if after is None else round(after, 1),
+        "rss_growth_mb": growth,
+        "ms_per_task": round(1000 * seconds / args.tasks, 3),
+    }
+    if console is not None:
+        console.print(f"[bold]long run[/]: {args.tasks} consecutive tasks in one home "
+                      f"({succeeded} succeeded), {events.count} events recorded, "
+                      f"{len(events.events)} kept in memory; resident memory "
+                      f"{figures['rss_mb_after_warm_up']} MB after {args.warm_up} tasks, "
+                      f"{figures['rss_mb_at_end']} MB at the end (growth {growth} MB); "
+                      f"{figures['ms_per_task']} ms per task")
+    return figures
