@@ -47,10 +47,11 @@ _GOAL_TOLERANCE = 0.15  #: metres: a leg ends this close to its end point
 _HEADING_TOLERANCE = 0.2  #: radians: the final turn ends this close to the goal's heading
 _STOP_TICKS = 60  #: control periods allowed beyond a goal's timeout to come to rest
 _SECONDS_PER_METRE = 6.0  #: a leg is given up after this long per metre of path ...
-_WAIT_BUDGET = 40.0  #: ... plus this long for waiting and going round
+_WAIT_BUDGET = 60.0  #: ... plus this long for waiting and going round
 _STUCK_SECONDS = 3.0  #: without headway this long, stage 1 plans round what the laser sees
 _OBSTACLE_MARGIN = 0.12  #: metres kept from an unexpected return beyond the robot's radius
-_STATIC_MARGIN = 0.07  #: metres kept from walls and furniture beyond it, going round
+_STATIC_MARGIN = 0.14  #: metres kept from walls and furniture beyond it, where there is room
+_OBSTACLE_MEMORY = 45.0  #: seconds an unexpected return is remembered for stage 1
 _UNEXPLAINED = 0.15  #: a return this far from the static map's obstacles is unexpected
 _PARTICLES_SHOWN = 500
 
@@ -96,6 +97,8 @@ class BodyRobot(Robot):
         self.percepts = percepts
         self.companions = companions
         self.events = events
+        #: unexpected laser returns remembered for stage 1, with when they were seen
+        self._obstacles: list[tuple[float, np.ndarray]] = []
         self.localisation.update(body.odometry(), body.scan())
 
     # ------------------------------------------------------------ state
@@ -164,7 +167,10 @@ class BodyRobot(Robot):
             return MoveReport(False, here, 0.0, Blocker.NO_PATH)
         body = self.body
         deadline = body.now() + plan.length * _SECONDS_PER_METRE + _WAIT_BUDGET
-        path: tuple[tuple[float, float], ...] | None = plan.waypoints
+        # Stage 1 by length alone squeezes through gaps the local planner, keeping its
+        # safety margin, can only crawl through; a wider way is preferred when there is one.
+        path: tuple[tuple[float, float], ...] | None = \
+            self._plan_wide(here, target, avoid_doors, np.zeros((0, 2))) or plan.waypoints
         travelled = 0.0
         while body.now() < deadline:
             if path is None:
@@ -181,21 +187,38 @@ class BodyRobot(Robot):
                     return MoveReport(True, self.pose(), travelled)
                 if result.reason is not StopReason.BLOCKED:
                     break
-            here = self._localise()
-            path = self.navigator.plan_around(here.xy(), target.xy(), avoid_doors,
-                                              self._unexpected_returns(),
-                                              body.radius + _OBSTACLE_MARGIN,
-                                              body.radius + _STATIC_MARGIN)
+            path = self._plan_wide(self._localise(), target, avoid_doors,
+                                   self._remembered_obstacles())
             self.events.record("robot.replan", found=path is not None)
         person = self._person_near(self.pose().xy(), 1.5)
         blocker = Blocker.PERSON if person else Blocker.NO_PATH
         self.events.record("robot.stuck", person=person)
         return MoveReport(False, self.pose(), travelled, blocker, None, person)
 
+    def _plan_wide(self, here: Pose, target: Pose, avoid_doors: frozenset[str],
+                   obstacles: np.ndarray) -> tuple[tuple[float, float], ...] | None:
+        """Stage 1 keeping a margin from walls, furniture and ``obstacles`` (None: no way)."""
+        radius = self.body.radius
+        return self.navigator.plan_around(here.xy(), target.xy(), avoid_doors, obstacles,
+                                          radius + _OBSTACLE_MARGIN, radius + _STATIC_MARGIN)
+
     def _wait(self, seconds: float) -> None:
         """Stand still for ``seconds`` (someone may move out of the way)."""
         self._halt()
         self.body.tick(max(1, int(seconds / self.body.tick_period)))
+
+    def _remembered_obstacles(self) -> np.ndarray:
+        """What the laser sees now that the map lacks, with what it saw lately.
+
+        Remembering keeps the robot from turning back to a way it has just seen
+        blocked once the obstacle is out of its laser's sight; forgetting after a
+        while lets people who walked off free the way again.
+        """
+        now = self.body.now()
+        self._obstacles = [(seen, points) for seen, points in self._obstacles
+                           if now - seen <= _OBSTACLE_MEMORY]
+        self._obstacles.append((now, self._unexpected_returns()))
+        return np.concatenate([points for _, points in self._obstacles])
 
     def _unexpected_returns(self) -> np.ndarray:
         """Laser returns on the map that the static map does not explain."""

@@ -16,6 +16,8 @@ from homebot.world import World
 
 __all__ = ["NavigationPlan", "Navigator"]
 
+# Metres round the start and goal of plan_around where only the robot's radius is kept clear.
+_END_ALLOWANCE = 0.6
 # How many path segments a navigator remembers; fetch-and-deliver tasks revisit the same places.
 _CACHE_SIZE = 4096
 
@@ -108,19 +110,13 @@ class Navigator:
         grid = self.grid
         mask = self._mask(closed_doors).copy()
         if static_clearance is not None:
-            mask |= (self.clearance() < static_clearance).ravel()
+            narrow = (self.clearance() < static_clearance).ravel()
+            # Near its ends a path may pass as close as the robot's radius: approach
+            # poses stand close to furniture on purpose.
+            narrow[self._cells_within(np.asarray([start, goal]), _END_ALLOWANCE)] = False
+            mask |= narrow
         if len(obstacles):
-            reach = int(np.ceil(clearance / grid.resolution))
-            rows, columns = grid.shape
-            offsets = np.arange(-reach, reach + 1)
-            dr, dc = np.meshgrid(offsets, offsets, indexing="ij")
-            disc = np.hypot(dr, dc) * grid.resolution <= clearance
-            dr, dc = dr[disc], dc[disc]
-            cells = np.array([grid.cell_of(x, y) for x, y in obstacles])
-            r = (cells[:, 0, None] + dr[None, :]).ravel()
-            c = (cells[:, 1, None] + dc[None, :]).ravel()
-            keep = (r >= 0) & (r < rows) & (c >= 0) & (c < columns)
-            mask[r[keep] * columns + c[keep]] = True
+            mask[self._cells_within(obstacles, clearance)] = True
         start_cell = grid.nearest_free(mask, *grid.cell_of(*start))
         goal_cell = grid.nearest_free(self._mask(closed_doors), *grid.cell_of(*goal))
         if start_cell is None or goal_cell is None:
@@ -134,6 +130,21 @@ class Navigator:
             return None
         points = [grid.center_of(*divmod(cell, columns)) for cell in cells_path]
         return (start, *_simplify(points)[1:-1], goal)
+
+    def _cells_within(self, points: np.ndarray, radius: float) -> np.ndarray:
+        """Flat indices of the cells within ``radius`` of any of ``points`` ((n, 2), metres)."""
+        grid = self.grid
+        reach = int(np.ceil(radius / grid.resolution))
+        rows, columns = grid.shape
+        offsets = np.arange(-reach, reach + 1)
+        dr, dc = np.meshgrid(offsets, offsets, indexing="ij")
+        disc = np.hypot(dr, dc) * grid.resolution <= radius
+        cells = np.array([grid.cell_of(x, y) for x, y in points])
+        r = (cells[:, 0, None] + dr[disc][None, :]).ravel()
+        c = (cells[:, 1, None] + dc[disc][None, :]).ravel()
+        keep = (r >= 0) & (r < rows) & (c >= 0) & (c < columns)
+        flat: np.ndarray = r[keep] * columns + c[keep]
+        return flat
 
     def clearance(self) -> np.ndarray:
         """Metres from each cell centre to the nearest wall or furniture cell."""
