@@ -13,7 +13,7 @@ from homebot.executive.recovery import Protocol
 from homebot.navigation import Navigator
 from homebot.robot import Robot
 from homebot.scenarios.embodied import Fidelity, embodied_robot
-from homebot.sim import Responder, SimRobot, Simulation
+from homebot.sim import PlanCache, Responder, SimRobot, Simulation
 from homebot.skills import SkillContext
 from homebot.task import Task
 from homebot.world import DisturbanceModel, World
@@ -71,11 +71,13 @@ class SimulatedRun:
                disturbances: DisturbanceModel | None = None, monitoring: bool = True,
                recovery: bool = True, responder: Responder | None = None,
                navigator: Navigator | None = None,
+               plans: PlanCache | None = None,
                retries: Mapping[str, int] | None = None,
                inference: Protocol | None = None,
                time_limit: float | None = None,
                fidelity: Fidelity = Fidelity.SYMBOLIC, walkers: int = 0) -> SimulatedRun:
-        """Build a run. Pass a shared ``navigator`` to skip rasterising the world again.
+        """Build a run. Pass a shared ``navigator`` to skip rasterising the world again,
+        and shared ``plans`` (of that navigator) to skip planning legs driven before.
 
         ``inference`` plugs the daily-life inference cycle into the executive;
         ``time_limit`` is each task's budget in simulated seconds (None: none).
@@ -84,7 +86,7 @@ class SimulatedRun:
         """
         navigator = navigator or Navigator(world)
         simulation = Simulation(world, seed=seed, disturbances=disturbances,
-                                responder=responder, navigator=navigator)
+                                responder=responder, navigator=navigator, plans=plans)
         robot: Robot = SimRobot(simulation) if fidelity is Fidelity.SYMBOLIC else \
             embodied_robot(simulation, navigator, walkers=walkers)
         beliefs = Beliefs.from_world(world, simulation.events)

@@ -8,7 +8,7 @@ from homebot.sim.people import (
     normalise_question,
 )
 from homebot.sim.robot import ActionDurations, SimRobot
-from homebot.sim.simulation import HAND_PREFIX, PERSON_PREFIX, Simulation
+from homebot.sim.simulation import HAND_PREFIX, PERSON_PREFIX, PlanCache, Simulation
 
 __all__ = [
     "HAND_PREFIX",
@@ -16,6 +16,7 @@ __all__ = [
     "ActionDurations",
     "Clock",
     "InteractiveResponder",
+    "PlanCache",
     "Responder",
     "ScriptedResponder",
     "SimRobot",

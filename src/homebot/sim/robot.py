@@ -62,7 +62,7 @@ class SimRobot(Robot):
                 escort: str | None = None) -> MoveReport:
         sim = self.sim
         start = sim.robot_pose[:2]
-        plan = sim.navigator.plan(start, goal.xy(), avoid_doors)
+        plan = sim.plans.plan(start, goal.xy(), avoid_doors)
         if plan is None:
             return MoveReport(False, self.pose(), 0.0, Blocker.NO_PATH)
         shut = sim.closed_doors()
@@ -113,7 +113,7 @@ class SimRobot(Robot):
         if state is None or sim.distance_to(state.position) > _REACH_PERSON:
             return MoveReport(False, self.pose(), 0.0, Blocker.NO_PATH)
         destination = goal.xy() if goal else state.position
-        plan = sim.navigator.plan(sim.robot_pose[:2], destination)
+        plan = sim.plans.plan(sim.robot_pose[:2], destination)
         if plan is None:
             return MoveReport(False, self.pose(), 0.0, Blocker.NO_PATH)
         sim.move_person(person, destination)

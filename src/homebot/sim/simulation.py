@@ -12,7 +12,7 @@ import random
 from dataclasses import dataclass
 
 from homebot.events import EventLog
-from homebot.navigation import Navigator
+from homebot.navigation import NavigationPlan, Navigator
 from homebot.sim.clock import Clock
 from homebot.sim.people import Responder, ScriptedResponder
 from homebot.world import DisturbanceModel, DoorState, PersonModel, PlacementKind, World
@@ -31,6 +31,41 @@ class _PersonState:
     blocking_door: str | None = None
 
 
+class PlanCache:
+    """Navigation plans remembered by start, goal and shut doors, for one navigator.
+
+    A plan depends on nothing else (the grid and the doors are the navigator's), so a
+    robot that drives the same legs again (every fetch task starts at the same pose and
+    goes to the same approach poses) gets its plan without planning. At most ``size``
+    plans are kept; then it starts again.
+    """
+
+    __slots__ = ("_plans", "navigator", "size")
+
+    def __init__(self, navigator: Navigator, size: int = 4096) -> None:
+        self.navigator = navigator
+        self.size = size
+        self._plans: dict[tuple[tuple[float, float], tuple[float, float], frozenset[str]],
+                          NavigationPlan | None] = {}
+
+    def plan(self, start: tuple[float, float], goal: tuple[float, float],
+             closed_doors: frozenset[str] = frozenset()) -> NavigationPlan | None:
+        """``navigator.plan(start, goal, closed_doors)``, remembered."""
+        key = ((float(start[0]), float(start[1])), (float(goal[0]), float(goal[1])),
+               closed_doors)
+        plans = self._plans
+        if key in plans:
+            return plans[key]
+        if len(plans) >= self.size:
+            plans.clear()
+        found = plans[key] = self.navigator.plan(start, goal, closed_doors)
+        return found
+
+    def clear(self) -> None:
+        """Forget every plan."""
+        self._plans.clear()
+
+
 class Simulation:
     """The simulated home: truth, clock, seeded randomness and disturbances.
 
@@ -40,18 +75,23 @@ class Simulation:
         disturbances: overrides the world's disturbance model (None: the world's).
         responder: how people answer questions (default: scripted from the world).
         navigator: a navigator for this world, shared between runs to save rasterising.
+        plans: remembered navigation plans of ``navigator``, shared between runs (None: a
+            cache of this simulation's own).
     """
 
     def __init__(self, world: World, *, seed: int = 0,
                  disturbances: DisturbanceModel | None = None,
                  responder: Responder | None = None,
-                 navigator: Navigator | None = None) -> None:
+                 navigator: Navigator | None = None,
+                 plans: PlanCache | None = None) -> None:
         self.world = world
         self.seed = seed
         self.random = random.Random(seed)
         self.clock = Clock()
         self.events = EventLog(self.clock.now)
         self.navigator = navigator if navigator is not None else Navigator(world)
+        self.plans = plans if plans is not None and plans.navigator is self.navigator else (
+            PlanCache(self.navigator))
         self.disturbances = disturbances if disturbances is not None else world.disturbances
         self.responder: Responder = responder or ScriptedResponder()
         self.object_location: dict[str, str | None] = {

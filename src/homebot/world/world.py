@@ -78,6 +78,10 @@ def shipped_world_path(name: str) -> Path:
     return Path(str(resources.files("homebot.data") / "worlds" / f"{name}.yaml"))
 
 
+#: points whose room ``World.room_at`` remembers (then it starts again)
+_ROOM_AT_CACHE = 65_536
+
+
 class World:
     """The home: rooms, doors, placements, objects, people and the robot.
 
@@ -93,6 +97,9 @@ class World:
         self._wall_lines: BaseGeometry | None = None
         self.rooms = {room.name: room for room in model.rooms}
         self.room_polygons = {room.name: Polygon(room.polygon) for room in model.rooms}
+        # room_at answers by point, remembered: the same points (approach poses, people,
+        # the points around them) are asked again in every task. Rooms never change.
+        self._room_at: dict[tuple[float, float], str | None] = {}
         self.doors = {door.name: door for door in model.doors}
         self.categories = {category.name: category for category in model.categories}
         self.objects = {obj.name: obj for obj in model.objects}
@@ -164,13 +171,26 @@ class World:
     def operator(self) -> PersonModel | None:
         return self.people.get(self.model.operator) if self.model.operator else None
 
+    def forget_cached(self) -> None:
+        """Forget what ``room_at`` remembers (for benchmarks that time a truly cold start)."""
+        self._room_at.clear()
+
     def room_at(self, x: float, y: float) -> str | None:
         """The room containing the point, or None when it is outside every room."""
+        key = (x, y)
+        cache = self._room_at
+        if key in cache:
+            return cache[key]
         point = Point(x, y)
+        found = None
         for name, polygon in self.room_polygons.items():
             if polygon.covers(point):
-                return name
-        return None
+                found = name
+                break
+        if len(cache) >= _ROOM_AT_CACHE:
+            cache.clear()
+        cache[key] = found
+        return found
 
     def placement(self, name: str) -> Placement:
         """The named placement; an unknown name raises ``WorldError`` with a suggestion."""
