@@ -89,9 +89,8 @@ def test_local_grid_marks_returns_and_their_clearance() -> None:
 def test_legs_are_kept_further_away_than_walls() -> None:
     legs = FakeBody(Pose(0.0, 0.0, 0.0), [(1.0, 0.1, 0.06), (1.0, -0.1, 0.06)])
     post = FakeBody(Pose(0.0, 0.0, 0.0), [(1.3, 0.0, 0.36)])  # its face is as near
-    at_robot = [float(LocalGrid.from_scan(body.scan()).clearance_at(np.zeros(1),
-                                                                    np.zeros(1))[0])
-                for body in (legs, post)]
+    at_robot = [float(LocalGrid.from_scan(body.scan(), leg_margin=0.12).clearance_at(
+        np.zeros(1), np.zeros(1))[0]) for body in (legs, post)]
     assert at_robot[1] == pytest.approx(0.94, abs=0.04)
     assert at_robot[0] < at_robot[1] - 0.08
 
