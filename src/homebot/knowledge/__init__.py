@@ -13,9 +13,10 @@ identical to the original's, 316 hold the same literals in another order, none d
 Where homebot keeps its own answer, on purpose:
 
 - Every explicit exclusion counts. ``[[not(a=>v0),0],[not(a=>v1),0]]`` on an individual
-  whose class says ``a=>v1``: the original lists only the first negation and so lets
-  ``a=>v1`` through, contradicting the individual; homebot answers ``[not(a=>v0)]`` and
-  ``a`` stays unknown (``value``: unknown).
+  whose class says ``a=>v1``: the original keeps only the first negation and so answers
+  ``[not(a=>v0),a=>v1]``, contradicting the individual; homebot answers
+  ``[not(a=>v0),not(a=>v1)]`` and ``a`` stays unknown. Exclusions at or above the level
+  that decides are all listed; below it, only the first (as in the original).
 - Explanations name only antecedents that hold: ``explanation_of_individual`` cites the
   default that concluded a property. The original may explain a conclusion with an
   antecedent that is false or unknown for that individual (as issue 13 reports; the

@@ -92,10 +92,10 @@ def resolve_levels(levels: Levels) -> Resolution:
     """Specificity: the most specific level that settles the key decides it.
 
     ``not(p=>v)`` only excludes ``v`` and lets less specific levels speak; ``p``,
-    ``not(p)`` and ``p=>w`` (``w`` not excluded) settle the key. As in SitLog's KB
-    service, the first exclusion of the key (at any level) is kept beside the value
-    when it does not contradict it (``a=>v1`` with an inherited ``not(a=>v3)``), and the
-    literals are listed in the order they are stated, most specific first.
+    ``not(p)`` and ``p=>w`` (``w`` not excluded) settle the key. Every exclusion up to
+    the deciding level holds and is listed; as in SitLog's KB service, the first one
+    below it is kept beside the value when it does not contradict it (``a=>v1`` with an
+    inherited ``not(a=>v3)``), and literals are listed as stated, most specific first.
     """
     if levels and len(levels[0]) == 1:  # the common case: one literal settles it
         only = levels[0][0]
@@ -118,14 +118,18 @@ def resolve_levels(levels: Levels) -> Resolution:
     values = {literal.value for literal in decided}
     shown: list[Literal] = []
     negation_shown = False
+    deciding = True  # up to the level that decides, every exclusion holds and is listed
     for level in levels:
         for literal in level:
             if _exclusion(literal):
-                if not negation_shown and literal.value not in values:
+                if literal.value not in values and literal not in shown and (
+                        deciding or not negation_shown):
                     shown.append(literal)
                     negation_shown = True
             elif literal in decided and literal not in shown:
                 shown.append(literal)
+        if deciding and any(literal in decided for literal in level):
+            deciding = False
     return Resolution(tuple(shown), bool(decided))
 
 
