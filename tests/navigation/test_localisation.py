@@ -7,6 +7,7 @@ import math
 import numpy as np
 import pytest
 
+from homebot.cli import main
 from homebot.errors import HomebotError
 from homebot.navigation import (
     LikelihoodField,
@@ -221,3 +222,10 @@ def test_without_noise_the_particles_move_exactly_by_the_odometry(
     assert mcl.updates == 2
     for x, y, theta in mcl.particles:
         assert (x, y, theta) == pytest.approx((expected.x, expected.y, expected.theta), abs=1e-9)
+
+
+@pytest.mark.parametrize("argv", [["--runs", "0"], ["--phase", "10"], ["--seconds", "-1"]])
+def test_the_benchmark_refuses_bad_sizes(argv: list[str],
+                                         capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["bench", "localisation", *argv]) == 2
+    assert capsys.readouterr().err.count("\n") == 1  # one line, no traceback
