@@ -85,8 +85,11 @@ def test_the_whole_conversation_has_the_papers_41_turns(paper_run: dict[str, Any
 
 def test_luis_is_sought_in_the_living_room_because_he_is_tired(
         paper_run: dict[str, Any]) -> None:
-    assert paper_run["why_user"] == ["tired : bad_day",
-                                     "found_in=>living_room : [back_from_work,tired]"]
+    # In the order of SitLog's KB service: both defaults weigh 1 at the user's level, so
+    # the one listed last comes first (explanation_of_individual under SWI-Prolog gives
+    # [(found_in=>living_room):[back_from_work,tired],tired:bad_day]).
+    assert paper_run["why_user"] == ["found_in=>living_room : [back_from_work,tired]",
+                                     "tired : bad_day"]
     searched = [a["situation"] for a in paper_run["actions"]
                 if a["model"] == "deliver" and a["situation"].startswith("find")]
     assert searched == ["find('living room')"]
