@@ -24,6 +24,8 @@ OPERATOR = "operator"  #: how a task names the person who gave the command
 
 # How far from a person the robot stops to talk or hand over, in metres.
 _PERSON_DISTANCE = 0.9
+# The farthest from a person the robot stands to talk or hand over (within arm's and voice's reach).
+_PERSON_REACH_LIMIT = 1.8
 
 
 def person_name(context: SkillContext, name: str | Mapping[str, Any] | None) -> str | None:
@@ -45,23 +47,30 @@ def person_name(context: SkillContext, name: str | Mapping[str, Any] | None) -> 
 
 def pose_near_point(context: SkillContext, point: tuple[float, float],
                     distance: float = _PERSON_DISTANCE) -> Pose:
-    """A free pose ``distance`` from ``point``, facing it, on the side nearest the robot."""
+    """A free pose ``distance`` from ``point``, facing it, on the side nearest the robot.
+
+    Someone lying on a bed or sitting deep in a sofa may have no free floor that
+    near: then the ring is widened, up to ``_PERSON_REACH_LIMIT``.
+    """
     grid = context.navigator.grid
     here = context.robot.pose()
     mask = grid.blocked.ravel()
     columns = grid.shape[1]
-    candidates = []
-    for step in range(12):
-        angle = step * math.pi / 6
-        x, y = point[0] + distance * math.cos(angle), point[1] + distance * math.sin(angle)
-        row, column = grid.cell_of(x, y)
-        if context.world.room_at(x, y) is None or mask[row * columns + column]:
-            continue
-        candidates.append((math.dist((x, y), here.xy()), x, y))
-    if not candidates:
-        return Pose(point[0], point[1], 0.0)
-    _, x, y = min(candidates)
-    return Pose(x, y, math.atan2(point[1] - y, point[0] - x))
+    ring = distance
+    while ring <= _PERSON_REACH_LIMIT:
+        candidates = []
+        for step in range(12):
+            angle = step * math.pi / 6
+            x, y = point[0] + ring * math.cos(angle), point[1] + ring * math.sin(angle)
+            row, column = grid.cell_of(x, y)
+            if context.world.room_at(x, y) is None or mask[row * columns + column]:
+                continue
+            candidates.append((math.dist((x, y), here.xy()), x, y))
+        if candidates:
+            _, x, y = min(candidates)
+            return Pose(x, y, math.atan2(point[1] - y, point[0] - x))
+        ring += 0.3
+    return Pose(point[0], point[1], 0.0)
 
 
 def point_goal(target: Any) -> tuple[float, float] | None:
