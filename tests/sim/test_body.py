@@ -147,3 +147,14 @@ def test_an_omnidirectional_base_moves_sideways(apartment: World) -> None:
     x, y, theta = body.sim.robot_pose
     assert x == pytest.approx(6.0) and theta == pytest.approx(0.0)
     assert 5.4 < y < 5.7
+
+
+def test_driving_into_someone_is_a_collision_with_them(apartment: World,
+                                                        apartment_navigator: Navigator) -> None:
+    body = _body(apartment, apartment_navigator)
+    body.sim.move_person("John", (3.0, 5.0))
+    body.teleport(Pose(1.5, 5.0, 0.0))
+    body.command_velocity(Twist(0.5, 0.0, 0.0))
+    body.tick(100)
+    assert [c["with"] for c in body.sim.collisions] == ["person John"]
+    assert body.sim.robot_pose[0] < 3.0 - apartment.robot.radius

@@ -33,9 +33,13 @@ from homebot.sim.simulation import Simulation
 from homebot.sim.walkers import PeopleWalking
 from homebot.world import LaserModel
 
-__all__ = ["PERSON_RADIUS", "OdometryNoise", "SimBody"]
+__all__ = ["FOOT_RADIUS", "OdometryNoise", "SimBody"]
 
-PERSON_RADIUS = 0.2  #: a person's body, for the bumper (their legs are what the laser sees)
+#: The base touches people at their legs and feet: this far round each leg's centre (the
+#: laser, higher up, sees the legs themselves, ``LEG_RADIUS``).
+FOOT_RADIUS = 0.1
+#: Walkers do not step closer to the robot's centre than its radius and this much.
+_PERSONAL_SPACE = 0.3
 _LASER_MOUNT = Pose(0.15, 0.0, 0.0)
 _PAN_LIMIT = 2.6
 _TILT_LIMITS = (-0.4, 0.9)
@@ -181,7 +185,7 @@ class SimBody(Body):
         robot = self.sim.robot_pose[:2]
         while gap > 1e-9:
             step = min(gap, _CATCH_UP_STEP)
-            self.people.advance(step, robot, self.radius + PERSON_RADIUS + 0.1)
+            self.people.advance(step, robot, self.radius + _PERSONAL_SPACE)
             gap -= step
 
     def _tick_once(self) -> None:
@@ -194,7 +198,7 @@ class SimBody(Body):
         if was_moving and self._velocity.is_zero():
             self._flush_trajectory()
         self._odometry_step(*moved)
-        self.people.advance(dt, self.sim.robot_pose[:2], self.radius + PERSON_RADIUS + 0.1)
+        self.people.advance(dt, self.sim.robot_pose[:2], self.radius + _PERSONAL_SPACE)
         self._last_tick_end = self.sim.clock.advance(dt)
 
     def _accelerate(self, target: Twist, dt: float) -> Twist:
@@ -239,8 +243,8 @@ class SimBody(Body):
         radius = self.radius + margin
         if self.geometry.clearance(x, y, self.sim.closed_doors()) < radius:
             return "wall or furniture"
-        for name, state in self.sim.people.items():
-            if math.dist((x, y), state.position) < radius + PERSON_RADIUS:
+        for name, leg in self.people.named_legs():
+            if math.dist((x, y), leg) < radius + FOOT_RADIUS:
                 return f"person {name}"
         return None
 

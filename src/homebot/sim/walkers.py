@@ -20,6 +20,7 @@ __all__ = ["PeopleWalking", "Walker"]
 _SPEED = (0.4, 0.8)  #: metres per second, drawn per walker
 _DWELL = (5.0, 40.0)  #: seconds spent at a place
 _CARRY_CHANCE = 0.1  #: share of departures on which an object is taken along
+_LEG_SPREAD = 0.1  #: metres from a person's centre to each leg's
 _BESIDE = 0.75  #: metres sideways from a placement's approach spot, where people stand
 _YIELD_DISTANCE = 0.9  #: a walker waits when the robot's centre is this close ahead
 
@@ -58,15 +59,19 @@ class PeopleWalking:
 
     def legs(self) -> list[tuple[float, float]]:
         """Where every person's two legs are (walkers and those standing still)."""
-        centres = []
+        return [leg for _, leg in self.named_legs()]
+
+    def named_legs(self) -> list[tuple[str, tuple[float, float]]]:
+        """Each leg's centre with whose it is: two a person, across their walking direction."""
         headings = {walker.name: walker.heading for walker in self.walkers}
+        legs = []
         for name, state in sorted(self.sim.people.items()):
-            heading = headings.get(name, 0.0) + math.pi / 2
+            across = headings.get(name, 0.0) + math.pi / 2
             x, y = state.position
             for side in (-1, 1):
-                centres.append((x + side * 0.1 * math.cos(heading),
-                                y + side * 0.1 * math.sin(heading)))
-        return centres
+                legs.append((name, (x + side * _LEG_SPREAD * math.cos(across),
+                                    y + side * _LEG_SPREAD * math.sin(across))))
+        return legs
 
     def advance(self, seconds: float, robot: tuple[float, float], keep_away: float) -> None:
         """Let ``seconds`` pass for every walker; nobody steps within ``keep_away`` of the robot."""
