@@ -63,13 +63,14 @@ def embodied_robot(simulation: Simulation, navigator: Navigator, *,
     require_embodied()
     from homebot.embodied import BodyRobot
     from homebot.navigation.local_planner import MotionSearchPlanner
-    from homebot.navigation.localisation import MonteCarloLocalisation
+    from homebot.navigation.localisation import MclParameters, MonteCarloLocalisation
     from homebot.sim.body import SimBody
 
     world = simulation.world
     body = SimBody(simulation, walkers=walkers)
     localisation = MonteCarloLocalisation(
-        navigator.grid, np.random.default_rng([simulation.seed, _LOCALISATION_STREAM]))
+        navigator.grid, np.random.default_rng([simulation.seed, _LOCALISATION_STREAM]),
+        MclParameters(odom_model_type=body.drive))
     if known_start:
         localisation.initialise(Pose(*world.robot.pose), spread=0.05, angle_spread=0.05)
     else:
