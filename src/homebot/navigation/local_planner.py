@@ -83,6 +83,7 @@ class MotionSearchPlanner:
         batch: nodes expanded together (one vectorised step) from the front of the queue.
         turn_cost: seconds added per rad/s of change in turn rate, so that of two
             equally fast sequences the steadier one wins.
+        leg_margin: extra clearance kept from pairs of legs (a person is wider than them).
     """
 
     period: float = 0.05
@@ -98,6 +99,7 @@ class MotionSearchPlanner:
     greed: float = 4.0
     batch: int = 4
     turn_cost: float = 0.1
+    leg_margin: float = 0.12
     substeps: int = 3
     last: PlannerCycle | None = field(default=None, init=False)
 
@@ -120,7 +122,7 @@ class MotionSearchPlanner:
              radius: float) -> Twist:
         """The velocity to command now (robot frame); see ``LocalController.plan``."""
         check_request(path, radius)
-        grid = LocalGrid.from_scan(scan, self.grid_size, self.resolution)
+        grid = LocalGrid.from_scan(scan, self.grid_size, self.resolution, self.leg_margin)
         reach = min(self.lookahead, grid.half_size - 0.25)
         target, final = lookahead(pose, path, reach)
         grown = radius + self.safety
