@@ -197,10 +197,15 @@ class BodyRobot(Robot):
 
     def _plan_wide(self, here: Pose, target: Pose, avoid_doors: frozenset[str],
                    obstacles: np.ndarray) -> tuple[tuple[float, float], ...] | None:
-        """Stage 1 keeping a margin from walls, furniture and ``obstacles`` (None: no way)."""
+        """Stage 1 round ``obstacles``, with a margin from walls and furniture where there is
+        room, else through the narrow gaps too (None: no way at all)."""
         radius = self.body.radius
-        return self.navigator.plan_around(here.xy(), target.xy(), avoid_doors, obstacles,
-                                          radius + _OBSTACLE_MARGIN, radius + _STATIC_MARGIN)
+        for static in (radius + _STATIC_MARGIN, None):
+            path = self.navigator.plan_around(here.xy(), target.xy(), avoid_doors, obstacles,
+                                              radius + _OBSTACLE_MARGIN, static)
+            if path is not None:
+                return path
+        return None
 
     def _wait(self, seconds: float) -> None:
         """Stand still for ``seconds`` (someone may move out of the way)."""
