@@ -85,16 +85,8 @@ def _gtpyhop_state(gtpyhop: Any, state: State) -> Any:
     )
 
 
-def _declare(gtpyhop: Any) -> None:
-    """Declare the actions and methods in GTPyhop's current domain."""
-
-    def announce(s: Any, r: str, what: str, thing: str, who: str) -> Any:
-        s.told.add((who, what, thing))
-        return s
-
-    def report(s: Any, r: str, what: str, thing: str, who: str) -> Any:
-        s.reported.add((who, what, thing))  # GTPyhop leaves out actions that change nothing
-        return s
+def _declare_going(gtpyhop: Any) -> None:
+    """The actions and ``go_to`` methods both GTPyhop domains share, as ``home.jshop`` has them."""
 
     def move_base(s: Any, r: str, source: str, target: str) -> Any:
         if s.at[r] == source:
@@ -113,6 +105,39 @@ def _declare(gtpyhop: Any) -> None:
             s.found.add((o, p))
             return s
         return None
+
+    gtpyhop.declare_actions(move_base, open_door, find_object)
+
+    def m_go_there(s: Any, r: str, place: str) -> Any:
+        return [] if s.at[r] == place else False
+
+    def m_go_in_room(s: Any, r: str, place: str) -> Any:
+        return [] if place in s.rooms and s.room_of.get(s.at[r]) == place else False
+
+    def m_go_door(s: Any, r: str, place: str) -> Any:
+        room = s.room_of.get(place)
+        door = s.only_door.get(room)
+        if door in s.closed and s.room_of.get(s.at[r]) != room:
+            return [("open_door", r, door), ("move_base", r, s.at[r], place)]
+        return False
+
+    def m_go_drive(s: Any, r: str, place: str) -> Any:
+        return [("move_base", r, s.at[r], place)]
+
+    gtpyhop.declare_task_methods("go_to", m_go_there, m_go_in_room, m_go_door, m_go_drive)
+
+
+def _declare(gtpyhop: Any) -> None:
+    """Declare the actions and methods in GTPyhop's current domain."""
+    _declare_going(gtpyhop)
+
+    def announce(s: Any, r: str, what: str, thing: str, who: str) -> Any:
+        s.told.add((who, what, thing))
+        return s
+
+    def report(s: Any, r: str, what: str, thing: str, who: str) -> Any:
+        s.reported.add((who, what, thing))  # GTPyhop leaves out actions that change nothing
+        return s
 
     def grasp(s: Any, r: str, o: str, p: str) -> Any:
         if s.at[r] == p and (o, p) in s.found and s.free_hands[r]:
@@ -136,8 +161,7 @@ def _declare(gtpyhop: Any) -> None:
             return s
         return None
 
-    gtpyhop.declare_actions(announce, report, move_base, open_door, find_object, grasp,
-                            find_person, hand_over)
+    gtpyhop.declare_actions(announce, report, grasp, find_person, hand_over)
 
     def excluded(s: Any, o: str, p: str) -> bool:
         return (o in s.object_at and s.object_at[o] != p) or (o, p) in s.ruled_out or (
@@ -184,22 +208,6 @@ def _declare(gtpyhop: Any) -> None:
             return False
         return [("go_to", r, room), ("find_person", r, who), ("hand_over", r, o, who)]
 
-    def m_go_there(s: Any, r: str, place: str) -> Any:
-        return [] if s.at[r] == place else False
-
-    def m_go_in_room(s: Any, r: str, place: str) -> Any:
-        return [] if place in s.rooms and s.room_of.get(s.at[r]) == place else False
-
-    def m_go_door(s: Any, r: str, place: str) -> Any:
-        room = s.room_of.get(place)
-        door = s.only_door.get(room)
-        if door in s.closed and s.room_of.get(s.at[r]) != room:
-            return [("open_door", r, door), ("move_base", r, s.at[r], place)]
-        return False
-
-    def m_go_drive(s: Any, r: str, place: str) -> Any:
-        return [("move_base", r, s.at[r], place)]
-
     def m_announce_told(s: Any, r: str, what: str, thing: str, who: str) -> Any:
         return [] if (who, what, thing) in s.told else False
 
@@ -209,7 +217,6 @@ def _declare(gtpyhop: Any) -> None:
     gtpyhop.declare_task_methods("bring_object", m_bring_delivered, m_bring_held, m_bring_fetch)
     gtpyhop.declare_task_methods("fetch", m_fetch_seen, m_fetch_told, m_fetch_belongs)
     gtpyhop.declare_task_methods("deliver", m_deliver_with, m_deliver_go)
-    gtpyhop.declare_task_methods("go_to", m_go_there, m_go_in_room, m_go_door, m_go_drive)
     gtpyhop.declare_task_methods("announce_task", m_announce_told, m_announce)
 
 
@@ -229,24 +236,7 @@ def _gtpyhop_bring_object(state: State) -> tuple[Any, Any, Any]:
 
 def _declare_tidy(gtpyhop: Any) -> None:
     """The tidy-up of ``home.jshop`` (tidy, tidy_from, put_away, go_to) in GTPyhop's style."""
-
-    def move_base(s: Any, r: str, source: str, target: str) -> Any:
-        if s.at[r] == source:
-            s.at[r] = target
-            return s
-        return None
-
-    def open_door(s: Any, r: str, door: str) -> Any:
-        if door in s.closed:
-            s.closed.discard(door)
-            return s
-        return None
-
-    def find_object(s: Any, r: str, o: str, p: str) -> Any:
-        if s.at[r] == p:
-            s.found.add((o, p))
-            return s
-        return None
+    _declare_going(gtpyhop)
 
     def grasp(s: Any, r: str, o: str, p: str) -> Any:
         if s.at[r] == p and (o, p) in s.found and s.free_hands[r]:
@@ -263,7 +253,7 @@ def _declare_tidy(gtpyhop: Any) -> None:
             return s
         return None
 
-    gtpyhop.declare_actions(move_base, open_door, find_object, grasp, put_down)
+    gtpyhop.declare_actions(grasp, put_down)
 
     def belongs(s: Any, o: str) -> list[str]:
         category = s.category.get(o)
@@ -308,26 +298,9 @@ def _declare_tidy(gtpyhop: Any) -> None:
         return [("go_to", r, source), ("find_object", r, o, source), ("grasp", r, o, source),
                 ("go_to", r, target), ("put_down", r, o, target)]
 
-    def m_go_there(s: Any, r: str, place: str) -> Any:
-        return [] if s.at[r] == place else False
-
-    def m_go_in_room(s: Any, r: str, place: str) -> Any:
-        return [] if place in s.rooms and s.room_of.get(s.at[r]) == place else False
-
-    def m_go_door(s: Any, r: str, place: str) -> Any:
-        room = s.room_of.get(place)
-        door = s.only_door.get(room)
-        if door in s.closed and s.room_of.get(s.at[r]) != room:
-            return [("open_door", r, door), ("move_base", r, s.at[r], place)]
-        return False
-
-    def m_go_drive(s: Any, r: str, place: str) -> Any:
-        return [("move_base", r, s.at[r], place)]
-
     gtpyhop.declare_task_methods("tidy", m_tidy_next, m_tidy_done)
     gtpyhop.declare_task_methods("tidy_from", m_two_on_the_tray, m_one)
     gtpyhop.declare_task_methods("put_away", m_put_away)
-    gtpyhop.declare_task_methods("go_to", m_go_there, m_go_in_room, m_go_door, m_go_drive)
 
 
 def _gtpyhop_tidy(gtpyhop: Any, state: State, robot: str) -> tuple[Any, float, Any]:
