@@ -6,10 +6,9 @@ import argparse
 from pathlib import Path
 from typing import Any
 
-from homebot.errors import WorldError
 from homebot.world import World
 from homebot.world.pyrobosim import world_from_pyrobosim
-from homebot.world.writing import world_yaml
+from homebot.world.writing import write_world_yaml
 
 __all__ = ["register_pyrobosim"]
 
@@ -32,10 +31,7 @@ def _from_pyrobosim(args: argparse.Namespace) -> int:
     world = World.from_dict(data, source=str(args.file))
     header = (f"Imported by `homebot world from-pyrobosim {args.file}`: hallways are rooms of\n"
               f"their own with a door at each end; {args.operator} is the operator.")
-    try:
-        args.output.write_text(world_yaml(data, header), encoding="utf-8")
-    except OSError as error:
-        raise WorldError(f"{args.output}: cannot be written ({error})") from None
+    write_world_yaml(args.output, data, header)
     print(f"{args.output}: {len(world.rooms)} rooms (with hallways), {len(world.doors)} doors, "
           f"{len(world.placements)} placements, {len(world.objects)} objects")
     return 0

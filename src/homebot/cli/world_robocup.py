@@ -7,10 +7,9 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from homebot.errors import WorldError
 from homebot.world import World
 from homebot.world.robocup import import_robocup
-from homebot.world.writing import world_yaml
+from homebot.world.writing import write_world_yaml
 
 __all__ = ["register_robocup"]
 
@@ -37,10 +36,7 @@ def _from_robocup(args: argparse.Namespace) -> int:
     world = World.from_dict(data, source=str(args.directory))
     header = (f"Built by `homebot world from-robocup {args.directory}`.\n"
               f"The robot starts at the entrance; {data['operator']} is the operator.")
-    try:
-        args.output.write_text(world_yaml(data, header), encoding="utf-8")
-    except OSError as error:
-        raise WorldError(f"{args.output}: cannot be written ({error})") from None
+    write_world_yaml(args.output, data, header)
     print(f"{args.output}: {len(world.rooms)} rooms, {len(world.doors)} doors, "
           f"{len(world.placements)} placements, {len(world.objects)} objects, "
           f"{len(world.people)} people")

@@ -3,11 +3,14 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
+from pathlib import Path
 from typing import Any
 
 import yaml
 
-__all__ = ["world_yaml"]
+from homebot.errors import WorldError
+
+__all__ = ["world_yaml", "write_world_yaml"]
 
 
 class _WorldDumper(yaml.SafeDumper):
@@ -38,3 +41,12 @@ def world_yaml(data: Mapping[str, Any], header: str = "") -> str:
     body = yaml.dump(dict(data), Dumper=_WorldDumper, sort_keys=False, allow_unicode=True,
                      width=100)
     return comment + body
+
+
+def write_world_yaml(path: Path, data: Mapping[str, Any], header: str = "") -> None:
+    """Write ``world_yaml(data, header)`` to ``path``; a path that cannot be written is a
+    ``WorldError`` naming it."""
+    try:
+        path.write_text(world_yaml(data, header), encoding="utf-8")
+    except OSError as error:
+        raise WorldError(f"{path}: cannot be written ({error})") from None
