@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable, Mapping
 from types import MappingProxyType
 
@@ -36,10 +37,13 @@ from homebot.language.reporting import handle_count, handle_tell, handle_tell_me
 from homebot.language.result import ParseResult, ParseStatus
 from homebot.language.tagging import tag
 from homebot.language.vocabulary import Vocabulary
+from homebot.space.referring import split_spatial
+from homebot.task import Step
 
 __all__ = ["MAX_COMMAND_LENGTH", "parse_command"]
 
 MAX_COMMAND_LENGTH = 1000
+re_the = re.compile(r"\bthe\s+", re.IGNORECASE)
 Handler = Callable[[Clause, Context], None]
 
 
@@ -51,6 +55,9 @@ def parse_command(text: str, vocabulary: Vocabulary) -> ParseResult:
     if len(text) > MAX_COMMAND_LENGTH:
         raise LanguageError(f"the command has {len(text)} characters; keep it under "
                             f"{MAX_COMMAND_LENGTH}, one task at a time")
+    referred = _spatial_reference(text, vocabulary)
+    if referred is not None:
+        return referred
     clauses = build_clauses(tag(normalise(text, vocabulary), vocabulary))
     ctx = Context(vocabulary)
     try:
@@ -66,6 +73,32 @@ def parse_command(text: str, vocabulary: Vocabulary) -> ParseResult:
         return ParseResult(ParseStatus.REJECT, text,
                            reason="I understood no action I can carry out in that command.")
     return ParseResult(ParseStatus.OK, text, steps=list(ctx.steps))
+
+
+def _spatial_reference(text: str, vocabulary: Vocabulary) -> ParseResult | None:
+    """"the left cup", "the cup close to the plate": parse the command without the spatial
+    modifiers and record them (``spatial``) on its first ``find_object`` step, where the
+    skill resolves them among what it sees (``homebot.space.referring``). None when the
+    command has no such modifier or no object search to carry it ("go near the door")."""
+    plain, modifiers = split_spatial(text)
+    if not modifiers:
+        return None
+    result = parse_command(plain, vocabulary)
+    if result.status is ParseStatus.CLARIFY:  # "the cup" among several: the modifiers tell
+        result = parse_command(_indefinite(plain), vocabulary)
+    searches = [index for index, step in enumerate(result.steps) if step.skill == "find_object"]
+    if not result or not searches:
+        return None
+    steps = list(result.steps)
+    first = steps[searches[0]]
+    steps[searches[0]] = Step("find_object", {**first.args, "spatial": [
+        modifier.to_dict() for modifier in modifiers]})
+    return ParseResult(ParseStatus.OK, text, steps=steps)
+
+
+def _indefinite(text: str) -> str:
+    """The first "the" made "a": "bring me the cup" asks which cup; "a cup" does not."""
+    return re_the.sub("a ", text, count=1)
 
 
 def _find(clause: Clause, ctx: Context) -> None:

@@ -58,11 +58,13 @@ class MoveReport:
 
 @dataclass(frozen=True, slots=True)
 class Detection:
-    """An object seen by perception. ``handle`` lets the arm reach that very object."""
+    """An object seen by perception. ``handle`` lets the arm reach that very object;
+    ``position`` is where it stands (map frame, metres) when perception tells."""
 
     label: str
     category: str
     handle: int
+    position: tuple[float, float] | None = None
 
 
 @dataclass(frozen=True, slots=True)

@@ -158,7 +158,8 @@ class SimRobot(Robot):
                 lookalikes = sorted(other for other, o in sim.world.objects.items()
                                     if o.category == obj.category and other != name)
                 label = sim.random.choice(lookalikes) if lookalikes else name
-            detections.append(Detection(label, obj.category, sim.object_ids[name]))
+            detections.append(Detection(label, obj.category, sim.object_ids[name],
+                                        sim.position_on(name, placement)))
         return detections
 
     def perceive_people(self) -> list[PersonPercept]:

@@ -11,11 +11,20 @@ import math
 import random
 from dataclasses import dataclass
 
+from shapely.geometry import Point as ShapelyPoint
+
 from homebot.events import EventLog
 from homebot.navigation import NavigationPlan, Navigator
 from homebot.sim.clock import Clock
 from homebot.sim.people import Responder, ScriptedResponder
-from homebot.world import DisturbanceModel, DoorState, PersonModel, PlacementKind, World
+from homebot.world import (
+    DisturbanceModel,
+    DoorState,
+    PersonModel,
+    PlacementKind,
+    World,
+    object_positions,
+)
 
 __all__ = ["HAND_PREFIX", "PERSON_PREFIX", "Simulation"]
 
@@ -97,6 +106,8 @@ class Simulation:
         self.object_location: dict[str, str | None] = {
             name: obj.placement for name, obj in world.objects.items()}
         self.object_ids = {name: index for index, name in enumerate(sorted(world.objects))}
+        #: where each object stands on its placement (the file's, or sampled with the seed)
+        self.object_position = object_positions(world, seed)
         self._object_names = {index: name for name, index in self.object_ids.items()}
         #: where someone may have put an object: every piece of furniture
         self.furniture = [p.name for p in world.placements.values()
@@ -177,6 +188,15 @@ class Simulation:
 
     def objects_on(self, placement: str) -> list[str]:
         return sorted(name for name, where in self.object_location.items() if where == placement)
+
+    def position_on(self, name: str, placement: str) -> tuple[float, float]:
+        """Where an object stands on ``placement``: its own position while that lies on the
+        placement's surface, else (moved there since) the surface's centre."""
+        here = self.object_position.get(name)
+        where = self.world.placements[placement]
+        if here is not None and where.footprint.covers(ShapelyPoint(here)):
+            return here
+        return (float(where.model.center[0]), float(where.model.center[1]))
 
     def object_by_id(self, handle: int) -> str | None:
         return self._object_names.get(handle)

@@ -22,6 +22,7 @@ from homebot.skills.wording import (
     plural,
     the,
 )
+from homebot.space.referring import Modifier, Scene, resolve
 from homebot.text import fold
 
 __all__ = [
@@ -143,7 +144,7 @@ class FindObject(Skill):
 
     name = "find_object"
     required = ("object",)
-    optional = ("placement", "room", "exclude")
+    optional = ("placement", "room", "exclude", "spatial")
     retries = 1
     retry_on = frozenset({ErrorCode.NOT_FOUND})  # a missed detection rarely repeats
 
@@ -178,6 +179,8 @@ class FindObject(Skill):
                 return outcome
             looked.append(placement)
             found = [d for d in detections if matches_object(context, wanted, d)]
+            if found and args.get("spatial"):  # "the left cup": the one the words fit best
+                return _referent(context, wanted, placement, found, detections, args["spatial"])
             if found:
                 return Outcome.finished(f"I see the {found[0].label} "
                                         f"{place_in(context.world, placement)}",
@@ -200,6 +203,28 @@ class FindObject(Skill):
         context.beliefs.missed_object(name, placement)
         return Outcome.aborted(ErrorCode.NOT_FOUND, f"the {name} {be(name)} not "
                                f"{place_in(context.world, placement)}")
+
+
+def _referent(context: SkillContext, wanted: str, placement: str, found: Sequence[Detection],
+              detections: Sequence[Detection], spatial: Sequence[Mapping[str, str]]) -> Outcome:
+    """The one of ``found`` the spatial modifiers fit best, read in the placement's frame
+    as seen from where the robot stands at it; when two fit about equally, or none, the
+    robot asks which one is meant (``homebot.space.referring``)."""
+    where = context.world.placements[placement]
+    centre = (float(where.model.center[0]), float(where.model.center[1]))
+    scene = Scene({d.label: d.position or centre for d in detections},
+                  {d.label: d.category for d in detections}, math.hypot(*where.model.size),
+                  (where.approach[0], where.approach[1]))
+    resolution = resolve([d.label for d in found], [Modifier.from_dict(m) for m in spatial],
+                         scene, noun=wanted)
+    if resolution.referent is None:
+        question = resolution.question or f"Which {wanted} do you mean?"
+        context.robot.say(question)
+        return Outcome.failed(ErrorCode.UNKNOWN_TARGET, question,
+                              candidates=[name for name, _ in resolution.degrees])
+    return Outcome.finished(f"I see the {resolution.referent} "
+                            f"{place_in(context.world, placement)}",
+                            object=resolution.referent, placement=placement)
 
 
 def looked_everywhere(wanted: str, searched: Sequence[str]) -> str:

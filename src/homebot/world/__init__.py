@@ -16,9 +16,11 @@ from homebot.world.model import (
     RoomModel,
     WorldModel,
 )
+from homebot.world.surfaces import FRONT_HEADINGS, front_heading, object_positions
 from homebot.world.world import Placement, World, shipped_world_names, shipped_world_path
 
 __all__ = [
+    "FRONT_HEADINGS",
     "DisturbanceModel",
     "DoorModel",
     "DoorState",
@@ -35,6 +37,8 @@ __all__ = [
     "RoomModel",
     "World",
     "WorldModel",
+    "front_heading",
+    "object_positions",
     "shipped_world_names",
     "shipped_world_path",
 ]

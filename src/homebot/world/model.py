@@ -102,6 +102,8 @@ class PlacementModel(_Strict):
     is where the robot stands to use it (x, y, heading in radians); when left out
     it is computed as the nearest free place facing the footprint.
     ``holds`` lists the object categories the placement is meant to hold.
+    ``front`` is the side it faces (``north`` is +y, ``east`` +x); when left out,
+    the side its approach pose is on ("the left cup" is seen from there).
     """
 
     name: Name
@@ -112,6 +114,7 @@ class PlacementModel(_Strict):
     size: tuple[float, float] = (0.6, 0.6)
     approach: tuple[float, float, float] | None = None
     holds: list[Name] = Field(default_factory=list)
+    front: Literal["north", "south", "east", "west"] | None = None
 
     @field_validator("size")
     @classmethod
@@ -132,7 +135,9 @@ class ObjectModel(_Strict):
     """An object, the placement it lies on, and what perception can tell of it.
 
     ``size`` is its largest dimension in metres and ``weight`` its mass in kg
-    (used to answer "the heaviest object on the desk").
+    (used to answer "the heaviest object on the desk"). ``position`` is where it
+    stands on its placement's surface (x, y in the map frame, metres); when left out,
+    ``homebot.world.object_positions`` samples one with the run's seed.
     """
 
     name: Name
@@ -140,6 +145,7 @@ class ObjectModel(_Strict):
     placement: Name
     size: float = Field(default=0.12, gt=0.0, le=2.0)
     weight: float = Field(default=0.3, gt=0.0, le=30.0)
+    position: Point | None = None
 
 
 class PersonModel(_Strict):

@@ -395,6 +395,12 @@ class World:
             if obj.placement not in self.placements:
                 self._problem(["objects", index, "placement"],
                               _unknown("placement", obj.placement, self.placements))
+            elif obj.position is not None and not (
+                    self.placements[obj.placement].footprint.covers(Point(obj.position))):
+                self._problem(["objects", index, "position"],
+                              f"{list(obj.position)} is not on the surface of "
+                              f"'{obj.placement}'; give a point inside its footprint or leave "
+                              "the position out")
             if self.categories and obj.category not in self.categories:
                 self._problem(["objects", index, "category"],
                               _unknown("object category", obj.category, self.categories))

@@ -1,0 +1,210 @@
+"""Referring expressions: "the left cup", "the cup close to the plate", resolved by fuzzy degrees.
+
+``split_spatial(text)`` finds the spatial modifiers of a command and returns the
+text without them, so the parser reads "bring me the cup" and records the
+modifiers on the object reference. ``resolve(candidates, modifiers, scene)`` then
+picks the one candidate the modifiers fit best, or asks when two fit about
+equally (their degrees within ``margin``) or none fits.
+
+Degrees, each from 0 to 1, combined by product (a t-norm):
+
+- **side** ("the left cup", "the cup on the right", "the front cup"): the candidate
+  lies to that side of each *other* candidate, as the viewer sees it; the mean of
+  ``side_degree`` over the others. Two cups one behind the other are both about
+  0.5 "left": the expression does not tell them apart, and the robot asks.
+- **near** ("close to", "near", "next to", "beside"): ``closeness`` of the distance
+  to the relatum in the scene's frame; **far** ("far from") its complement;
+- **direction** ("behind", "in front of", "left of", "right of" the relatum):
+  ``side_degree`` of the direction from the relatum, times ``closeness`` (the
+  bottle behind the bowl is behind it *and* near it).
+
+The relatum ("the plate") is any other thing in the scene whose category or name
+is that word; with several, the best fitting one counts.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from typing import Final
+
+from homebot.space.distance import closeness
+from homebot.space.orientation import relative_angle, side_degree
+
+__all__ = [
+    "MARGIN",
+    "Modifier",
+    "Resolution",
+    "Scene",
+    "degrees",
+    "resolve",
+    "split_spatial",
+]
+
+#: two candidates whose degrees differ by less than this fit "about equally": ask
+MARGIN: Final = 0.15
+#: a best degree below this fits not at all: ask
+_AT_LEAST: Final = 0.2
+
+_SIDES: Final = {"left": "left", "leftmost": "left", "right": "right", "rightmost": "right",
+                 "front": "front", "frontmost": "front", "back": "back", "rear": "back",
+                 "backmost": "back"}
+_RELATIONS: Final = {
+    "close to": "near", "near to": "near", "near": "near", "next to": "near",
+    "beside": "near", "far from": "far", "far away from": "far", "behind": "back",
+    "in front of": "front", "to the left of": "left", "left of": "left",
+    "on the left of": "left", "to the right of": "right", "right of": "right",
+    "on the right of": "right",
+}
+_STOP: Final = r"(?=$|[,.;!?]|\s(?:on|in|at|to|from|and|then|please|for|into|onto|with|of)\b)"
+_RELATION_RE: Final = re.compile(
+    r"\s+(?:(?:which|that) (?:is|are|stands|lies)\s+)?"
+    r"(?P<rel>" + "|".join(sorted((re.escape(k) for k in _RELATIONS), key=len, reverse=True))
+    + r")\s+(?:the|a|an|my|your)\s+(?P<relatum>[^\W\d][\w' -]*?)" + _STOP, re.IGNORECASE)
+_SIDE_BEFORE_RE: Final = re.compile(
+    r"(?<!\bto )(?<!\bon )(?<!\bat )\b(?P<det>the|that)\s+(?P<side>" + "|".join(_SIDES)
+    + r")\s+(?!(?:arm|arms|hand|hands|leg|side|in|on|at|of|to|and|then|or)\b)(?=[^\W\d])",
+    re.IGNORECASE)
+_SIDE_AFTER_RE: Final = re.compile(r"\s+(?:(?:which|that) is\s+)?on the (?P<side>left|right)\b"
+                                   r"(?!\s+of\b)", re.IGNORECASE)
+
+
+@dataclass(frozen=True, slots=True)
+class Modifier:
+    """One spatial modifier: ``side`` (of the candidates themselves) or a relation
+    (``near``, ``far``, ``back``, ``front``, ``left``, ``right``) to a ``relatum``."""
+
+    kind: str  #: "side" or "relation"
+    value: str
+    relatum: str | None = None
+    text: str = ""
+
+    def to_dict(self) -> dict[str, str]:
+        data = {"kind": self.kind, "value": self.value, "text": self.text}
+        if self.relatum is not None:
+            data["relatum"] = self.relatum
+        return data
+
+    @classmethod
+    def from_dict(cls, data: Mapping[str, str]) -> Modifier:
+        return cls(data["kind"], data["value"], data.get("relatum"), data.get("text", ""))
+
+
+def split_spatial(text: str) -> tuple[str, list[Modifier]]:
+    """The command without its spatial modifiers, and the modifiers in the order said."""
+    found: list[tuple[int, Modifier]] = []
+
+    def relation(match: re.Match[str]) -> str:
+        found.append((match.start(), Modifier(
+            "relation", _RELATIONS[match["rel"].lower()], match["relatum"].strip().lower(),
+            match.group(0).strip())))
+        return ""
+
+    def side_before(match: re.Match[str]) -> str:
+        found.append((match.start(), Modifier("side", _SIDES[match["side"].lower()],
+                                              text=match.group(0).strip())))
+        return f"{match['det']} "
+
+    def side_after(match: re.Match[str]) -> str:
+        found.append((match.start(), Modifier("side", match["side"].lower(),
+                                              text=match.group(0).strip())))
+        return ""
+
+    rest = _RELATION_RE.sub(relation, text)
+    rest = _SIDE_AFTER_RE.sub(side_after, rest)
+    rest = _SIDE_BEFORE_RE.sub(side_before, rest)
+    return re.sub(r"\s{2,}", " ", rest).strip(), [modifier for _, modifier in found]
+
+
+@dataclass(frozen=True)
+class Scene:
+    """What the robot knows of a scene: where things are (map frame), what they are,
+    the frame's scale, and the viewer whose left is "left"."""
+
+    points: Mapping[str, tuple[float, float]]
+    categories: Mapping[str, str]
+    scale: float
+    viewer: tuple[float, float]
+
+
+@dataclass(frozen=True)
+class Resolution:
+    """The referent, or the question to ask; ``degrees`` of every candidate, best first."""
+
+    referent: str | None
+    question: str | None
+    degrees: list[tuple[str, float]] = field(default_factory=list)
+
+    def __bool__(self) -> bool:
+        return self.referent is not None
+
+
+def _relata(scene: Scene, word: str, exclude: str) -> list[str]:
+    word = word.lower().strip()
+    return [name for name in scene.points if name != exclude and (
+        name.lower() == word or scene.categories.get(name, "").lower() == word
+        or name.lower().endswith(f" {word}"))]
+
+
+def _degree(candidate: str, others: Sequence[str], modifier: Modifier, scene: Scene) -> float:
+    here = scene.points[candidate]
+    if modifier.kind == "side":
+        if not others:
+            return 1.0
+        return sum(side_degree(relative_angle(here, scene.points[other], scene.viewer),
+                               modifier.value) for other in others) / len(others)
+    relata = _relata(scene, modifier.relatum or "", candidate)
+    best = 0.0
+    for relatum in relata:
+        there = scene.points[relatum]
+        near = closeness(math.dist(here, there), scene.scale)
+        if modifier.value == "near":
+            value = near
+        elif modifier.value == "far":
+            value = 1.0 - near
+        else:
+            value = side_degree(relative_angle(here, there, scene.viewer), modifier.value) * near
+        best = max(best, value)
+    return best
+
+
+def degrees(candidates: Sequence[str], modifiers: Sequence[Modifier],
+            scene: Scene) -> list[tuple[str, float]]:
+    """Each candidate's degree of fitting all ``modifiers``, best first (ties by name)."""
+    scored = []
+    for candidate in candidates:
+        others = [other for other in candidates if other != candidate]
+        value = 1.0
+        for modifier in modifiers:
+            value *= _degree(candidate, others, modifier, scene)
+        scored.append((candidate, value))
+    return sorted(scored, key=lambda pair: (-pair[1], pair[0]))
+
+
+def _phrase(modifiers: Sequence[Modifier]) -> str:
+    return " ".join(modifier.text for modifier in modifiers)
+
+
+def resolve(candidates: Sequence[str], modifiers: Sequence[Modifier], scene: Scene, *,
+            noun: str = "one", margin: float = MARGIN) -> Resolution:
+    """The candidate the modifiers fit best, or a question when the best two are within
+    ``margin`` of each other, or nothing fits (missing relatum, degrees near 0)."""
+    if not candidates:
+        return Resolution(None, f"I see no {noun} here.")
+    for modifier in modifiers:
+        if modifier.kind == "relation" and not any(
+                _relata(scene, modifier.relatum or "", c) for c in candidates):
+            return Resolution(None, f"I see no {modifier.relatum} here. Which {noun} do you "
+                                    "mean?")
+    scored = degrees(candidates, modifiers, scene)
+    best_name, best = scored[0]
+    if best < _AT_LEAST:
+        return Resolution(None, f"I see no {noun} {_phrase(modifiers)}. Which one do you mean?",
+                          scored)
+    close = [name for name, value in scored if best - value < margin]
+    if len(close) > 1:
+        listed = ", ".join(f"the {name}" for name in close[:-1]) + f" or the {close[-1]}"
+        return Resolution(None, f"Which {noun} do you mean: {listed}?", scored)
+    return Resolution(best_name, None, scored)
