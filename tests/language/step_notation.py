@@ -11,6 +11,8 @@ _MACROS = {
     "give_me": "navigate(to=operator); give(person=operator)",
     "report": "navigate(to=operator); say(text=$result)",
     "put": "navigate(to={0}); place(placement={0})",
+    "grab": "find_object(object={0}); pick(object={0})",
+    "whatson": "navigate(to={0}); look(placement={0}); navigate(to=operator); say(text=$result)",
 }
 _MACRO = re.compile(r"@(\w+)(?:\(([^)]*)\))?")
 _STEP = re.compile(r"^\s*(\w+)\((.*)\)\s*$")
