@@ -46,6 +46,7 @@ COMMAND_GROUPS: dict[str, tuple[str, str]] = {
     "plan": ("plan", "plan a task with the HTN planner and print the task network"),
     "sitlog": ("sitlog", "run or draw a SitLog dialogue model"),
     "golog": ("golog", "check, plan and run Golog programs"),
+    "sim": ("sim_serve", "serve the simulated robot over ROS 2"),
 }
 
 

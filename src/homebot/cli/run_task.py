@@ -7,6 +7,7 @@ from pathlib import Path
 from typing import Any
 
 from homebot.cli.options import load_world
+from homebot.cli.ros_run import add_ros_robot_options, run_over_ros
 from homebot.cli.simulated import add_run_options, finish_run, simulated_run
 from homebot.executive.taskfile import load_task
 
@@ -19,11 +20,14 @@ def register(subparsers: Any) -> None:
     add_run_options(parser)
     parser.add_argument("--no-monitoring", action="store_true",
                         help="run as a plain sequence: no monitoring, retries or recovery")
+    add_ros_robot_options(parser)
     parser.set_defaults(handler=run_task)
 
 
 def run_task(args: argparse.Namespace) -> int:
     world = load_world(args)
     task = load_task(args.file, world)
+    if args.robot == "ros":
+        return run_over_ros(args, world, task, monitoring=not args.no_monitoring)
     run = simulated_run(args, world, monitoring=not args.no_monitoring)
     return finish_run(args, run, run.run(task))

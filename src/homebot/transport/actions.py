@@ -1,0 +1,236 @@
+"""ROS 2 actions over DDS: goal, feedback, result and cancel, as rcl_action lays them out.
+
+An action ``/navigate_to_pose`` of type ``nav2_msgs/action/NavigateToPose`` is the services
+``_action/send_goal``, ``_action/get_result`` and ``_action/cancel_goal`` and the topics
+``_action/feedback`` and ``_action/status``. The server here is single-threaded: ``poll``
+takes a new goal, runs ``execute`` to the end (which may publish feedback and ask whether a
+cancel came), then answers ``get_result``. The client sends a goal, then waits for the
+result while handing feedback to a callback, and notices when the server goes away.
+"""
+
+from __future__ import annotations
+
+import time
+import uuid
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from enum import IntEnum
+from typing import Any
+
+from homebot.transport.naming import (
+    ACTION_STATUS_QOS,
+    DEFAULT_QOS,
+    SERVICE_QOS,
+    action_service,
+    action_topic,
+    reply_topic,
+    request_topic,
+)
+from homebot.transport.node import (
+    Node,
+    Publisher,
+    ServiceClient,
+    Subscription,
+    TransportError,
+    reply_ready,
+)
+
+__all__ = ["ActionClient", "ActionServer", "GoalContext", "GoalStatus"]
+
+
+class GoalStatus(IntEnum):
+    """``action_msgs/msg/GoalStatus`` codes."""
+
+    UNKNOWN = 0
+    ACCEPTED = 1
+    EXECUTING = 2
+    CANCELING = 3
+    SUCCEEDED = 4
+    CANCELED = 5
+    ABORTED = 6
+
+
+@dataclass
+class GoalContext:
+    """What ``execute`` may do while a goal runs: feedback, and ask about a cancel."""
+
+    server: ActionServer
+    goal_id: bytes
+    canceled: bool = False
+
+    def publish_feedback(self, **fields: Any) -> None:
+        self.server.publish_feedback(self.goal_id, **fields)
+
+    def cancel_requested(self) -> bool:
+        """Answer pending cancel requests; whether this goal is to be cancelled."""
+        self.server.poll_cancel(self)
+        return self.canceled
+
+
+@dataclass
+class _Finished:
+    status: GoalStatus
+    result: dict[str, Any] = field(default_factory=dict)
+
+
+class ActionServer:
+    """Serves one action; ``execute(goal, context) -> (status, result fields)``."""
+
+    def __init__(self, node: Node, name: str, action: str,
+                 execute: Callable[[Any, GoalContext], tuple[GoalStatus, dict[str, Any]]]) -> None:
+        self.node, self.name, self.action, self.execute = node, name, action, execute
+        types = node.types
+        self._channels: dict[str, tuple[Subscription[Any], Publisher[Any], type[Any]]] = {}
+        for part in ("send_goal", "get_result", "cancel_goal"):
+            service = self._service_type(part)
+            reply = types.reply_struct(service)
+            self._channels[part] = (
+                Subscription(node, request_topic(action_service(name, part)),
+                             types.request_struct(service), SERVICE_QOS),
+                Publisher(node, reply_topic(action_service(name, part)), reply, SERVICE_QOS),
+                reply)
+        self.feedback = node.publisher(action_topic(name, "feedback"),
+                                       f"{action}_FeedbackMessage", DEFAULT_QOS)
+        self.status = node.publisher(action_topic(name, "status"),
+                                     "action_msgs/msg/GoalStatusArray", ACTION_STATUS_QOS)
+        self._finished: dict[bytes, _Finished] = {}
+        self._waiting: list[Any] = []  # get_result requests of goals not yet finished
+        self._active: dict[bytes, GoalContext] = {}
+
+    def _service_type(self, part: str) -> str:
+        if part == "cancel_goal":
+            return "action_msgs/srv/CancelGoal"
+        return f"{self.action}_{'SendGoal' if part == 'send_goal' else 'GetResult'}"
+
+    def _reply(self, part: str, request: Any, **fields: Any) -> None:
+        requests, replies, struct = self._channels[part]
+        reply_ready(requests, replies)
+        replies.publish(struct(client_guid=request.client_guid, sequence=request.sequence,
+                               **fields))
+
+    def publish_feedback(self, goal_id: bytes, **fields: Any) -> None:
+        types = self.node.types
+        self.feedback.publish(types.new(
+            f"{self.action}_FeedbackMessage",
+            goal_id=types.new("unique_identifier_msgs/msg/UUID", uuid=goal_id),
+            feedback=types.new(f"{self.action}_Feedback", **fields)))
+
+    def _publish_status(self, goal_id: bytes, status: GoalStatus) -> None:
+        types = self.node.types
+        stamp = time.time()
+        info = types.new("action_msgs/msg/GoalInfo",
+                         goal_id=types.new("unique_identifier_msgs/msg/UUID", uuid=goal_id),
+                         stamp=types.new("builtin_interfaces/msg/Time", sec=int(stamp),
+                                         nanosec=int(stamp % 1 * 1e9)))
+        self.status.publish(types.new("action_msgs/msg/GoalStatusArray", status_list=[
+            types.new("action_msgs/msg/GoalStatus", goal_info=info, status=int(status))]))
+
+    def poll_cancel(self, context: GoalContext | None = None) -> None:
+        """Answer cancel requests: accepted for the running goal, else unknown or terminated."""
+        requests, _replies, _struct = self._channels["cancel_goal"]
+        for request in requests.take():
+            wanted = bytes(request.goal_info.goal_id.uuid)
+            if context is not None and wanted in (context.goal_id, bytes(16)):
+                context.canceled = True
+                self._publish_status(context.goal_id, GoalStatus.CANCELING)
+                self._reply("cancel_goal", request, return_code=0,
+                            goals_canceling=[request.goal_info])
+            else:
+                self._reply("cancel_goal", request,
+                            return_code=3 if wanted in self._finished else 2)
+
+    def poll(self, timeout: float = 0.0) -> int:
+        """Take new goals (waiting up to ``timeout`` s), run each to its end; how many ran."""
+        self.poll_cancel()
+        send_goal = self._channels["send_goal"][0]
+        goals = send_goal.wait(timeout) if timeout else send_goal.take()
+        for request in goals:
+            goal_id = bytes(request.goal_id.uuid)
+            stamp = time.time()
+            self._reply("send_goal", request, accepted=True, stamp=self.node.types.new(
+                "builtin_interfaces/msg/Time", sec=int(stamp), nanosec=int(stamp % 1 * 1e9)))
+            self._publish_status(goal_id, GoalStatus.EXECUTING)
+            context = GoalContext(self, goal_id)
+            status, result = self.execute(request.goal, context)
+            self._finished[goal_id] = _Finished(status, result)
+            self._publish_status(goal_id, status)
+        self._answer_results()
+        return len(goals)
+
+    def _answer_results(self) -> None:
+        self._waiting.extend(self._channels["get_result"][0].take())
+        still: list[Any] = []
+        for request in self._waiting:
+            finished = self._finished.get(bytes(request.goal_id.uuid))
+            if finished is None:
+                still.append(request)
+                continue
+            result = self.node.types.new(f"{self.action}_Result", **finished.result)
+            self._reply("get_result", request, status=int(finished.status), result=result)
+        self._waiting = still
+
+
+class ActionClient:
+    """Sends goals to one action server and waits for results, with feedback and cancel."""
+
+    def __init__(self, node: Node, name: str, action: str) -> None:
+        self.node, self.name, self.action = node, name, action
+        self.send_goal = ServiceClient(node, action_service(name, "send_goal"),
+                                       f"{action}_SendGoal")
+        self.get_result = ServiceClient(node, action_service(name, "get_result"),
+                                        f"{action}_GetResult")
+        self.cancel_goal = ServiceClient(node, action_service(name, "cancel_goal"),
+                                         "action_msgs/srv/CancelGoal")
+        self.feedback = node.subscription(action_topic(name, "feedback"),
+                                          f"{action}_FeedbackMessage", DEFAULT_QOS)
+        self.status = node.subscription(action_topic(name, "status"),
+                                        "action_msgs/msg/GoalStatusArray", ACTION_STATUS_QOS)
+
+    def ready(self) -> bool:
+        return self.send_goal.ready() and self.get_result.ready()
+
+    def wait_for_server(self, timeout: float) -> bool:
+        return all(client.wait_for_server(timeout)
+                   for client in (self.send_goal, self.get_result, self.cancel_goal))
+
+    def send(self, timeout: float = 5.0, **goal: Any) -> bytes | None:
+        """Send a goal; its id when accepted, None when rejected."""
+        types = self.node.types
+        goal_id = uuid.uuid4().bytes
+        reply = self.send_goal.call(
+            timeout, goal_id=types.new("unique_identifier_msgs/msg/UUID", uuid=goal_id),
+            goal=types.new(f"{self.action}_Goal", **goal))
+        return goal_id if reply.accepted else None
+
+    def result(self, goal_id: bytes, timeout: float,
+               on_feedback: Callable[[Any], None] | None = None) -> tuple[GoalStatus, Any]:
+        """Wait for a goal's result, giving its feedback to ``on_feedback`` meanwhile.
+
+        Raises ``TransportError`` when the server goes away or ``timeout`` s pass.
+        """
+        types = self.node.types
+        sequence = self.get_result.send(
+            goal_id=types.new("unique_identifier_msgs/msg/UUID", uuid=goal_id))
+        deadline = time.monotonic() + timeout
+
+        def alive() -> bool:
+            for message in self.feedback.take():
+                if on_feedback is not None and bytes(message.goal_id.uuid) == goal_id:
+                    on_feedback(message.feedback)
+            return time.monotonic() < deadline
+
+        try:
+            reply = self.get_result.receive(sequence, timeout, alive)
+        except TransportError:
+            raise TransportError(f"action {self.name}: the server went away or gave no result "
+                                 f"within {timeout:g} s") from None
+        alive()  # feedback that came with the result
+        return GoalStatus(reply.status), reply.result
+
+    def cancel(self, goal_id: bytes, timeout: float = 2.0) -> bool:
+        """Ask the server to cancel a goal; whether it accepted."""
+        types = self.node.types
+        info = types.new("action_msgs/msg/GoalInfo",
+                         goal_id=types.new("unique_identifier_msgs/msg/UUID", uuid=goal_id))
+        reply = self.cancel_goal.call(timeout, goal_info=info)
+        return int(reply.return_code) == 0

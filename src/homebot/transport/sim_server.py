@@ -1,0 +1,141 @@
+"""A simulated robot on ROS 2: what ``homebot sim serve`` runs.
+
+It offers what a real robot running Nav2 offers: the ``/map`` (transient local, as
+``map_server`` latches it), ``/odom`` and ``/tf`` (map -> odom -> base_link), and a
+``nav2_msgs/action/NavigateToPose`` server at ``/navigate_to_pose``. The Robot port's other
+methods go over ``homebot_msgs/srv/RobotCall`` at ``/homebot/robot``, whose reply carries
+the simulated time and the simulator's events since the last reply (so a remote executive
+keeps the same event log as an in-process one). ``move_options`` sets the doors to avoid
+and the person to escort for the next goal; ``last_move`` returns the last goal's report;
+``final_state`` logs where the run left things (the simulator's truth, as an in-process
+run logs it).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from homebot.events import EventLog
+from homebot.navigation import OccupancyGrid
+from homebot.robot import MoveReport, Pose, Robot
+from homebot.transport.actions import ActionServer, GoalContext, GoalStatus
+from homebot.transport.calls import CallError, encode, serve
+from homebot.transport.messages import pose_stamped, stamp, yaw_of
+from homebot.transport.naming import MAP_QOS
+from homebot.transport.node import Node
+from homebot.world import World
+
+__all__ = ["NAVIGATE_ACTION", "ROBOT_CALL", "SimServer"]
+
+NAVIGATE_ACTION = "/navigate_to_pose"
+ROBOT_CALL = "/homebot/robot"
+NAVIGATE_TO_POSE = "nav2_msgs/action/NavigateToPose"
+
+
+class SimServer:
+    """Serves one simulated robot (any ``Robot``) and its simulator's event log."""
+
+    def __init__(self, node: Node, robot: Robot, world: World, events: EventLog,
+                 final_state: Callable[[], None] | None = None) -> None:
+        self.node, self.robot, self.world, self.events = node, robot, world, events
+        self.final_state = final_state
+        self.calls = node.service(ROBOT_CALL, "homebot_msgs/srv/RobotCall", self._call)
+        self.navigate = ActionServer(node, NAVIGATE_ACTION, NAVIGATE_TO_POSE, self._navigate)
+        self.map = node.publisher("/map", "nav_msgs/msg/OccupancyGrid", MAP_QOS)
+        self.odom = node.publisher("/odom", "nav_msgs/msg/Odometry")
+        self.tf = node.publisher("/tf", "tf2_msgs/msg/TFMessage")
+        self._shipped = 0  # events already sent to the client
+        self._avoid: frozenset[str] = frozenset()
+        self._escort: str | None = None
+        self._last_move: MoveReport | None = None
+        self.map.publish(self._map_message())
+        self.publish_state()
+
+    def spin_once(self, timeout: float = 0.1) -> int:
+        """Answer what arrived (waiting up to ``timeout`` s for a call); how many requests."""
+        handled = self.navigate.poll()
+        handled += self.calls.poll(timeout)
+        return handled + self.navigate.poll()
+
+    # ------------------------------------------------------------ the calls
+
+    def _call(self, request: Any) -> dict[str, Any]:
+        method, arguments = request.method, request.arguments
+        try:
+            if method == "move_options":
+                options = json.loads(arguments or "{}")
+                self._avoid = frozenset(options.get("avoid_doors", ()))
+                self._escort = options.get("escort")
+                result = "null"
+            elif method == "final_state" and self.final_state is not None:
+                self.final_state()
+                result = "null"
+            elif method == "last_move":
+                result = json.dumps(encode(self._last_move))
+            else:
+                result = serve(self.robot, method, arguments)
+        except (CallError, ValueError) as error:
+            result = json.dumps({"error": str(error)})
+        self.publish_state()
+        return {"result": result, "now": self.robot.now(), "events": self._new_events()}
+
+    def _new_events(self) -> str:
+        events = self.events.since(self._shipped)
+        self._shipped = self.events.count
+        return json.dumps([[event.time, event.kind, event.data] for event in events],
+                          ensure_ascii=False)
+
+    def _navigate(self, goal: Any, context: GoalContext) -> tuple[GoalStatus, dict[str, Any]]:
+        pose = goal.pose.pose
+        target = Pose(pose.position.x, pose.position.y, yaw_of(pose.orientation))
+        report = self.robot.move_to(target, self._avoid, self._escort)
+        self._avoid, self._escort, self._last_move = frozenset(), None, report
+        self.publish_state()
+        context.publish_feedback(current_pose=pose_stamped(self.node.types, report.pose,
+                                                           self.robot.now()),
+                                 distance_remaining=math.dist(report.pose.xy(), target.xy()))
+        return (GoalStatus.SUCCEEDED if report.reached else GoalStatus.ABORTED), {}
+
+    # ------------------------------------------------------------ state topics
+
+    def publish_state(self) -> None:
+        """``/odom`` and ``/tf`` at the robot's pose (odom coincides with map here)."""
+        types, now = self.node.types, self.robot.now()
+        pose = self.robot.pose()
+        odometry = types.new("nav_msgs/msg/Odometry",
+                             header=types.new("std_msgs/msg/Header", stamp=stamp(types, now),
+                                              frame_id="odom"),
+                             child_frame_id="base_link")
+        odometry.pose.pose = pose_stamped(types, pose, now).pose
+        self.odom.publish(odometry)
+        transforms = []
+        for parent, child, at in (("map", "odom", Pose(0.0, 0.0, 0.0)),
+                                  ("odom", "base_link", pose)):
+            transform = types.new("geometry_msgs/msg/TransformStamped",
+                                  header=types.new("std_msgs/msg/Header",
+                                                   stamp=stamp(types, now), frame_id=parent),
+                                  child_frame_id=child)
+            placed = pose_stamped(types, at, now).pose
+            transform.transform.translation.x = placed.position.x
+            transform.transform.translation.y = placed.position.y
+            transform.transform.rotation = placed.orientation
+            transforms.append(transform)
+        self.tf.publish(types.new("tf2_msgs/msg/TFMessage", transforms=transforms))
+
+    def _map_message(self) -> Any:
+        types = self.node.types
+        grid = OccupancyGrid.from_world(self.world)
+        rows, cols = grid.shape
+        data = np.where(np.asarray(grid.occupied).reshape(rows, cols), 100, 0).astype(np.int8)
+        info = types.new("nav_msgs/msg/MapMetaData", resolution=grid.resolution,
+                         width=cols, height=rows)
+        info.origin.position.x, info.origin.position.y = grid.origin
+        info.origin.orientation.w = 1.0
+        return types.new("nav_msgs/msg/OccupancyGrid",
+                         header=types.new("std_msgs/msg/Header", frame_id="map"),
+                         info=info, data=data.ravel().tolist())
