@@ -214,7 +214,7 @@ def _referent(context: SkillContext, wanted: str, placement: str, found: Sequenc
     centre = (float(where.model.center[0]), float(where.model.center[1]))
     scene = Scene({d.label: d.position or centre for d in detections},
                   {d.label: d.category for d in detections}, math.hypot(*where.model.size),
-                  (where.approach[0], where.approach[1]))
+                  (where.approach[0], where.approach[1]), where.approach[2])
     resolution = resolve([d.label for d in found], [Modifier.from_dict(m) for m in spatial],
                          scene, noun=wanted)
     if resolution.referent is None:

@@ -79,13 +79,16 @@ def intrinsic_angle(target: tuple[float, float], relatum: tuple[float, float],
 
 
 def relative_angle(target: tuple[float, float], relatum: tuple[float, float],
-                   viewer: tuple[float, float]) -> float:
+                   viewer: tuple[float, float], facing: float | None = None) -> float:
     """Direction of ``target`` from ``relatum`` as a viewer at ``viewer`` sees it.
 
     The relatum's front faces the viewer; left is the viewer's left. A target
-    further away than the relatum on the viewer's line of sight is ``back``.
+    further away than the relatum on the viewer's line of sight is ``back``. The line
+    of sight runs from the viewer to the relatum, or along ``facing`` (a heading) when
+    given: a viewer looking at a table top as a whole, not at each thing in turn.
     """
-    sight = math.atan2(relatum[1] - viewer[1], relatum[0] - viewer[0])
+    sight = facing if facing is not None else math.atan2(relatum[1] - viewer[1],
+                                                         relatum[0] - viewer[0])
     seen = angle_between(math.atan2(target[1] - relatum[1], target[0] - relatum[0]), sight)
     # along the line of sight (away from the viewer) is "back", towards the viewer "front",
     # and the viewer's left stays left: a reflection of the viewer's angle

@@ -4,14 +4,16 @@
 text without them, so the parser reads "bring me the cup" and records the
 modifiers on the object reference. ``resolve(candidates, modifiers, scene)`` then
 picks the one candidate the modifiers fit best, or asks when two fit about
-equally (their degrees within ``margin``) or none fits.
+equally (the runner-up's degree within ``margin`` of the best, as a share of the
+best) or none fits.
 
 Degrees, each from 0 to 1, combined by product (a t-norm):
 
 - **side** ("the left cup", "the cup on the right", "the front cup"): the candidate
-  lies to that side of each *other* candidate, as the viewer sees it; the mean of
-  ``side_degree`` over the others. Two cups one behind the other are both about
-  0.5 "left": the expression does not tell them apart, and the robot asks.
+  lies to that side of *every other* candidate, as the viewer sees it: the least
+  ``side_degree`` over the others. Only the leftmost cup has a degree above 0; when
+  another cup stands nearly straight behind it, its degree is small and the robot
+  asks.
 - **near** ("close to", "near", "next to", "beside"): ``closeness`` of the distance
   to the relatum in the scene's frame; **far** ("far from") its complement;
 - **direction** ("behind", "in front of", "left of", "right of" the relatum):
@@ -34,6 +36,7 @@ from homebot.space.distance import closeness
 from homebot.space.orientation import relative_angle, side_degree
 
 __all__ = [
+    "AT_LEAST",
     "MARGIN",
     "Modifier",
     "Resolution",
@@ -43,10 +46,11 @@ __all__ = [
     "split_spatial",
 ]
 
-#: two candidates whose degrees differ by less than this fit "about equally": ask
+#: two candidates whose degrees differ by less than this share of the best fit "about
+#: equally": ask
 MARGIN: Final = 0.15
 #: a best degree below this fits not at all: ask
-_AT_LEAST: Final = 0.2
+AT_LEAST: Final = 0.2
 
 _SIDES: Final = {"left": "left", "leftmost": "left", "right": "right", "rightmost": "right",
                  "front": "front", "frontmost": "front", "back": "back", "rear": "back",
@@ -127,6 +131,8 @@ class Scene:
     categories: Mapping[str, str]
     scale: float
     viewer: tuple[float, float]
+    #: the viewer's heading; None: the line of sight to each relatum in turn
+    facing: float | None = None
 
 
 @dataclass(frozen=True)
@@ -153,8 +159,9 @@ def _degree(candidate: str, others: Sequence[str], modifier: Modifier, scene: Sc
     if modifier.kind == "side":
         if not others:
             return 1.0
-        return sum(side_degree(relative_angle(here, scene.points[other], scene.viewer),
-                               modifier.value) for other in others) / len(others)
+        return min(side_degree(relative_angle(here, scene.points[other], scene.viewer,
+                                              scene.facing), modifier.value)
+                   for other in others)
     relata = _relata(scene, modifier.relatum or "", candidate)
     best = 0.0
     for relatum in relata:
@@ -165,7 +172,8 @@ def _degree(candidate: str, others: Sequence[str], modifier: Modifier, scene: Sc
         elif modifier.value == "far":
             value = 1.0 - near
         else:
-            value = side_degree(relative_angle(here, there, scene.viewer), modifier.value) * near
+            value = side_degree(relative_angle(here, there, scene.viewer, scene.facing),
+                                modifier.value) * near
         best = max(best, value)
     return best
 
@@ -183,14 +191,11 @@ def degrees(candidates: Sequence[str], modifiers: Sequence[Modifier],
     return sorted(scored, key=lambda pair: (-pair[1], pair[0]))
 
 
-def _phrase(modifiers: Sequence[Modifier]) -> str:
-    return " ".join(modifier.text for modifier in modifiers)
-
-
 def resolve(candidates: Sequence[str], modifiers: Sequence[Modifier], scene: Scene, *,
             noun: str = "one", margin: float = MARGIN) -> Resolution:
-    """The candidate the modifiers fit best, or a question when the best two are within
-    ``margin`` of each other, or nothing fits (missing relatum, degrees near 0)."""
+    """The candidate the modifiers fit best, or a question when the runner-up's degree is
+    within ``margin`` (a share of the best degree) of the best, or nothing fits (missing
+    relatum, degrees near 0)."""
     if not candidates:
         return Resolution(None, f"I see no {noun} here.")
     for modifier in modifiers:
@@ -200,11 +205,16 @@ def resolve(candidates: Sequence[str], modifiers: Sequence[Modifier], scene: Sce
                                     "mean?")
     scored = degrees(candidates, modifiers, scene)
     best_name, best = scored[0]
-    if best < _AT_LEAST:
-        return Resolution(None, f"I see no {noun} {_phrase(modifiers)}. Which one do you mean?",
-                          scored)
-    close = [name for name, value in scored if best - value < margin]
+    if best < AT_LEAST:  # nothing fits the words well: name the likeliest few
+        return Resolution(None, _which(noun, [name for name, _ in scored[:3]]), scored)
+    close = [name for name, value in scored if best - value < margin * best]
     if len(close) > 1:
-        listed = ", ".join(f"the {name}" for name in close[:-1]) + f" or the {close[-1]}"
-        return Resolution(None, f"Which {noun} do you mean: {listed}?", scored)
+        return Resolution(None, _which(noun, close), scored)
     return Resolution(best_name, None, scored)
+
+
+def _which(noun: str, names: Sequence[str]) -> str:
+    if len(names) == 1:
+        return f"Do you mean the {names[0]}?"
+    listed = ", ".join(f"the {name}" for name in names[:-1]) + f" or the {names[-1]}"
+    return f"Which {noun} do you mean: {listed}?"
