@@ -45,6 +45,9 @@ class Clause:
     items: list[Item] = field(default_factory=list)
     words: list[str] = field(default_factory=list)
     after: bool = False  # said after "after": happens before the clause it follows
+    ignored: list[str] = field(default_factory=list)  # words no item or step took up
+    free_text: bool = False  # a handler used the clause's own words (say ..., ask ...)
+    preverbal: list[str] = field(default_factory=list)  # unknown words before the verb
 
     def first(self, kinds: Iterable[str], preps: Iterable[str | None] | None = None,
               start: int = 0) -> Item | None:
@@ -81,7 +84,7 @@ def build_clauses(tokens: list[Token]) -> list[Clause]:
     merged: list[list[Token]] = []
     pending: list[Token] = []
     for piece in pieces:
-        if _has_action_or_question(piece):
+        if _has_action_or_question(piece) or _starts_with_unknown_verb(piece):
             merged.append(pending + piece)
             pending = []
         elif merged and _has_object(piece) and _has_object(merged[-1]):
@@ -124,6 +127,16 @@ def _starts_clause(tokens: list[Token], index: int, current: list[Token]) -> boo
     if token.kind == "word" and token.value in {"after", "before"}:
         return index + 1 < len(tokens) and tokens[index + 1].kind == "action"
     return token.kind == "action" and _has_action_or_question(current)
+
+
+def _starts_with_unknown_verb(piece: list[Token]) -> bool:
+    """"... and wash it", "then blorp the fridge": a piece that opens with a word the
+    robot does not know (or a verb it cannot do) is a clause of its own, not a
+    continuation of the one before, so that it is refused or asked about, never dropped."""
+    first = piece[0]
+    return first.kind == "word" and first.value.isalpha() and (
+        first.value in lexicon.IMPOSSIBLE_ACTIONS or first.value in lexicon.NEGATIONS
+        or first.value not in lexicon.FUNCTION_WORDS)
 
 
 def _has_object(piece: list[Token]) -> bool:
@@ -170,6 +183,11 @@ def _clause(piece: list[Token]) -> Clause:
             continue
         clause.words.append(token.text)
         if token.kind == "word":
+            if token.value in lexicon.NEGATIONS:
+                clause.preverbal.append(token.value)  # "not the lemonade": never dropped
+            elif not seen_action and token.value not in lexicon.FUNCTION_WORDS and (
+                    token.value.isalpha()):
+                clause.preverbal.append(token.value)  # "record what she says"
             if token.value in lexicon.ARTICLES:
                 definite = token.value in {"the", "this", "that"}
             elif token.value not in lexicon.FUNCTION_WORDS and token.value.isalpha():
@@ -179,6 +197,8 @@ def _clause(piece: list[Token]) -> Clause:
             clause.items.append(Item("unknown", " ".join(unknown), " ".join(unknown), prep,
                                      definite))
             prep, definite = None, False
+        elif unknown:
+            clause.ignored.extend(unknown)  # "a blue cup": "blue" is not taken up
         unknown = []
         if token.kind == "prep":
             prep = token.value

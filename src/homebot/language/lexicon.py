@@ -13,6 +13,7 @@ __all__ = [
     "CATEGORY_PHRASES",
     "CLOTHING_COLOURS",
     "CLOTHING_GARMENTS",
+    "COMMON_WORDS",
     "CONTRACTIONS",
     "FILLERS",
     "FUNCTION_WORDS",
@@ -20,6 +21,7 @@ __all__ = [
     "GESTURES",
     "IMPOSSIBLE_ACTIONS",
     "INFO_WORDS",
+    "NEGATIONS",
     "PERSON_NOUNS",
     "POSSESSIVES",
     "POSTURES",
@@ -51,7 +53,8 @@ ACTIONS: tuple[tuple[str, str], ...] = (
     ("set down", "place"), ("lay", "place"), ("drop off", "place"),
     ("count", "count"),
     ("tell", "tell"), ("say", "tell"), ("speak", "tell"), ("report", "tell"),
-    ("inform", "tell"), ("let me know", "tell_me"), ("let us know", "tell_me"),
+    ("inform", "tell"), ("remind", "tell"), ("let", "tell"), ("let me know", "tell_me"),
+    ("let us know", "tell_me"),
     ("announce", "tell"), ("state", "tell"), ("find out", "tell_me"), ("check", "look"),
     ("answer", "answer"), ("respond to", "answer"), ("reply to", "answer"),
     ("greet", "greet"), ("salute", "greet"), ("say hello to", "greet"), ("say hi to", "greet"),
@@ -69,7 +72,29 @@ IMPOSSIBLE_ACTIONS: frozenset[str] = frozenset({
     "swim", "paint", "write", "read", "repair", "fix", "build", "buy", "cut", "throw",
     "break", "kick", "destroy", "iron", "sweep", "vacuum", "mop", "close", "lock",
     "unlock", "turn", "switch", "sleep", "jump", "kill", "hit", "make", "feed", "fold",
+    "warm", "heat", "boil", "fry", "bake", "stir", "pour", "fill", "empty", "light", "hug",
+    "kiss", "record", "film", "order", "print", "charge", "shake", "scrub", "tidy", "water",
+    "help", "wake", "massage", "do", "play", "sort", "hang", "cover", "wipe", "dry",
+    "chop", "peel", "slice", "mix", "blend", "watch", "drink",
 })
+
+# Everyday words that are never taken for a misspelt name ("weather" is not "sweater").
+COMMON_WORDS: frozenset[str] = frozenset({
+    "weather", "forecast", "news", "music", "song", "dinner", "lunch", "breakfast",
+    "ready", "home", "later", "soon", "tonight", "tomorrow", "morning", "evening", "night",
+    "minutes", "hours", "mother", "father", "brother", "sister", "children", "kids",
+    "newspaper", "book", "keys", "phone", "wallet", "glasses", "money", "homework",
+    "garden", "garage", "balcony", "attic", "basement", "porch", "street", "car", "cars",
+    "dog", "cat", "plants", "flowers", "lights", "window", "windowsill", "drawer",
+    "microwave", "oven", "stove", "sink", "towel", "knife", "board", "blender",
+    "please", "thanks", "really", "maybe", "quietly", "gently", "spilling", "cold",
+    "hot", "clean", "dirty", "favourite", "favorite", "would", "like", "want", "wants",
+})
+
+# Words that turn a command round ("not the lemonade", "unless Maria wants it"): the
+# parser cannot honour them, so a command with one is asked about, never carried out.
+NEGATIONS: frozenset[str] = frozenset({"not", "unless", "except", "without", "never",
+                                       "neither", "nor", "instead"})
 
 # Phrases that join clauses; normalisation turns them into the "then" separator.
 SEPARATORS: tuple[str, ...] = (
@@ -111,7 +136,8 @@ CONTRACTIONS: tuple[tuple[str, str], ...] = (
 PERSON_NOUNS: frozenset[str] = frozenset({
     "person", "persons", "people", "someone", "somebody", "anyone", "anybody", "guy",
     "guys", "man", "men", "woman", "women", "lady", "ladies", "gentleman", "individual",
-    "individuals", "human", "humans", "visitor", "guest", "guests", "folks",
+    "individuals", "human", "humans", "visitor", "guest", "guests", "folks", "everyone",
+    "everybody", "whoever",
 })
 
 # Posture words and phrases (before or after a person noun) -> Posture value.
@@ -274,6 +300,6 @@ there's top left right side arm arms hand hands towards toward way back again
 other another same whatever anything something somebody nothing own is where located
 currently standing sitting lying waving pointing raising wearing dressed located
 placed lies sits stands find then today tomorrow week month day time date
-question questions quiz quizzes riddle ones room
+question questions quiz quizzes riddle ones room know
 """
 FUNCTION_WORDS: frozenset[str] = frozenset(_FUNCTION_WORDS_TEXT.split())

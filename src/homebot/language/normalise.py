@@ -84,7 +84,8 @@ def correct_spelling(token: str, vocabulary: Vocabulary, *, as_name: bool = Fals
     Jaro-Winkler similarity, which forgives swapped and doubled letters ("Jhon").
     """
     if (len(token) < 4 or not token.isalpha() or token in vocabulary.words
-            or token in lexicon.FUNCTION_WORDS):
+            or token in lexicon.FUNCTION_WORDS or token in lexicon.IMPOSSIBLE_ACTIONS
+            or token in lexicon.COMMON_WORDS):
         return token
     if as_name and vocabulary.name_choices:
         name = process.extractOne(token, vocabulary.name_choices,

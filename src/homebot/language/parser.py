@@ -8,6 +8,7 @@ from types import MappingProxyType
 
 from homebot.errors import LanguageError
 from homebot.language import lexicon
+from homebot.language.accounting import account_for
 from homebot.language.clauses import Clause, build_clauses
 from homebot.language.context import Clarification, Context, Refusal, describe_item
 from homebot.language.fetching import (
@@ -65,6 +66,7 @@ def parse_command(text: str, vocabulary: Vocabulary) -> ParseResult:
             raise Refusal("I did not hear anything I can do in that command.")
         for clause in clauses:
             _HANDLERS.get(clause.action or "", _no_action)(clause, ctx)
+            account_for(clause, ctx, ctx.steps)
     except Clarification as clarification:
         return ParseResult(ParseStatus.CLARIFY, text, question=clarification.question)
     except Refusal as refusal:

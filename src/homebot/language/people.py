@@ -176,6 +176,7 @@ def handle_ask(clause: Clause, ctx: Context) -> None:
 
 
 def _question(clause: Clause) -> str:
+    clause.free_text = True
     quote = clause.first({"quote"})
     if quote is not None:
         return str(quote.value)

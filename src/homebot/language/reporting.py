@@ -10,6 +10,7 @@ __all__ = ["handle_count", "handle_describe", "handle_tell"]
 
 _PLACE_LIKE = PLACES | {"ambiguous", "unknown"}
 _LISTENERS = frozenset({"me", "person", "pronoun"})
+_MESSAGE_VERBS = frozenset({"tell", "inform", "remind", "let"})
 
 
 def report(clause: Clause, ctx: Context, exclude: Item | None = None) -> None:
@@ -152,7 +153,12 @@ def _talk(clause: Clause, ctx: Context) -> None:
 
 
 def _literal(clause: Clause, ctx: Context) -> None:
-    """"say good morning to Maria": the words themselves."""
+    """"say good morning to Maria": the words themselves; "tell Tom that dinner is
+    ready": find Tom, then say what follows "that"."""
+    clause.free_text = True
+    if clause.verb.split()[0] in _MESSAGE_VERBS:
+        _message(clause, ctx)
+        return
     listener = next((item for item in clause.items if item.kind in {"person", "pronoun"}
                      and item.prep == "to"), None)
     words = list(clause.words)
@@ -169,6 +175,41 @@ def _literal(clause: Clause, ctx: Context) -> None:
     elif clause.has("me") and ctx.location is not None:
         ctx.go_to_operator()
     ctx.emit("say", text=" ".join(words))
+
+
+def _message(clause: Clause, ctx: Context) -> None:
+    """tell / inform / remind / let PERSON (know) that MESSAGE: find them, then say it.
+
+    Without "that" there is no message to pass on: "tell me the weather forecast" is
+    something the robot does not know, and it says so rather than reading the words out.
+    """
+    words = clause.words
+    if "that" not in words:
+        said = " ".join(word for word in words if word not in {"me", "us", ","})
+        if not said:
+            raise Clarification("What should I tell?")
+        raise Refusal(f"I do not know how to tell '{said}'; I can pass on a message "
+                      f"(tell NAME that ...), say the time, the day, a joke, or what I "
+                      f"counted or saw.")
+    cut = words.index("that")
+    message = [word for word in words[cut + 1:] if word != ","]
+    if not message:
+        raise Clarification("What should I tell them?")
+    before = [item for item in clause.items if item.position < cut]
+    unknown = next((item for item in before if item.kind == "unknown"), None)
+    if unknown is not None:
+        raise Refusal(f"I do not know anyone called '{unknown.value}' here, so I cannot "
+                      f"tell them.")
+    listeners = [item for item in before if item.kind in _LISTENERS]
+    if len(listeners) > 1:
+        names = " and ".join(describe_item(item) for item in listeners)
+        raise Clarification(f"Should I tell {names} one after the other? Please ask me "
+                            f"for one person at a time.")
+    if not listeners or listeners[0].kind == "me":
+        ctx.go_to_operator()
+    else:
+        find_person_frame(clause, ctx, listeners[0])
+    ctx.emit("say", text=" ".join(message))
 
 
 def _plural(ctx: Context, item: Item) -> str:
