@@ -13,7 +13,7 @@ from homebot.language.vocabulary import progressive
 
 def test_exports_are_exactly_all() -> None:
     public = {name for name in dir(homebot.language) if not name.startswith("_")}
-    modules = {"clauses", "context", "fetching", "generator", "lexicon", "normalise", "parser",
+    modules = {"accounting", "clauses", "context", "fetching", "generator", "lexicon", "normalise", "parser",
                "people", "reporting", "result", "tagging", "vocabulary"}
     assert public - modules == set(homebot.language.__all__)
 
