@@ -116,7 +116,7 @@ class MessageTypes:
         """The wire type of a service's (or action sub-service's) reply, header first."""
         return self._with_header(service, "Response")
 
-    def new(self, name: str, **values: Any) -> Any:
+    def new(self, name: str, /, **values: Any) -> Any:
         """A message of type ``name`` with ``values``, every other field at its default."""
         return self.struct(name)(**values)
 
