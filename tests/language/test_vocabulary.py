@@ -13,8 +13,9 @@ from homebot.language.vocabulary import progressive
 
 def test_exports_are_exactly_all() -> None:
     public = {name for name in dir(homebot.language) if not name.startswith("_")}
-    modules = {"accounting", "clauses", "context", "fetching", "generator", "lexicon", "normalise", "parser",
-               "people", "reporting", "result", "tagging", "vocabulary"}
+    modules = {"accounting", "clauses", "context", "fetching", "generator", "lexicon",
+               "normalise", "parser", "people", "questions", "reporting", "result", "tagging",
+               "vocabulary"}
     assert public - modules == set(homebot.language.__all__)
 
 

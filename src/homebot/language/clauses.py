@@ -34,6 +34,7 @@ class Item:
     definite: bool = False
     owner: int | None = None
     position: int = 0
+    quantity: int | str | None = None  # "two drinks": 2; "all the fruits": "all"
 
 
 @dataclass(slots=True)
@@ -48,6 +49,7 @@ class Clause:
     ignored: list[str] = field(default_factory=list)  # words no item or step took up
     free_text: bool = False  # a handler used the clause's own words (say ..., ask ...)
     preverbal: list[str] = field(default_factory=list)  # unknown words before the verb
+    verb_at: int = 0  # how many of ``words`` were said before the verb ("Maria wants ...")
 
     def first(self, kinds: Iterable[str], preps: Iterable[str | None] | None = None,
               start: int = 0) -> Item | None:
@@ -73,9 +75,16 @@ class Clause:
 def build_clauses(tokens: list[Token]) -> list[Clause]:
     """Cut at separators and verbs; verbless pieces join their neighbour."""
     pieces: list[list[Token]] = [[]]
+    message = False  # inside "tell Tom that ...": verbs are the message's, not commands
     for index, token in enumerate(tokens):
         if token.kind == "sep":
             pieces.append([])
+            message = False
+        elif message:
+            pieces[-1].append(token)
+        elif _opens_message(token, pieces[-1]):
+            pieces[-1].append(token)
+            message = True
         elif _starts_clause(tokens, index, pieces[-1]):
             pieces.append([token])
         else:
@@ -97,7 +106,20 @@ def build_clauses(tokens: list[Token]) -> list[Clause]:
         merged.append(pending)
     clauses = _reorder([_clause(piece) for piece in merged])
     return [clause for index, clause in enumerate(clauses)
-            if not (clause.action == "go" and not clause.items and index + 1 < len(clauses))]
+            if not (clause.action == "go" and not clause.items and index + 1 < len(clauses))
+            and not _asks_before_question(clauses, index)]
+
+
+_QUESTIONS = frozenset({"contents", "where", "count", "describe", "describe_person"})
+
+
+def _asks_before_question(clauses: list[Clause], index: int) -> bool:
+    """"tell me what's inside", "check what's on the table": the first clause only
+    introduces the question that follows."""
+    clause = clauses[index]
+    return (clause.action in {"tell", "tell_me", "search"} and index + 1 < len(clauses)
+            and clauses[index + 1].action in _QUESTIONS
+            and all(item.kind == "me" for item in clause.items))
 
 
 def _reorder(clauses: list[Clause]) -> list[Clause]:
@@ -127,6 +149,20 @@ def _starts_clause(tokens: list[Token], index: int, current: list[Token]) -> boo
     if token.kind == "word" and token.value in {"after", "before"}:
         return index + 1 < len(tokens) and tokens[index + 1].kind == "action"
     return token.kind == "action" and _has_action_or_question(current)
+
+
+_WH_WORDS = frozenset({"what", "where", "which", "who", "how", "whether", "if", "when",
+                       "why", "whose"})
+
+
+def _opens_message(token: Token, piece: list[Token]) -> bool:
+    """"tell Tom *that* ...", "ask Lisa *what* she would like": what follows is the
+    message or the question, whose verbs are not commands."""
+    actions = {t.value for t in piece if t.kind == "action"}
+    if "tell" in actions and token.kind == "word" and token.value == "that":
+        return True
+    first = str(token.text).split()[0] if token.kind in {"word", "action"} else ""
+    return "ask" in actions and first in _WH_WORDS
 
 
 def _starts_with_unknown_verb(piece: list[Token]) -> bool:
@@ -173,11 +209,14 @@ def _clause(piece: list[Token]) -> Clause:
     clause.after = after
     prep: str | None = None
     definite = False
+    quantity: int | str | None = None
     unknown: list[str] = []
+    unknown_at = 0
     seen_action = action_token is None
     for at, token in enumerate(piece):
         if token is action_token:
             seen_action = True
+            clause.verb_at = len(clause.words)
             continue
         if not seen_action and token.kind == "action":
             continue
@@ -191,16 +230,20 @@ def _clause(piece: list[Token]) -> Clause:
             if token.value in lexicon.ARTICLES:
                 definite = token.value in {"the", "this", "that"}
             elif token.value not in lexicon.FUNCTION_WORDS and token.value.isalpha():
+                if not unknown:
+                    unknown_at = len(clause.words) - 1
                 unknown.append(token.value)
             continue
         if unknown and token.kind not in _CONTENT_KINDS:
             clause.items.append(Item("unknown", " ".join(unknown), " ".join(unknown), prep,
-                                     definite))
+                                     definite, position=unknown_at))
             prep, definite = None, False
         elif unknown:
             clause.ignored.extend(unknown)  # "a blue cup": "blue" is not taken up
         unknown = []
-        if token.kind == "prep":
+        if token.kind == "quantity":
+            quantity, definite = token.value, False
+        elif token.kind == "prep":
             prep = token.value
         elif token.kind == "wearing" and not _clothes_follow(piece, at):
             clause.items.append(Item("info", "clothes", token.text, prep, False,
@@ -210,10 +253,12 @@ def _clause(piece: list[Token]) -> Clause:
         elif token.kind in _CONTENT_KINDS:
             item = _item(token, prep, definite)
             item.position = len(clause.words) - 1
+            item.quantity, quantity = quantity, None
             clause.items.append(item)
             prep, definite = None, False
     if unknown:
-        clause.items.append(Item("unknown", " ".join(unknown), " ".join(unknown), prep, definite))
+        clause.items.append(Item("unknown", " ".join(unknown), " ".join(unknown), prep, definite,
+                                 position=unknown_at))
     _link_locations(clause)
     return clause
 

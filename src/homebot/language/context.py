@@ -67,6 +67,8 @@ class Context:
     obj_state: str = "named"
     person: dict[str, str] | None = None
     last_referent: str | None = None
+    delivered: bool = False  # the object last fetched was handed over or put down
+    bring_back: bool = False  # "fetch the beer": bring it to the operator if nobody else
 
     # ------------------------------------------------------------------ steps
 

@@ -5,14 +5,69 @@ from __future__ import annotations
 from homebot.language.clauses import Clause, Item
 from homebot.language.context import PLACES, Clarification, Context, Refusal, describe_item, where
 
-__all__ = ["deliver", "direct_object", "fetch", "handle_bring", "handle_find_object",
-           "handle_look", "handle_open", "handle_place", "handle_take", "handle_want"]
+__all__ = [
+    "deliver",
+    "deliver_pending",
+    "direct_object",
+    "fetch",
+    "handle_bring",
+    "handle_find_object",
+    "handle_look",
+    "handle_open",
+    "handle_place",
+    "handle_take",
+    "handle_want",
+    "rounds",
+]
 
 THINGS = frozenset({"object", "category", "generic", "pronoun", "person", "me", "room",
                     "placement", "door", "unknown", "ambiguous", "topic", "quote"})
 _PLACE_LIKE = PLACES | {"ambiguous", "unknown"}
 _SOURCE_PREPS = frozenset({"from", "on", "in", "at"})
 _DEFAULT_RECIPIENT_VERBS = frozenset({"bring", "give", "hand", "pass", "serve", "hand over"})
+# Verbs that mean bringing when nobody else is named: "fetch the beer" is for the speaker.
+_FETCH_VERBS = frozenset({"fetch", "bring"})
+_QUANTITY_ACTIONS = frozenset({"take", "bring", "place", "want"})
+_MAX_ROUNDS = 6
+
+
+def rounds(clause: Clause, ctx: Context) -> int:
+    """How many times to carry out a clause: "bring me two drinks" is two fetches.
+
+    A quantity larger than the things of that kind the robot knows of, or one it
+    cannot know ("all the fruits"), is a question back.
+    """
+    counted = next((item for item in clause.items if item.quantity is not None), None)
+    if counted is None:
+        return 1
+    if clause.action not in _QUANTITY_ACTIONS or counted.kind not in {"object", "category"}:
+        raise Clarification(f"I cannot do that for {counted.quantity} "
+                            f"{counted.text} at once; ask me for one thing at a time.")
+    if counted.kind == "object":
+        known = [str(counted.value)]
+    else:
+        known = ctx.vocabulary.objects_of(str(counted.value))
+    plural = (ctx.vocabulary.categories.get(str(counted.value), f"{counted.value}s")
+              if counted.kind == "category" else f"{counted.value}s")
+    listed = ", ".join(known)
+    if counted.quantity == "all" or not isinstance(counted.quantity, int):
+        raise Clarification(f"How many {plural} should I bring? I know of {len(known)}: "
+                            f"{listed}.")
+    if counted.quantity > len(known) or counted.quantity > _MAX_ROUNDS:
+        one = "only one" if len(known) == 1 else f"only {len(known)}"
+        raise Clarification(f"I know of {one} {counted.value if len(known) == 1 else plural} "
+                            f"here ({listed}); how many should I bring?")
+    counted.definite = False  # each round fetches another one
+    return counted.quantity
+
+
+def deliver_pending(ctx: Context) -> None:
+    """At the end of a command: a fetched object nobody else was named for goes to the
+    operator ("could you fetch the beer")."""
+    if ctx.bring_back and ctx.obj is not None and ctx.obj_state == "held" and not ctx.delivered:
+        ctx.go_to_operator()
+        ctx.emit("give", person="operator")
+        ctx.delivered = True
 
 
 def direct_object(clause: Clause, *, skip_me: bool = True) -> Item | None:
@@ -75,11 +130,13 @@ def fetch(clause: Clause, ctx: Context, target: Item, source: Item | None) -> st
         ctx.found_object(name, ctx.here())
     ctx.emit("pick", object=name)
     ctx.obj_state = "held"
+    ctx.delivered = False
     return name
 
 
 def deliver(clause: Clause, ctx: Context, recipient: Item, name: str) -> None:
     """Steps to hand ``name`` to a person or put it on a placement."""
+    ctx.delivered = True
     if recipient.kind == "me" or (recipient.kind == "person"
                                   and recipient.value.get("name") == "operator"):
         ctx.go_to_operator()
@@ -133,6 +190,8 @@ def handle_take(clause: Clause, ctx: Context) -> None:
         deliver(clause, ctx, destination, name)
     elif recipient_me:
         deliver(clause, ctx, Item("me", "operator", "me"), name)
+    elif clause.verb in _FETCH_VERBS:
+        ctx.bring_back = True
 
 
 def handle_bring(clause: Clause, ctx: Context) -> None:
@@ -163,13 +222,18 @@ def handle_bring(clause: Clause, ctx: Context) -> None:
 
 
 def handle_want(clause: Clause, ctx: Context) -> None:
-    """"I want a cola": bring it to the person who asked."""
-    target = direct_object(clause)
+    """"I want a cola": bring it to the person who asked; "João would like the banana":
+    bring it to João."""
+    subject = next((item for item in clause.items if item.position < clause.verb_at
+                    and item.kind == "person"), None)
+    target = next((item for item in clause.items if item.position >= clause.verb_at
+                   and item.prep is None and item.kind in THINGS - {"me"}), None) if (
+        subject is not None) else direct_object(clause)
     if target is None:
         raise Clarification("What would you like me to bring you?")
     _refuse_non_object(target, "bring")
     name = fetch(clause, ctx, target, source_of(clause, target))
-    deliver(clause, ctx, Item("me", "operator", "me"), name)
+    deliver(clause, ctx, subject if subject is not None else Item("me", "operator", "me"), name)
 
 
 def handle_place(clause: Clause, ctx: Context) -> None:

@@ -27,6 +27,7 @@ __all__ = [
     "POSTURES",
     "PREPOSITIONS",
     "PROPERTIES",
+    "QUANTITIES",
     "SEPARATORS",
     "TOPICS",
     "WEARING_MARKERS",
@@ -55,7 +56,7 @@ ACTIONS: tuple[tuple[str, str], ...] = (
     ("tell", "tell"), ("say", "tell"), ("speak", "tell"), ("report", "tell"),
     ("inform", "tell"), ("remind", "tell"), ("let", "tell"), ("let me know", "tell_me"),
     ("let us know", "tell_me"),
-    ("announce", "tell"), ("state", "tell"), ("find out", "tell_me"), ("check", "look"),
+    ("announce", "tell"), ("state", "tell"), ("find out", "tell_me"),
     ("answer", "answer"), ("respond to", "answer"), ("reply to", "answer"),
     ("greet", "greet"), ("salute", "greet"), ("say hello to", "greet"), ("say hi to", "greet"),
     ("introduce yourself to", "greet"), ("welcome", "greet"), ("wave to", "greet"),
@@ -64,6 +65,30 @@ ACTIONS: tuple[tuple[str, str], ...] = (
     ("show the way", "guide"), ("walk with", "guide"),
     ("ask", "ask"), ("look at", "look"), ("inspect", "look"), ("open", "open"),
     ("i want", "want"), ("i would like", "want"), ("i need", "want"), ("i wish", "want"),
+    ("can i have", "want"), ("could i have", "want"), ("can i get", "want"),
+    ("could i get", "want"), ("i would love", "want"), ("may i have", "want"),
+    ("would like", "want"), ("wants", "want"), ("needs", "want"), ("would love", "want"),
+    ("introduce yourself", "greet"), ("say hello", "greet"), ("say hi", "greet"),
+    ("describe", "describe_person"),
+    ("what is in", "contents"), ("what is on", "contents"), ("what is inside", "contents"),
+    ("what is there", "contents"), ("what do we have in", "contents"),
+    ("what do we have on", "contents"), ("what is there in", "contents"),
+    ("what is there on", "contents"), ("what is inside of", "contents"),
+    ("what is on top of", "contents"), ("what do you see on", "contents"),
+    ("what do you see in", "contents"), ("what is lying on", "contents"),
+    ("where is", "where"), ("where are", "where"), ("do you know where", "where"),
+    ("where did i leave", "where"), ("where did i put", "where"),
+    ("where have i left", "where"), ("where have i put", "where"),
+    ("search", "search"), ("look around", "search"), ("have a look around", "search"),
+    ("have a look in", "search"), ("check", "search"),
+)
+
+# Words for how many things: "two drinks", "a couple of snacks", "all the fruits".
+QUANTITIES: tuple[tuple[str, int | str], ...] = (
+    ("two", 2), ("three", 3), ("four", 4), ("five", 5), ("six", 6), ("2", 2), ("3", 3),
+    ("4", 4), ("5", 5), ("6", 6), ("a couple of", 2), ("a pair of", 2), ("both", 2),
+    ("all", "all"), ("all the", "all"), ("all of the", "all"), ("every", "all"),
+    ("each", "all"), ("a few", "all"), ("several", "all"),
 )
 
 # Actions people ask for that no skill can do; a refusal names them.

@@ -10,8 +10,9 @@ from homebot.errors import LanguageError
 from homebot.language import lexicon
 from homebot.language.accounting import account_for
 from homebot.language.clauses import Clause, build_clauses
-from homebot.language.context import Clarification, Context, Refusal, describe_item
+from homebot.language.context import Clarification, Context, Refusal, describe_item, where
 from homebot.language.fetching import (
+    deliver_pending,
     direct_object,
     handle_bring,
     handle_find_object,
@@ -20,6 +21,7 @@ from homebot.language.fetching import (
     handle_place,
     handle_take,
     handle_want,
+    rounds,
 )
 from homebot.language.normalise import normalise
 from homebot.language.people import (
@@ -33,6 +35,11 @@ from homebot.language.people import (
     handle_meet,
     handle_return,
     wants_person,
+)
+from homebot.language.questions import (
+    handle_contents,
+    handle_describe_person,
+    handle_where,
 )
 from homebot.language.reporting import handle_count, handle_tell, handle_tell_me
 from homebot.language.result import ParseResult, ParseStatus
@@ -65,8 +72,11 @@ def parse_command(text: str, vocabulary: Vocabulary) -> ParseResult:
         if not clauses:
             raise Refusal("I did not hear anything I can do in that command.")
         for clause in clauses:
-            _HANDLERS.get(clause.action or "", _no_action)(clause, ctx)
+            handler = _HANDLERS.get(clause.action or "", _no_action)
+            for _round in range(rounds(clause, ctx)):
+                handler(clause, ctx)
             account_for(clause, ctx, ctx.steps)
+        deliver_pending(ctx)
     except Clarification as clarification:
         return ParseResult(ParseStatus.CLARIFY, text, question=clarification.question)
     except Refusal as refusal:
@@ -149,6 +159,31 @@ def _go(clause: Clause, ctx: Context) -> None:
         handle_go(clause, ctx)
 
 
+def _search(clause: Clause, ctx: Context) -> None:
+    """search / look around PLACE for THING: go there and look for it."""
+    wanted = clause.first({"object", "category", "generic", "person", "pronoun", "me",
+                           "unknown"}, {"for"})
+    place = next((item for item in clause.items if item.kind in {"room", "placement",
+                                                                 "ambiguous", "unknown"}
+                  and item.prep in {None, "in", "at", "on", "around"}), None)
+    if wanted is None:
+        if place is not None and clause.first({"object", "category", "person"}) is None:
+            raise Clarification(f"What should I look for at {describe_item(place)}?")
+        _find(clause, ctx)
+        return
+    if wanted.kind == "unknown":
+        raise Refusal(f"I do not know what or who '{wanted.value}' is in this home.")
+    if wants_person(wanted, ctx):
+        find_person_frame(clause, ctx, wanted, place)
+        return
+    if place is None:
+        handle_find_object(clause, ctx, wanted)
+        return
+    spot = ctx.place_of(place, clause, "look for things")
+    ctx.go(spot)
+    ctx.found_object(ctx.object_of(wanted), where(spot))
+
+
 def _no_action(clause: Clause, ctx: Context) -> None:
     first = next(iter(clause.words), "")
     if first in lexicon.IMPOSSIBLE_ACTIONS:
@@ -171,5 +206,6 @@ _HANDLERS: Mapping[str, Handler] = MappingProxyType({
     "tell": handle_tell, "tell_me": handle_tell_me, "describe": handle_tell_me,
     "answer": handle_answer, "greet": handle_greet, "follow": handle_follow,
     "guide": handle_guide, "ask": handle_ask, "look": handle_look, "open": handle_open,
-    "want": handle_want,
+    "want": handle_want, "contents": handle_contents, "where": handle_where,
+    "describe_person": handle_describe_person, "search": _search,
 })

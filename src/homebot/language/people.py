@@ -195,7 +195,35 @@ def _question(clause: Clause) -> str:
         words = words[1:]
     if not words:
         raise Clarification("What should I ask?")
-    return " ".join(words)
+    return " ".join(direct_question(words))
+
+
+_AUXILIARIES = frozenset({"is", "are", "would", "will", "can", "could", "does", "do", "did",
+                          "was", "were", "has", "have", "should"})
+_TO_YOU = {"she": "you", "he": "you", "they": "you", "her": "your", "his": "your",
+           "their": "your", "him": "you", "them": "you", "hers": "yours", "theirs": "yours",
+           "herself": "yourself", "himself": "yourself", "themselves": "yourself"}
+_WH = frozenset({"what", "where", "which", "who", "how", "when", "why", "whose"})
+
+
+def direct_question(words: list[str]) -> list[str]:
+    """The reported question turned to the person: "what her favourite food is" ->
+    "what is your favourite food"; "where she is from" -> "where are you from"."""
+    words = " ".join(words).split()
+    if not words or words[0] not in _WH:
+        return words
+    rest = [_TO_YOU.get(word, word) for word in words[1:]]
+    aux_at = next((index for index, word in enumerate(rest) if word in _AUXILIARIES), None)
+    if aux_at is None or aux_at == 0 or ("you" not in rest[:aux_at] and "your" not in (
+            " ".join(rest[:aux_at]).split())):
+        return [words[0], *rest]
+    aux = rest[aux_at]
+    subject = rest[:aux_at]
+    if subject == ["you"] and aux == "is":
+        aux = "are"
+    elif subject == ["you"] and aux in {"does", "has", "was"}:
+        aux = {"does": "do", "has": "have", "was": "were"}[aux]
+    return [words[0], aux, *subject, *rest[aux_at + 1:]]
 
 
 def _refuse_non_person(target: Item) -> None:

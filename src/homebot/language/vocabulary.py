@@ -233,6 +233,7 @@ def _add_lexicon(index: dict[tuple[str, ...], Token]) -> None:
         ("me", (("me", "operator"), ("myself", "operator"), ("us", "operator"))),
         ("pronoun", (("it", "it"), ("them", "them"), ("him", "them"), ("her", "them"),
                      ("they", "them"), ("those", "them"), ("she", "them"), ("he", "them"))),
+        ("quantity", lexicon.QUANTITIES),
         ("count", (("how many", "count"), ("the number of", "count"),
                    ("the amount of", "count"), ("number of", "count"))),
     ]
