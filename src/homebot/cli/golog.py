@@ -40,11 +40,14 @@ def register(subparsers: Any) -> None:
         sub.add_argument("--seed", type=int, default=0, help="seed for every random choice")
         sub.add_argument("--json", action="store_true", help="print the result as JSON")
         sub.set_defaults(handler=_plan if name == "plan" else _run)
+    from homebot.cli.golog_maintain import add_parser
+
+    add_parser(commands)
     parser.set_defaults(handler=_no_command)
 
 
 def _no_command(args: argparse.Namespace) -> int:
-    raise GologError("name a golog command: check, plan or run")
+    raise GologError("name a golog command: check, plan, run or maintain")
 
 
 def _theory(args: argparse.Namespace) -> Theory:

@@ -114,6 +114,9 @@ def converse(mask: int) -> int:
 
 def relation_of(a: tuple[float, float], b: tuple[float, float]) -> str:
     """The basic relation between two proper intervals ``(start, end)``, start < end."""
+    if not (a[0] < a[1] and b[0] < b[1]):
+        raise ValueError(f"{a} or {b} is not a proper interval (start before end)")
+
     def sign(x: float, y: float) -> int:
         return (x > y) - (x < y)
 
@@ -121,7 +124,7 @@ def relation_of(a: tuple[float, float], b: tuple[float, float]) -> str:
     for name, orderings in _ENDPOINTS.items():
         if orderings == key:
             return name
-    raise ValueError(f"{a} or {b} is not a proper interval (start before end)")
+    raise AssertionError("unreachable: every ordering of two proper intervals is a relation")
 
 
 #### composition

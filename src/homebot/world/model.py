@@ -7,7 +7,7 @@ naming a room, an object on a placement) are checked by ``homebot.world.world``.
 from __future__ import annotations
 
 from enum import StrEnum
-from typing import Annotated, Literal
+from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, field_validator
 
@@ -227,3 +227,5 @@ class WorldModel(_Strict):
     operator: Name | None = None
     robot: RobotModel
     disturbances: DisturbanceModel = Field(default_factory=DisturbanceModel)
+    #: self-maintenance components and constraints, read by ``homebot golog maintain``
+    maintenance: dict[str, Any] | None = None
