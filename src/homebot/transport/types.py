@@ -52,6 +52,9 @@ _DEFAULTS: dict[str, Callable[[], Any]] = {
     "bool": bool, "string": str, "float32": float, "float64": float,
 }
 _BYTES = {"byte", "octet", "uint8", "char"}
+# ``uint8[]`` (image and point cloud data): declared ``sequence<uint8>`` for the type's
+# XTypes description, but serialised from and to ``bytes`` at once (``_fast_bytes``).
+_BYTE_SEQUENCE = idl.sequence[idl.uint8]
 
 
 def dds_type_name(ros_name: str) -> str:
@@ -154,7 +157,7 @@ class MessageTypes:
             if kind == _ARRAY:
                 return idl.array[idl.uint8, length], lambda: bytes(length)
             if not length:
-                return bytes, bytes
+                return _BYTE_SEQUENCE, bytes
         element, element_default = self._field((inner_kind, inner))
         if kind == _ARRAY:
             return idl.array[element, length], lambda: [element_default()
@@ -170,4 +173,22 @@ def _make_struct(class_name: str, typename: str,
         namespace["__annotations__"][field] = annotation
         namespace[field] = dataclasses.field(default_factory=default)
     made: Any = IdlMeta(class_name, (IdlStruct,), namespace)  # type: ignore[no-untyped-call]
-    return dataclasses.dataclass(made)  # type: ignore[no-any-return]
+    made = dataclasses.dataclass(made)
+    _fast_bytes(made, [field for field, (annotation, _) in fields.items()
+                       if annotation is _BYTE_SEQUENCE])
+    return made  # type: ignore[no-any-return]
+
+
+def _fast_bytes(struct: Any, fields: list[str]) -> None:
+    """Serialise the ``uint8[]`` fields of ``struct`` as ``bytes`` (one copy, not one Python
+    int per byte): the same CDR (a 32-bit length, then the bytes) in XCDR1 and XCDR2."""
+    if not fields:
+        return
+    from cyclonedds.idl._machinery import BytesMachine
+
+    struct.__idl__.populate()
+    for machine in (struct.__idl__.v1_machine, struct.__idl__.v2_machine):
+        members = getattr(machine, "members_machines", None)
+        if members is not None:
+            for field in fields:
+                members[field] = BytesMachine()  # type: ignore[no-untyped-call]
