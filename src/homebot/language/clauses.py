@@ -46,6 +46,7 @@ class Clause:
     items: list[Item] = field(default_factory=list)
     words: list[str] = field(default_factory=list)
     after: bool = False  # said after "after": happens before the clause it follows
+    before: bool = False  # said after "before": happens after the clause that follows it
     ignored: list[str] = field(default_factory=list)  # words no item or step took up
     free_text: bool = False  # a handler used the clause's own words (say ..., ask ...)
     preverbal: list[str] = field(default_factory=list)  # unknown words before the verb
@@ -93,7 +94,9 @@ def build_clauses(tokens: list[Token]) -> list[Clause]:
     merged: list[list[Token]] = []
     pending: list[Token] = []
     for piece in pieces:
-        if _has_action_or_question(piece) or _starts_with_unknown_verb(piece):
+        if _is_statement(piece):
+            merged.append(piece)  # "she's in the office": said of someone in another clause
+        elif _has_action_or_question(piece) or _starts_with_unknown_verb(piece):
             merged.append(pending + piece)
             pending = []
         elif merged and _has_object(piece) and _has_object(merged[-1]):
@@ -105,9 +108,83 @@ def build_clauses(tokens: list[Token]) -> list[Clause]:
     if pending:
         merged.append(pending)
     clauses = _reorder([_clause(piece) for piece in merged])
+    index = 0
+    while index < len(clauses) - 1:  # "before you come back, grab the crisps"
+        if clauses[index].before and not clauses[index + 1].before:
+            clauses[index], clauses[index + 1] = clauses[index + 1], clauses[index]
+            index += 1
+        index += 1
+    clauses = _apply_statements(clauses)
     return [clause for index, clause in enumerate(clauses)
             if not (clause.action == "go" and not clause.items and index + 1 < len(clauses))
             and not _asks_before_question(clauses, index)]
+
+
+_SUBJECTS = frozenset({"person", "pronoun", "object", "category"})
+_PERSON_PRONOUNS = frozenset({"she", "he", "her", "him"})
+
+
+def _statement(clause: Clause) -> tuple[Item, Item] | None:
+    """"Tom is in the study", "she's in the office", "there's a cup on the table",
+    "whoever is in the study": a verbless clause saying where someone or something is."""
+    if clause.action is not None or len(clause.items) != 2:
+        return None
+    subject, place = clause.items
+    if subject.kind not in _SUBJECTS or place.kind not in {"room", "placement", "ambiguous"}:
+        return None
+    if place.owner != 0 or clause.ignored or clause.preverbal:
+        return None
+    return subject, place
+
+
+def _apply_statements(clauses: list[Clause]) -> list[Clause]:
+    """Fold statements of where someone or something is into the clauses they are about:
+    the place becomes the locator of that person or thing (or replaces the pronoun that
+    refers to them), and the statement itself is dropped."""
+    kept: list[Clause] = []
+    for index, clause in enumerate(clauses):
+        stated = _statement(clause)
+        if stated is None or len(clauses) == 1:
+            kept.append(clause)
+            continue
+        subject, place = stated
+        others = clauses[index + 1:] + clauses[:index][::-1]
+        if not any(_locate(other, subject, place) for other in others):
+            kept.append(clause)
+    return kept
+
+
+def _locate(clause: Clause, subject: Item, place: Item) -> bool:
+    """Give ``subject``'s place to the matching item of ``clause``; whether one matched."""
+    person = subject.kind == "person" or (subject.kind == "pronoun"
+                                          and subject.text in _PERSON_PRONOUNS)
+    for at, item in enumerate(clause.items):
+        if clause.located(item) is not None:
+            continue
+        same = (item.kind == subject.kind and item.value == subject.value
+                and subject.kind != "pronoun")
+        refers = item.kind == "pronoun" and subject.kind != "pronoun" and (
+            (item.text in _PERSON_PRONOUNS or item.text in {"them", "they"}) == person
+            or item.text in {"them", "they"})
+        backward = subject.kind == "pronoun" and (
+            item.kind == "person" if person else item.kind in {"object", "category"})
+        if not (same or refers or backward):
+            continue
+        if refers:
+            clause.items[at] = Item(subject.kind, subject.value, subject.text, item.prep,
+                                    subject.definite, item.owner, item.position)
+        prep = "in" if person or item.kind == "person" else "from"
+        _insert_after(clause, at, Item(place.kind, place.value, place.text, prep,
+                                       place.definite, at, item.position))
+        return True
+    return False
+
+
+def _insert_after(clause: Clause, at: int, new: Item) -> None:
+    for item in clause.items:
+        if item.owner is not None and item.owner > at:
+            item.owner += 1
+    clause.items.insert(at + 1, new)
 
 
 _QUESTIONS = frozenset({"contents", "where", "count", "describe", "describe_person"})
@@ -175,6 +252,25 @@ def _starts_with_unknown_verb(piece: list[Token]) -> bool:
         or first.value not in lexicon.FUNCTION_WORDS)
 
 
+_STATEMENT_WORDS = frozenset({"is", "are", "was", "currently", "right", "a", "an", "the",
+                              "some", "there", "now", "still"})
+
+
+def _is_statement(piece: list[Token]) -> bool:
+    """[someone or something] is [in / on / at] [a room or piece of furniture]."""
+    core = [token for token in piece
+            if not (token.kind == "word" and token.value in _STATEMENT_WORDS)]
+    if len(core) != 3 or len(core) == len(piece):
+        return False
+    subject, prep, place = core
+    subject_ok = subject.kind in {"person", "pronoun"} or (
+        subject.kind == "entity" and len(subject.value) == 1
+        and subject.value[0].kind in {"object", "category", "person"})
+    place_ok = place.kind == "entity" and all(
+        entity.kind in {"room", "placement"} for entity in place.value)
+    return subject_ok and prep.kind == "prep" and prep.value in {"in", "on", "at"} and place_ok
+
+
 def _has_object(piece: list[Token]) -> bool:
     return any(token.kind == "entity" and len(token.value) == 1
                and token.value[0].kind in {"object", "category"} for token in piece)
@@ -197,6 +293,7 @@ def _has_action_or_question(piece: list[Token]) -> bool:
 
 def _clause(piece: list[Token]) -> Clause:
     after = bool(piece) and piece[0].kind == "word" and piece[0].value == "after"
+    piece_before = bool(piece) and piece[0].kind == "word" and piece[0].value == "before"
     if piece and piece[0].kind == "word" and piece[0].value in {"after", "before"}:
         piece = piece[1:]
     action_token = next((token for token in piece if token.kind == "action"), None)
@@ -207,6 +304,7 @@ def _clause(piece: list[Token]) -> Clause:
     else:
         clause = Clause(action=action_token.value, verb=action_token.text)
     clause.after = after
+    clause.before = bool(piece_before)
     prep: str | None = None
     definite = False
     quantity: int | str | None = None

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from homebot.language.clauses import Clause, Item
 from homebot.language.context import PLACES, Clarification, Context, Refusal, describe_item, where
+from homebot.task import Step
 
 __all__ = [
     "deliver",
@@ -128,10 +129,21 @@ def fetch(clause: Clause, ctx: Context, target: Item, source: Item | None) -> st
         ctx.found_object(name, where(place))
     else:
         ctx.found_object(name, ctx.here())
+        if ctx.location is not None and ctx.location.kind == "me":
+            ctx.location = None  # the search takes the robot away from the operator
+    _superlative(clause, ctx)
     ctx.emit("pick", object=name)
     ctx.obj_state = "held"
     ctx.delivered = False
     return name
+
+
+def _superlative(clause: Clause, ctx: Context) -> None:
+    """"the lightest fruit on the shelf": the search chooses by that property."""
+    prop = clause.first({"property"})
+    if prop is not None and ctx.steps and ctx.steps[-1].skill == "find_object":
+        last = ctx.steps[-1]
+        ctx.steps[-1] = Step("find_object", {**last.args, "property": prop.value})
 
 
 def deliver(clause: Clause, ctx: Context, recipient: Item, name: str) -> None:
@@ -190,8 +202,8 @@ def handle_take(clause: Clause, ctx: Context) -> None:
         deliver(clause, ctx, destination, name)
     elif recipient_me:
         deliver(clause, ctx, Item("me", "operator", "me"), name)
-    elif clause.verb in _FETCH_VERBS:
-        ctx.bring_back = True
+    elif clause.verb in _FETCH_VERBS or "my" in clause.words:
+        ctx.bring_back = True  # "fetch the beer", "grab my headphones"
 
 
 def handle_bring(clause: Clause, ctx: Context) -> None:

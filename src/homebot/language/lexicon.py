@@ -79,6 +79,9 @@ ACTIONS: tuple[tuple[str, str], ...] = (
     ("where is", "where"), ("where are", "where"), ("do you know where", "where"),
     ("where did i leave", "where"), ("where did i put", "where"),
     ("where have i left", "where"), ("where have i put", "where"),
+    ("tell me where", "where"), ("let me know where", "where"), ("show", "guide"),
+    ("come with me", "follow"), ("pop", "go"), ("pop into", "go"), ("pop over to", "go"),
+    ("would be great", "want"), ("would be nice", "want"), ("would be lovely", "want"),
     ("search", "search"), ("look around", "search"), ("have a look around", "search"),
     ("have a look in", "search"), ("check", "search"),
 )
@@ -114,6 +117,8 @@ COMMON_WORDS: frozenset[str] = frozenset({
     "microwave", "oven", "stove", "sink", "towel", "knife", "board", "blender",
     "please", "thanks", "really", "maybe", "quietly", "gently", "spilling", "cold",
     "hot", "clean", "dirty", "favourite", "favorite", "would", "like", "want", "wants",
+    "served", "starting", "started", "leaving", "arrived", "waiting", "coming",
+    "called", "calling", "asleep", "awake", "outside", "upstairs", "downstairs",
 })
 
 # Words that turn a command round ("not the lemonade", "unless Maria wants it"): the
@@ -145,7 +150,11 @@ FILLERS: tuple[str, ...] = (
     "your task is to", "you need to", "you should", "you must", "try and", "just",
     "carefully", "there", "over", "over there", "right now", "real quick", "buddy",
     "pal", "mate", "the robot", "for us", "i wonder if you could", "do me a favour and",
-    "do me a favor and", "nicely", "politely", "please do",
+    "do me a favor and", "nicely", "politely", "please do", "like", "um", "uh", "erm",
+    "well", "actually", "you know", "i mean", "i am thirsty", "i am hungry", "i am bored",
+    "wait there", "and wait there", "wait for me there", "and wait", "go and", "come on",
+    "glass of", "bottle of", "can of", "bag of", "bowl of", "cup of", "box of", "packet of",
+    "carton of", "jar of", "tin of", "slice of", "piece of", "pack of", "mug of",
 )
 
 CONTRACTIONS: tuple[tuple[str, str], ...] = (
@@ -156,6 +165,10 @@ CONTRACTIONS: tuple[tuple[str, str], ...] = (
     ("can't", "cannot"), ("won't", "will not"), ("i've", "i have"), ("you've", "you have"),
     ("he's", "he is"), ("she's", "she is"), ("where's", "where is"),
     ("how's", "how is"), ("isn't", "is not"), ("aren't", "are not"),
+    ("he'd", "he would"), ("she'd", "she would"), ("they'd", "they would"),
+    ("we'd", "we would"), ("we're", "we are"), ("we've", "we have"), ("he'll", "he will"),
+    ("she'll", "she will"), ("they'll", "they will"), ("we'll", "we will"),
+    ("i'll", "i will"), ("you'll", "you will"),
 )
 
 PERSON_NOUNS: frozenset[str] = frozenset({
@@ -248,7 +261,10 @@ TOPICS: tuple[tuple[str, str], ...] = (
     ("the time", "the time"), ("what time it is", "the time"), ("what time is it", "the time"),
     ("the current time", "the time"), ("the hour", "the time"),
     ("what day is today", "what day is today"), ("what day it is today", "what day is today"),
-    ("what day it is", "what day is today"), ("today s date", "what day is today"),
+    ("what day it is", "what day is today"), ("what day is it today", "what day is today"),
+    ("what day is it", "what day is today"), ("what is the time", "the time"),
+    ("what is the date", "what day is today"), ("what is the date today", "what day is today"),
+    ("today s date", "what day is today"),
     ("todays date", "what day is today"), ("the date", "what day is today"),
     ("the date today", "what day is today"), ("which day it is today", "what day is today"),
     ("which day is today", "what day is today"), ("what today is", "what day is today"),
@@ -309,7 +325,9 @@ CATEGORY_PHRASES: tuple[tuple[str, tuple[str, ...]], ...] = (
     ("something to eat", ("food", "snack", "fruit")),
     ("anything to eat", ("food", "snack", "fruit")),
     ("something to play with", ("toy",)), ("something to clean with", ("cleaning supply",)),
-    ("a piece of fruit", ("fruit",)), ("some fruit", ("fruit",)),
+    ("a piece of fruit", ("fruit",)), ("some fruit", ("fruit",)), ("soda", ("drink",)),
+    ("a soda", ("drink",)), ("a cold one", ("drink",)), ("a cold drink", ("drink",)),
+    ("sodas", ("drink",)), ("something to nibble", ("snack",)), ("a treat", ("snack",)),
 )
 
 # Words that are never misspellings of a name (the fuzzy matcher leaves them alone).

@@ -44,7 +44,7 @@ from homebot.language.questions import (
 from homebot.language.reporting import handle_count, handle_tell, handle_tell_me
 from homebot.language.result import ParseResult, ParseStatus
 from homebot.language.tagging import tag
-from homebot.language.vocabulary import Vocabulary
+from homebot.language.vocabulary import Vocabulary, phrase_tokens
 from homebot.space.referring import split_spatial
 from homebot.task import Step
 
@@ -73,7 +73,9 @@ def parse_command(text: str, vocabulary: Vocabulary) -> ParseResult:
             raise Refusal("I did not hear anything I can do in that command.")
         for clause in clauses:
             handler = _HANDLERS.get(clause.action or "", _no_action)
-            for _round in range(rounds(clause, ctx)):
+            for round_ in range(rounds(clause, ctx)):
+                if round_:  # each round fetches another one
+                    ctx.obj, ctx.obj_state = None, "named"
                 handler(clause, ctx)
             account_for(clause, ctx, ctx.steps)
         deliver_pending(ctx)
@@ -95,6 +97,11 @@ def _spatial_reference(text: str, vocabulary: Vocabulary) -> ParseResult | None:
     plain, modifiers = split_spatial(text)
     if not modifiers:
         return None
+    for modifier in modifiers:  # every word accounted for: a relatum must be known
+        relatum = modifier.relatum
+        if relatum is not None and vocabulary.index.get(phrase_tokens(relatum)) is None:
+            return ParseResult(ParseStatus.CLARIFY, text, question=(
+                f"I do not know what '{relatum}' is; which thing do you mean?"))
     result = parse_command(plain, vocabulary)
     if result.status is ParseStatus.CLARIFY:  # "the cup" among several: the modifiers tell
         result = parse_command(_indefinite(plain), vocabulary)
@@ -115,6 +122,9 @@ def _indefinite(text: str) -> str:
 
 def _find(clause: Clause, ctx: Context) -> None:
     target = direct_object(clause, skip_me=False)
+    if target is not None and target.kind == "me":  # "find me a fruit in the kitchen"
+        thing = direct_object(clause)
+        target = thing if thing is not None and thing.kind != "me" else target
     if target is None:
         raise Clarification("What or whom should I look for?")
     if wants_person(target, ctx) or (target.kind == "pronoun" and ctx.obj is None):
@@ -155,6 +165,9 @@ def _go(clause: Clause, ctx: Context) -> None:
         target.kind == "pronoun" and not ctx.pronoun_means_person(target)))
     if carries and clause.first({"room", "placement", "ambiguous", "unknown"}, {"to"}):
         handle_take(clause, ctx)
+    elif (target is not None and target.kind == "person" and target.prep is None
+          and clause.first({"room", "placement", "ambiguous"}, {"to"})):
+        handle_guide(clause, ctx)  # "walk John from the bedroom to the couch"
     else:
         handle_go(clause, ctx)
 

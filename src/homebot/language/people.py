@@ -59,6 +59,9 @@ def handle_go(clause: Clause, ctx: Context) -> None:
     """go / navigate / head to a room, placement, person or the operator."""
     target = clause.first(_PLACE_LIKE | {"me", "person", "object", "category", "door"},
                           {"to", None, "in", "at"})
+    if target is None and "here" in clause.words:
+        ctx.go_to_operator()  # "come here", "come over here"
+        return
     if target is None:
         raise Clarification("Where should I go?")
     if target.kind == "me":

@@ -31,7 +31,9 @@ def handle_contents(clause: Clause, ctx: Context) -> None:
             raise Clarification(f"Where in the {place.value} should I look"
                                 + (f": {', '.join(options)}?" if options else "?"))
         ctx.go(place)
-    ctx.emit("look", placement=place.value)
+    if not (ctx.steps and ctx.steps[-1].skill == "look"
+            and ctx.steps[-1].args.get("placement") == place.value):
+        ctx.emit("look", placement=place.value)  # "have a look at the desk and tell me ..."
     report(clause, ctx)
 
 

@@ -200,6 +200,7 @@ def _message(clause: Clause, ctx: Context) -> None:
     if unknown is not None:
         raise Refusal(f"I do not know anyone called '{unknown.value}' here, so I cannot "
                       f"tell them.")
+    clause.items = before  # the message's own words name no one to find or place to go
     listeners = [item for item in before if item.kind in _LISTENERS]
     if len(listeners) > 1:
         names = " and ".join(describe_item(item) for item in listeners)

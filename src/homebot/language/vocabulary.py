@@ -31,6 +31,19 @@ SYNONYMS: tuple[tuple[str, str], ...] = (
     ("crackers", "cheezit"), ("cheez it", "cheezit"), ("wine", "red wine"),
     ("soap dispenser", "soap"), ("football", "soccer ball"), ("telly", "tv stand"),
     ("bedside", "bedside table"), ("wardrobe", "closet"), ("closet", "wardrobe"),
+    ("mug", "cup"), ("cup", "mug"), ("chips", "crisps"), ("crisps", "chips"),
+    ("cookies", "biscuits"), ("biscuits", "cookies"), ("cookie", "biscuits"),
+    ("teddy", "teddy bear"), ("brew", "beer"), ("charger", "phone charger"),
+    ("remote", "remote control"), ("tv remote", "remote control"),
+    ("ball", "tennis ball"), ("dish soap", "soap"), ("soap", "detergent"),
+    ("washing up liquid", "detergent"), ("study", "office"), ("office", "study"),
+    ("corridor", "hallway"), ("hallway", "corridor"), ("hall", "hallway"),
+    ("night table", "bedside table"), ("night table", "nightstand"),
+    ("bedside table", "nightstand"), ("nightstand", "bedside table"),
+    ("kitchen table", "dining table"), ("couch", "sofa"), ("settee", "sofa"),
+    ("settee", "couch"), ("frame", "picture frame"), ("photo frame", "picture frame"),
+    ("soft drink", "cola"), ("telly", "tv stand"), ("bookcase", "bookshelf"),
+    ("fizzy water", "sparkling water"), ("juice", "apple juice"), ("lemon soda", "lemonade"),
 )
 
 _SPLIT = re.compile(r"[\W_]+")
