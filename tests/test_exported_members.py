@@ -8,7 +8,8 @@ import types
 import pytest
 
 PACKAGES = ["homebot", "homebot.world", "homebot.navigation", "homebot.robot", "homebot.sim",
-            "homebot.skills", "homebot.executive", "homebot.scenarios", "homebot.viz"]
+            "homebot.skills", "homebot.executive", "homebot.scenarios", "homebot.viz",
+            "homebot.speech"]
 
 
 @pytest.mark.parametrize("name", PACKAGES)

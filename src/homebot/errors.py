@@ -12,7 +12,9 @@ Hierarchy::
     ├── PlanningError            an HTN domain, problem or planning goal is malformed
     ├── LanguageError            a command cannot be understood
     ├── DialogueError            a SitLog dialogue model is malformed or cannot go on
-    └── BenchmarkError           a benchmark's argument (a size, a seed, a file) is unusable
+    ├── BenchmarkError           a benchmark's argument (a size, a seed, a file) is unusable
+    └── SpeechError              an audio file is unusable (empty, not WAV, too long) or the
+                                 speech extra is missing
 
 Every message says what is wrong and how to fix it; the CLI prints it without a
 traceback and exits with status 2. Expected failures while acting in the world
@@ -32,6 +34,7 @@ __all__ = [
     "MapError",
     "NavigationError",
     "PlanningError",
+    "SpeechError",
     "TaskError",
     "WorldError",
 ]
@@ -79,3 +82,8 @@ class PlanningError(HomebotError):
 
 class BenchmarkError(HomebotError):
     """A benchmark's argument is unusable: a size of 0 or absurd, a bad seed, a missing file."""
+
+
+class SpeechError(HomebotError):
+    """Audio cannot be heard or spoken: an empty, non-WAV or overlong file, an unknown voice,
+    or the speech extra is not installed."""

@@ -1,0 +1,245 @@
+"""Hearing commands: two pocketsphinx decoders per utterance, reconciled as CAESAR does.
+
+CAESAR (seeds/caesar-domestic-service-robot.txt §2.4) segments closed utterances, decodes
+each with a finite-state grammar and with a trigram model in parallel, and looks for the
+grammar's output in the trigram decoder's N-best list; what the two do not agree on is
+rejected, which filters out the false positives of a noisy hall. Here:
+
+- the grammar is ``command_grammar(world)`` (JSGF), the trigram model is trained on
+  commands ``homebot.language.generator`` writes for the same world;
+- a grammar hypothesis counts only when the grammar can produce it whole (pocketsphinx
+  returns a partial path when no final state was reached);
+- accepted: the two best hypotheses agree (``agree``), or the grammar's hypothesis is in
+  the trigram decoder's N-best list (``nbest``), or an N-best entry differs from it in at
+  most 15 % of its words (``similar``); when the grammar reached no final state, an
+  N-best entry the grammar can produce whole and close to its partial path is taken
+  (``nbest_in_grammar``); anything else is rejected, with the
+  reason (``no_speech``, ``grammar_failed``, ``disagree``).
+
+Cosero (seeds/cosero-mobile-manipulation.txt §7.2.1) lets the task's state decide what is
+understood: ``hear(audio, state="yes_no")`` listens with the yes/no grammar and its
+model, ``state="drink"`` with the world's drinks.
+"""
+
+from __future__ import annotations
+
+import itertools
+import os
+import random
+import tempfile
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+from rapidfuzz.distance import Levenshtein
+
+from homebot.errors import SpeechError
+from homebot.speech.audio import SAMPLE_RATE, Audio, denoise
+from homebot.speech.grammar import (
+    Grammar,
+    command_grammar,
+    drink_grammar,
+    words_of,
+    yes_no_grammar,
+)
+from homebot.speech.ngram import train_trigram
+from homebot.speech.pronounce import build_dictionary
+from homebot.speech.segmentation import Segmenter
+
+__all__ = ["DIALOGUE_STATES", "Hearing", "Recognizer", "state_for_question"]
+
+DIALOGUE_STATES = ("command", "yes_no", "drink")
+_NBEST = 20
+_DITHER_SEED = 12_345
+# The grammar's hypothesis is accepted when an N-best entry is within this share of its
+# words (word edit distance, at least one word): CAESAR's "similarities".
+_SIMILARITY = 0.15
+_DECODER_OPTIONS: dict[str, Any] = {}
+# Spectral subtraction before decoding (``homebot.speech.audio.denoise``).
+_DENOISE: dict[str, float] = {"over": 2.0, "quiet_share": 0.1}
+
+
+@dataclass(frozen=True)
+class Hearing:
+    """What the robot heard in one utterance. ``text`` is None when it was rejected;
+    ``reason`` says why it was accepted or rejected."""
+
+    text: str | None
+    reason: str
+    state: str = "command"
+    grammar_hypothesis: str | None = None
+    ngram_hypotheses: tuple[str, ...] = ()
+    seconds: float = 0.0
+    decode_seconds: float = field(default=0.0, compare=False)
+
+    def __bool__(self) -> bool:
+        return self.text is not None
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"text": self.text, "accepted": self.text is not None, "reason": self.reason,
+                "state": self.state, "grammar": self.grammar_hypothesis,
+                "ngram_nbest": list(self.ngram_hypotheses[:5]),
+                "seconds": round(self.seconds, 3)}
+
+
+def state_for_question(question: str) -> str:
+    """The dialogue state a question puts the listener in: ``drink`` for a question about
+    a drink, ``yes_no`` for a yes/no question (it starts with an auxiliary verb),
+    otherwise ``command``."""
+    words = words_of(question).split()
+    if "drink" in words or "drinks" in words:
+        return "drink"
+    auxiliaries = {"do", "does", "did", "is", "are", "was", "should", "shall", "can",
+                   "could", "may", "will", "would", "have", "has", "am"}
+    return "yes_no" if words and words[0] in auxiliaries else "command"
+
+
+def _model_path() -> str:
+    import pocketsphinx
+
+    return os.path.join(pocketsphinx.get_model_path(), "en-us", "en-us")
+
+
+class Recognizer:
+    """pocketsphinx with a grammar and a trigram model for each dialogue state.
+
+    Build it with ``Recognizer.for_world(world)``; ``hear(audio, state)`` segments the
+    audio with the VAD and decodes the speech in it.
+    """
+
+    def __init__(self, grammars: Mapping[str, Grammar],
+                 training: Mapping[str, list[str]], *,
+                 segmenter: Segmenter | None = None, nbest: int = _NBEST,
+                 similarity: float = _SIMILARITY, denoise: Mapping[str, float] | None = None,
+                 decoder_options: Mapping[str, Any] | None = None
+                 ) -> None:
+        try:
+            import pocketsphinx
+        except ImportError:
+            raise SpeechError("speech recognition needs the speech extra: "
+                              "pip install 'homebot[speech]'") from None
+        self.grammars = dict(grammars)
+        self.segmenter = segmenter or Segmenter()
+        self.nbest = nbest
+        self.similarity = similarity
+        self.denoise = dict(_DENOISE if denoise is None else denoise)
+        models = {state: train_trigram(training[state]) for state in self.grammars}
+        words: set[str] = set()
+        for state, grammar in self.grammars.items():
+            words |= grammar.words() | models[state].vocabulary()
+        dictionary = build_dictionary(words)
+        with tempfile.TemporaryDirectory(prefix="homebot-speech-") as folder:
+            dict_path = os.path.join(folder, "words.dict")
+            with open(dict_path, "w", encoding="utf-8") as handle:
+                for word, pronunciations in dictionary.items():
+                    for index, phones in enumerate(pronunciations):
+                        suffix = f"({index + 1})" if index else ""
+                        handle.write(f"{word}{suffix} {phones}\n")
+            options = {**_DECODER_OPTIONS, **(decoder_options or {})}
+            self._decoder = pocketsphinx.Decoder(hmm=_model_path(), dict=dict_path, lm=None,
+                                                 loglevel="FATAL", **options)
+            for state, grammar in self.grammars.items():
+                self._decoder.add_jsgf_string(f"{state}_grammar", grammar.jsgf())
+                arpa = os.path.join(folder, f"{state}.arpa")
+                with open(arpa, "w", encoding="utf-8") as handle:
+                    handle.write(models[state].arpa())
+                self._decoder.add_lm_file(f"{state}_ngram", arpa)
+
+    @classmethod
+    def for_world(cls, world: Any, *, sentences: int = 5000, seed: int = 0,
+                  segmenter: Segmenter | None = None, **options: Any) -> Recognizer:
+        """Grammars and models for ``world``: its commands (the trigram model counts
+        ``sentences`` generated commands, by ``seed``), yes/no, and its drinks."""
+        from homebot.language.generator import generate_commands
+
+        grammars = {"command": command_grammar(world), "yes_no": yes_no_grammar()}
+        drinks = drink_grammar(world)
+        if "<VOID>" not in drinks.rules["drink"]:
+            grammars["drink"] = drinks
+        rng = random.Random(seed)
+        training = {"command": [words_of(text) for text, _ in
+                                generate_commands(world, sentences, seed)]}
+        for state, grammar in grammars.items():
+            if state != "command":
+                training[state] = grammar.sample(rng, 500)
+        return cls(grammars, training, segmenter=segmenter, **options)
+
+    # ------------------------------------------------------------------ decoding
+
+    def _decode(self, audio: Audio, search: str) -> list[str]:
+        """Hypotheses of one search, best first (one for a grammar, the N-best list for a
+        trigram model)."""
+        self._decoder.activate_search(search)
+        self._decoder.start_utt()
+        self._decoder.process_raw(audio.astype("<i2").tobytes(), full_utt=True)
+        self._decoder.end_utt()
+        best = self._decoder.hyp()
+        if best is None:
+            return []
+        if search.endswith("_grammar"):
+            return [best.hypstr]
+        hypotheses = [best.hypstr]
+        for entry in itertools.islice(self._decoder.nbest(), self.nbest * 3):
+            if entry is None:
+                continue
+            text = " ".join(entry.hypstr.split())
+            if text not in hypotheses:
+                hypotheses.append(text)
+            if len(hypotheses) >= self.nbest:
+                break
+        return [text for text in hypotheses if text]
+
+    def decode(self, audio: Audio, state: str = "command") -> Hearing:
+        """Decode ``audio`` as one utterance with both decoders and reconcile them."""
+        if state not in self.grammars:
+            raise SpeechError(f"no grammar for the dialogue state '{state}'; states: "
+                              f"{', '.join(self.grammars)}")
+        import time
+
+        started = time.perf_counter()
+        # A little seeded dither: pocketsphinx's features take the log of frame energy,
+        # which digital silence (all zeros) makes meaningless.
+        dither = np.random.default_rng(_DITHER_SEED).integers(-2, 3, size=audio.size)
+        heard = np.clip(audio.astype(np.int32) + dither, -32768, 32767).astype(np.int16)
+        if self.denoise:
+            heard = denoise(heard, **self.denoise)
+        grammar = self.grammars[state]
+        fsg = self._decode(heard, f"{state}_grammar")
+        nbest = tuple(self._decode(heard, f"{state}_ngram"))
+        seconds = audio.size / SAMPLE_RATE
+        elapsed = time.perf_counter() - started
+        hypothesis = fsg[0] if fsg and fsg[0] and grammar.accepts(fsg[0]) else None
+
+        def result(text: str | None, reason: str) -> Hearing:
+            return Hearing(text, reason, state, fsg[0] if fsg else None, nbest, seconds,
+                           elapsed)
+
+        if hypothesis is None:
+            # No final state reached: the grammar's partial path may still be close to an
+            # N-best entry that the grammar can produce whole.
+            partial = fsg[0].split() if fsg and fsg[0] else []
+            if partial:
+                allowed = max(1, int(self.similarity * len(partial)))
+                for entry in nbest:
+                    if (Levenshtein.distance(partial, entry.split()) <= allowed
+                            and grammar.accepts(entry)):
+                        return result(entry, "nbest_in_grammar")
+            return result(None, "grammar_failed")
+        if nbest and nbest[0] == hypothesis:
+            return result(hypothesis, "agree")
+        if hypothesis in nbest:
+            return result(hypothesis, "nbest")
+        words = hypothesis.split()
+        allowed = max(1, int(self.similarity * len(words)))
+        if any(Levenshtein.distance(words, entry.split()) <= allowed for entry in nbest):
+            return result(hypothesis, "similar")
+        return result(None, "disagree")
+
+    def hear(self, audio: Audio, state: str = "command") -> Hearing:
+        """Find the speech in ``audio`` (VAD) and decode it as one utterance, from the
+        first speech to the last; ``no_speech`` when the VAD finds none."""
+        utterances = self.segmenter.utterances(audio)
+        if not utterances:
+            return Hearing(None, "no_speech", state, seconds=audio.size / SAMPLE_RATE)
+        return self.decode(audio[utterances[0].start:utterances[-1].end], state)
