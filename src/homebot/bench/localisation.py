@@ -25,6 +25,7 @@ import argparse
 import math
 import statistics
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -35,12 +36,12 @@ from rich.table import Table
 from homebot.bench.arguments import count
 from homebot.navigation import Navigator, OccupancyGrid
 from homebot.navigation.localisation import MclParameters, MonteCarloLocalisation
-from homebot.robot import LaserScan, Pose, Twist
+from homebot.robot import Body, LaserScan, Pose, Twist
 from homebot.sim.body import SimBody
 from homebot.sim.simulation import Simulation
 from homebot.world import DoorState, LaserModel, World
 
-__all__ = ["add_arguments", "run"]
+__all__ = ["add_arguments", "run", "tracking_drive"]
 
 _CONVERGED = 0.20  #: metres: "localised" in the global and kidnapping phases
 _DEADLINE = 30.0  #: seconds of simulated time to converge
@@ -190,16 +191,23 @@ def _tracking_run(setting: _Setting, seed: int, seconds: float,
                   spurious: float) -> tuple[list[float], float]:
     """One seeded drive along placements: the error at every tick, and the distance driven."""
     simulation, body = _body(setting, seed, spurious)
+    return tracking_drive(setting, body, lambda: simulation.robot_pose, seed, seconds)
+
+
+def tracking_drive(setting: _Setting, body: Body, truth: Callable[[], tuple[float, float, float]],
+                   seed: int, seconds: float) -> tuple[list[float], float]:
+    """The tracking drive on any body (``SimBody`` here, ``RosBody`` in bench transport),
+    judged by ``truth`` (the simulator's pose of the robot)."""
     mcl = MonteCarloLocalisation(setting.grid, np.random.default_rng([seed, 11]),
                                  setting.parameters)
-    mcl.initialise(Pose(*simulation.robot_pose), 0.05, 0.05)
+    mcl.initialise(Pose(*truth()), 0.05, 0.05)
     route = np.random.default_rng([seed, 12])
     names = sorted(setting.world.placements)
     closed = frozenset(name for name, door in setting.world.doors.items()
                        if door.state is not DoorState.OPEN)
     waypoints: list[tuple[float, float]] = []
     stuck_since = 0.0
-    last = simulation.robot_pose
+    last = truth()
     errors = []
     distance = 0.0
     estimate = mcl.update(body.odometry(), body.scan())
@@ -213,13 +221,14 @@ def _tracking_run(setting: _Setting, seed: int, seconds: float,
             waypoints.pop(0)
             continue
         body.command_velocity(_pursue(estimate, waypoints[0], body.scan()))
-        before = simulation.robot_pose
+        before = truth()
         body.tick()
-        distance += math.dist(before[:2], simulation.robot_pose[:2])
+        after = truth()
+        distance += math.dist(before[:2], after[:2])
         estimate = mcl.update(body.odometry(), body.scan())
-        errors.append(_error(estimate, simulation))
-        if math.dist(simulation.robot_pose[:2], last[:2]) > 0.2:
-            last, stuck_since = simulation.robot_pose, body.now()
+        errors.append(math.hypot(estimate.x - after[0], estimate.y - after[1]))
+        if math.dist(after[:2], last[:2]) > 0.2:
+            last, stuck_since = after, body.now()
         elif body.now() - stuck_since > 6.0:  # someone in the way: go elsewhere
             waypoints, stuck_since = [], body.now()
     return errors, distance

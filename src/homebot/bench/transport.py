@@ -53,7 +53,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="PointCloud2 (320x240) messages per second")
     parser.add_argument("--seeds", type=count("--seeds", 1, 1000), default=20,
                         help="seeds of the fetch task over ROS 2")
-    parser.add_argument("--only", choices=["all", "throughput", "fetch", "lost"],
+    parser.add_argument("--runs", type=count("--runs", 1, 1000), default=5,
+                        help="seeded tracking drives, in-process and over ROS 2")
+    parser.add_argument("--drive-seconds", type=count("--drive-seconds", 1, 3600), default=20,
+                        help="simulated seconds per tracking drive")
+    parser.add_argument("--only", choices=["all", "throughput", "fetch", "lost", "tracking"],
                         default="all", help="run one experiment only")
 
 
@@ -221,6 +225,79 @@ def _lost(trials: int = 3) -> dict[str, Any]:
             "mean_seconds": round(sum(delays) / len(delays), 3)}
 
 
+class _Truth:
+    """The simulator's true pose at the body's last tick, from ``/homebot/truth``."""
+
+    def __init__(self, truths: Any, body: Any) -> None:
+        self.truths, self.body = truths, body
+        self.poses: dict[float, tuple[float, float, float]] = {}
+
+    def __call__(self) -> tuple[float, float, float]:
+        from homebot.transport.messages import pose_of, seconds
+        from homebot.transport.node import TransportError
+
+        arrived = self.truths.take()
+        for _ in range(100):  # the truth of this tick (bounded: 100 waits of 0.05 s)
+            for message in arrived:
+                pose = pose_of(message.pose)
+                self.poses[round(seconds(message.header.stamp), 3)] = (pose.x, pose.y,
+                                                                       pose.theta)
+            found = self.poses.get(round(self.body.now(), 3))
+            if found is not None:
+                return found
+            arrived = self.truths.wait(0.05)
+        raise TransportError("no true pose from homebot sim serve --body")
+
+
+def _tracking(runs: int, seconds: int) -> dict[str, Any]:
+    """The localisation benchmark's tracking drive on ``SimBody`` here and on ``RosBody``
+    over ``homebot sim serve --body`` (same seeds, three people walking), judged by the truth."""
+    import numpy as np
+
+    from homebot.bench.localisation import _WALKERS, _Setting, _tracking_run, tracking_drive
+    from homebot.navigation import Navigator
+    from homebot.robot import DriveKind, VelocityLimits
+    from homebot.transport.node import Node, loopback
+    from homebot.transport.ros_body import RosBody
+    from homebot.world import World
+
+    world = World.load("apartment")
+    navigator = Navigator(world)
+    setting = _Setting(world, navigator.grid, navigator)
+    robot = world.robot
+    errors: dict[str, list[float]] = {"in_process": [], "over_ros": []}
+    for seed in range(runs):
+        errors["in_process"].extend(_tracking_run(setting, seed, seconds, 0.0)[0])
+        domain_id = _DOMAIN - 40 - seed % 20
+        server = subprocess.Popen(
+            _python("import sys; from homebot.cli import main; sys.exit(main())", "sim",
+                    "serve", "--body", "--walkers", str(_WALKERS), "--seed", str(seed),
+                    "--domain-id", str(domain_id)),
+            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+        try:
+            node = Node(loopback(domain_id))
+            truths = node.subscription("/homebot/truth", "geometry_msgs/msg/PoseStamped")
+            body = RosBody(node, drive=DriveKind(robot.drive),
+                           limits=VelocityLimits(robot.speed, robot.angular_speed),
+                           radius=robot.radius, tick_period=0.05)
+            body.connect(60.0)
+            truth = _Truth(truths, body)
+            errors["over_ros"].extend(tracking_drive(setting, body, truth, seed, seconds)[0])
+        finally:
+            server.kill()
+            server.wait(10)
+
+    def figures(values: list[float]) -> dict[str, Any]:
+        return {"median_cm": round(100 * float(np.median(values)), 2),
+                "p95_cm": round(100 * float(np.percentile(values, 95)), 2),
+                "max_cm": round(100 * max(values), 2), "samples": len(values)}
+
+    here, there = figures(errors["in_process"]), figures(errors["over_ros"])
+    return {"runs": runs, "seconds": seconds, "in_process": here, "over_ros": there,
+            "median_ratio": round(there["median_cm"] / here["median_cm"], 3)
+            if here["median_cm"] else None}
+
+
 def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, Any]:
     """Run the chosen experiments; print a table unless ``console`` is None."""
     require_ros()
@@ -234,6 +311,8 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
         figures["fetch_over_ros"] = _fetch(args.seeds)
     if args.only in ("all", "lost"):
         figures["lost_robot"] = _lost()
+    if args.only in ("all", "tracking"):
+        figures["tracking_rosbody"] = _tracking(args.runs, args.drive_seconds)
     if console is not None:
         table = Table(title="ROS 2 transport (loopback, reliable QoS)")
         table.add_column("experiment")

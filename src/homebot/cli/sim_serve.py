@@ -3,13 +3,17 @@
 from __future__ import annotations
 
 import argparse
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from homebot.cli.options import add_world_options, load_world
 from homebot.cli.ros_options import add_transport_options, transport_node
 from homebot.cli.simulated import record_final_state
 from homebot.scenarios import SimulatedRun, disturbance_level, disturbed
-from homebot.scenarios.embodied import add_fidelity_option
+from homebot.scenarios.embodied import add_fidelity_option, require_embodied
+from homebot.world import World
+
+if TYPE_CHECKING:
+    from homebot.transport.node import Node
 
 __all__ = ["register"]
 
@@ -24,6 +28,11 @@ def register(subparsers: Any) -> None:
     add_fidelity_option(serve)
     serve.add_argument("--disturb", type=disturbance_level, default=0.0, metavar="LEVEL",
                        help="switch disturbances on (1 = the benchmark's level)")
+    serve.add_argument("--body", action="store_true",
+                       help="serve the robot's body instead (/cmd_vel in; /scan, /odom, /tf "
+                            "out; one tick per /cmd_vel) for RosBody")
+    serve.add_argument("--walkers", type=int, default=0, metavar="N",
+                       help="--body: how many people walk about on their own (default 0)")
     serve.set_defaults(handler=_serve)
     parser.set_defaults(handler=lambda args: parser.print_help() or 2)
 
@@ -33,12 +42,33 @@ def _serve(args: argparse.Namespace) -> int:
     from homebot.transport.sim_server import SimServer
 
     world = load_world(args)
+    if args.body:
+        return _serve_body(args, node, world)
     run = SimulatedRun.create(world, seed=args.seed, fidelity=args.fidelity,
                               disturbances=disturbed(args.disturb) if args.disturb else None)
     server = SimServer(node, run.robot, world, run.simulation.events,
                        final_state=lambda: record_final_state(run))
     print(f"homebot sim serve: {world.name}, seed {args.seed}, ROS 2 domain {args.domain_id} "
           f"on {args.interface}", flush=True)
+    try:
+        while True:
+            server.spin_once(0.2)
+    except KeyboardInterrupt:
+        return 0
+
+
+def _serve_body(args: argparse.Namespace, node: Node, world: World) -> int:
+    require_embodied()
+    from homebot.sim import Simulation
+    from homebot.sim.body import SimBody
+    from homebot.transport.ros_body import BodyServer
+
+    simulation = Simulation(world, seed=args.seed,
+                            disturbances=disturbed(args.disturb) if args.disturb else None)
+    body = SimBody(simulation, walkers=max(0, min(args.walkers, 50)))
+    server = BodyServer(node, body, truth=body.true_pose)
+    print(f"homebot sim serve --body: {world.name}, seed {args.seed}, ROS 2 domain "
+          f"{args.domain_id} on {args.interface}", flush=True)
     try:
         while True:
             server.spin_once(0.2)
