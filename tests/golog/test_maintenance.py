@@ -214,3 +214,25 @@ def test_cli_reports_conflicting_constraints_with_exit_2(
 def test_cli_runs_with_crashes(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["golog", "maintain", "rips", "--seed", "2"]) == 0
     assert "0 action(s) with a violated constraint" in capsys.readouterr().out
+
+
+def test_bench_reports_repairs_and_speed(capsys: pytest.CaptureFixture[str]) -> None:
+    import json
+
+    assert main(["bench", "maintenance", "--runs", "2", "--actions", "3", "--json"]) == 0
+    figures = json.loads(capsys.readouterr().out)
+    repairs = figures["repairs"]
+    assert repairs["runs"] == 2 and repairs["actions_with_violated_constraint"] == 0
+    assert repairs["crashes"] == repairs["repaired_before_dependent_action"] + repairs[
+        "crashes_not_needed_again"] + repairs["crashes_unrepaired"]
+    assert figures["speed"]["components"] == 10 and figures["speed"]["constraints"] == 30
+
+
+def test_the_generated_section_is_consistent_and_of_the_size_asked() -> None:
+    import random
+
+    from homebot.bench.maintenance import synthetic_maintenance
+
+    generated = synthetic_maintenance(random.Random(5), 10, 30)
+    assert len(generated.components) == 10 and len(generated.constraints) == 30
+    generated.check()

@@ -21,6 +21,7 @@ Section banners: #### relations, #### composition, #### networks, #### conflicts
 
 from __future__ import annotations
 
+from collections import deque
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from functools import cache
@@ -103,6 +104,7 @@ def endpoints(name: str) -> tuple[int, int, int, int]:
     return _ENDPOINTS[name]
 
 
+@cache
 def converse(mask: int) -> int:
     """``{r˘ : r ∈ mask}``: B's relation to A when A's to B is ``mask``."""
     result = 0
@@ -257,28 +259,44 @@ class Network:
         """
         size = len(self.variables)
         relations = self.relations
-        queue = list(changed) if changed is not None else [
-            (i, j) for i in range(size) for j in range(i + 1, size)]
+        queue = deque(changed if changed is not None else [
+            (i, j) for i in range(size) for j in range(i + 1, size)])
         queued = set(queue)
         while queue:
-            i, j = queue.pop()
+            i, j = queue.popleft()
             queued.discard((i, j))
             rij = relations[i][j]
+            if rij == ALL:
+                continue
+            row_i, row_j, rji = relations[i], relations[j], converse(rij)
             for k in range(size):
                 if k in (i, j):
                     continue
-                # R(i,k) ∩= R(i,j) ∘ R(j,k);  R(k,j) ∩= R(k,i) ∘ R(i,j)
-                for a, b, narrowed in ((i, k, compose(rij, relations[j][k])),
-                                       (k, j, compose(relations[k][i], rij))):
-                    old = relations[a][b]
-                    new = old & narrowed
+                # R(i,k) ∩= R(i,j) ∘ R(j,k); then R(j,k) ∩= R(j,i) ∘ R(i,k), the converse
+                # of R(k,j) ∩= R(k,i) ∘ R(i,j). An unknown relation (ALL) narrows nothing.
+                rjk = row_j[k]
+                if rjk != ALL:
+                    old = row_i[k]
+                    new = old & compose(rij, rjk)
                     if new != old:
-                        if new == 0:
-                            relations[a][b] = relations[b][a] = 0
+                        if not new:
                             return False
-                        relations[a][b] = new
-                        relations[b][a] = converse(new)
-                        pair = (a, b) if a < b else (b, a)
+                        row_i[k] = new
+                        relations[k][i] = converse(new)
+                        pair = (i, k) if i < k else (k, i)
+                        if pair not in queued:
+                            queued.add(pair)
+                            queue.append(pair)
+                rik = row_i[k]
+                if rik != ALL:
+                    old = row_j[k]
+                    new = old & compose(rji, rik)
+                    if new != old:
+                        if not new:
+                            return False
+                        row_j[k] = new
+                        relations[k][j] = converse(new)
+                        pair = (j, k) if j < k else (k, j)
                         if pair not in queued:
                             queued.add(pair)
                             queue.append(pair)

@@ -354,6 +354,11 @@ class Maintenance:
                              "these conflict: " + "; ".join(str(c) for c in conflict)
                              + ". Remove or weaken one of them")
 
+    def forget(self) -> None:
+        """Drop every solved network (the next action is solved from scratch)."""
+        self._base = None
+        self._cache.clear()
+
     def base_network(self) -> Network:
         """The states and the constraints between them, path consistent (solved once)."""
         if self._base is None:
