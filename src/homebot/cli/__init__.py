@@ -47,6 +47,7 @@ COMMAND_GROUPS: dict[str, tuple[str, str]] = {
     "sitlog": ("sitlog", "run or draw a SitLog dialogue model"),
     "golog": ("golog", "check, plan and run Golog programs"),
     "sim": ("sim_serve", "serve the simulated robot over ROS 2"),
+    "ros": ("ros_serve", "offer homebot to a ROS 2 system"),
 }
 
 
