@@ -23,6 +23,7 @@ class Beliefs:
     closed_doors: set[str] = field(default_factory=set)
     person_at: dict[str, tuple[float, float]] = field(default_factory=dict)
     holding: dict[str, str | None] = field(default_factory=dict)
+    seen: set[str] = field(default_factory=set)  # objects whose place the robot saw itself
     events: EventLog | None = None
 
     @classmethod
@@ -42,6 +43,7 @@ class Beliefs:
 
     def saw_object(self, name: str, placement: str) -> None:
         """Perception saw ``name`` on ``placement``."""
+        self.seen.add(name)
         if self.object_at.get(name) != placement:
             self.object_at[name] = placement
             self._note("object_at", object=name, placement=placement)

@@ -24,7 +24,7 @@ def _do(run: SimulatedRun, skill: str, **args: object):
 def test_the_issue_lists_every_skill() -> None:
     assert set(SKILLS) == {"navigate", "look", "find_object", "pick", "place", "give",
                            "find_person", "follow", "guide", "greet", "say", "ask", "count",
-                           "describe", "open_door", "answer_question"}
+                           "describe", "open_door", "answer_question", "where_is"}
 
 
 def test_navigate_verifies_the_pose(run: SimulatedRun) -> None:

@@ -64,7 +64,9 @@ class Executive:
         reports: list[StepReport] = []
         reason = ""
         for index, step in enumerate(task.steps):
-            args = self._bind(step.args)
+            # A search is a new search ("bring me two drinks" looks for a second drink),
+            # so its object is not bound to what an earlier search found.
+            args = dict(step.args) if step.skill == "find_object" else self._bind(step.args)
             recoveries: list[str]
             if time_left(context) <= 0:
                 outcome, recoveries = Outcome.failed(

@@ -7,7 +7,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from homebot.errors import TaskError
-from homebot.skills.interaction import AnswerQuestion, Ask, Greet, Say
+from homebot.skills.interaction import AnswerQuestion, Ask, Greet, Say, WhereIs
 from homebot.skills.manipulation import Give, Pick, Place
 from homebot.skills.motion import Follow, Guide, Navigate, OpenDoor
 from homebot.skills.perception import Count, Describe, FindObject, FindPerson, Look
@@ -23,7 +23,7 @@ __all__ = ["SKILLS", "check_step", "skill_named", "spelled_as_world"]
 SKILLS: Mapping[str, type[Skill]] = {
     skill.name: skill
     for skill in (Navigate, Look, FindObject, Pick, Place, Give, FindPerson, Follow, Guide,
-                  Greet, Say, Ask, Count, Describe, OpenDoor, AnswerQuestion)
+                  Greet, Say, Ask, Count, Describe, OpenDoor, AnswerQuestion, WhereIs)
 }
 
 # Which kind of name each argument holds, for checking steps against the world.

@@ -9,7 +9,8 @@ from homebot.skills.places import person_name
 from homebot.skills.skill import ErrorCode, Outcome, Skill, SkillContext, speak
 from homebot.skills.wording import be, object_is_at, place_in
 
-__all__ = ["AnswerQuestion", "Ask", "Greet", "Say", "answer_about_home", "talk_about"]
+__all__ = ["AnswerQuestion", "Ask", "Greet", "Say", "WhereIs", "answer_about_home",
+           "talk_about", "where_sentence"]
 
 _DAYS = ("Monday", "Tuesday", "Wednesday", "Thursday", "Friday", "Saturday", "Sunday")
 
@@ -153,3 +154,40 @@ class AnswerQuestion(Skill):
         answer = answer_about_home(context, question)
         speak(context, answer)
         return Outcome.verified(answer, question=question, answer=answer)
+
+
+def where_sentence(context: SkillContext, thing: str) -> str:
+    """Where the robot believes ``thing`` (an object or a category) is, and why it thinks so:
+    it saw it there itself, it holds it, or the home's map says so."""
+    world = context.world
+    names = [thing] if thing in world.objects else [
+        name for name, obj in world.objects.items()
+        if thing in (obj.category, world.plural_of(obj.category))]
+    for name in names:
+        where = context.beliefs.object_at.get(name)
+        if where and where.startswith("hand:"):
+            return f"I am holding the {name}."
+        if where and where in world.placements:
+            source = ("I saw it there myself" if name in context.beliefs.seen
+                      else "that is where the map of the home says it is kept")
+            return f"{object_is_at(name, place_in(world, where))[:-1]}; {source}."
+    return f"I do not know where the {thing} {be(thing)}: I have not seen it anywhere."
+
+
+class WhereIs(Skill):
+    """Say where an object is believed to be, from the robot's beliefs, with their source.
+
+    Binding ``result``: the sentence (reported by a following ``say``).
+    """
+
+    name = "where_is"
+    required = ("object",)
+
+    def execute(self, context: SkillContext, args: Mapping[str, Any]) -> Outcome:
+        text = where_sentence(context, str(args["object"]))
+        return Outcome.finished(text, result=text)
+
+    def monitor(self, context: SkillContext, args: Mapping[str, Any],
+                finished: Outcome) -> Outcome:
+        context.bindings["result"] = finished.data["result"]
+        return Outcome.verified(finished.message, result=finished.data["result"])

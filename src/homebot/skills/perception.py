@@ -129,9 +129,11 @@ class Look(Skill):
     def monitor(self, context: SkillContext, args: Mapping[str, Any],
                 finished: Outcome) -> Outcome:
         labels = finished.data["objects"]
-        listed = ", ".join(labels) if labels else "nothing"
-        return Outcome.verified(f"{place_in(context.world, str(args['placement']))} I see "
-                                f"{listed}", objects=labels)
+        listed = listing([f"the {label}" for label in labels]) if labels else "nothing"
+        text = (f"{place_in(context.world, str(args['placement'])).capitalize()} I saw "
+                f"{listed} when I looked just now.")
+        context.bindings["result"] = text  # what a following say reports
+        return Outcome.verified(text, objects=labels, result=text)
 
 
 class FindObject(Skill):
@@ -144,7 +146,7 @@ class FindObject(Skill):
 
     name = "find_object"
     required = ("object",)
-    optional = ("placement", "room", "exclude", "spatial")
+    optional = ("placement", "room", "exclude", "spatial", "property")
     retries = 1
     retry_on = frozenset({ErrorCode.NOT_FOUND})  # a missed detection rarely repeats
 
@@ -181,6 +183,8 @@ class FindObject(Skill):
             found = [d for d in detections if matches_object(context, wanted, d)]
             if found and args.get("spatial"):  # "the left cup": the one the words fit best
                 return _referent(context, wanted, placement, found, detections, args["spatial"])
+            if found and args.get("property"):  # "the lightest fruit on the shelf"
+                found = [_superlative(context, found, str(args["property"]))]
             if found:
                 return Outcome.finished(f"I see the {found[0].label} "
                                         f"{place_in(context.world, placement)}",
@@ -225,6 +229,16 @@ def _referent(context: SkillContext, wanted: str, placement: str, found: Sequenc
     return Outcome.finished(f"I see the {resolution.referent} "
                             f"{place_in(context.world, placement)}",
                             object=resolution.referent, placement=placement)
+
+
+def _superlative(context: SkillContext, found: Sequence[Detection], prop: str) -> Detection:
+    """The detection with the property ("lightest", "biggest") among those of known objects."""
+    known = [d for d in found if d.label in context.world.objects] or list(found)
+    measure = "weight" if prop in {"heaviest", "lightest"} else "size"
+    choose = max if prop in {"biggest", "largest", "heaviest", "thickest"} else min
+    if not all(d.label in context.world.objects for d in known):
+        return known[0]
+    return choose(known, key=lambda d: float(getattr(context.world.objects[d.label], measure)))
 
 
 def looked_everywhere(wanted: str, searched: Sequence[str]) -> str:

@@ -214,4 +214,14 @@ def person_fact(name: str | None, info: str, posture: str, gesture: str,
     if info == "clothes":
         worn = listing([a(item) for item in clothes]) or "nothing I can recognise"
         return f"{who} is wearing {worn}."
+    if info == "description":
+        parts = [posture.replace("_", " ")] if posture and posture != "unknown" else []
+        doing = _GESTURES.get(gesture, gesture.replace("_", " ")) if gesture else ""
+        if doing and gesture not in {"none", "unknown"}:
+            parts.append(doing)
+        worn = listing([a(item) for item in clothes])
+        if worn:
+            parts.append(f"wearing {worn}")
+        said = listing(parts) if parts else "there, but I cannot tell more"
+        return f"{name or 'The person'} is {said}."
     return f"This is {name}." if name else "I do not know this person's name."
