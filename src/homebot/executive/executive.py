@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from typing import Any
 
 from homebot.executive.recovery import PROTOCOLS, Protocol
@@ -53,8 +53,12 @@ class Executive:
         self.inference = inference if self.recovery else None
         self.time_limit = time_limit
 
-    def run(self, task: Task) -> TaskReport:
-        """Run every step in order; the report says whether all ended as expected."""
+    def run(self, task: Task, *, interrupt: Callable[[], bool] | None = None) -> TaskReport:
+        """Run every step in order; the report says whether all ended as expected.
+
+        ``interrupt`` is asked before each step after the first; when it answers true
+        ("stop", "cancel" heard), the task ends there, unfinished, and the robot says so.
+        """
         context = self.context
         started = context.robot.now()
         self.start_budget()
@@ -67,6 +71,12 @@ class Executive:
             # A search is a new search ("bring me two drinks" looks for a second drink),
             # so its object is not bound to what an earlier search found.
             args = dict(step.args) if step.skill == "find_object" else self._bind(step.args)
+            if index and interrupt is not None and interrupt():
+                reason = "stopped"
+                context.events.record("task.interrupted", step=index)
+                if context.monitoring:
+                    speak(context, "All right, I stopped.")
+                break
             recoveries: list[str]
             if time_left(context) <= 0:
                 outcome, recoveries = Outcome.failed(

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 
 from homebot.beliefs import Beliefs
@@ -97,9 +97,9 @@ class SimulatedRun:
                               time_limit=time_limit)
         return cls(world, simulation, robot, context, executive)
 
-    def run(self, task: Task) -> TaskReport:
-        """Run a task in this home."""
-        return self.executive.run(task)
+    def run(self, task: Task, *, interrupt: Callable[[], bool] | None = None) -> TaskReport:
+        """Run a task in this home; ``interrupt`` (asked between steps) can stop it."""
+        return self.executive.run(task, interrupt=interrupt)
 
     def path(self) -> list[tuple[float, float]]:
         """Where the robot has been during the run, from the log of its motions."""
