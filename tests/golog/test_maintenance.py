@@ -236,3 +236,14 @@ def test_the_generated_section_is_consistent_and_of_the_size_asked() -> None:
     generated = synthetic_maintenance(random.Random(5), 10, 30)
     assert len(generated.components) == 10 and len(generated.constraints) == 30
     generated.check()
+
+
+def test_a_state_that_must_have_ended_before_the_action_is_gone_through_or_ended() -> None:
+    maintenance = maintenance_from_text(_small("say after laser=running"))
+    needs = maintenance.requirements("say")
+    assert [str(c) for c in needs.before] == ["laser=running once before say"]
+    assert maintenance.plan({"laser": "off", "collision_avoidance": "off", "arm": "parked"},
+                            needs) == [("start", "laser"), ("stop", "laser")]
+    running = {"laser": "running", "collision_avoidance": "off", "arm": "parked"}
+    assert maintenance.plan(running, needs, {"laser=running"}) == [("stop", "laser")]
+    assert maintenance.plan({**running, "laser": "off"}, needs, {"laser=running"}) == []

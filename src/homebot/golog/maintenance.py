@@ -476,14 +476,14 @@ class Maintenance:
         prefix: list[GroundAction] = []
         earlier = set(seen)
         for commitment in requirements.before:
-            term = f"{commitment.component}={commitment.state}"
-            if term not in earlier and commitment.component not in changes:
-                current = states[commitment.component]
-                prefix += self.actions_for(commitment.component, current, commitment.state)
-                changes[commitment.component] = next(
-                    s for s in self.components[commitment.component].targets
-                    if s != commitment.state)
-                states = {**states, commitment.component: commitment.state}
+            # the state must have held and ended: go through it, or end it if it holds now
+            name, state = commitment.component, commitment.state
+            if name in changes or (f"{name}={state}" in earlier and states[name] != state):
+                continue
+            if states[name] != state:
+                prefix += self.actions_for(name, states[name], state)
+                states = {**states, name: state}
+            changes[name] = next(s for s in self.components[name].targets if s != state)
         for name in self.order(changes):
             prefix += self.actions_for(name, states[name], changes[name])
         return prefix
