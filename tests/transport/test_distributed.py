@@ -6,6 +6,7 @@ reported as a lost robot, and a restarted one picked up again.
 
 from __future__ import annotations
 
+import json
 import subprocess
 import sys
 from collections.abc import Callable, Iterator
@@ -90,3 +91,22 @@ def test_run_task_tells_the_operator_when_no_robot_answers(
                    "--connect-timeout", "0.5"])
     assert status == 2
     assert "no robot answers on ROS 2 domain" in capsys.readouterr().err
+
+
+def test_a_simulator_that_dies_mid_task_ends_the_task_with_the_operator_told(
+        tmp_path: Path, domain_id: int, simulator: Callable[..., subprocess.Popen[bytes]],
+        capsys: pytest.CaptureFixture[str]) -> None:
+    task = tmp_path / "task.yaml"
+    task.write_text(TASK, encoding="utf-8")
+    events = tmp_path / "events.jsonl"
+    crashed = simulator(domain_id, "--crash-after", "6")  # dies after the first navigation
+    status = main(["run-task", str(task), "--robot", "ros", "--domain-id", str(domain_id),
+                   "--events", str(events)])
+    assert crashed.wait(10) == 3
+    assert status == 1
+    assert "lost contact with the robot" in capsys.readouterr().out
+    kinds = [json.loads(line)["kind"] for line in events.read_text(encoding="utf-8").split("\n")
+             if line]
+    assert kinds[-2:] == ["robot.lost", "task.end"] and "skill.start" in kinds
+    simulator(domain_id)  # restarted: the next task runs on it
+    assert main(["run-task", str(task), "--robot", "ros", "--domain-id", str(domain_id)]) == 0

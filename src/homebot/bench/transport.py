@@ -8,8 +8,9 @@
 - **fetch**: the fetch-and-deliver task with disturbances, for ``--seeds`` seeds, in-process
   and over ROS 2 (``homebot sim serve`` in another process); counts the seeds whose event
   logs are byte for byte the same and whose outcomes agree (the logs carry simulated time).
-- **lost robot**: the simulator is killed after the robot connected; the wall-clock time
-  until the robot's next call reports it lost.
+- **lost robot**: the simulator dies in the middle of the fetch (``--crash-after``, an
+  abrupt exit as a kill would be); the wall-clock time until the task has ended with the
+  operator told (DDS lease: 1 s).
 """
 
 from __future__ import annotations
@@ -204,25 +205,36 @@ def _simulator(domain_id: int, options: list[str]) -> subprocess.Popen[bytes]:
 
 
 def _lost(trials: int = 3) -> dict[str, Any]:
-    from homebot.transport.node import Node, loopback
-    from homebot.transport.ros_robot import RobotLost, RosRobot
+    """``homebot sim serve --crash-after 6`` dies in the middle of the fetch (after the first
+    navigation); the wall time from its death to ``run-task --robot ros`` ending the task."""
+    from homebot.cli import main
 
     delays = []
-    robot = RosRobot(Node(loopback(_DOMAIN - 25)))
-    for _ in range(trials):
-        server = _simulator(_DOMAIN - 25, [])
-        robot.connect(60.0)
-        robot.pose()
-        server.kill()
-        killed = time.perf_counter()
-        server.wait(10)
-        try:
-            while True:
-                robot.perceive_people()
-        except RobotLost:
-            delays.append(time.perf_counter() - killed)
-    return {"trials": trials, "worst_seconds": round(max(delays), 3),
-            "mean_seconds": round(sum(delays) / len(delays), 3)}
+    with tempfile.TemporaryDirectory() as folder:
+        task = Path(folder) / "task.yaml"
+        task.write_text(_TASK, encoding="utf-8")
+        for trial in range(trials):
+            domain_id = _DOMAIN - 25 - trial
+            server = subprocess.Popen(
+                _python("import sys; from homebot.cli import main; sys.exit(main())", "sim",
+                        "serve", "--domain-id", str(domain_id), "--crash-after", "6"),
+                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+            with open(os.devnull, "w") as quiet:
+                stdout, sys.stdout = sys.stdout, quiet
+                try:
+                    status = main(["run-task", str(task), "--robot", "ros", "--domain-id",
+                                   str(domain_id)])
+                finally:
+                    sys.stdout = stdout
+            ended = time.time()
+            _, said = server.communicate(timeout=30)
+            crashed = [float(word) for line in said.splitlines() if "on purpose at" in line
+                       for word in line.split() if word.replace(".", "").isdigit()]
+            if status == 1 and crashed:
+                delays.append(ended - crashed[0])
+    return {"trials": trials, "ended_with_robot_lost": len(delays),
+            "worst_wall_seconds": round(max(delays), 3) if delays else None,
+            "mean_wall_seconds": round(sum(delays) / len(delays), 3) if delays else None}
 
 
 class _Truth:

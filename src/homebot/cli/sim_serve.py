@@ -3,6 +3,9 @@
 from __future__ import annotations
 
 import argparse
+import os
+import sys
+import time
 from typing import TYPE_CHECKING, Any
 
 from homebot.cli.options import add_world_options, load_world
@@ -28,6 +31,9 @@ def register(subparsers: Any) -> None:
     add_fidelity_option(serve)
     serve.add_argument("--disturb", type=disturbance_level, default=0.0, metavar="LEVEL",
                        help="switch disturbances on (1 = the benchmark's level)")
+    serve.add_argument("--crash-after", type=int, default=0, metavar="N",
+                       help="fault injection: end the process abruptly (as a crash or kill "
+                            "would) after answering N robot calls (default 0: never)")
     serve.add_argument("--body", action="store_true",
                        help="serve the robot's body instead (/cmd_vel in; /scan, /odom, /tf "
                             "out; one tick per /cmd_vel) for RosBody")
@@ -53,6 +59,10 @@ def _serve(args: argparse.Namespace) -> int:
     try:
         while True:
             server.spin_once(0.2)
+            if 0 < args.crash_after <= server.calls_served:
+                print(f"homebot sim serve: crashing on purpose at {time.time():.3f} "
+                      "(--crash-after)", file=sys.stderr, flush=True)
+                os._exit(3)  # no clean-up, no goodbye to DDS peers: as a kill -9
     except KeyboardInterrupt:
         return 0
 

@@ -53,6 +53,7 @@ class SimServer:
         self._avoid: frozenset[str] = frozenset()
         self._escort: str | None = None
         self._last_move: MoveReport | None = None
+        self.calls_served = 0  #: robot calls answered so far
         self.map.publish(self._map_message())
         self.publish_state()
 
@@ -65,6 +66,7 @@ class SimServer:
     # ------------------------------------------------------------ the calls
 
     def _call(self, request: Any) -> dict[str, Any]:
+        self.calls_served += 1
         method, arguments = request.method, request.arguments
         try:
             if method == "move_options":
