@@ -1,27 +1,41 @@
-"""A* over an 8-connected occupancy grid (CAESAR's stage 1), searched by libtcod.
+"""A* over an 8-connected occupancy grid (CAESAR's stage 1): jump point search, libtcod.
 
-The search itself runs in libtcod's C pathfinder (``tcod.path``, wheels for
-CPython 3.10+ on x86_64 and aarch64): a pure-Python A* took 140–530 ms for a
-15 m detour round a long wall. The cost model is the one homebot always had:
-a straight step costs 1000, a diagonal one 1414 (octile distances in
-thousandths of a cell, integers so that equal paths tie exactly), a diagonal
-step is allowed only when both cells beside it are free (no corner cutting),
-and the heuristic is the octile distance, so paths are shortest.
+The cost model is the one homebot always had: a straight step costs 1000, a
+diagonal one 1414 (octile distances in thousandths of a cell, integers so that
+equal paths tie exactly), a diagonal step is allowed only when both cells
+beside it are free (no corner cutting), and the heuristic is the octile
+distance, so paths are shortest.
 
-libtcod allocates its distance arrays over the whole grid, which costs more
-than the search itself when the path is easy. So the search first runs in a
-small window round start and goal, and keeps that path only when it is
-provably as short as any path that leaves the window (its cost is at most
-the octile lower bound through the ring of cells just outside); otherwise it
-searches the whole grid. Either way the result is a shortest path.
+Two searches give such paths:
+
+* Jump point search over precomputed jump tables (``jump_points``, JPS+):
+  tens of microseconds per search, but the tables of a 400 x 400 grid take a
+  few milliseconds to build. They are kept per grid (keyed by the mask's bytes,
+  a few grids at once), so a grid searched again, as the Navigator's static
+  masks are, pays them once.
+* libtcod's C A* (``tcod.path``) in a small window round start and goal, kept
+  only when its path is provably as short as any path that leaves the window
+  (its cost is at most the octile lower bound through the ring of cells just
+  outside). Easy paths on a grid seen for the first time (``plan_around``
+  builds a new mask per call) take about a millisecond this way.
+
+So: a grid with tables is searched by JPS; a new grid first gets the windowed
+libtcod search, and its tables are built only when that search cannot prove
+its path (a detour round a long wall, where a cell-by-cell A* expands tens of
+thousands of cells) or when the grid comes back. ``homebot bench navigation``
+reports the search times and the tables' build time apart.
 """
 
 from __future__ import annotations
 
+from collections import OrderedDict
+
 import numpy as np
 import tcod.path
 
-__all__ = ["astar"]
+from homebot.navigation.jump_points import JumpTables, jump_point_search, jump_tables
+
+__all__ = ["astar", "cached_jump_tables"]
 
 _STRAIGHT = 1000
 _DIAGONAL = 1414
@@ -29,6 +43,56 @@ _DIAGONAL = 1414
 _WINDOW_MARGIN = 12
 _STRAIGHT_MOVES = ((-1, 0), (1, 0), (0, -1), (0, 1))
 _DIAGONAL_MOVES = ((-1, -1), (-1, 1), (1, -1), (1, 1))
+# Grids whose jump tables are kept (a few megabytes each at most).
+_KEPT_GRIDS = 6
+
+
+class _TableCache:
+    """Jump tables of the grids searched lately, keyed by shape and mask bytes.
+
+    A grid seen once has no tables yet (``None``): they are built when it
+    comes back or when the windowed search cannot prove its path.
+    """
+
+    def __init__(self, size: int) -> None:
+        self.size = size
+        self.entries: OrderedDict[tuple[tuple[int, int], bytes], JumpTables | None] = OrderedDict()
+
+    def seen(self, key: tuple[tuple[int, int], bytes]) -> tuple[bool, JumpTables | None]:
+        """Whether the grid was seen before, and its tables if built."""
+        if key not in self.entries:
+            return False, None
+        self.entries.move_to_end(key)
+        return True, self.entries[key]
+
+    def store(self, key: tuple[tuple[int, int], bytes], tables: JumpTables | None) -> None:
+        self.entries[key] = tables
+        self.entries.move_to_end(key)
+        while len(self.entries) > self.size:
+            self.entries.popitem(last=False)
+
+
+# Memoisation only: what astar returns does not depend on it.
+_CACHE = _TableCache(_KEPT_GRIDS)
+
+
+def cached_jump_tables(blocked: np.ndarray, shape: tuple[int, int]) -> JumpTables:
+    """The jump tables of a grid, built now unless kept from an earlier search.
+
+    Args:
+        blocked: flat boolean mask, True where the robot cannot be.
+        shape: (rows, columns) of the grid.
+
+    Returns:
+        The grid's tables, now kept for later ``astar`` calls on it.
+    """
+    mask = np.ascontiguousarray(blocked, dtype=bool)
+    key = ((int(shape[0]), int(shape[1])), np.packbits(mask).tobytes())
+    _, tables = _CACHE.seen(key)
+    if tables is None:
+        tables = jump_tables(mask, shape)
+        _CACHE.store(key, tables)
+    return tables
 
 
 def astar(blocked: np.ndarray, shape: tuple[int, int], start: int, goal: int) -> list[int] | None:
@@ -43,29 +107,44 @@ def astar(blocked: np.ndarray, shape: tuple[int, int], start: int, goal: int) ->
     Returns:
         The cells from start to goal inclusive; None when the goal is unreachable.
         Diagonal moves never cut a blocked corner. Among equally short paths,
-        which one is returned is libtcod's choice.
+        which one is returned is the search's choice.
     """
     if blocked[start] or blocked[goal]:
         return None
+    mask = np.ascontiguousarray(blocked, dtype=bool)
+    key = ((int(shape[0]), int(shape[1])), np.packbits(mask).tobytes())
+    seen, tables = _CACHE.seen(key)
+    if tables is None and not seen:
+        found = _windowed(mask, shape, start, goal)
+        if found is not None:
+            _CACHE.store(key, None)
+            return found
+    if tables is None:
+        tables = jump_tables(mask, shape)
+        _CACHE.store(key, tables)
+    searched = jump_point_search(tables, start, goal)
+    return None if searched is None else searched[0]
+
+
+def _windowed(mask: np.ndarray, shape: tuple[int, int], start: int, goal: int) -> list[int] | None:
+    """libtcod's path in a window round start and goal, if provably shortest; else None."""
     rows, columns = shape
-    free = ~np.asarray(blocked, dtype=bool).reshape(shape)
     start_cell, goal_cell = divmod(start, columns), divmod(goal, columns)
     top = max(min(start_cell[0], goal_cell[0]) - _WINDOW_MARGIN, 0)
     bottom = min(max(start_cell[0], goal_cell[0]) + _WINDOW_MARGIN + 1, rows)
     left = max(min(start_cell[1], goal_cell[1]) - _WINDOW_MARGIN, 0)
     right = min(max(start_cell[1], goal_cell[1]) + _WINDOW_MARGIN + 1, columns)
-    whole = top == 0 and left == 0 and bottom == rows and right == columns
-    if not whole:
-        found = _search(free[top:bottom, left:right], (start_cell[0] - top, start_cell[1] - left),
-                        (goal_cell[0] - top, goal_cell[1] - left))
-        if found is not None:
-            cells, cost = found
-            if cost <= _exit_bound(shape, (top, bottom, left, right), start_cell, goal_cell):
-                return [(row + top) * columns + column + left for row, column in cells]
-    found = _search(free, start_cell, goal_cell)
+    if top == 0 and left == 0 and bottom == rows and right == columns:
+        return None
+    free = ~mask.reshape(shape)[top:bottom, left:right]
+    found = _search(free, (start_cell[0] - top, start_cell[1] - left),
+                    (goal_cell[0] - top, goal_cell[1] - left))
     if found is None:
         return None
-    return [row * columns + column for row, column in found[0]]
+    cells, cost = found
+    if cost > _exit_bound(shape, (top, bottom, left, right), start_cell, goal_cell):
+        return None
+    return [(row + top) * columns + column + left for row, column in cells]
 
 
 def _octile(rows: np.ndarray, columns: np.ndarray, cell: tuple[int, int]) -> np.ndarray:
