@@ -57,7 +57,8 @@ def shipped_maintenance(name: str = "rips") -> Maintenance:
 
 class ComponentExecutor(MaintenanceExecutor):
     """Task actions take simulated time on the components' clock; management actions
-    operate the simulated components; a crash that breaks a marker interrupts."""
+    operate the simulated components; a crash that breaks a marker interrupts the action,
+    which, done again next, goes on for the time it had left."""
 
     def __init__(self, theory: Theory, simulation: ComponentSimulation, *, seed: int = 0,
                  durations: Mapping[str, float] | None = None,
@@ -72,6 +73,7 @@ class ComponentExecutor(MaintenanceExecutor):
         self.durations = dict(durations if durations is not None else DURATIONS)
         self.rng = random.Random(f"durations {seed}")
         self.markers: dict[str, tuple[str, bool]] = {}
+        self._resume: tuple[GroundAction, float] | None = None  #: interrupted, time left
 
     def execute(self, action: GroundAction, state: State) -> Report:
         name = str(action[0])
@@ -81,10 +83,16 @@ class ComponentExecutor(MaintenanceExecutor):
             ok = self.simulation.operate(name, component, target)
             return Report(ok, message="" if ok else f"{action_text(action)} did not work: "
                           f"{component} is {self.simulation.state.get(component, 'unknown')}")
-        duration = self.durations.get(name, 2.0) * (0.8 + 0.4 * self.rng.random())
+        if self._resume is not None and self._resume[0] == action:
+            duration = self._resume[1]  # an interrupted action goes on from where it stopped
+        else:
+            duration = self.durations.get(name, 2.0) * (0.8 + 0.4 * self.rng.random())
+        self._resume = None
+        began = self.simulation.now
         crashed = self.simulation.task(action_text(action), duration, self.markers)
         if crashed is not None:
             self.interrupted = crashed
+            self._resume = (action, max(duration - (self.simulation.now - began), 1e-3))
             return Report(False, message=f"interrupted: {crashed} failed")
         return self.task.execute(action, state)
 
