@@ -1,4 +1,4 @@
-"""Stage-1 A* (libtcod): the contract the pure-Python A* had, and its path lengths."""
+"""Stage-1 A* (jump point search, libtcod): the contract the pure-Python A* had, and its costs."""
 
 from __future__ import annotations
 
@@ -7,8 +7,11 @@ import itertools
 
 import numpy as np
 import pytest
+from hypothesis import assume, given, settings
+from hypothesis import strategies as st
 
 from homebot.navigation import astar
+from homebot.navigation.jump_points import jump_point_search, jump_tables
 
 
 def _reference_astar(blocked: np.ndarray, shape: tuple[int, int], start: int,
@@ -104,3 +107,75 @@ def test_blocked_start_or_goal_gives_none(start: int, goal: int) -> None:
 def test_start_equal_to_goal_is_a_one_cell_path() -> None:
     grid = np.zeros((5, 5), dtype=bool)
     assert astar(grid.ravel(), grid.shape, 12, 12) == [12]
+
+
+@st.composite
+def _grids_with_walls(draw: st.DrawFn) -> tuple[np.ndarray, int, int]:
+    """A random grid with random speckle and straight walls, and two free cells in it."""
+    rows = draw(st.integers(1, 24))
+    columns = draw(st.integers(1, 24))
+    seed = draw(st.integers(0, 2**32 - 1))
+    rng = np.random.default_rng(seed)
+    grid = rng.random((rows, columns)) < draw(st.sampled_from([0.0, 0.05, 0.15, 0.3, 0.45]))
+    for _ in range(draw(st.integers(0, 4))):
+        if rng.random() < 0.5:
+            row, first, last = rng.integers(rows), *sorted(rng.integers(0, columns, 2))
+            grid[row, first:last + 1] = True
+        else:
+            column, first, last = rng.integers(columns), *sorted(rng.integers(0, rows, 2))
+            grid[first:last + 1, column] = True
+    free = np.flatnonzero(~grid.ravel())
+    assume(len(free) >= 1)
+    start, goal = (int(cell) for cell in rng.choice(free, 2, replace=True))
+    return grid, start, goal
+
+
+@settings(max_examples=400, derandomize=True, deadline=None)
+@given(_grids_with_walls())
+def test_jump_point_search_finds_dijkstras_cost_with_valid_moves(
+        case: tuple[np.ndarray, int, int]) -> None:
+    grid, start, goal = case
+    expected = _reference_astar(grid.ravel(), grid.shape, start, goal)
+    found = jump_point_search(jump_tables(grid.ravel(), grid.shape), start, goal)
+    if expected is None:
+        assert found is None
+        return
+    assert found is not None
+    path, cost = found
+    assert path[0] == start and path[-1] == goal
+    _check_moves(path, grid)
+    assert cost == _cost(path, grid.shape[1]) == expected
+
+
+@settings(max_examples=100, derandomize=True, deadline=None)
+@given(_grids_with_walls())
+def test_astar_is_as_short_on_a_new_grid_as_on_one_seen_before(
+        case: tuple[np.ndarray, int, int]) -> None:
+    grid, start, goal = case
+    fresh = astar(grid.ravel(), grid.shape, start, goal)  # windowed libtcod or new tables
+    again = astar(grid.ravel(), grid.shape, start, goal)  # this grid's kept tables
+    expected = _reference_astar(grid.ravel(), grid.shape, start, goal)
+    for path in (fresh, again):
+        if expected is None:
+            assert path is None
+            continue
+        assert path is not None and path[0] == start and path[-1] == goal
+        _check_moves(path, grid)
+        assert _cost(path, grid.shape[1]) == expected
+
+
+def test_jump_tables_and_libtcod_agree_round_a_long_wall_with_doorways() -> None:
+    """An apartment-sized grid: walls with doorways, both searches, Dijkstra's cost."""
+    grid = np.zeros((90, 110), dtype=bool)
+    grid[0, :] = grid[-1, :] = grid[:, 0] = grid[:, -1] = True
+    grid[5:85, 40] = True
+    grid[44:47, 40] = False  # a doorway
+    grid[30, 40:105] = True
+    grid[30, 70:73] = False
+    start, goal = 60 * 110 + 10, 10 * 110 + 100
+    expected = _reference_astar(grid.ravel(), grid.shape, start, goal)
+    jumped = jump_point_search(jump_tables(grid.ravel(), grid.shape), start, goal)
+    assert jumped is not None and jumped[1] == expected
+    _check_moves(jumped[0], grid)
+    window = astar(grid.ravel(), grid.shape, start, 60 * 110 + 14)  # a short, easy path
+    assert window is not None and _cost(window, 110) == 4000
