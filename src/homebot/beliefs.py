@@ -24,6 +24,7 @@ class Beliefs:
     person_at: dict[str, tuple[float, float]] = field(default_factory=dict)
     holding: dict[str, str | None] = field(default_factory=dict)
     seen: set[str] = field(default_factory=set)  # objects whose place the robot saw itself
+    last_taken: str | None = None  # the object picked up last ("give it" hands that one)
     events: EventLog | None = None
 
     @classmethod
@@ -58,6 +59,7 @@ class Beliefs:
 
     def took(self, name: str, hand: str) -> None:
         self.holding[hand] = name
+        self.last_taken = name
         self.object_at[name] = f"hand:{hand}"
         self._note("holding", object=name, hand=hand)
 

@@ -1,7 +1,8 @@
 """Understanding commands: GPSR sentences to skill steps, questions or refusals."""
 
+from homebot.language.context import Discourse
 from homebot.language.parser import parse_command
 from homebot.language.result import ParseResult, ParseStatus
 from homebot.language.vocabulary import Entity, Vocabulary
 
-__all__ = ["Entity", "ParseResult", "ParseStatus", "Vocabulary", "parse_command"]
+__all__ = ["Discourse", "Entity", "ParseResult", "ParseStatus", "Vocabulary", "parse_command"]

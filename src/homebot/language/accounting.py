@@ -45,7 +45,7 @@ def account_for(clause: Clause, ctx: Context, steps: Sequence[Step]) -> None:
     if checked:
         said = " ".join(dict.fromkeys(checked))
         raise Clarification(f"{_can_do(ctx.steps)}I did not understand '{said}'. "
-                            f"What do you mean by it?")
+                            f"What do you mean by it?", about=said)
     if clause.free_text:
         return  # the words themselves are said or asked
     values = _step_values(steps)

@@ -9,17 +9,33 @@ from homebot.language.clauses import Clause, Item
 from homebot.language.vocabulary import Vocabulary
 from homebot.task import Step
 
-__all__ = ["Clarification", "Context", "Refusal", "describe_item"]
+__all__ = ["Clarification", "Context", "Discourse", "Refusal", "describe_item"]
 
 PLACES = frozenset({"room", "placement"})
 
 
 class Clarification(Exception):
-    """The command misses something; ``question`` asks for it."""
+    """The command misses something; ``question`` asks for it.
 
-    def __init__(self, question: str) -> None:
+    ``about`` is the words of the command the question is about ("table" in "which
+    table do you mean"), which an answer replaces; None when the answer adds to it.
+    """
+
+    def __init__(self, question: str, about: str | None = None) -> None:
         super().__init__(question)
         self.question = question
+        self.about = about
+
+
+@dataclass(frozen=True)
+class Discourse:
+    """What earlier commands of a conversation left to refer back to: the object "it"
+    means (and whether the robot holds it) and the person "them" means."""
+
+    obj: str | None = None
+    obj_state: str = "named"
+    person: dict[str, str] | None = None
+    last_referent: str | None = None
 
 
 class Refusal(Exception):
@@ -68,6 +84,7 @@ class Context:
     person: dict[str, str] | None = None
     last_referent: str | None = None
     delivered: bool = False  # the object last fetched was handed over or put down
+    person_here: bool = True  # the person "them" means was found in this command
     bring_back: bool = False  # "fetch the beer": bring it to the operator if nobody else
 
     # ------------------------------------------------------------------ steps
@@ -96,6 +113,7 @@ class Context:
     def found_person(self, description: dict[str, str], place: dict[str, str]) -> None:
         self.emit("find_person", person=dict(description), **place)
         self.person = dict(description)
+        self.person_here = True
         self.last_referent = "person"
 
     def found_object(self, name: str, place: dict[str, str]) -> None:
@@ -112,7 +130,8 @@ class Context:
             return "object"
         if item.kind == "pronoun":
             if self.obj is None:
-                raise Clarification(f"What do you mean by '{item.text}'? Name the object.")
+                raise Clarification(f"What do you mean by '{item.text}'? Name the object.",
+                                    about=str(item.text))
             return self.obj
         raise Refusal(_not_an_object(item))
 
@@ -122,7 +141,7 @@ class Context:
             return dict(item.value)
         if item.kind == "pronoun":
             if self.person is None:
-                raise Clarification(f"Who do you mean by '{item.text}'?")
+                raise Clarification(f"Who do you mean by '{item.text}'?", about=str(item.text))
             return dict(self.person)
         if item.kind == "me":
             return {"name": "operator"}
@@ -163,7 +182,8 @@ class Context:
             return Item("placement", narrowed[0].name, item.text, item.prep, item.definite)
         options = narrowed or candidates
         names = ", ".join(entity.name for entity in options[:-1])
-        raise Clarification(f"Which {item.text} do you mean: {names} or {options[-1].name}?")
+        raise Clarification(f"Which {item.text} do you mean: {names} or {options[-1].name}?",
+                            about=str(item.text))
 
 
 def where(item: Item | None) -> dict[str, str]:

@@ -122,7 +122,7 @@ def fetch(clause: Clause, ctx: Context, target: Item, source: Item | None) -> st
         members = ctx.vocabulary.objects_of(name)
         if len(members) > 1:
             listed = ", ".join(members[:-1]) + f" or {members[-1]}"
-            raise Clarification(f"Which {name} do you mean: {listed}?")
+            raise Clarification(f"Which {name} do you mean: {listed}?", about=str(target.text))
     if source is not None:
         place = ctx.place_of(source, clause, "take things from")
         ctx.go(place)
@@ -161,7 +161,8 @@ def deliver(clause: Clause, ctx: Context, recipient: Item, name: str) -> None:
             place = ctx.place_of(located, clause, "look for people")
             ctx.go(place)
             ctx.found_person(description, where(place))
-        elif recipient.kind == "person" and description != ctx.person:
+        elif (recipient.kind == "person" and description != ctx.person) or (
+                recipient.kind == "pronoun" and not ctx.person_here):
             in_room = ctx.location is not None and ctx.location.kind == "room"
             ctx.found_person(description, ctx.here() if in_room else {})
         if "name" in description:
@@ -210,8 +211,9 @@ def handle_bring(clause: Clause, ctx: Context) -> None:
     """bring / give / deliver: fetch unless held, then hand over or put down."""
     things = [item for item in clause.items
               if item.prep in {None, "of"} and item.kind in THINGS - {"me"}]
-    objects = [item for item in things if item.kind != "person"]
-    people = [item for item in things if item.kind == "person"]
+    people = [item for item in things if item.kind == "person" or (
+        ctx.pronoun_means_person(item) and not ctx.person_here)]  # "bring him a beer"
+    objects = [item for item in things if item.kind != "person" and item not in people]
     recipient = clause.first({"me", "person", "room", "placement", "ambiguous", "unknown",
                               "pronoun", "door"}, {"to", "for"})
     target = objects[0] if objects else None

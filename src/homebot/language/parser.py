@@ -10,7 +10,14 @@ from homebot.errors import LanguageError
 from homebot.language import lexicon
 from homebot.language.accounting import account_for
 from homebot.language.clauses import Clause, build_clauses
-from homebot.language.context import Clarification, Context, Refusal, describe_item, where
+from homebot.language.context import (
+    Clarification,
+    Context,
+    Discourse,
+    Refusal,
+    describe_item,
+    where,
+)
 from homebot.language.fetching import (
     deliver_pending,
     direct_object,
@@ -55,19 +62,29 @@ re_the = re.compile(r"\bthe\s+", re.IGNORECASE)
 Handler = Callable[[Clause, Context], None]
 
 
-def parse_command(text: str, vocabulary: Vocabulary) -> ParseResult:
+def parse_command(text: str, vocabulary: Vocabulary, *,
+                  history: Discourse | None = None) -> ParseResult:
     """Parse one command. Raises ``LanguageError`` only for input that is not a command
-    at all (empty or absurdly long); anything else is a result with a status."""
+    at all (empty or absurdly long); anything else is a result with a status.
+
+    ``history`` is what earlier commands of a conversation left ("pick up the apple",
+    then "put it on the table"): the object and person pronouns refer back to.
+    """
     if not isinstance(text, str) or not text.strip():
         raise LanguageError("the command is empty; say what the robot should do")
     if len(text) > MAX_COMMAND_LENGTH:
         raise LanguageError(f"the command has {len(text)} characters; keep it under "
                             f"{MAX_COMMAND_LENGTH}, one task at a time")
-    referred = _spatial_reference(text, vocabulary)
+    referred = _spatial_reference(text, vocabulary) if history is None else None
     if referred is not None:
         return referred
     clauses = build_clauses(tag(normalise(text, vocabulary), vocabulary))
     ctx = Context(vocabulary)
+    if history is not None:
+        ctx.obj, ctx.obj_state = history.obj, history.obj_state
+        ctx.person, ctx.last_referent = history.person, history.last_referent
+        ctx.delivered = history.obj_state != "held"
+        ctx.person_here = False  # found in an earlier command: the robot has moved since
     try:
         if not clauses:
             raise Refusal("I did not hear anything I can do in that command.")
@@ -80,7 +97,8 @@ def parse_command(text: str, vocabulary: Vocabulary) -> ParseResult:
             account_for(clause, ctx, ctx.steps)
         deliver_pending(ctx)
     except Clarification as clarification:
-        return ParseResult(ParseStatus.CLARIFY, text, question=clarification.question)
+        return ParseResult(ParseStatus.CLARIFY, text, question=clarification.question,
+                           about=clarification.about)
     except Refusal as refusal:
         return ParseResult(ParseStatus.REJECT, text, reason=refusal.reason)
     if not ctx.steps:

@@ -28,6 +28,7 @@ class ParseResult:
     steps: list[Step] = field(default_factory=list)
     question: str | None = None
     reason: str | None = None
+    about: str | None = None  #: the words of the command a question is about (see Clarification)
 
     def __bool__(self) -> bool:
         return self.status is ParseStatus.OK

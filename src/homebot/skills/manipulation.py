@@ -92,9 +92,10 @@ class Place(Skill):
         if placement not in context.world.placements:
             return Outcome.failed(ErrorCode.UNKNOWN_TARGET, f"I do not know the {placement}")
         wanted = args.get("object")
-        hand = context.beliefs.hand_holding(str(wanted) if wanted else None)
+        hand = context.beliefs.hand_holding(str(wanted)) if wanted else None
         if hand is None and str(wanted) not in context.world.objects:
-            hand = context.beliefs.hand_holding()  # a category or pronoun: whatever is held
+            hand = context.beliefs.hand_holding(context.beliefs.last_taken) or (
+                context.beliefs.hand_holding())  # a category or pronoun: the last taken
         if hand is None:
             placed = context.bindings.get(f"placed:{placement}")
             if placed is not None and (wanted is None or placed == wanted):
@@ -140,7 +141,8 @@ class Give(Skill):
         if person is None:
             return Outcome.failed(ErrorCode.NO_PERSON, "I do not know whom to give it to")
         wanted = args.get("object")
-        hand = context.beliefs.hand_holding(str(wanted) if wanted else None) or (
+        hand = (context.beliefs.hand_holding(str(wanted)) if wanted else None) or (
+            context.beliefs.hand_holding(context.beliefs.last_taken)) or (
             context.beliefs.hand_holding())
         if hand is None:
             return Outcome.failed(ErrorCode.NOT_HOLDING, "I have nothing to give")
