@@ -58,3 +58,21 @@ def test_restarts_fail_as_often_as_configured_and_the_seed_decides() -> None:
         simulation.operate("start", "laser")
         again.append(simulation.operate("restart", "laser"))
     assert again == results
+
+
+def test_the_body_laser_sees_only_while_its_component_runs() -> None:
+    from homebot.sim.body import SimBody
+    from homebot.sim.simulation import Simulation
+    from homebot.world import World
+
+    components = _simulation(seed=1, mean_time_to_failure=2.0)
+    components.components["laser"] = SimulatedComponent("laser", "module", MODULE, "off",
+                                                        {"start": 0.05})
+    body = SimBody(Simulation(World.load("apartment"), seed=0), components=components)
+    assert not body.scan().valid().any()  # off: nothing returns
+    components.operate("start", "laser")
+    body.tick()
+    assert components.state["laser"] == "running" and body.scan().valid().any()
+    while components.state["laser"] == "running":  # crashes on the body's clock
+        body.tick(5)
+    assert components.now == body.now() and not body.scan().valid().any()

@@ -13,6 +13,7 @@ from __future__ import annotations
 import math
 import random
 from collections.abc import Sequence
+from dataclasses import replace
 
 import numpy as np
 
@@ -27,6 +28,7 @@ from homebot.robot import (
     Twist,
     VelocityLimits,
 )
+from homebot.sim.components import ComponentSimulation
 from homebot.sim.geometry import TrueGeometry
 from homebot.sim.laser import LaserSimulator
 from homebot.sim.simulation import Simulation
@@ -68,11 +70,15 @@ class SimBody(Body):
         tick_rate: control ticks per simulated second (≥ 20).
         laser: the laser (default: the world's).
         odometry_noise: how the wheels err.
+        components: the robot's own components (``homebot.sim.components``), if modelled:
+            they crash on the body's clock, and no laser beam returns unless the
+            component ``laser`` is running.
     """
 
     def __init__(self, simulation: Simulation, *, walkers: int | Sequence[str] = 0,
                  tick_rate: float = 20.0, laser: LaserModel | None = None,
-                 odometry_noise: OdometryNoise | None = None) -> None:
+                 odometry_noise: OdometryNoise | None = None,
+                 components: ComponentSimulation | None = None) -> None:
         if not (math.isfinite(tick_rate) and tick_rate >= 20.0):
             raise BodyError(f"tick_rate must be at least 20 Hz, not {tick_rate!r}")
         self.sim = simulation
@@ -100,6 +106,7 @@ class SimBody(Body):
         self._in_contact = False
         self._last_tick_end = simulation.clock.now()
         self._scan: LaserScan | None = None
+        self.components = components
         self._travelled_since_point = 0.0
         self._trajectory: list[tuple[float, float]] = [self._rounded_position()]
 
@@ -141,6 +148,10 @@ class SimBody(Body):
         if self._scan is None:
             self._scan = self.laser.scan(self.now(), self.sim.robot_pose,
                                          self.sim.closed_doors(), self.people.legs())
+            components = self.components
+            if components is not None and components.state.get("laser", "running") != "running":
+                # a laser that is off or crashed sees nothing: no beam returns
+                self._scan = replace(self._scan, ranges=np.full_like(self._scan.ranges, np.inf))
         return self._scan
 
     def head(self) -> HeadState:
@@ -200,6 +211,8 @@ class SimBody(Body):
         self._odometry_step(*moved)
         self.people.advance(dt, self.sim.robot_pose[:2], self.radius + _PERSONAL_SPACE)
         self._last_tick_end = self.sim.clock.advance(dt)
+        if self.components is not None:  # the components live on the body's clock
+            self.components.advance(max(0.0, self._last_tick_end - self.components.now))
 
     def _accelerate(self, target: Twist, dt: float) -> Twist:
         linear = self.limits.linear_acceleration * dt
