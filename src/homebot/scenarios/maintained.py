@@ -97,7 +97,10 @@ class ComponentExecutor(MaintenanceExecutor):
         return self.task.execute(action, state)
 
     def watch(self, markers: Sequence[Commitment]) -> None:
-        self.markers = {m.component: (m.state, m.holds) for m in markers}
+        # a crash makes a module 'failed': per component, watch the marker a crash breaks
+        self.markers = {}
+        for marker in sorted(markers, key=lambda m: (m.holds, m.state == "failed")):
+            self.markers[marker.component] = (marker.state, marker.holds)
 
     def component_states(self) -> dict[str, str]:
         return dict(self.simulation.state)
