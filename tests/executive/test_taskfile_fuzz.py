@@ -81,7 +81,9 @@ _GOOD_VALUES = {
     "door": list(_WORLD.doors), "text": ["hi", "$result"], "info": ["your name"],
     "person": [*_PEOPLE, {"name": "Maria"}, {"gesture": "waving"}, {}],
     "question": ["what is your name"], "hand": ["left", "foot"], "property": ["biggest"],
-    "exclude": [["fridge"], []]}
+    "exclude": [["fridge"], []],
+    "spatial": [["left"], "close to the plate", [{"kind": "side", "value": "right"}], "up",
+                [3]]}
 
 
 @st.composite

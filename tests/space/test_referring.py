@@ -77,3 +77,15 @@ def test_the_benchmark_never_picks_a_wrong_object_confidently() -> None:
     assert figures["scenes"] == 60 and figures["clear"] > 20
     assert figures["confident_wrong"] == 0
     assert figures["acceptable"] >= 0.9
+
+
+def test_modifiers_from_a_task_step_are_checked() -> None:
+    import pytest
+
+    from homebot.space.referring import modifiers_from
+
+    assert [m.value for m in modifiers_from(["left", "close to the plate"])] == ["left", "near"]
+    assert modifiers_from("behind the bowl")[0].relatum == "bowl"
+    for bad in ("up", [3], [], 5):
+        with pytest.raises(ValueError, match="spatial modifier"):
+            modifiers_from(bad)

@@ -22,7 +22,7 @@ from homebot.skills.wording import (
     plural,
     the,
 )
-from homebot.space.referring import Modifier, Scene, resolve
+from homebot.space.referring import Scene, modifiers_from, resolve
 from homebot.text import fold
 
 __all__ = [
@@ -210,7 +210,7 @@ class FindObject(Skill):
 
 
 def _referent(context: SkillContext, wanted: str, placement: str, found: Sequence[Detection],
-              detections: Sequence[Detection], spatial: Sequence[Mapping[str, str]]) -> Outcome:
+              detections: Sequence[Detection], spatial: Any) -> Outcome:
     """The one of ``found`` the spatial modifiers fit best, read in the placement's frame
     as seen from where the robot stands at it; when two fit about equally, or none, the
     robot asks which one is meant (``homebot.space.referring``)."""
@@ -219,8 +219,12 @@ def _referent(context: SkillContext, wanted: str, placement: str, found: Sequenc
     scene = Scene({d.label: d.position or centre for d in detections},
                   {d.label: d.category for d in detections}, math.hypot(*where.model.size),
                   (where.approach[0], where.approach[1]), where.approach[2])
-    resolution = resolve([d.label for d in found], [Modifier.from_dict(m) for m in spatial],
-                         scene, noun=wanted)
+    try:
+        modifiers = modifiers_from(spatial)
+    except ValueError as error:
+        return Outcome.failed(ErrorCode.UNKNOWN_TARGET, f"I do not understand which {wanted}: "
+                              f"{error}")
+    resolution = resolve([d.label for d in found], modifiers, scene, noun=wanted)
     if resolution.referent is None:
         question = resolution.question or f"Which {wanted} do you mean?"
         context.robot.say(question)

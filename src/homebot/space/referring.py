@@ -30,7 +30,7 @@ import math
 import re
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Final
+from typing import Any, Final
 
 from homebot.space.distance import closeness
 from homebot.space.orientation import relative_angle, side_degree
@@ -42,6 +42,7 @@ __all__ = [
     "Resolution",
     "Scene",
     "degrees",
+    "modifiers_from",
     "resolve",
     "split_spatial",
 ]
@@ -94,6 +95,30 @@ class Modifier:
     @classmethod
     def from_dict(cls, data: Mapping[str, str]) -> Modifier:
         return cls(data["kind"], data["value"], data.get("relatum"), data.get("text", ""))
+
+
+def modifiers_from(data: Any) -> list[Modifier]:
+    """Modifiers as a task step gives them: a list of ``Modifier.to_dict`` mappings or of
+    phrases ("left", "close to the plate"), or one phrase. Raises ``ValueError`` saying
+    what is wrong for anything else."""
+    items = [data] if isinstance(data, str | Mapping) else data
+    if not isinstance(items, list | tuple) or not items:
+        raise ValueError(f"spatial modifiers are a list such as [left, close to the plate], "
+                         f"not {data!r}")
+    found: list[Modifier] = []
+    for item in items:
+        if isinstance(item, str):
+            phrase = split_spatial(f"the one {item}")[1] or split_spatial(f"the {item} one")[1]
+            if not phrase:
+                raise ValueError(f"'{item}' is no spatial modifier; say e.g. left, behind the "
+                                 "bowl, close to the plate")
+            found += phrase
+        elif isinstance(item, Mapping) and item.get("kind") in ("side", "relation") and (
+                isinstance(item.get("value"), str)):
+            found.append(Modifier.from_dict({str(k): str(v) for k, v in item.items()}))
+        else:
+            raise ValueError(f"{item!r} is no spatial modifier; give a phrase such as 'left'")
+    return found
 
 
 def split_spatial(text: str) -> tuple[str, list[Modifier]]:
