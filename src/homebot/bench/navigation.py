@@ -1,7 +1,9 @@
 """Navigation: stage-1 A* timing, and 200 goals driven through the apartment with people walking.
 
-**Timing** (as before): raw A* for 15 m paths on a 5 cm grid (open floor, and
-round a long wall), and ``Navigator.plan`` between every placement pair.
+**Timing**: stage-1 A* for 15 m paths on a 5 cm grid (open floor, round a long
+wall, and round a long wall on a grid the apartment's size): on a grid whose
+jump tables are kept, on a grid seen for the first time, the tables' build
+alone, and libtcod alone; and ``Navigator.plan`` between every placement pair.
 
 **Driving** (``--goals N``): the embodied robot (``SimBody``, three people
 walking) drives to N seeded goals in turn, half placement approach poses and
@@ -39,7 +41,9 @@ from scipy import ndimage
 from homebot.bench.arguments import count, seed
 from homebot.errors import NavigationError
 from homebot.navigation import Navigator, astar
+from homebot.navigation.astar import cached_jump_tables, forget_jump_tables, libtcod_astar
 from homebot.navigation.dwa import DynamicWindowPlanner
+from homebot.navigation.jump_points import jump_tables
 from homebot.navigation.local_planner import MotionSearchPlanner
 from homebot.navigation.localmap import LocalController
 from homebot.navigation.navigate import (
@@ -92,28 +96,34 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
 
 
 def _astar_timing(repeat: int) -> dict[str, Any]:
-    """Time raw A* on open grids and ``Navigator.plan`` (uncached) in the apartment."""
+    """Time stage-1 A* on 15 m cases and ``Navigator.plan`` (uncached) in the apartment.
+
+    Per case: ``median_ms`` is ``astar`` on a grid it has searched before (its
+    jump tables kept, as for the Navigator's static masks); ``first_search_ms``
+    on a grid it has never seen (``plan_around``'s new mask each call): the
+    windowed libtcod search, or building the tables and then JPS; ``tables_ms``
+    building the jump tables alone; ``libtcod_ms`` the search by libtcod alone,
+    as stage 1 ran before jump point search.
+    """
     side = 400  # 20 m at 5 cm
     free = np.zeros((side, side), dtype=bool)
     free[0, :] = free[-1, :] = free[:, 0] = free[:, -1] = True
     # A wall with a gap forces a detour, as a doorway does.
     obstacle = free.copy()
     obstacle[50:350, 200] = True
+    # The apartment's grid size (208 x 248 cells), a wall across all but its ends.
+    apartment = np.zeros((208, 248), dtype=bool)
+    apartment[0, :] = apartment[-1, :] = apartment[:, 0] = apartment[:, -1] = True
+    apartment[10:198, 124] = True
     cases = {
         "open floor, straight 15 m": (free, (50, 50), (50, 350)),
         "open floor, diagonal 15 m": (free, (50, 50), (262, 262)),
         "wall with a gap, 15 m": (obstacle, (200, 50), (200, 350)),
+        "long wall, apartment-sized grid, 14 m": (apartment, (104, 20), (104, 228)),
     }
     figures: dict[str, Any] = {}
     for name, (grid, start, goal) in cases.items():
-        flat = grid.ravel()
-        samples, length = [], 0
-        for _ in range(repeat):
-            began = time.perf_counter()
-            path = astar(flat, grid.shape, start[0] * side + start[1], goal[0] * side + goal[1])
-            samples.append(time.perf_counter() - began)
-            length = len(path or [])
-        figures[name] = {"median_ms": _median_ms(samples), "cells": length}
+        figures[name] = _astar_case(grid, start, goal, repeat)
     world = World.load("apartment")
     samples = []
     began_grid = time.perf_counter()
@@ -130,9 +140,47 @@ def _astar_timing(repeat: int) -> dict[str, Any]:
     figures["apartment plan (all placement pairs)"] = {
         "median_ms": _median_ms(samples), "max_ms": round(1000 * max(samples), 3),
         "pairs": len(pairs), "longest_m": round(max(lengths), 2)}
+    mask = navigator.grid.blocked_with(frozenset())
+    table_samples = []
+    for _ in range(repeat):
+        began = time.perf_counter()
+        jump_tables(mask.ravel(), navigator.grid.shape)
+        table_samples.append(time.perf_counter() - began)
     figures["apartment grid rasterisation"] = {"ms": round(1000 * grid_seconds, 1),
-                                               "cells": int(np.prod(navigator.grid.shape))}
+                                               "cells": int(np.prod(navigator.grid.shape)),
+                                               "jump_tables_ms": _median_ms(table_samples)}
     return figures
+
+
+def _astar_case(grid: np.ndarray, start: tuple[int, int], goal: tuple[int, int],
+                repeat: int) -> dict[str, Any]:
+    """One A* timing case: kept tables, a first search, the tables alone, libtcod alone."""
+    flat, columns = grid.ravel(), grid.shape[1]
+    origin, target = start[0] * columns + start[1], goal[0] * columns + goal[1]
+    timings: dict[str, list[float]] = {"first": [], "tables": [], "kept": [], "libtcod": []}
+    lengths = set()
+    for _ in range(repeat):
+        forget_jump_tables()
+        began = time.perf_counter()
+        path = astar(flat, grid.shape, origin, target)
+        timings["first"].append(time.perf_counter() - began)
+        began = time.perf_counter()
+        jump_tables(flat, grid.shape)
+        timings["tables"].append(time.perf_counter() - began)
+        cached_jump_tables(flat, grid.shape)
+        began = time.perf_counter()
+        kept = astar(flat, grid.shape, origin, target)
+        timings["kept"].append(time.perf_counter() - began)
+        began = time.perf_counter()
+        reference = libtcod_astar(flat, grid.shape, origin, target)
+        timings["libtcod"].append(time.perf_counter() - began)
+        lengths |= {len(found or []) for found in (path, kept, reference)}
+    forget_jump_tables()
+    return {"median_ms": _median_ms(timings["kept"]),
+            "first_search_ms": _median_ms(timings["first"]),
+            "tables_ms": _median_ms(timings["tables"]),
+            "libtcod_ms": _median_ms(timings["libtcod"]),
+            "cells": sorted(lengths)}
 
 
 # ---------------------------------------------------------------------- driving

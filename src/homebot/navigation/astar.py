@@ -35,7 +35,7 @@ import tcod.path
 
 from homebot.navigation.jump_points import JumpTables, jump_point_search, jump_tables
 
-__all__ = ["astar", "cached_jump_tables"]
+__all__ = ["astar", "cached_jump_tables", "forget_jump_tables", "libtcod_astar"]
 
 _STRAIGHT = 1000
 _DIAGONAL = 1414
@@ -124,6 +124,34 @@ def astar(blocked: np.ndarray, shape: tuple[int, int], start: int, goal: int) ->
         _CACHE.store(key, tables)
     searched = jump_point_search(tables, start, goal)
     return None if searched is None else searched[0]
+
+
+def libtcod_astar(blocked: np.ndarray, shape: tuple[int, int], start: int,
+                  goal: int) -> list[int] | None:
+    """The same search by libtcod alone (windowed, then the whole grid), to compare with.
+
+    Args:
+        blocked: flat boolean mask, True where the robot cannot be.
+        shape: (rows, columns) of the grid.
+        start: flat index of the start cell.
+        goal: flat index of the goal cell.
+
+    Returns:
+        As ``astar``.
+    """
+    if blocked[start] or blocked[goal]:
+        return None
+    mask = np.ascontiguousarray(blocked, dtype=bool)
+    found = _windowed(mask, shape, start, goal)
+    if found is not None:
+        return found
+    searched = _search(~mask.reshape(shape), divmod(start, shape[1]), divmod(goal, shape[1]))
+    return None if searched is None else [row * shape[1] + column for row, column in searched[0]]
+
+
+def forget_jump_tables() -> None:
+    """Drop every kept grid, so that the next search of any grid is a first one."""
+    _CACHE.entries.clear()
 
 
 def _windowed(mask: np.ndarray, shape: tuple[int, int], start: int, goal: int) -> list[int] | None:
