@@ -37,6 +37,7 @@ __all__ = ["COMMAND_GROUPS", "command_line_argument_parser", "main"]
 COMMAND_GROUPS: dict[str, tuple[str, str]] = {
     "demo": ("demo", "watch the robot do a few tasks in the apartment"),
     "do": ("do", "understand a command and carry it out"),
+    "chat": ("chat", "talk to the robot in one persisting home"),
     "run-task": ("run_task", "run a YAML task of skill steps"),
     "parse": ("parse", "turn a command into skill steps"),
     "scenario": ("scenario", "run a demonstration from the seed papers"),

@@ -23,12 +23,18 @@ def register(subparsers: Any) -> None:
     parser.add_argument("--planner", choices=("gpsr", "htn"), default="gpsr",
                         help="gpsr: run the parsed skill steps (default); htn: make the parse's "
                              "intent an HTN goal and plan it from the robot's beliefs")
+    parser.add_argument("--answer", action="append", default=[], metavar="TEXT",
+                        help="a reply to a question the robot asks back (repeatable, in order)")
     parser.set_defaults(handler=do)
 
 
 def do(args: argparse.Namespace) -> int:
     world = load_world(args)
     parsed = parse_command(args.command, Vocabulary.from_world(world))
+    if not parsed and args.answer:
+        from homebot.cli.chat import converse
+
+        return converse(args, args.command, args.answer)
     if not parsed:
         said = parsed.question or parsed.reason or "I did not understand."
         if args.json:

@@ -1,0 +1,106 @@
+"""``homebot chat``: talk to the robot in one simulated home that persists across commands.
+
+Also ``homebot do "COMMAND" --answer TEXT``: the same conversation with scripted replies.
+"""
+
+from __future__ import annotations
+
+import argparse
+import select
+import sys
+from collections.abc import Callable, Iterable
+from typing import Any
+
+from rich.console import Console
+from rich.markup import escape
+
+from homebot.cli.options import GPSR_TIME_LIMIT, load_world
+from homebot.cli.simulated import add_run_options, finish_run, keep_events, simulated_run
+from homebot.executive.conversation import Conversation, Turn
+from homebot.language import Vocabulary
+
+__all__ = ["converse", "register"]
+
+_QUIT = frozenset({"quit", "exit", "bye", "goodbye", "q"})
+
+
+def register(subparsers: Any) -> None:
+    parser = subparsers.add_parser("chat", help="talk to the robot in one persisting home")
+    add_run_options(parser, time_limit=GPSR_TIME_LIMIT)
+    parser.set_defaults(handler=chat)
+
+
+def chat(args: argparse.Namespace) -> int:
+    """Read commands and answers line by line until "quit" or the end of the input."""
+    world = load_world(args)
+    run = simulated_run(args, world)
+    console = Console()
+    conversation = Conversation(Vocabulary.from_world(world), run.run,
+                                listen=_stdin_listener() if sys.stdin.isatty() else None)
+    console.print(f"  [cyan]robot:[/] Hello, I am in the {escape(world.name)}. What can I do "
+                  f"for you? (quit to end)", highlight=False)
+    while True:
+        queued = conversation.heard_meanwhile
+        line = queued.pop(0) if queued else _read("you> ")
+        if line is None or line.strip().lower() in _QUIT:
+            break
+        if not line.strip():
+            continue
+        show_turn(console, conversation.hear(line))
+    keep_events(args, run)
+    return 0
+
+
+def _read(prompt: str) -> str | None:
+    try:
+        return input(prompt)
+    except EOFError:
+        return None
+
+
+def _stdin_listener() -> Callable[[], str | None]:
+    """What the person typed while a task runs (checked between steps), without waiting."""
+    def listen() -> str | None:
+        ready, _, _ = select.select([sys.stdin], [], [], 0)
+        return sys.stdin.readline().strip() if ready else None
+    return listen
+
+
+def show_turn(console: Console, turn: Turn) -> None:
+    """The robot's words of one turn, and how it ended."""
+    for text in turn.said:
+        console.print(f"  [cyan]robot:[/] {escape(text)}", highlight=False)
+    if turn.report is not None:
+        colour = "green" if turn.status == "done" else "red"
+        console.print(f"  [{colour}]{turn.status}[/] ({len(turn.report.steps)} steps, "
+                      f"{turn.report.sim_time:.1f} s simulated)", highlight=False)
+
+
+def converse(args: argparse.Namespace, command: str, answers: Iterable[str]) -> int:
+    """``do COMMAND --answer A --answer B``: each question the robot asks is answered by the
+    next scripted reply; exit 0 only when the command was carried out and succeeded."""
+    world = load_world(args)
+    run = simulated_run(args, world)
+    conversation = Conversation(Vocabulary.from_world(world), run.run)
+    console = Console()
+    replies = list(answers)
+    turn = conversation.hear(command)
+    while turn.status == "asked" and replies:
+        if not args.json:
+            show_turn(console, turn)
+            console.print(f"  [magenta]answer:[/] {escape(replies[0])}", highlight=False)
+        turn = conversation.hear(replies.pop(0))
+    if turn.report is None:
+        if args.json:
+            import json
+
+            print(json.dumps({"success": False, "speech": turn.said, "steps": [],
+                              "sim_time": 0.0}, ensure_ascii=False))
+        else:
+            show_turn(console, turn)
+        keep_events(args, run)
+        return 1
+    if not args.json:
+        for text in turn.said[len(turn.report.speech):]:
+            turn.report.speech.append(text)  # relays said after the task
+    return finish_run(args, run, turn.report)
