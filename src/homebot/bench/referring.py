@@ -18,6 +18,8 @@ side by side), else **clear**. Figures:
 - ``acceptable``: clear cases resolved to the referent, plus close cases resolved to
   the referent or to a question (the target is at least 95 %);
 - ``confident_wrong_close``: close cases resolved to another object (the target is 0);
+- ``weak``: the close cases in which even the referent fits poorly; ``fitting`` the
+  others, and ``acceptable_fitting`` the share acceptable among them;
 - ``confident_wrong``: all cases resolved to another object;
 - ``clear_right``: the share of clear cases resolved to the referent (not a question);
 - ``agrees_with_geometry``: for "the left/right X" and "the X close to R", how often
@@ -177,6 +179,7 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
                              f"not {args.noise} and {args.margin}")
     rng = random.Random(args.seed)
     tally: Counter[str] = Counter()
+    fitting: Counter[str] = Counter()  #: the cases whose referent fits the words (not weak)
     by_kind: dict[str, Counter[str]] = {}
     agree = total_crisp = 0
     for _ in range(args.scenes):
@@ -188,6 +191,8 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
                          Scene(seen, case.categories, case.scale, case.viewer, case.facing),
                          noun=case.noun, margin=args.margin)
         close = case.gap < args.margin or case.best < AT_LEAST
+        tally["weak"] += case.best < AT_LEAST
+        weak = case.best < AT_LEAST
         if answer.referent == case.referent:
             verdict = "right"
         elif answer.referent is None:
@@ -196,6 +201,8 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
             verdict = "wrong"
         label = f"{'close' if close else 'clear'}_{verdict}"
         tally[label] += 1
+        if not weak:
+            fitting[label] += 1
         by_kind.setdefault(case.kind.split("+")[0].split(":")[0] + (
             "+near" if "+" in case.kind else ""), Counter())[label] += 1
         if case.crisp is not None:
@@ -209,8 +216,12 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
         "margin": args.margin,
         "clear": tally["clear_right"] + tally["clear_question"] + tally["clear_wrong"],
         "close": tally["close_right"] + tally["close_question"] + tally["close_wrong"],
-        "outcomes": dict(sorted(tally.items())),
+        "weak": tally["weak"],
+        "outcomes": {key: value for key, value in sorted(tally.items()) if key != "weak"},
         "acceptable": round(acceptable / scenes, 4),
+        "fitting": sum(fitting.values()),
+        "acceptable_fitting": round((fitting["clear_right"] + fitting["close_right"] + fitting[
+            "close_question"]) / max(1, sum(fitting.values())), 4),
         "clear_right": round(tally["clear_right"] / max(1, tally["clear_right"] + tally[
             "clear_question"] + tally["clear_wrong"]), 4),
         "confident_wrong_close": tally["close_wrong"],
@@ -245,9 +256,9 @@ def _print(console: Console, figures: dict[str, Any]) -> None:
                         f"{figures['noise_m']} m, margin {figures['margin']}")
     table.add_column("figure")
     table.add_column("value", justify="right")
-    for key in ("clear", "close", "acceptable", "clear_right", "confident_wrong_close",
-                "confident_wrong", "agrees_with_geometry", "relations_50_objects_ms_median",
-                "relations_50_objects_ms_max"):
+    for key in ("clear", "close", "weak", "acceptable", "fitting", "acceptable_fitting",
+                "clear_right", "confident_wrong_close", "confident_wrong", "agrees_with_geometry",
+                "relations_50_objects_ms_median", "relations_50_objects_ms_max"):
         table.add_row(key, str(figures[key]))
     for kind, counts in figures["by_kind"].items():
         table.add_row(f"  {kind}", ", ".join(f"{k} {v}" for k, v in counts.items()))
