@@ -1,14 +1,17 @@
-"""Jump point search (JPS+) on an 8-connected grid without corner cutting.
+"""Jump point search on an 8-connected grid without corner cutting.
 
 Harabor and Grastien's jump point search, in the variant that forbids corner
 cutting (a diagonal step needs both cells beside it free; "Improving Jump
-Point Search", ICAPS 2014), with every jump precomputed as in Rabin's JPS+:
-for each free cell and each of the eight directions, how many steps lead to
-the next jump point or, when none comes first, how many steps are free before
-a wall. The tables are built by numpy in a few
-whole-grid passes; the search then does O(1) work per jump and expands only
-jump points, which on open floor and round long walls are a few dozen where
-a cell-by-cell A* expands tens of thousands.
+Point Search", ICAPS 2014), with the straight jumps precomputed as in Rabin's
+JPS+: for each free cell and each of the four straight directions, how many
+steps lead to the next jump point or, when none comes first, how many are free
+before a wall. numpy builds these tables in a few whole-grid passes (a running
+minimum or maximum along each row or column). A straight jump is then one
+lookup; a diagonal jump walks its cells in Python, two lookups per cell. Only
+jump points are expanded: a few dozen on open floor or round a long wall,
+where a cell-by-cell A* settles tens of thousands of cells. (Tables for the
+diagonal jumps too, full JPS+, made the search faster still but doubled the
+tables' build time, which a grid searched only once pays in full.)
 
 The rules, for a step in direction ``d`` arriving at cell ``x``:
 
@@ -39,7 +42,7 @@ __all__ = ["JumpTables", "jump_point_search", "jump_tables"]
 
 _STRAIGHT = 1000
 _DIAGONAL = 1414
-# Directions as (row step, column step); indices into JumpTables.jumps.
+# Directions as (row step, column step); the first four index JumpTables.jumps.
 _DIRECTIONS = ((0, 1), (0, -1), (1, 0), (-1, 0), (1, 1), (1, -1), (-1, 1), (-1, -1))
 _INDEX = {direction: index for index, direction in enumerate(_DIRECTIONS)}
 
@@ -48,11 +51,11 @@ _INDEX = {direction: index for index, direction in enumerate(_DIRECTIONS)}
 class JumpTables:
     """Precomputed jumps of one grid, padded by a blocked border one cell wide.
 
-    ``jumps[i][p]`` codes, for the free padded flat cell ``p`` and direction
-    ``_DIRECTIONS[i]``, what a jump finds: ``2 k`` when the next jump point is
-    k steps away, ``2 k + 1`` when a wall (or a step that would cut a corner)
-    comes first, after k - 1 free steps. ``free[p]`` is 1 for a free cell.
-    ``arrays`` keeps the numpy buffers these views read.
+    ``jumps[i][p]`` codes, for the free padded flat cell ``p`` and straight
+    direction ``_DIRECTIONS[i]`` (i < 4), what a jump finds: ``2 k`` when the
+    next jump point is k steps away, ``2 k + 1`` when a wall comes first, after
+    k - 1 free steps. ``free[p]`` is 1 for a free cell. ``arrays`` keeps the
+    numpy buffers these views read.
     """
 
     shape: tuple[int, int]
@@ -87,7 +90,7 @@ def jump_tables(blocked: np.ndarray, shape: tuple[int, int]) -> JumpTables:
         return extended[margin + offset:margin + offset + size]
 
     offsets = [dr * width + dc for dr, dc in _DIRECTIONS]
-    tables: list[np.ndarray] = [np.empty(0, dtype=np.int32)] * 8
+    tables: list[np.ndarray] = [np.empty(0, dtype=np.int32)] * 4
     for index in range(4):
         step = offsets[index]
         sides = (width, -width) if abs(step) == 1 else (1, -1)
@@ -95,19 +98,6 @@ def jump_tables(blocked: np.ndarray, shape: tuple[int, int]) -> JumpTables:
         for side in sides:
             forced |= shifted(side) & ~shifted(side - step)
         tables[index] = _runs(~free, forced & free, step, width)
-    for index in range(4, 8):
-        dr, dc = _DIRECTIONS[index]
-        step = offsets[index]
-        vertical, horizontal = tables[_INDEX[(dr, 0)]], tables[_INDEX[(0, dc)]]
-        can_step = shifted(dr * width) & shifted(dc) & shifted(step)
-        # Arriving at q from q - step is impossible when that step is not allowed.
-        unreachable = np.ones(size, dtype=bool)
-        if step > 0:
-            unreachable[step:] = ~can_step[:-step]
-        else:
-            unreachable[:step] = ~can_step[-step:]
-        stops = free & (((vertical & 1) == 0) | ((horizontal & 1) == 0))
-        tables[index] = _runs(unreachable, stops, step, width)
     free_bytes = free.view(np.uint8)
     return JumpTables(shape=(rows, columns), width=width, free=free_bytes.data,
                       jumps=tuple(table.data for table in tables),
@@ -198,23 +188,17 @@ def jump_point_search(tables: JumpTables, start: int, goal: int) -> tuple[list[i
         row, column = divmod(node, width)
         for index in _successors(arrived[node], node, free, width):
             dr, dc = _DIRECTIONS[index]
-            code = jumps[index][node]
-            run = 0 if code & 1 else code >> 1  # steps to the next jump point, if any
-            limit = (code >> 1) - (code & 1)  # free steps this way
-            if limit == 0:
-                continue
-            steps = 0
-            if dr == 0 or dc == 0:
+            if dr and dc:
+                steps = _diagonal_steps(tables, node, index, target)
+                step_cost = _DIAGONAL
+            else:
+                code = jumps[index][node]
+                limit = (code >> 1) - (code & 1)  # free steps this way
                 ahead = (goal_column - column) * dc if dr == 0 else (goal_row - row) * dr
                 on_line = goal_row == row if dr == 0 else goal_column == column
-                if on_line and 0 < ahead <= limit:
-                    steps = ahead
-                elif run > 0:
-                    steps = run
+                goal_ahead = on_line and 0 < ahead <= limit
+                steps = ahead if goal_ahead else (code >> 1) * (1 - (code & 1))
                 step_cost = _STRAIGHT
-            else:
-                steps = _diagonal_steps(tables, node, index, run, limit, target)
-                step_cost = _DIAGONAL
             if steps == 0:
                 continue
             successor = node + steps * (dr * width + dc)
@@ -245,28 +229,33 @@ def _successors(arrived: int, node: int, free: memoryview, width: int) -> list[i
     return result
 
 
-def _diagonal_steps(tables: JumpTables, node: int, index: int, run: int, free_steps: int,
-                    target: int) -> int:
-    """Steps of a diagonal jump from ``node``: to a jump point or a cell in line with the goal."""
-    width = tables.width
+def _diagonal_steps(tables: JumpTables, node: int, index: int, target: int) -> int:
+    """Steps of a diagonal jump from ``node`` (0: none).
+
+    It stops at the goal, at a cell from which a straight jump along either of
+    its components finds a jump point, or at one from which such a straight run
+    reaches the goal; it fails at a step that a wall or a corner forbids.
+    """
+    width, free = tables.width, tables.free
     dr, dc = _DIRECTIONS[index]
+    vertical, horizontal = tables.jumps[_INDEX[(dr, 0)]], tables.jumps[_INDEX[(0, dc)]]
+    up, side, step = dr * width, dc, dr * width + dc
     row, column = divmod(node, width)
     goal_row, goal_column = divmod(target, width)
-    limit = run if run > 0 else free_steps
-    best = run
-    to_row = (goal_row - row) * dr  # diagonal steps to reach the goal's row
-    to_column = (goal_column - column) * dc
-    for steps, rest, straight in ((to_row, to_column - to_row, _INDEX[(0, dc)]),
-                                  (to_column, to_row - to_column, _INDEX[(dr, 0)])):
-        if not 0 < steps <= limit or (best and steps >= best):
-            continue
-        if rest == 0:
-            return steps  # the goal lies on the diagonal
-        if rest > 0:
-            across = tables.jumps[straight][node + steps * (dr * width + dc)]
-            if rest <= (across >> 1) - (across & 1):
-                best = steps
-    return best
+    cell, steps = node, 0
+    while free[cell + up] and free[cell + side] and free[cell + step]:
+        cell += step
+        steps += 1
+        row += dr
+        column += dc
+        across, along = horizontal[cell], vertical[cell]
+        if cell == target or not across & 1 or not along & 1:
+            return steps
+        if row == goal_row and 0 < (goal_column - column) * dc <= (across >> 1) - 1:
+            return steps
+        if column == goal_column and 0 < (goal_row - row) * dr <= (along >> 1) - 1:
+            return steps
+    return 0
 
 
 def _octile(cell: int, other: int, width: int) -> int:
