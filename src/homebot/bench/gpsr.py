@@ -13,6 +13,7 @@ from typing import Any
 from rich.console import Console
 
 from homebot.bench.arguments import count, seed
+from homebot.bench.gpsr_truth import judge
 from homebot.language import Vocabulary, parse_command
 from homebot.language.generator import generate_commands
 from homebot.navigation import Navigator
@@ -77,7 +78,9 @@ class ExecutionResult:
 
     commands: int = 0
     parsed_as_expected: int = 0
-    succeeded: int = 0
+    succeeded: int = 0  # judged by the simulator's ground truth
+    reported: int = 0  # the robot said it succeeded
+    false_claims: int = 0  # the robot said so, the home shows otherwise
     failures: Counter[str] = field(default_factory=Counter)
     wall_times: list[float] = field(default_factory=list)
 
@@ -102,8 +105,13 @@ def execute_commands(world: World, count: int, seed: int, level: float = 0.0) ->
         began = time.perf_counter()
         report = simulated.run(parsed.to_task())
         result.wall_times.append(time.perf_counter() - began)
-        if report.success:
+        done, why = judge(simulated, parsed.steps, report)
+        result.reported += report.success
+        result.false_claims += report.success and not done
+        if done:
             result.succeeded += 1
+        elif report.success:
+            result.failures[f"truth: {why}"] += 1
         else:
             last = report.steps[-1]
             result.failures[f"{last.skill}: {last.error}"] += 1
@@ -128,12 +136,17 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
         "disturbance_level": args.level,
         "parsed_as_expected": result.parsed_as_expected,
         "success_rate": round(result.succeeded / max(result.commands, 1), 4),
+        "judged_by": "ground truth",
+        "reported_success_rate": round(result.reported / max(result.commands, 1), 4),
+        "false_claims": result.false_claims,
         "failures": dict(result.failures),
         "median_wall_ms": round(1000 * statistics.median(result.wall_times or [0.0]), 3),
     }
     if console is not None:
         console.print(f"{result.succeeded}/{result.commands} generated commands carried out "
-                      f"in the {world.name} ({100 * figures['success_rate']:.1f} %); "
+                      f"in the {world.name} ({100 * figures['success_rate']:.1f} %, judged by "
+                      f"the simulator's ground truth; the robot reported {result.reported}, "
+                      f"{result.false_claims} of them wrongly); "
                       f"{result.parsed_as_expected} parsed exactly as generated; "
                       f"median {figures['median_wall_ms']} ms per command")
         for reason, times in result.failures.most_common():

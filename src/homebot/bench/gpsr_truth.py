@@ -1,0 +1,170 @@
+"""Judging a GPSR run by the simulator's ground truth, never by the robot's own report.
+
+After a command ran, ``judge`` looks at the simulation (where every object truly is, where
+each person truly stands) and at what the robot said, and checks the command's effects:
+
+- ``give``: the object taken ends with a person who fits the description searched for
+  (the operator for "me");
+- ``place``: the object taken truly lies on that placement;
+- a ``pick`` that ends the command: the object is truly in the robot's hand;
+- ``count`` then ``say``: the number said is the true number (objects of that kind on the
+  placement; people fitting the description in the room);
+- ``describe(property)`` then ``say``: the object named is truly the lightest / biggest...
+  of those on the placement;
+- ``guide(to=X)``: the person found truly stands in X;
+- ``greet``: the person greeted fits the description;
+- ``say(text)`` after ``find_person``: the robot said it next to a person who fits.
+
+Anything else (going somewhere, talking about the time) counts as done when the robot
+reported it done; those have no effect to check in the home.
+"""
+
+from __future__ import annotations
+
+import re
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+from homebot.executive import TaskReport
+from homebot.robot import PersonPercept
+from homebot.scenarios import SimulatedRun
+from homebot.skills.perception import matches_person
+from homebot.skills.wording import number
+from homebot.task import Step
+
+__all__ = ["judge"]
+
+_NUMBER_WORDS = {number(count): count for count in range(0, 13)}
+
+
+def _person_fits(run: SimulatedRun, name: str, description: Mapping[str, Any],
+                 room: str | None) -> bool:
+    world, sim = run.world, run.simulation
+    person = world.people.get(name)
+    state = sim.people.get(name)
+    if person is None or state is None:
+        return name == "operator" and not description
+    where = world.room_at(*state.position)
+    if room is not None and where != room:
+        return False
+    percept = PersonPercept(name, person.posture.value, person.gesture.value,
+                            tuple(person.clothes), state.position, where or person.room)
+    return matches_person(percept, description)
+
+
+def _room_of(run: SimulatedRun, args: Mapping[str, Any]) -> str | None:
+    if args.get("room"):
+        return str(args["room"])
+    if args.get("placement"):
+        return run.world.placements[str(args["placement"])].room
+    return None
+
+
+def _said_number(text: str) -> int | None:
+    for word in re.findall(r"[a-z]+|\d+", text.lower()):
+        if word.isdigit():
+            return int(word)
+        if word in _NUMBER_WORDS:
+            return _NUMBER_WORDS[word]
+        if word in {"nobody", "a"}:
+            return 0 if word == "nobody" else 1
+    return None
+
+
+def _true_count(run: SimulatedRun, args: Mapping[str, Any]) -> int:
+    world, sim = run.world, run.simulation
+    if "person" in args:
+        room = str(args.get("room") or _room_of(run, args))
+        return sum(_person_fits(run, name, dict(args["person"] or {}), room)
+                   for name in world.people)
+    wanted = str(args.get("object", "object"))
+    return sum(1 for name, where in sim.object_location.items()
+               if where == args.get("placement") and _is(run, name, wanted))
+
+
+def _is(run: SimulatedRun, name: str, wanted: str) -> bool:
+    world = run.world
+    obj = world.objects.get(name)
+    if obj is None:
+        return False
+    return wanted in (name, obj.category, world.plural_of(obj.category), "object")
+
+
+def _true_superlative(run: SimulatedRun, args: Mapping[str, Any]) -> str | None:
+    world, sim = run.world, run.simulation
+    there = [name for name, where in sim.object_location.items()
+             if where == args.get("placement") and _is(run, name, str(args.get("object")))]
+    if not there:
+        return None
+    prop = str(args["property"])
+    measure = "weight" if prop in {"heaviest", "lightest"} else "size"
+    choose = max if prop in {"biggest", "largest", "heaviest", "thickest"} else min
+    return choose(there, key=lambda name: float(getattr(world.objects[name], measure)))
+
+
+def judge(run: SimulatedRun, steps: Sequence[Step], report: TaskReport) -> tuple[bool, str]:
+    """Whether the home shows the command done (and if not, the first effect missing)."""
+    if len(report.steps) != len(steps):
+        return False, "not every step ran"
+    sim = run.simulation
+    model = run.world.operator
+    operator = model.name if model is not None else "operator"
+    taken: str | None = None
+    searched: tuple[dict[str, Any], str | None] | None = None
+    found_name: str | None = None
+    pending: Step | None = None  # a count or description whose result a say reports
+    for planned, done in zip(steps, report.steps, strict=True):
+        args = done.args
+        if planned.skill == "pick":
+            taken = str(args.get("object"))
+        elif planned.skill == "find_person":
+            searched = (dict(planned.args.get("person") or {}), _room_of(run, planned.args))
+            match = re.search(r"(?:I found|I am with) (.+)$", done.message or "")
+            found_name = match.group(1) if match else None
+        elif planned.skill == "give":
+            where = sim.object_location.get(taken or "") or ""
+            if not where.startswith("person:"):
+                return False, f"the {taken} is not with a person but at {where or 'nowhere'}"
+            person = where.removeprefix("person:")
+            wanted = str(planned.args.get("person", ""))
+            if wanted == "operator" and person not in {operator, "operator"}:
+                return False, f"the {taken} went to {person}, not the operator"
+            if wanted != "operator" and searched is not None and not _person_fits(
+                    run, person, searched[0], None):
+                return False, f"the {taken} went to {person}, who does not fit"
+            if wanted not in {"", "operator"} and person != wanted:
+                return False, f"the {taken} went to {person}, not {wanted}"
+        elif planned.skill == "place":
+            placement = str(planned.args.get("placement"))
+            if sim.object_location.get(taken or "") != placement:
+                return False, f"the {taken} is not on the {placement}"
+        elif planned.skill in {"count", "describe"}:
+            pending = planned
+        elif planned.skill == "say" and planned.args.get("text") == "$result" and pending:
+            said = done.message or ""
+            if pending.skill == "count":
+                truth = _true_count(run, pending.args)
+                if _said_number(said) != truth:
+                    return False, f"said '{said}' but there are {truth}"
+            elif pending.args.get("property"):
+                best = _true_superlative(run, pending.args)
+                if best is None or best not in said:
+                    return False, f"said '{said}' but it is the {best}"
+            pending = None
+        elif planned.skill == "guide" and searched is not None:
+            destination = str(planned.args.get("to"))
+            if found_name is None or found_name not in sim.people:
+                return False, "nobody known was guided"
+            room = run.world.room_at(*sim.people[found_name].position)
+            target_room = run.world.placements[destination].room if (
+                destination in run.world.placements) else destination
+            if room != target_room:
+                return False, f"{found_name} is in the {room}, not the {destination}"
+        elif planned.skill in {"greet", "say"} and searched is not None and found_name:
+            moved = any(step.skill in {"follow", "guide"} for step in steps)  # room changes
+            if not _person_fits(run, found_name, searched[0], None if moved else searched[1]):
+                return False, f"{found_name} does not fit the person asked for"
+    if steps and steps[-1].skill == "pick" and not any(
+            held == taken for held in sim.hands.values()):
+        return False, f"the {taken} is not in the robot's hand"
+    return report.success, "" if report.success else report.reason

@@ -1,0 +1,41 @@
+"""The GPSR benchmark's judge reads the simulator's truth, not the robot's report."""
+
+from __future__ import annotations
+
+from homebot.bench.gpsr_truth import judge
+from homebot.executive import TaskReport
+from homebot.language import Vocabulary, parse_command
+from homebot.scenarios import SimulatedRun
+from homebot.task import Step
+from homebot.world import World
+
+
+def _carried_out(command: str) -> tuple[SimulatedRun, list[Step], TaskReport]:
+    world = World.load("apartment")
+    parsed = parse_command(command, Vocabulary.from_world(world))
+    run = SimulatedRun.create(world, seed=2)
+    return run, parsed.steps, run.run(parsed.to_task())
+
+
+def test_a_delivery_is_judged_where_the_object_truly_is() -> None:
+    run, steps, report = _carried_out("bring me the cola from the fridge")
+    assert judge(run, steps, report) == (True, "")
+    run.simulation.object_location["cola"] = "fridge"  # the report says done; the home not
+    done, why = judge(run, steps, report)
+    assert report.success and not done and "cola" in why
+
+
+def test_a_count_is_judged_against_the_true_number() -> None:
+    run, steps, report = _carried_out("how many drinks are in the fridge")
+    assert judge(run, steps, report)[0]
+    run.simulation.object_location["water"] = "kitchen table"  # one fewer than was said
+    done, why = judge(run, steps, report)
+    assert not done and "there are 4" in why
+
+
+def test_a_person_given_to_must_fit_the_description() -> None:
+    run, steps, report = _carried_out(
+        "take the apple from the kitchen table and give it to the waving person in the office")
+    assert judge(run, steps, report)[0]
+    run.simulation.object_location["apple"] = "person:John"
+    assert not judge(run, steps, report)[0]
