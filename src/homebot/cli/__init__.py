@@ -47,6 +47,8 @@ COMMAND_GROUPS: dict[str, tuple[str, str]] = {
     "plan": ("plan", "plan a task with the HTN planner and print the task network"),
     "sitlog": ("sitlog", "run or draw a SitLog dialogue model"),
     "golog": ("golog", "check, plan and run Golog programs"),
+    "listen": ("listen", "hear spoken commands and show their steps"),
+    "say": ("say", "speak a text with the robot's voice into a WAV"),
     "sim": ("sim_serve", "serve the simulated robot over ROS 2"),
     "ros": ("ros_serve", "offer homebot to a ROS 2 system"),
 }

@@ -11,6 +11,7 @@ from rich.markup import escape
 
 from homebot.cli.options import GPSR_TIME_LIMIT, load_world
 from homebot.cli.simulated import add_run_options, finish_run, keep_events, simulated_run
+from homebot.cli.voice import add_voice_options, speak_to_file, spoken_or_typed
 from homebot.language import Vocabulary, parse_command
 
 __all__ = ["register"]
@@ -18,8 +19,10 @@ __all__ = ["register"]
 
 def register(subparsers: Any) -> None:
     parser = subparsers.add_parser("do", help="understand a command and carry it out")
-    parser.add_argument("command", help='what to do, e.g. "bring me the cola from the fridge"')
+    parser.add_argument("command", nargs="?",
+                        help='what to do, e.g. "bring me the cola from the fridge"')
     add_run_options(parser, time_limit=GPSR_TIME_LIMIT)
+    add_voice_options(parser)
     parser.add_argument("--planner", choices=("gpsr", "htn"), default="gpsr",
                         help="gpsr: run the parsed skill steps (default); htn: make the parse's "
                              "intent an HTN goal and plan it from the robot's beliefs")
@@ -30,13 +33,17 @@ def register(subparsers: Any) -> None:
 
 def do(args: argparse.Namespace) -> int:
     world = load_world(args)
-    parsed = parse_command(args.command, Vocabulary.from_world(world))
+    command = spoken_or_typed(args, world)
+    if command is None:
+        return 1
+    parsed = parse_command(command, Vocabulary.from_world(world))
     if not parsed and args.answer:
         from homebot.cli.chat import converse
 
-        return converse(args, args.command, args.answer)
+        return converse(args, command, args.answer)
     if not parsed:
         said = parsed.question or parsed.reason or "I did not understand."
+        speak_to_file([said], args.reply)
         if args.json:
             print(json.dumps({"success": False, "parse": parsed.to_dict(), "steps": [],
                               "speech": [said], "sim_time": 0.0}, ensure_ascii=False))
@@ -51,4 +58,6 @@ def do(args: argparse.Namespace) -> int:
         if status is not None:
             keep_events(args, run)
             return status
-    return finish_run(args, run, run.run(parsed.to_task()))
+    report = run.run(parsed.to_task())
+    speak_to_file(report.speech, args.reply)
+    return finish_run(args, run, report)
