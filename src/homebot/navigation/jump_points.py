@@ -130,27 +130,29 @@ def _runs(wall: np.ndarray, stop: np.ndarray, step: int, width: int) -> np.ndarr
     walls[:size] = wall
     events = walls.copy()
     events[:size] |= stop
-    shape = (count, places) if stride == 1 else (places, count)
-    folded_events: np.ndarray = events.reshape(shape)
-    folded_walls: np.ndarray = walls.reshape(shape)
-    if stride == 1:
-        folded_events, folded_walls = folded_events.T, folded_walls.T
-    twice = 2 * np.arange(places, dtype=dtype)[:, None]
+    # Chains run along ``axis`` of the folded grid; ``at(i)`` indexes along it.
+    axis = 1 if stride == 1 else 0
+    shape = (count, places) if axis else (places, count)
+
+    def at(index: int | slice) -> tuple[int | slice, ...]:
+        return (slice(None), index) if axis else (index,)
+
+    twice = 2 * np.arange(places, dtype=dtype).reshape((1, -1) if axis else (-1, 1))
     missing = dtype(2 * places + 2 if step > 0 else -2)
-    code: np.ndarray = np.where(folded_events, twice, missing).astype(dtype, copy=False)
+    code: np.ndarray = np.where(events.reshape(shape), twice, missing).astype(dtype, copy=False)
     nearest = np.empty_like(code)
     if step > 0:
-        np.add(code, folded_walls, out=code)
-        nearest[-1] = missing
-        nearest[:-1] = np.minimum.accumulate(code[:0:-1], axis=0)[::-1]
+        np.add(code, walls.reshape(shape), out=code)
+        nearest[at(-1)] = missing
+        nearest[at(slice(None, -1))] = np.minimum.accumulate(
+            code[at(slice(None, 0, -1))], axis=axis)[at(slice(None, None, -1))]
         np.subtract(nearest, twice, out=nearest)
     else:
-        np.subtract(code, folded_walls, out=code)
-        nearest[0] = missing
-        nearest[1:] = np.maximum.accumulate(code[:-1], axis=0)
+        np.subtract(code, walls.reshape(shape), out=code)
+        nearest[at(0)] = missing
+        nearest[at(slice(1, None))] = np.maximum.accumulate(code[at(slice(None, -1))], axis=axis)
         np.subtract(twice, nearest, out=nearest)
-    flat = (nearest.T if stride == 1 else nearest).ravel()
-    result: np.ndarray = np.ascontiguousarray(flat[:size])
+    result: np.ndarray = nearest.ravel()[:size]
     return result
 
 
