@@ -14,7 +14,8 @@ from homebot.language.vocabulary import progressive
 def test_exports_are_exactly_all() -> None:
     public = {name for name in dir(homebot.language) if not name.startswith("_")}
     modules = {"accounting", "clauses", "context", "fetching", "generator", "lexicon",
-               "normalise", "parser", "people", "questions", "reporting", "result", "tagging",
+               "normalise", "parser", "people", "questions", "readings", "reporting", "result",
+               "tagging",
                "vocabulary"}
     assert public - modules == set(homebot.language.__all__)
 

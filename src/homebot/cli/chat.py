@@ -17,9 +17,10 @@ from rich.markup import escape
 from homebot.cli.options import GPSR_TIME_LIMIT, load_world
 from homebot.cli.simulated import add_run_options, finish_run, keep_events, simulated_run
 from homebot.executive.conversation import Conversation, Turn
-from homebot.language import Vocabulary
+from homebot.language import ReadingModel, Vocabulary
+from homebot.scenarios import SimulatedRun
 
-__all__ = ["converse", "register"]
+__all__ = ["add_question_cost_option", "believed", "converse", "register"]
 
 _QUIT = frozenset({"quit", "exit", "bye", "goodbye", "q"})
 
@@ -27,6 +28,7 @@ _QUIT = frozenset({"quit", "exit", "bye", "goodbye", "q"})
 def register(subparsers: Any) -> None:
     parser = subparsers.add_parser("chat", help="talk to the robot in one persisting home")
     add_run_options(parser, time_limit=GPSR_TIME_LIMIT)
+    add_question_cost_option(parser)
     parser.set_defaults(handler=chat)
 
 
@@ -36,7 +38,8 @@ def chat(args: argparse.Namespace) -> int:
     run = simulated_run(args, world)
     console = Console()
     conversation = Conversation(Vocabulary.from_world(world), run.run,
-                                listen=_stdin_listener() if sys.stdin.isatty() else None)
+                                listen=_stdin_listener() if sys.stdin.isatty() else None,
+                                readings=believed(run, args.question_cost))
     console.print(f"  [cyan]robot:[/] Hello, I am in the {escape(world.name)}. What can I do "
                   f"for you? (quit to end)", highlight=False)
     while True:
@@ -49,6 +52,34 @@ def chat(args: argparse.Namespace) -> int:
         show_turn(console, conversation.hear(line))
     keep_events(args, run)
     return 0
+
+
+def add_question_cost_option(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("--question-cost", type=_cost, default=0.25, metavar="COST",
+                        help="what asking back costs, where doing the right thing is worth 1 "
+                             "and a wrong one costs 1 (default 0.25): an ambiguous command is "
+                             "carried out on its likeliest reading when that is worth more")
+
+
+def _cost(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = -1.0
+    if not 0.0 <= value <= 10.0:
+        raise argparse.ArgumentTypeError(f"a cost from 0 to 10, not '{text}'")
+    return value
+
+
+def believed(run: SimulatedRun, question_cost: float) -> Callable[[], ReadingModel]:
+    """The robot's current beliefs (never the simulator's truth) as a reading model."""
+    def model() -> ReadingModel:
+        beliefs = run.context.beliefs
+        return ReadingModel(
+            object_at={name: where for name, where in beliefs.object_at.items() if where},
+            categories={name: obj.category for name, obj in run.world.objects.items()},
+            question=question_cost, places=len(run.world.placements))
+    return model
 
 
 def _read(prompt: str) -> str | None:
@@ -81,7 +112,8 @@ def converse(args: argparse.Namespace, command: str, answers: Iterable[str]) -> 
     next scripted reply; exit 0 only when the command was carried out and succeeded."""
     world = load_world(args)
     run = simulated_run(args, world)
-    conversation = Conversation(Vocabulary.from_world(world), run.run)
+    conversation = Conversation(Vocabulary.from_world(world), run.run,
+                                readings=believed(run, getattr(args, "question_cost", 0.25)))
     console = Console()
     replies = list(answers)
     turn = conversation.hear(command)

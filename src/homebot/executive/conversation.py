@@ -22,7 +22,14 @@ from dataclasses import dataclass, field
 
 from homebot.errors import LanguageError
 from homebot.executive.report import TaskReport
-from homebot.language import Discourse, ParseResult, ParseStatus, Vocabulary, parse_command
+from homebot.language import (
+    Discourse,
+    ParseResult,
+    ParseStatus,
+    ReadingModel,
+    Vocabulary,
+    parse_command,
+)
 from homebot.language.lexicon import QUANTITIES
 from homebot.task import Step, Task
 
@@ -75,12 +82,16 @@ class Conversation:
     """A persistent session: commands, answers to questions, pronouns, relays, stop."""
 
     def __init__(self, vocabulary: Vocabulary, run: Runner, *,
-                 listen: Callable[[], str | None] | None = None) -> None:
+                 listen: Callable[[], str | None] | None = None,
+                 readings: Callable[[], ReadingModel] | None = None) -> None:
         """``run(task, interrupt=...)`` carries a task out; ``listen`` returns what was
-        heard while a task runs (None: nothing), asked between its steps."""
+        heard while a task runs (None: nothing), asked between its steps; ``readings``
+        gives the robot's current beliefs and the cost of a question, to act on the likeliest
+        reading of an ambiguous command when that is worth more than asking."""
         self.vocabulary = vocabulary
         self.run = run
         self.listen = listen
+        self.readings = readings
         self.discourse = Discourse()
         self.pending: ParseResult | None = None  # a command waiting for an answer
         self.heard_meanwhile: list[str] = []  # said during a task, heard next turn
@@ -102,7 +113,7 @@ class Conversation:
     def _command(self, text: str, original: str | None = None) -> Turn:
         command = _THAT_RE.sub(r"it\2", text)  # "bring me that" after "find the cola"
         try:
-            parsed = parse_command(command, self.vocabulary, history=self.discourse)
+            parsed = self._parse(command)
         except LanguageError as error:
             return Turn(text, "refused", [str(error)])
         if parsed.status is ParseStatus.CLARIFY:
@@ -121,7 +132,7 @@ class Conversation:
         last: Turn | None = None
         for candidate in candidates:
             try:
-                parsed = parse_command(candidate, self.vocabulary, history=self.discourse)
+                parsed = self._parse(candidate)
             except LanguageError:
                 continue
             if parsed:
@@ -138,6 +149,10 @@ class Conversation:
         self.pending = pending  # the answer did not help: ask again
         return Turn(answer, "asked", [f"Sorry, I did not get that. {pending.question}"],
                     pending)
+
+    def _parse(self, text: str) -> ParseResult:
+        model = self.readings() if self.readings is not None else None
+        return parse_command(text, self.vocabulary, history=self.discourse, readings=model)
 
     def _carry_out(self, command: str, parsed: ParseResult) -> Turn:
         task = Task(steps=tuple(parsed.steps), description=command)
@@ -156,7 +171,7 @@ class Conversation:
             return False
 
         report = self.run(task, interrupt=interrupt)
-        said = list(report.speech)
+        said = ([parsed.assumed] if parsed.assumed else []) + list(report.speech)
         self._remember(report)
         if stopped:
             return Turn(command, "stopped", said, parsed, report)

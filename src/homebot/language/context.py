@@ -21,10 +21,12 @@ class Clarification(Exception):
     table do you mean"), which an answer replaces; None when the answer adds to it.
     """
 
-    def __init__(self, question: str, about: str | None = None) -> None:
+    def __init__(self, question: str, about: str | None = None,
+                 options: tuple[str, ...] = ()) -> None:
         super().__init__(question)
         self.question = question
         self.about = about
+        self.options = options  # the readings asked about ("kitchen table", "coffee table")
 
 
 @dataclass(frozen=True)
@@ -183,7 +185,8 @@ class Context:
         options = narrowed or candidates
         names = ", ".join(entity.name for entity in options[:-1])
         raise Clarification(f"Which {item.text} do you mean: {names} or {options[-1].name}?",
-                            about=str(item.text))
+                            about=str(item.text),
+                            options=tuple(entity.name for entity in options))
 
 
 def where(item: Item | None) -> dict[str, str]:

@@ -122,7 +122,8 @@ def fetch(clause: Clause, ctx: Context, target: Item, source: Item | None) -> st
         members = ctx.vocabulary.objects_of(name)
         if len(members) > 1:
             listed = ", ".join(members[:-1]) + f" or {members[-1]}"
-            raise Clarification(f"Which {name} do you mean: {listed}?", about=str(target.text))
+            raise Clarification(f"Which {name} do you mean: {listed}?", about=str(target.text),
+                                options=tuple(members))
     if source is not None:
         place = ctx.place_of(source, clause, "take things from")
         ctx.go(place)

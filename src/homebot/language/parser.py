@@ -48,6 +48,7 @@ from homebot.language.questions import (
     handle_describe_person,
     handle_where,
 )
+from homebot.language.readings import ReadingModel, choose_reading
 from homebot.language.reporting import handle_count, handle_tell, handle_tell_me
 from homebot.language.result import ParseResult, ParseStatus
 from homebot.language.tagging import tag
@@ -63,13 +64,25 @@ Handler = Callable[[Clause, Context], None]
 
 
 def parse_command(text: str, vocabulary: Vocabulary, *,
-                  history: Discourse | None = None) -> ParseResult:
+                  history: Discourse | None = None,
+                  readings: ReadingModel | None = None) -> ParseResult:
     """Parse one command. Raises ``LanguageError`` only for input that is not a command
     at all (empty or absurdly long); anything else is a result with a status.
 
     ``history`` is what earlier commands of a conversation left ("pick up the apple",
     then "put it on the table"): the object and person pronouns refer back to.
+    ``readings`` (the robot's beliefs and the cost of a question) lets an ambiguous
+    command be carried out on its likeliest reading when that is worth more than asking
+    (``homebot.language.readings``); without it every ambiguity is asked about.
     """
+    result = _parse(text, vocabulary, history)
+    if readings is not None and result.status is ParseStatus.CLARIFY:
+        return choose_reading(result, readings,
+                              lambda reading: _parse(reading, vocabulary, history))
+    return result
+
+
+def _parse(text: str, vocabulary: Vocabulary, history: Discourse | None) -> ParseResult:
     if not isinstance(text, str) or not text.strip():
         raise LanguageError("the command is empty; say what the robot should do")
     if len(text) > MAX_COMMAND_LENGTH:
@@ -98,7 +111,7 @@ def parse_command(text: str, vocabulary: Vocabulary, *,
         deliver_pending(ctx)
     except Clarification as clarification:
         return ParseResult(ParseStatus.CLARIFY, text, question=clarification.question,
-                           about=clarification.about)
+                           about=clarification.about, options=clarification.options)
     except Refusal as refusal:
         return ParseResult(ParseStatus.REJECT, text, reason=refusal.reason)
     if not ctx.steps:

@@ -29,6 +29,8 @@ class ParseResult:
     question: str | None = None
     reason: str | None = None
     about: str | None = None  #: the words of the command a question is about (see Clarification)
+    options: tuple[str, ...] = ()  #: the readings a question chooses between
+    assumed: str | None = None  #: a reading chosen without asking, and why (see readings.py)
 
     def __bool__(self) -> bool:
         return self.status is ParseStatus.OK
@@ -41,6 +43,8 @@ class ParseResult:
             data["question"] = self.question
         if self.reason is not None:
             data["reason"] = self.reason
+        if self.assumed is not None:
+            data["assumed"] = self.assumed
         return data
 
     def to_task(self) -> Task:
