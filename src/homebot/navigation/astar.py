@@ -1,4 +1,4 @@
-"""A* over an 8-connected occupancy grid (CAESAR's stage 1): jump point search, libtcod.
+"""A* over an 8-connected occupancy grid (CAESAR's stage 1), by jump point search.
 
 The cost model is the one homebot always had: a straight step costs 1000, a
 diagonal one 1414 (octile distances in thousandths of a cell, integers so that
@@ -6,30 +6,28 @@ equal paths tie exactly), a diagonal step is allowed only when both cells
 beside it are free (no corner cutting), and the heuristic is the octile
 distance, so paths are shortest.
 
-Two searches give such paths:
+The search is jump point search over precomputed tables of the straight jumps
+(``jump_points``): a few tenths of a millisecond for a 15 m path, where a
+cell-by-cell A* round a long wall settles tens of thousands of cells. The
+tables take about a millisecond to build for the apartment's grid and a few
+for a 400 x 400 one, so they are kept per grid (keyed by the mask's bits, a few
+grids at once): a grid searched again, as the Navigator's static masks are,
+pays them once.
 
-* Jump point search over precomputed tables of the straight jumps
-  (``jump_points``): a few tenths of a millisecond per 15 m search, but the
-  tables take about a millisecond to build for the apartment's grid and a few
-  for a 400 x 400 one. They are kept per grid (keyed by the mask's bits, a few
-  grids at once), so a grid searched again, as the Navigator's static masks
-  are, pays them once.
-* libtcod's C A* (``tcod.path``) in a small window round start and goal, kept
-  only when its path is provably as short as any path that leaves the window
-  (its cost is at most the octile lower bound through the ring of cells just
-  outside). Easy paths on a grid seen for the first time (``plan_around``
-  builds a new mask per call) take about a millisecond this way.
-
-So: a grid with tables is searched by JPS; a new grid first gets the windowed
-libtcod search, and its tables are built only when that search cannot prove
-its path (a detour round a long wall, where a cell-by-cell A* expands tens of
-thousands of cells) or when the grid comes back. ``homebot bench navigation``
-reports the search times and the tables' build time apart.
+A grid seen for the first time (``plan_around`` builds a new mask per call)
+is first searched in a small window round start and goal, with tables of the
+window only; that path is kept when it is provably as short as any path that
+leaves the window (its cost is at most the octile lower bound through the ring
+of cells just outside). Otherwise, and when the grid comes back, the whole
+grid's tables are built. ``libtcod_astar`` is the same search by libtcod's C
+A* (``tcod.path``), which stage 1 used before, kept to compare with:
+``homebot bench navigation`` reports both, and the tables' build time apart.
 """
 
 from __future__ import annotations
 
 from collections import OrderedDict
+from collections.abc import Callable
 
 import numpy as np
 import tcod.path
@@ -117,7 +115,7 @@ def astar(blocked: np.ndarray, shape: tuple[int, int], start: int, goal: int) ->
     key = ((int(shape[0]), int(shape[1])), np.packbits(mask).tobytes())
     seen, tables = _CACHE.seen(key)
     if tables is None and not seen:
-        found = _windowed(mask, shape, start, goal)
+        found = _windowed(mask, shape, start, goal, _jump_search)
         if found is not None:
             _CACHE.store(key, None)
             return found
@@ -130,7 +128,7 @@ def astar(blocked: np.ndarray, shape: tuple[int, int], start: int, goal: int) ->
 
 def libtcod_astar(blocked: np.ndarray, shape: tuple[int, int], start: int,
                   goal: int) -> list[int] | None:
-    """The same search by libtcod alone (windowed, then the whole grid), to compare with.
+    """The same search by libtcod's A* alone (windowed, then the whole grid), to compare with.
 
     Args:
         blocked: flat boolean mask, True where the robot cannot be.
@@ -144,7 +142,7 @@ def libtcod_astar(blocked: np.ndarray, shape: tuple[int, int], start: int,
     if blocked[start] or blocked[goal]:
         return None
     mask = np.ascontiguousarray(blocked, dtype=bool)
-    found = _windowed(mask, shape, start, goal)
+    found = _windowed(mask, shape, start, goal, _search)
     if found is not None:
         return found
     searched = _search(~mask.reshape(shape), divmod(start, shape[1]), divmod(goal, shape[1]))
@@ -156,8 +154,13 @@ def forget_jump_tables() -> None:
     _CACHE.entries.clear()
 
 
-def _windowed(mask: np.ndarray, shape: tuple[int, int], start: int, goal: int) -> list[int] | None:
-    """libtcod's path in a window round start and goal, if provably shortest; else None."""
+_Search = Callable[[np.ndarray, tuple[int, int], tuple[int, int]],
+                   "tuple[list[tuple[int, int]], int] | None"]
+
+
+def _windowed(mask: np.ndarray, shape: tuple[int, int], start: int, goal: int,
+              search: _Search) -> list[int] | None:
+    """The path ``search`` finds in a window round start and goal, if provably shortest."""
     rows, columns = shape
     start_cell, goal_cell = divmod(start, columns), divmod(goal, columns)
     top = max(min(start_cell[0], goal_cell[0]) - _WINDOW_MARGIN, 0)
@@ -167,8 +170,8 @@ def _windowed(mask: np.ndarray, shape: tuple[int, int], start: int, goal: int) -
     if top == 0 and left == 0 and bottom == rows and right == columns:
         return None
     free = ~mask.reshape(shape)[top:bottom, left:right]
-    found = _search(free, (start_cell[0] - top, start_cell[1] - left),
-                    (goal_cell[0] - top, goal_cell[1] - left))
+    found = search(free, (start_cell[0] - top, start_cell[1] - left),
+                   (goal_cell[0] - top, goal_cell[1] - left))
     if found is None:
         return None
     cells, cost = found
@@ -204,6 +207,17 @@ def _exit_bound(shape: tuple[int, int], window: tuple[int, int, int, int],
         return float("inf")
     ring_r, ring_c = np.concatenate(ring_rows), np.concatenate(ring_columns)
     return float(np.min(_octile(ring_r, ring_c, start) + _octile(ring_r, ring_c, goal)))
+
+
+def _jump_search(free: np.ndarray, start: tuple[int, int],
+                 goal: tuple[int, int]) -> tuple[list[tuple[int, int]], int] | None:
+    """Jump point search on the boolean ``free`` grid (new tables): cells and cost, or None."""
+    columns = free.shape[1]
+    tables = jump_tables(~free.ravel(), free.shape)
+    found = jump_point_search(tables, start[0] * columns + start[1], goal[0] * columns + goal[1])
+    if found is None:
+        return None
+    return [divmod(cell, columns) for cell in found[0]], found[1]
 
 
 def _search(free: np.ndarray, start: tuple[int, int],
