@@ -100,10 +100,11 @@ def _astar_timing(repeat: int) -> dict[str, Any]:
 
     Per case: ``median_ms`` is ``astar`` on a grid it has searched before (its
     jump tables kept, as for the Navigator's static masks); ``first_search_ms``
-    on a grid it has never seen (``plan_around``'s new mask each call): the
-    windowed libtcod search, or building the tables and then JPS; ``tables_ms``
-    building the jump tables alone; ``libtcod_ms`` the search by libtcod alone,
-    as stage 1 ran before jump point search.
+    on a grid it has never seen (``plan_around``'s new mask each call): JPS in
+    a window round start and goal, or when that cannot prove its path, the
+    whole grid's tables and JPS; ``tables_ms`` building the whole grid's jump
+    tables alone; ``libtcod_ms`` the search by libtcod's A* alone, as stage 1
+    ran before jump point search.
     """
     side = 400  # 20 m at 5 cm
     free = np.zeros((side, side), dtype=bool)
