@@ -90,16 +90,18 @@ def _is(run: SimulatedRun, name: str, wanted: str) -> bool:
     return wanted in (name, obj.category, world.plural_of(obj.category), "object")
 
 
-def _true_superlative(run: SimulatedRun, args: Mapping[str, Any]) -> str | None:
+def _true_superlatives(run: SimulatedRun, args: Mapping[str, Any]) -> list[str]:
+    """The objects truly on the placement with the property (several when they tie)."""
     world, sim = run.world, run.simulation
     there = [name for name, where in sim.object_location.items()
              if where == args.get("placement") and _is(run, name, str(args.get("object")))]
     if not there:
-        return None
+        return []
     prop = str(args["property"])
     measure = "weight" if prop in {"heaviest", "lightest"} else "size"
     choose = max if prop in {"biggest", "largest", "heaviest", "thickest"} else min
-    return choose(there, key=lambda name: float(getattr(world.objects[name], measure)))
+    value = choose(float(getattr(world.objects[name], measure)) for name in there)
+    return [name for name in there if float(getattr(world.objects[name], measure)) == value]
 
 
 def judge(run: SimulatedRun, steps: Sequence[Step], report: TaskReport) -> tuple[bool, str]:
@@ -147,9 +149,9 @@ def judge(run: SimulatedRun, steps: Sequence[Step], report: TaskReport) -> tuple
                 if _said_number(said) != truth:
                     return False, f"said '{said}' but there are {truth}"
             elif pending.args.get("property"):
-                best = _true_superlative(run, pending.args)
-                if best is None or best not in said:
-                    return False, f"said '{said}' but it is the {best}"
+                best = _true_superlatives(run, pending.args)
+                if not any(f"the {name}." in said for name in best):
+                    return False, f"said '{said}' but it is the {' or the '.join(best)}"
             pending = None
         elif planned.skill == "guide" and searched is not None:
             destination = str(planned.args.get("to"))
