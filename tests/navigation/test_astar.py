@@ -11,7 +11,7 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from homebot.navigation import astar
-from homebot.navigation.astar import forget_jump_tables
+from homebot.navigation.astar import cached_jump_tables, forget_jump_tables
 from homebot.navigation.jump_points import jump_point_search, jump_tables
 
 
@@ -181,3 +181,17 @@ def test_jump_tables_and_libtcod_agree_round_a_long_wall_with_doorways() -> None
     _check_moves(jumped[0], grid)
     window = astar(grid.ravel(), grid.shape, start, 60 * 110 + 14)  # a short, easy path
     assert window is not None and _cost(window, 110) == 4000
+
+
+def test_many_grids_seen_once_keep_the_tables_of_a_grid_in_use() -> None:
+    forget_jump_tables()
+    static = np.zeros((40, 60), dtype=bool)
+    static[5:35, 30] = True
+    kept = cached_jump_tables(static.ravel(), static.shape)
+    for obstacle in range(100):  # as plan_around's masks: a new grid each call
+        grid = static.copy()
+        grid.ravel()[obstacle * 7 % grid.size] = True
+        astar(grid.ravel(), grid.shape, 2 * 60 + 2, 2 * 60 + 8)
+    assert cached_jump_tables(static.ravel(), static.shape) is kept
+    forget_jump_tables()
+    assert cached_jump_tables(static.ravel(), static.shape) is not kept

@@ -28,6 +28,7 @@ from __future__ import annotations
 
 from collections import OrderedDict
 from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 import tcod.path
@@ -42,38 +43,60 @@ _DIAGONAL = 1414
 _WINDOW_MARGIN = 12
 _STRAIGHT_MOVES = ((-1, 0), (1, 0), (0, -1), (0, 1))
 _DIAGONAL_MOVES = ((-1, -1), (-1, 1), (1, -1), (1, 1))
-# Grids whose jump tables are kept (a few megabytes each at most).
-_KEPT_GRIDS = 6
+# Grids whose jump tables are kept (up to a few megabytes each), and grids
+# remembered as seen once (a key each: a few kilobytes).
+_KEPT_TABLES = 8
+_KEPT_SEEN = 64
+_Key = tuple[tuple[int, int], bytes]
 
 
 class _TableCache:
-    """Jump tables of the grids searched lately, keyed by shape and mask bytes.
+    """Jump tables of the grids searched lately, keyed by shape and mask bits.
 
-    A grid seen once has no tables yet (``None``): they are built when it
-    comes back or when the windowed search cannot prove its path.
+    A grid seen once has no tables yet: they are built when it comes back or
+    when the windowed search cannot prove its path. Grids seen once are kept
+    apart, so that many of them (``plan_around``'s masks) do not push out the
+    tables of grids in use (the Navigator's static masks).
     """
 
-    def __init__(self, size: int) -> None:
-        self.size = size
-        self.entries: OrderedDict[tuple[tuple[int, int], bytes], JumpTables | None] = OrderedDict()
+    def __init__(self) -> None:
+        self.tables: OrderedDict[_Key, JumpTables] = OrderedDict()
+        self.once: OrderedDict[_Key, None] = OrderedDict()
 
-    def seen(self, key: tuple[tuple[int, int], bytes]) -> tuple[bool, JumpTables | None]:
+    def seen(self, key: _Key) -> tuple[bool, JumpTables | None]:
         """Whether the grid was seen before, and its tables if built."""
-        try:
-            self.entries.move_to_end(key)
-            return True, self.entries[key]
-        except KeyError:  # never seen, or dropped meanwhile
-            return False, None
+        tables = self.tables.get(key)
+        if tables is not None:
+            self.tables[key] = self.tables.pop(key, tables)  # now the latest
+            return True, tables
+        return key in self.once, None
 
-    def store(self, key: tuple[tuple[int, int], bytes], tables: JumpTables | None) -> None:
-        self.entries[key] = tables
-        self.entries.move_to_end(key)
-        while len(self.entries) > self.size:
-            self.entries.popitem(last=False)
+    def store(self, key: _Key, tables: JumpTables | None) -> None:
+        """Keep a grid's tables, or remember that it was seen (``None``)."""
+        if tables is None:
+            self.once[key] = None
+            _trim(self.once, _KEPT_SEEN)
+            return
+        self.once.pop(key, None)
+        self.tables[key] = tables
+        _trim(self.tables, _KEPT_TABLES)
+
+    def clear(self) -> None:
+        """Forget every grid."""
+        self.tables.clear()
+        self.once.clear()
+
+
+def _trim(entries: OrderedDict[_Key, Any], size: int) -> None:
+    while len(entries) > size:
+        try:
+            entries.popitem(last=False)
+        except KeyError:  # emptied meanwhile
+            return
 
 
 # Memoisation only: what astar returns does not depend on it.
-_CACHE = _TableCache(_KEPT_GRIDS)
+_CACHE = _TableCache()
 
 
 def cached_jump_tables(blocked: np.ndarray, shape: tuple[int, int]) -> JumpTables:
@@ -151,7 +174,7 @@ def libtcod_astar(blocked: np.ndarray, shape: tuple[int, int], start: int,
 
 def forget_jump_tables() -> None:
     """Drop every kept grid, so that the next search of any grid is a first one."""
-    _CACHE.entries.clear()
+    _CACHE.clear()
 
 
 _Search = Callable[[np.ndarray, tuple[int, int], tuple[int, int]],
