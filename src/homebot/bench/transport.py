@@ -171,6 +171,7 @@ def _fetch(seeds: int) -> dict[str, Any]:
     from homebot.cli import main
 
     same = agree = succeeded = 0
+    different: list[dict[str, int]] = []
     with tempfile.TemporaryDirectory() as folder:
         task = Path(folder) / "task.yaml"
         task.write_text(_TASK, encoding="utf-8")
@@ -190,11 +191,16 @@ def _fetch(seeds: int) -> dict[str, Any]:
                     if "server" in locals():
                         server.kill()
                         server.wait(10)
-            same += here.read_bytes() == there.read_bytes()
+            identical = here.exists() and there.exists() and \
+                here.read_bytes() == there.read_bytes()
+            same += identical
             agree += local == remote
             succeeded += remote == 0
+            if not identical:
+                different.append({"seed": seed, "in_process_status": local,
+                                  "over_ros_status": remote})
     return {"seeds": seeds, "identical_event_logs": same, "same_outcome": agree,
-            "succeeded_over_ros": succeeded}
+            "succeeded_over_ros": succeeded, "different": different}
 
 
 def _simulator(domain_id: int, options: list[str]) -> subprocess.Popen[bytes]:

@@ -216,7 +216,7 @@ class ServiceServer:
 
 
 def reply_ready(requests: Subscription[Any], replies: Publisher[Any],
-                timeout: float = 1.0) -> bool:
+                timeout: float = 5.0) -> bool:
     """Wait (at most ``timeout`` s) until every client that sends requests is heard by the
     reply writer too: discovery runs each way on its own, and a reply written before the
     client's reply reader is matched would be lost (rmw_cyclonedds waits the same way)."""
