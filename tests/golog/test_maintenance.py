@@ -247,3 +247,22 @@ def test_a_state_that_must_have_ended_before_the_action_is_gone_through_or_ended
     running = {"laser": "running", "collision_avoidance": "off", "arm": "parked"}
     assert maintenance.plan(running, needs, {"laser=running"}) == [("stop", "laser")]
     assert maintenance.plan({**running, "laser": "off"}, needs, {"laser=running"}) == []
+
+
+def test_cli_json_gives_the_transformations_and_the_judged_run(
+        capsys: pytest.CaptureFixture[str]) -> None:
+    import json
+
+    assert main(["golog", "maintain", "rips", "--show", "--json"]) == 0
+    shown = json.loads(capsys.readouterr().out)
+    assert shown["steps"][0]["prefix"] == ["set_posture(arm, unparked)", "start(arm_controller)",
+                                           "start(camera)"]
+    assert shown["transformed"][3] == "grasp(Registration Sheet)"
+    assert main(["golog", "maintain", "rips", "--seed", "5", "--json"]) == 0
+    ran = json.loads(capsys.readouterr().out)
+    assert ran["success"] and ran["judged"]["violations"] == []
+
+
+def test_cli_needs_a_section_for_a_domain_without_one(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["golog", "maintain", "build_tower(2)", "--domain", "blocks", "--show"]) == 2
+    assert "give one with --maintenance FILE" in capsys.readouterr().err
