@@ -73,6 +73,7 @@ __all__ = [
     "MaintenanceInterpreter",
     "ProjectionExecutor",
     "Requirements",
+    "Transformation",
     "add_management",
     "load_maintenance",
     "maintenance_from_text",
