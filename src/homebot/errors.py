@@ -13,8 +13,11 @@ Hierarchy::
     ├── LanguageError            a command cannot be understood
     ├── DialogueError            a SitLog dialogue model is malformed or cannot go on
     ├── BenchmarkError           a benchmark's argument (a size, a seed, a file) is unusable
-    └── SpeechError              an audio file is unusable (empty, not WAV, too long) or the
-                                 speech extra is missing
+    ├── SpeechError              an audio file is unusable (empty, not WAV, too long) or the
+    │                            speech extra is missing
+    └── TransportError           ROS 2 cannot start (bad domain id or interface, the ros extra
+        │                        missing) or the other side does not answer
+        └── RobotLost            the robot's ROS 2 side stopped answering mid-task
 
 Every message says what is wrong and how to fix it; the CLI prints it without a
 traceback and exits with status 2. Expected failures while acting in the world
@@ -34,8 +37,10 @@ __all__ = [
     "MapError",
     "NavigationError",
     "PlanningError",
+    "RobotLost",
     "SpeechError",
     "TaskError",
+    "TransportError",
     "WorldError",
 ]
 
@@ -87,3 +92,12 @@ class BenchmarkError(HomebotError):
 class SpeechError(HomebotError):
     """Audio cannot be heard or spoken: an empty, non-WAV or overlong file, an unknown voice,
     or the speech extra is not installed."""
+
+
+class TransportError(HomebotError):
+    """The ROS 2 transport cannot start (a bad domain id, an interface that does not exist,
+    the ros extra missing) or the other side does not answer in time."""
+
+
+class RobotLost(TransportError):
+    """The robot's ROS 2 side stopped answering (its process ended or the network went)."""

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import importlib.util
 
-from homebot.errors import HomebotError
+from homebot.errors import TransportError
 
 __all__ = ["require_ros"]
 
@@ -21,5 +21,5 @@ def require_ros() -> None:
     missing = [name for name in ("cyclonedds", "rosbags")
                if importlib.util.find_spec(name) is None]
     if missing:
-        raise HomebotError(f"ROS 2 needs the 'ros' extra ({', '.join(missing)} missing): "
+        raise TransportError(f"ROS 2 needs the 'ros' extra ({', '.join(missing)} missing): "
                            "pip install 'homebot[ros]'")

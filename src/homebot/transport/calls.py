@@ -12,7 +12,7 @@ import json
 from collections.abc import Callable
 from typing import Any
 
-from homebot.errors import HomebotError
+from homebot.errors import TransportError
 from homebot.robot import Blocker, Detection, HelpRequest, MoveReport, PersonPercept, Pose, Robot
 
 __all__ = ["CALLS", "decode_result", "encode", "serve"]
@@ -81,7 +81,7 @@ CALLS: dict[str, tuple[Callable[[Robot, dict[str, Any]], Any], Callable[[Any], A
 }
 
 
-class CallError(HomebotError):
+class CallError(TransportError):
     """A RobotCall names a method the port lacks or gives malformed arguments."""
 
 

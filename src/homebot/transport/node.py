@@ -33,7 +33,7 @@ from cyclonedds.sub import DataReader
 from cyclonedds.topic import Topic
 from cyclonedds.util import duration
 
-from homebot.errors import HomebotError
+from homebot.errors import TransportError
 from homebot.transport.naming import (
     DEFAULT_QOS,
     SERVICE_QOS,
@@ -57,11 +57,6 @@ __all__ = [
 ]
 
 T = TypeVar("T")
-
-
-class TransportError(HomebotError):
-    """The ROS 2 transport cannot start (a bad domain id, an interface that does not exist)
-    or the other side does not answer in time."""
 
 
 @dataclass(frozen=True, slots=True)

@@ -27,7 +27,7 @@ from typing import Any
 
 import yaml
 
-from homebot.errors import HomebotError
+from homebot.errors import RobotLost, TransportError
 from homebot.events import EventLog
 from homebot.robot import (
     Blocker,
@@ -41,13 +41,9 @@ from homebot.robot import (
 from homebot.transport.actions import ActionClient, GoalStatus
 from homebot.transport.calls import decode_result, encode, move_report
 from homebot.transport.messages import pose_of, pose_stamped
-from homebot.transport.node import Node, TransportError
+from homebot.transport.node import Node
 
 __all__ = ["RobotLost", "RobotMapping", "RosRobot"]
-
-
-class RobotLost(TransportError):
-    """The robot's ROS 2 side stopped answering (its process ended or the network went)."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -68,18 +64,18 @@ class RobotMapping:
         try:
             data = yaml.safe_load(path.read_text(encoding="utf-8")) or {}
         except (OSError, yaml.YAMLError) as error:
-            raise HomebotError(f"{path}: cannot read the ROS 2 mapping file ({error})") from None
+            raise TransportError(f"{path}: cannot read the ROS 2 mapping file ({error})") from None
         if not isinstance(data, dict):
-            raise HomebotError(f"{path}: a ROS 2 mapping file is a YAML mapping of names")
+            raise TransportError(f"{path}: a ROS 2 mapping file is a YAML mapping of names")
         known = set(cls.__dataclass_fields__)
         unknown = sorted(set(data) - known)
         if unknown:
-            raise HomebotError(f"{path}: unknown key(s) {', '.join(unknown)}; "
+            raise TransportError(f"{path}: unknown key(s) {', '.join(unknown)}; "
                                f"known: {', '.join(sorted(known))}")
         for key in ("timeout", "call_timeout", "liveness"):
             value = data.get(key, 1.0)
             if not isinstance(value, (int, float)) or not 0 < value < math.inf:
-                raise HomebotError(f"{path}: {key} must be a positive number of seconds")
+                raise TransportError(f"{path}: {key} must be a positive number of seconds")
         return cls(**data)
 
 
@@ -120,7 +116,7 @@ class RosRobot(Robot):
 
     def _call(self, method: str, **arguments: Any) -> Any:
         if self.calls is None:
-            raise HomebotError(f"the ROS 2 mapping names no robot_call service, so "
+            raise TransportError(f"the ROS 2 mapping names no robot_call service, so "
                                f"'{method}' cannot reach the robot; name one in the mapping")
         sequence = self.calls.send(method=method, arguments=json.dumps(encode(arguments)))
         try:
@@ -131,7 +127,7 @@ class RosRobot(Robot):
         self._now = float(reply.now)
         result = json.loads(reply.result)
         if isinstance(result, dict) and set(result) == {"error"}:
-            raise HomebotError(str(result["error"]))
+            raise TransportError(str(result["error"]))
         if method == "last_move":
             return move_report(result)
         return decode_result(method, reply.result) if method in _DECODED else result
