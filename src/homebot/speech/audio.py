@@ -98,11 +98,11 @@ def _to_int16(raw: bytes, width: int, label: str) -> Audio:
     raise SpeechError(f"{label}: {8 * width}-bit samples; give 8, 16 or 32-bit PCM")
 
 
-def wav_bytes(samples: Audio, rate: int = SAMPLE_RATE) -> bytes:
-    """``samples`` as the bytes of a mono 16-bit WAV file."""
+def wav_bytes(samples: Audio, rate: int = SAMPLE_RATE, channels: int = 1) -> bytes:
+    """``samples`` (interleaved when ``channels`` > 1) as the bytes of a 16-bit WAV file."""
     buffer = io.BytesIO()
     with wave.open(buffer, "wb") as writer:
-        writer.setnchannels(1)
+        writer.setnchannels(channels)
         writer.setsampwidth(2)
         writer.setframerate(rate)
         writer.writeframes(samples.astype("<i2").tobytes())

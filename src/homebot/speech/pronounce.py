@@ -61,16 +61,19 @@ def _read_cmudict(words: set[str]) -> dict[str, list[str]]:
     return {word: found[word] for word in sorted(found)}
 
 
-def build_dictionary(words: Iterable[str], speak: object | None = None
-                     ) -> Mapping[str, list[str]]:
+def build_dictionary(words: Iterable[str], speak: object | None = None, *,
+                     espeak_variants: bool = False) -> Mapping[str, list[str]]:
     """Every word with its pronunciations (several where CMUdict has variants).
 
     Words CMUdict lacks are pronounced by espeak-ng (``speak`` is a ``Voice``; the shared
-    one when None). Raises ``SpeechError`` for a word nobody can pronounce.
+    one when None); with ``espeak_variants`` every word also gets espeak-ng's pronunciation
+    as a variant. Raises ``SpeechError`` for a word nobody can pronounce.
     """
     wanted = {word for word in words if word}
     known = _read_cmudict(wanted)
     missing = sorted(wanted - set(known))
+    if espeak_variants:
+        missing = sorted(wanted)
     if missing:
         from homebot.speech.voice import Voice, espeak
 
@@ -80,5 +83,9 @@ def build_dictionary(words: Iterable[str], speak: object | None = None
             if not phones:
                 raise SpeechError(f"the word '{word}' has no pronunciation; rename it in "
                                   "the world file with letters a-z")
-            known[word] = [" ".join(phones)]
+            variant = " ".join(phones)
+            if word not in known:
+                known[word] = [variant]
+            elif variant not in known[word]:
+                known[word].append(variant)
     return known

@@ -11,7 +11,7 @@ rejected, which filters out the false positives of a noisy hall. Here:
   returns a partial path when no final state was reached);
 - accepted: the two best hypotheses agree (``agree``), or the grammar's hypothesis is in
   the trigram decoder's N-best list (``nbest``), or an N-best entry differs from it in at
-  most 15 % of its words (``similar``); when the grammar reached no final state, an
+  most 25 % of its words (``similar``); when the grammar reached no final state, an
   N-best entry the grammar can produce whole and close to its partial path is taken
   (``nbest_in_grammar``); anything else is rejected, with the
   reason (``no_speech``, ``grammar_failed``, ``disagree``).
@@ -55,7 +55,7 @@ _DITHER_SEED = 12_345
 _PAD = SAMPLE_RATE // 2
 # The grammar's hypothesis is accepted when an N-best entry is within this share of its
 # words (word edit distance, at least one word): CAESAR's "similarities".
-_SIMILARITY = 0.15
+_SIMILARITY = 0.25
 _DECODER_OPTIONS: dict[str, Any] = {}
 # Spectral subtraction before decoding (``homebot.speech.audio.denoise``).
 _DENOISE: dict[str, float] = {"over": 2.0, "quiet_share": 0.1}
@@ -127,8 +127,8 @@ class Recognizer:
                  training: Mapping[str, list[str]], *,
                  segmenter: Segmenter | None = None, nbest: int = _NBEST,
                  similarity: float = _SIMILARITY, denoise: Mapping[str, float] | None = None,
-                 decoder_options: Mapping[str, Any] | None = None
-                 ) -> None:
+                 decoder_options: Mapping[str, Any] | None = None,
+                 espeak_variants: bool = False) -> None:
         try:
             import pocketsphinx
         except ImportError:
@@ -143,7 +143,7 @@ class Recognizer:
         words: set[str] = set()
         for state, grammar in self.grammars.items():
             words |= grammar.words() | models[state].vocabulary()
-        dictionary = build_dictionary(words)
+        dictionary = build_dictionary(words, espeak_variants=espeak_variants)
         with tempfile.TemporaryDirectory(prefix="homebot-speech-") as folder:
             dict_path = os.path.join(folder, "words.dict")
             with open(dict_path, "w", encoding="utf-8") as handle:
