@@ -160,13 +160,27 @@ def _crisp(kind: str, relatum: str | None, scene: Scene, candidates: list[str],
     return None
 
 
+def _between(option: str, low: float, high: float) -> Any:
+    """An argument type for ``option``: a number from ``low`` to ``high``."""
+    def number(text: str) -> float:
+        try:
+            value = float(text)
+        except ValueError:
+            value = math.nan
+        if not low <= value <= high:  # also false for nan
+            raise BenchmarkError(f"{option} {text!r}: give a number from {low:g} to {high:g}")
+        return value
+    number.__name__ = option.lstrip("-")
+    return number
+
+
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--scenes", type=count("--scenes", 1, 1_000_000), default=1000,
                         help="generated table-top scenes (at least 200 for the figure)")
     parser.add_argument("--seed", type=seed, default=0, help="seed of the first scene")
-    parser.add_argument("--noise", type=float, default=0.01,
+    parser.add_argument("--noise", type=_between("--noise", 0.0, 0.5), default=0.01,
                         help="perception noise: standard deviation of positions, metres")
-    parser.add_argument("--margin", type=float, default=MARGIN,
+    parser.add_argument("--margin", type=_between("--margin", 0.01, 0.99), default=MARGIN,
                         help="the stated margin: closer degrees are 'about equal'")
     parser.add_argument("--repeats", type=count("--repeats", 1, 100_000), default=200,
                         help="timed runs of the 50-object scene")
@@ -174,9 +188,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, Any]:
     """Resolve ``--scenes`` generated expressions; time a 50-object scene's relations."""
-    if not 0 <= args.noise <= 0.5 or not 0 < args.margin < 1:
-        raise BenchmarkError("--noise is 0 to 0.5 m and --margin between 0 and 1; "
-                             f"not {args.noise} and {args.margin}")
     rng = random.Random(args.seed)
     tally: Counter[str] = Counter()
     fitting: Counter[str] = Counter()  #: the cases whose referent fits the words (not weak)
