@@ -26,6 +26,7 @@ from homebot.space.orientation import (
     relative_angle,
     side_degree,
 )
+from homebot.space.places import resolve_place
 from homebot.space.referring import MARGIN, Modifier, Resolution, Scene, resolve, split_spatial
 from homebot.space.relations import SceneRelations, scene_relations
 
@@ -52,6 +53,7 @@ __all__ = [
     "orientation_memberships",
     "relative_angle",
     "resolve",
+    "resolve_place",
     "scene_relations",
     "side_degree",
     "split_spatial",

@@ -21,7 +21,9 @@ Degrees, each from 0 to 1, combined by product (a t-norm):
   bottle behind the bowl is behind it *and* near it).
 
 The relatum ("the plate") is any other thing in the scene whose category or name
-is that word; with several, the best fitting one counts.
+is that word; with several, the best fitting one counts. A relatum with a front side
+(furniture, ``Scene.fronts``) is read intrinsically: "behind the couch" is the side
+away from where the couch faces, wherever the viewer stands.
 """
 
 from __future__ import annotations
@@ -33,7 +35,7 @@ from dataclasses import dataclass, field
 from typing import Any, Final
 
 from homebot.space.distance import closeness
-from homebot.space.orientation import relative_angle, side_degree
+from homebot.space.orientation import intrinsic_angle, relative_angle, side_degree
 
 __all__ = [
     "AT_LEAST",
@@ -158,6 +160,9 @@ class Scene:
     viewer: tuple[float, float]
     #: the viewer's heading; None: the line of sight to each relatum in turn
     facing: float | None = None
+    #: front headings of relata that have a front side (furniture): "behind the sofa" is
+    #: read against the sofa's own front (intrinsic), not the viewer's
+    fronts: Mapping[str, float] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -197,8 +202,10 @@ def _degree(candidate: str, others: Sequence[str], modifier: Modifier, scene: Sc
         elif modifier.value == "far":
             value = 1.0 - near
         else:
-            value = side_degree(relative_angle(here, there, scene.viewer, scene.facing),
-                                modifier.value) * near
+            front = scene.fronts.get(relatum)
+            angle = intrinsic_angle(here, there, front) if front is not None else (
+                relative_angle(here, there, scene.viewer, scene.facing))
+            value = side_degree(angle, modifier.value) * near
         best = max(best, value)
     return best
 
