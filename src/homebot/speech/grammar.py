@@ -68,6 +68,9 @@ class Grammar:
     name: str
     public: str
     rules: Mapping[str, str]
+    # Rules whose words name things (rooms, objects, people, drinks): hypotheses that
+    # differ in one of these words mean something else.
+    slots: tuple[str, ...] = ()
     _compiled: dict[str, re.Pattern[str]] = field(default_factory=dict, compare=False,
                                                    repr=False)
 
@@ -125,6 +128,11 @@ class Grammar:
             else:
                 words += self._expand(choice, rng)
         return words
+
+    def slot_words(self) -> set[str]:
+        """Every word of the slot rules (``slots``)."""
+        return {token for rule in self.slots for token in _TOKEN.findall(self.rules[rule])
+                if token not in "()[]|" and not token.startswith("<")}
 
     def accepts(self, text: str) -> bool:
         """Whether the grammar can produce ``text`` (compared as ``words_of``)."""
@@ -197,7 +205,10 @@ def command_grammar(world: Any) -> Grammar:
         "bring_me": "<v_bring_me> <thing> from the <placement>",
         "meet_then_find": "meet <name> at the <placement> then <v_find> them in the <room>",
     }
-    return Grammar("gpsr", "command", rules)
+    return Grammar("gpsr", "command", rules, slots=(
+        "room", "placement", "object", "category", "plural", "name", "colour", "garment",
+        "garments", "posture", "gesture_after", "gesture_before", "topic", "property",
+        "info"))
 
 
 def yes_no_grammar() -> Grammar:
@@ -206,7 +217,7 @@ def yes_no_grammar() -> Grammar:
         "answer": "<yes> | <no>",
         "yes": "yes [please] | yeah | sure | of course | correct | that is right | right",
         "no": "no [thanks | thank you] | nope | not now | that is wrong | wrong",
-    })
+    }, slots=("yes", "no"))
 
 
 def drink_grammar(world: Any) -> Grammar:
@@ -217,4 +228,4 @@ def drink_grammar(world: Any) -> Grammar:
         "answer": "[i would like | i want | bring me | give me] [a | an | some] <drink> "
                   "[please]",
         "drink": _alternatives(drinks),
-    })
+    }, slots=("drink",))

@@ -11,7 +11,8 @@ rejected, which filters out the false positives of a noisy hall. Here:
   returns a partial path when no final state was reached);
 - accepted: the two best hypotheses agree (``agree``), or the grammar's hypothesis is in
   the trigram decoder's N-best list (``nbest``), or an N-best entry differs from it in at
-  most 25 % of its words (``similar``); when the grammar reached no final state, an
+  most 25 % of its words, none of them a slot word: a room, an object, a name
+  (``similar``); when the grammar reached no final state, an
   N-best entry the grammar can produce whole and close to its partial path is taken
   (``nbest_in_grammar``); anything else is rejected, with the
   reason (``no_speech``, ``grammar_failed``, ``disagree``).
@@ -138,6 +139,7 @@ class Recognizer:
         self.segmenter = segmenter or Segmenter()
         self.nbest = nbest
         self.similarity = similarity
+        self._slot_words: dict[str, set[str]] = {}
         self.denoise = dict(_DENOISE if denoise is None else denoise)
         models = {state: train_trigram(training[state]) for state in self.grammars}
         words: set[str] = set()
@@ -241,9 +243,8 @@ class Recognizer:
             # N-best entry that the grammar can produce whole.
             partial = fsg[0].split() if fsg and fsg[0] else []
             if partial:
-                allowed = max(1, int(self.similarity * len(partial)))
                 for entry in nbest:
-                    if (Levenshtein.distance(partial, entry.split()) <= allowed
+                    if (self._similar(entry.split(), partial, grammar)
                             and grammar.accepts(entry)):
                         return result(entry, "nbest_in_grammar")
             return result(None, "grammar_failed")
@@ -251,11 +252,23 @@ class Recognizer:
             return result(hypothesis, "agree")
         if hypothesis in nbest:
             return result(hypothesis, "nbest")
-        words = hypothesis.split()
-        allowed = max(1, int(self.similarity * len(words)))
-        if any(Levenshtein.distance(words, entry.split()) <= allowed for entry in nbest):
+        if any(self._similar(hypothesis.split(), entry.split(), grammar) for entry in nbest):
             return result(hypothesis, "similar")
         return result(None, "disagree")
+
+    def _similar(self, words: list[str], other: list[str], grammar: Grammar) -> bool:
+        """``words`` and ``other`` differ in at most ``similarity`` of ``words`` (at least
+        one word), and in none of the grammar's slot words (a room, an object, a name)."""
+        allowed = max(1, int(self.similarity * len(words)))
+        if Levenshtein.distance(words, other) > allowed:
+            return False
+        slots = self._slot_words.setdefault(grammar.name, grammar.slot_words())
+        for operation in Levenshtein.editops(words, other):
+            changed = {words[operation.src_pos] if operation.tag != "insert" else "",
+                       other[operation.dest_pos] if operation.tag != "delete" else ""}
+            if changed & slots:
+                return False
+        return True
 
     def hear(self, audio: Audio, state: str = "command") -> Hearing:
         """Find the speech in ``audio`` (VAD) and decode it as one utterance, from the
