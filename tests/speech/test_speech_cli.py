@@ -1,0 +1,104 @@
+"""``homebot say``, ``listen`` and ``do --voice``: files in and out, bad files in one line."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+pytest.importorskip("pocketsphinx")
+pytest.importorskip("espeakng_loader")
+
+from homebot.cli import main
+from homebot.speech.audio import read_wav, resample, wav_bytes, write_wav
+
+COMMAND = "Bring me a cola from the kitchen table"
+
+
+@pytest.fixture(scope="module")
+def command_wav(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    path = tmp_path_factory.mktemp("speech") / "command.wav"
+    assert main(["say", COMMAND, "-o", str(path), "--voice", "en-us+klatt", "--rate",
+                 "125"]) == 0
+    return path
+
+
+def _fails_cleanly(capsys: pytest.CaptureFixture[str], status: int, expected: str) -> None:
+    captured = capsys.readouterr()
+    assert status == 2
+    assert expected in captured.err
+    assert "Traceback" not in captured.err + captured.out
+    assert len(captured.err.strip().splitlines()) == 1
+
+
+def test_say_writes_speech(command_wav: Path) -> None:
+    audio = read_wav(command_wav)
+    assert audio.size > 16_000 and np.abs(audio).max() > 1000
+
+
+def test_listen_hears_the_steps(command_wav: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["listen", str(command_wav), "--json"]) == 0
+    heard = json.loads(capsys.readouterr().out.splitlines()[0])
+    assert heard["text"] == "bring me a cola from the kitchen table"
+    assert [step["skill"] for step in heard["parse"]["steps"]] == [
+        "navigate", "find_object", "pick", "navigate", "give"]
+
+
+def test_listen_resamples_other_rates(command_wav: Path, tmp_path: Path,
+                                      capsys: pytest.CaptureFixture[str]) -> None:
+    other = tmp_path / "44k.wav"
+    other.write_bytes(wav_bytes(resample(read_wav(command_wav), 16_000, 44_100), 44_100))
+    assert main(["listen", str(other)]) == 0
+    assert "heard: bring me a cola from the kitchen table" in capsys.readouterr().out
+
+
+def test_do_voice_carries_the_command_out_and_speaks_the_reply(
+        command_wav: Path, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    reply = tmp_path / "reply.wav"
+    assert main(["do", "--voice", str(command_wav), "--reply", str(reply), "--json"]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert json.loads(lines[0])["heard"]["accepted"]
+    assert json.loads(lines[-1])["success"]
+    assert read_wav(reply).size > 16_000
+
+
+def test_do_voice_with_noise_runs_no_skill(tmp_path: Path,
+                                           capsys: pytest.CaptureFixture[str]) -> None:
+    noise = tmp_path / "noise.wav"
+    write_wav(noise, (np.random.default_rng(0).standard_normal(48_000) * 3000).astype(np.int16))
+    assert main(["do", "--voice", str(noise), "--json"]) == 1
+    report = json.loads(capsys.readouterr().out.splitlines()[-1])
+    assert report["steps"] == [] and not report["success"]
+
+
+@pytest.mark.parametrize(("data", "expected"), [
+    (b"", "the file is empty"),
+    (b"bring me a cola\n", "not a WAV file"),
+    (wav_bytes(np.zeros(600 * 8000, dtype=np.int16), 8000), "600 s long"),
+])
+@pytest.mark.parametrize("command", ["listen", "do"])
+def test_bad_files_exit_2_in_one_line(tmp_path: Path, data: bytes, expected: str, command: str,
+                                      capsys: pytest.CaptureFixture[str]) -> None:
+    path = tmp_path / "clip.wav"
+    path.write_bytes(data)
+    argv = ["listen", str(path)] if command == "listen" else ["do", "--voice", str(path)]
+    _fails_cleanly(capsys, main(argv), expected)
+
+
+def test_do_wants_text_or_voice_not_both(command_wav: Path,
+                                         capsys: pytest.CaptureFixture[str]) -> None:
+    _fails_cleanly(capsys, main(["do", COMMAND, "--voice", str(command_wav)]), "not both")
+    _fails_cleanly(capsys, main(["do"]), "give the command in quotes")
+
+
+def test_say_refuses_nothing_and_bad_rates(tmp_path: Path,
+                                           capsys: pytest.CaptureFixture[str]) -> None:
+    _fails_cleanly(capsys, main(["say", " ", "-o", str(tmp_path / "a.wav")]), "nothing to say")
+    _fails_cleanly(capsys, main(["say", "hi", "-o", str(tmp_path / "a.wav"), "--rate", "9"]),
+                   "--rate '9'")
+    _fails_cleanly(capsys, main(["say", "hi", "-o", str(tmp_path / "no" / "a.wav")]),
+                   "cannot be written")
+    _fails_cleanly(capsys, main(["say", "hi", "-o", str(tmp_path / "b.wav"), "--voice",
+                                 "nosuchvoice"]), "no voice 'nosuchvoice'")
