@@ -49,7 +49,7 @@ string behavior_tree
 std_msgs/Empty result
 ---
 geometry_msgs/PoseStamped current_pose
-builtin_interfaces/Time navigation_time
+builtin_interfaces/Duration navigation_time
 builtin_interfaces/Duration estimated_time_remaining
 int16 number_of_recoveries
 float32 distance_remaining""",
