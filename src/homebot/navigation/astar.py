@@ -8,27 +8,27 @@ distance, so paths are shortest.
 
 The search is jump point search over precomputed tables of the straight jumps
 (``jump_points``): a few tenths of a millisecond for a 15 m path, where a
-cell-by-cell A* round a long wall settles tens of thousands of cells. The
-tables take about a millisecond to build for the apartment's grid and a few
-for a 400 x 400 one, so they are kept per grid (keyed by the mask's bits, a few
-grids at once): a grid searched again, as the Navigator's static masks are,
-pays them once.
+cell-by-cell A* round a long wall settles tens of thousands of cells.
 
-A grid seen for the first time (``plan_around`` builds a new mask per call)
-is first searched in a small window round start and goal, with tables of the
-window only; that path is kept when it is provably as short as any path that
-leaves the window (its cost is at most the octile lower bound through the ring
-of cells just outside). Otherwise, and when the grid comes back, the whole
-grid's tables are built. ``libtcod_astar`` is the same search by libtcod's C
-A* (``tcod.path``), which stage 1 used before, kept to compare with:
-``homebot bench navigation`` reports both, and the tables' build time apart.
+Every search first runs in a small window round start and goal, with tables
+of the window only (a fraction of a millisecond), and keeps that path when it
+is provably as short as any path that leaves the window (its cost is at most
+the octile lower bound through the ring of cells just outside). Otherwise it
+searches the whole grid, whose tables take about a millisecond to build for
+the apartment's grid and a few for a 400 x 400 one; they are kept per grid
+(keyed by the mask's bits, the last few grids), so a grid searched again, as
+the Navigator's static masks are, pays them once, while ``plan_around``'s new
+mask per call pays them when its window cannot prove the path. Kept or not,
+the tables are the same, so the path found never depends on what was searched
+before. ``libtcod_astar`` is the same search by libtcod's C A*
+(``tcod.path``), which stage 1 used before, kept to compare with: ``homebot
+bench navigation`` reports both, and the tables' build time apart.
 """
 
 from __future__ import annotations
 
 from collections import OrderedDict
 from collections.abc import Callable
-from typing import Any
 
 import numpy as np
 import tcod.path
@@ -43,56 +43,36 @@ _DIAGONAL = 1414
 _WINDOW_MARGIN = 12
 _STRAIGHT_MOVES = ((-1, 0), (1, 0), (0, -1), (0, 1))
 _DIAGONAL_MOVES = ((-1, -1), (-1, 1), (1, -1), (1, 1))
-# Grids whose jump tables are kept (up to a few megabytes each), and grids
-# remembered as seen once (a key each: a few kilobytes).
+# Grids whose jump tables are kept (up to a few megabytes each).
 _KEPT_TABLES = 8
-_KEPT_SEEN = 64
 _Key = tuple[tuple[int, int], bytes]
 
 
 class _TableCache:
-    """Jump tables of the grids searched lately, keyed by shape and mask bits.
-
-    A grid seen once has no tables yet: they are built when it comes back or
-    when the windowed search cannot prove its path. Grids seen once are kept
-    apart, so that many of them (``plan_around``'s masks) do not push out the
-    tables of grids in use (the Navigator's static masks).
-    """
+    """Jump tables of the grids searched lately, keyed by shape and mask bits."""
 
     def __init__(self) -> None:
         self.tables: OrderedDict[_Key, JumpTables] = OrderedDict()
-        self.once: OrderedDict[_Key, None] = OrderedDict()
 
-    def seen(self, key: _Key) -> tuple[bool, JumpTables | None]:
-        """Whether the grid was seen before, and its tables if built."""
-        tables = self.tables.get(key)
+    def get(self, key: _Key) -> JumpTables | None:
+        """A grid's kept tables (now the latest used), or None."""
+        tables = self.tables.pop(key, None)
         if tables is not None:
-            self.tables[key] = self.tables.pop(key, tables)  # now the latest
-            return True, tables
-        return key in self.once, None
+            self.tables[key] = tables
+        return tables
 
-    def store(self, key: _Key, tables: JumpTables | None) -> None:
-        """Keep a grid's tables, or remember that it was seen (``None``)."""
-        if tables is None:
-            self.once[key] = None
-            _trim(self.once, _KEPT_SEEN)
-            return
-        self.once.pop(key, None)
+    def store(self, key: _Key, tables: JumpTables) -> None:
+        """Keep a grid's tables, dropping those used longest ago beyond the limit."""
         self.tables[key] = tables
-        _trim(self.tables, _KEPT_TABLES)
+        while len(self.tables) > _KEPT_TABLES:
+            try:
+                self.tables.popitem(last=False)
+            except KeyError:  # emptied meanwhile
+                return
 
     def clear(self) -> None:
         """Forget every grid."""
         self.tables.clear()
-        self.once.clear()
-
-
-def _trim(entries: OrderedDict[_Key, Any], size: int) -> None:
-    while len(entries) > size:
-        try:
-            entries.popitem(last=False)
-        except KeyError:  # emptied meanwhile
-            return
 
 
 # Memoisation only: what astar returns does not depend on it.
@@ -111,7 +91,7 @@ def cached_jump_tables(blocked: np.ndarray, shape: tuple[int, int]) -> JumpTable
     """
     mask = np.ascontiguousarray(blocked, dtype=bool)
     key = ((int(shape[0]), int(shape[1])), np.packbits(mask).tobytes())
-    _, tables = _CACHE.seen(key)
+    tables = _CACHE.get(key)
     if tables is None:
         tables = jump_tables(mask, shape)
         _CACHE.store(key, tables)
@@ -135,17 +115,10 @@ def astar(blocked: np.ndarray, shape: tuple[int, int], start: int, goal: int) ->
     if blocked[start] or blocked[goal]:
         return None
     mask = np.ascontiguousarray(blocked, dtype=bool)
-    key = ((int(shape[0]), int(shape[1])), np.packbits(mask).tobytes())
-    seen, tables = _CACHE.seen(key)
-    if tables is None and not seen:
-        found = _windowed(mask, shape, start, goal, _jump_search)
-        if found is not None:
-            _CACHE.store(key, None)
-            return found
-    if tables is None:
-        tables = jump_tables(mask, shape)
-        _CACHE.store(key, tables)
-    searched = jump_point_search(tables, start, goal)
+    found = _windowed(mask, shape, start, goal, _jump_search)
+    if found is not None:
+        return found
+    searched = jump_point_search(cached_jump_tables(mask, shape), start, goal)
     return None if searched is None else searched[0]
 
 
