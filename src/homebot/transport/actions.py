@@ -17,6 +17,7 @@ from dataclasses import dataclass, field
 from enum import IntEnum
 from typing import Any
 
+from homebot.transport.messages import stamp
 from homebot.transport.naming import (
     ACTION_STATUS_QOS,
     DEFAULT_QOS,
@@ -77,8 +78,11 @@ class ActionServer:
     """Serves one action; ``execute(goal, context) -> (status, result fields)``."""
 
     def __init__(self, node: Node, name: str, action: str,
-                 execute: Callable[[Any, GoalContext], tuple[GoalStatus, dict[str, Any]]]) -> None:
+                 execute: Callable[[Any, GoalContext], tuple[GoalStatus, dict[str, Any]]],
+                 clock: Callable[[], float] = time.time) -> None:
+        """``clock`` stamps goal acceptance and status (a simulator passes its own)."""
         self.node, self.name, self.action, self.execute = node, name, action, execute
+        self.clock = clock
         types = node.types
         self._channels: dict[str, tuple[Subscription[Any], Publisher[Any], type[Any]]] = {}
         for part in ("send_goal", "get_result", "cancel_goal"):
@@ -117,11 +121,9 @@ class ActionServer:
 
     def _publish_status(self, goal_id: bytes, status: GoalStatus) -> None:
         types = self.node.types
-        stamp = time.time()
         info = types.new("action_msgs/msg/GoalInfo",
                          goal_id=types.new("unique_identifier_msgs/msg/UUID", uuid=goal_id),
-                         stamp=types.new("builtin_interfaces/msg/Time", sec=int(stamp),
-                                         nanosec=int(stamp % 1 * 1e9)))
+                         stamp=stamp(types, self.clock()))
         self.status.publish(types.new("action_msgs/msg/GoalStatusArray", status_list=[
             types.new("action_msgs/msg/GoalStatus", goal_info=info, status=int(status))]))
 
@@ -146,9 +148,8 @@ class ActionServer:
         goals = send_goal.wait(timeout) if timeout else send_goal.take()
         for request in goals:
             goal_id = bytes(request.goal_id.uuid)
-            stamp = time.time()
-            self._reply("send_goal", request, accepted=True, stamp=self.node.types.new(
-                "builtin_interfaces/msg/Time", sec=int(stamp), nanosec=int(stamp % 1 * 1e9)))
+            self._reply("send_goal", request, accepted=True,
+                        stamp=stamp(self.node.types, self.clock()))
             self._publish_status(goal_id, GoalStatus.EXECUTING)
             context = GoalContext(self, goal_id)
             status, result = self.execute(request.goal, context)

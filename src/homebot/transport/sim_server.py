@@ -45,7 +45,8 @@ class SimServer:
         self.node, self.robot, self.world, self.events = node, robot, world, events
         self.final_state = final_state
         self.calls = node.service(ROBOT_CALL, "homebot_msgs/srv/RobotCall", self._call)
-        self.navigate = ActionServer(node, NAVIGATE_ACTION, NAVIGATE_TO_POSE, self._navigate)
+        self.navigate = ActionServer(node, NAVIGATE_ACTION, NAVIGATE_TO_POSE, self._navigate,
+                                     clock=robot.now)
         self.map = node.publisher("/map", "nav_msgs/msg/OccupancyGrid", MAP_QOS)
         self.odom = node.publisher("/odom", "nav_msgs/msg/Odometry")
         self.tf = node.publisher("/tf", "tf2_msgs/msg/TFMessage")
