@@ -98,11 +98,12 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
 def _astar_timing(repeat: int) -> dict[str, Any]:
     """Time stage-1 A* on 15 m cases and ``Navigator.plan`` (uncached) in the apartment.
 
-    Per case: ``median_ms`` is ``astar`` on a grid it has searched before (its
-    jump tables kept, as for the Navigator's static masks); ``first_search_ms``
-    on a grid it has never seen (``plan_around``'s new mask each call): JPS in
-    a window round start and goal, or when that cannot prove its path, the
-    whole grid's tables and JPS; ``tables_ms`` building the whole grid's jump
+    Per case: ``median_ms`` is ``astar`` on a grid whose jump tables are kept
+    (as the Navigator's static masks'): JPS in a window round start and goal,
+    or when that cannot prove its path, JPS over the kept tables;
+    ``first_search_ms`` on a grid never seen (``plan_around``'s new mask each
+    call), whose tables are built when the window cannot prove its path;
+    ``tables_ms`` building the whole grid's jump
     tables alone; ``libtcod_ms`` the search by libtcod's A* alone, as stage 1
     ran before jump point search. Each is a median wall-clock time, and beside
     it (``*cpu_ms``) the median CPU time of the thread: on a shared, loaded
