@@ -179,7 +179,6 @@ def handle_ask(clause: Clause, ctx: Context) -> None:
 
 
 def _question(clause: Clause) -> str:
-    clause.free_text = True
     quote = clause.first({"quote"})
     if quote is not None:
         return str(quote.value)
@@ -189,6 +188,7 @@ def _question(clause: Clause) -> str:
     topic = clause.first({"topic"})
     if topic is not None:
         return str(topic.value)
+    clause.free_text = True  # the question is the clause's own words
     anchors = [item for item in clause.items
                if (item.kind in PLACES | {"ambiguous", "person", "me"})
                or (item.kind == "pronoun" and item.prep is None and item is clause.items[0])]
