@@ -50,6 +50,8 @@ def account_for(clause: Clause, ctx: Context, steps: Sequence[Step]) -> None:
         return  # the words themselves are said or asked
     values = _step_values(steps)
     for item in clause.items:
+        if item.owner is not None and clause.items[item.owner].kind == "me":
+            continue  # "bring it to me in the living room": the operator is found anyway
         if item.kind in _NAMED_KINDS and not _used(item, values, ctx):
             raise Clarification(f"{_can_do(ctx.steps)}I do not see what to do with "
                                 f"{_name(item)} in that command. What should I do with it?")

@@ -159,8 +159,9 @@ def _locate(clause: Clause, subject: Item, place: Item) -> bool:
     person = subject.kind == "person" or (subject.kind == "pronoun"
                                           and subject.text in _PERSON_PRONOUNS)
     for at, item in enumerate(clause.items):
-        if clause.located(item) is not None:
-            continue
+        located = clause.located(item)
+        if located is not None and (located.prep == "from" or item.kind == "person"):
+            continue  # already said where it is ("put it in the pantry" is where it goes)
         same = (item.kind == subject.kind and item.value == subject.value
                 and subject.kind != "pronoun")
         refers = item.kind == "pronoun" and subject.kind != "pronoun" and (
