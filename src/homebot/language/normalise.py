@@ -18,6 +18,7 @@ __all__ = ["QUOTE_MARK", "Normalised", "correct_spelling", "normalise"]
 _QUOTED = re.compile(r"\"([^\"]+)\"|“([^”]+)”|«([^»]+)»")
 _CONTRACTIONS = tuple((re.compile(rf"\b{re.escape(short)}\b"), long)
                       for short, long in lexicon.CONTRACTIONS)
+_POSSESSIVE = re.compile(r"(?<=[^\W\d_])'s\b")
 _BREAKS = re.compile(r"[,;:.!?]+")
 _OTHER = re.compile(r"[^\w,' ]+|_+")  # after folding: letters of any script stay
 _WORDS = re.compile(r"[^\W\d_]+|[.!?]")
@@ -51,6 +52,7 @@ def normalise(text: str, vocabulary: Vocabulary) -> Normalised:
     lowered = fold(text)
     for pattern, long in _CONTRACTIONS:
         lowered = pattern.sub(long, lowered)
+    lowered = _POSSESSIVE.sub("", lowered)  # "Tom's question": Tom
     lowered = _BREAKS.sub(" , ", lowered)
     raw = _OTHER.sub(" ", lowered).replace("'", "").split()
     tokens: list[str] = []
@@ -92,7 +94,7 @@ def correct_spelling(token: str, vocabulary: Vocabulary, *, as_name: bool = Fals
                                   scorer=JaroWinkler.normalized_similarity, score_cutoff=0.85)
         if name:
             return str(name[0])
-    cutoff = 80.0 if len(token) >= 5 else 85.0
+    cutoff = 80.0 if len(token) >= 5 else 90.0  # "late" is not a misspelt "plate"
     match = process.extractOne(token, vocabulary.spelling_choices, scorer=fuzz.ratio,
                                score_cutoff=cutoff)
     return str(match[0]) if match else token
