@@ -123,3 +123,11 @@ def test_relay_sentences() -> None:
     assert relay_sentence("Tom", "what is your favourite food", "rice") == (
         "Tom's favourite food is rice.")
     assert relay_sentence("Emma", "do you need help?", "no") == "Emma said: no."
+
+
+def test_that_refers_back_to_the_thing_found_before(
+        home: tuple[SimulatedRun, Conversation]) -> None:
+    run, chat = home
+    assert chat.hear("find the beer in the kitchen").status == "done"
+    assert chat.hear("bring me that").status == "done"
+    assert run.simulation.object_location["beer"] == "person:Sam"
