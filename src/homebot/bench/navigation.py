@@ -7,10 +7,12 @@ alone, and libtcod alone; and ``Navigator.plan`` between every placement pair.
 
 **Driving** (``--goals N``): the embodied robot (``SimBody``, three people
 walking) drives to N seeded goals in turn, half placement approach poses and
-half random free points, each with ``NavigateToPose`` along stage 1's path and
-a local controller: CAESAR's stage 2 (``MotionSearchPlanner``) and the Dynamic
-Window Approach baseline, each in its own simulation with the same seed and
-goals. Everything is judged by the simulator's truth: collisions are
+half random free points, each with the robot's whole navigation
+(``RecoveringNavigation``: stage 1's path, a local controller, and replanning
+round what the laser sees or waiting when blocked) with two local controllers:
+CAESAR's stage 2 (``MotionSearchPlanner``) and the Dynamic Window Approach
+baseline, each in its own simulation with the same seed and goals.
+Everything is judged by the simulator's truth: collisions are
 ``simulation.collisions`` (walls, furniture, people); a goal is reached when
 the true position ends within 0.3 m of it. When a goal was missed, the robot
 is carried (truth only) to that goal before the next one, so both controllers
@@ -18,8 +20,9 @@ always face the same start and goal. Smoothness is the mean absolute angular
 acceleration of the base (rad/s², from the velocity at each 20 Hz tick while
 driving); also reported: mean absolute linear acceleration. Cycle times are
 wall-clock per ``plan`` call on whatever core this runs on (``taskset -c 0``).
-The pose the controllers steer by is ``--pose``: the truth (default, fast) or
-odometry anchored at each goal's start (it drifts during the goal).
+The pose the controllers steer by is ``--pose``: the truth (default, fast),
+odometry anchored at each goal's start (it drifts during the goal), or Monte
+Carlo localisation started near the truth at each goal (as the robot does).
 """
 
 from __future__ import annotations
@@ -45,13 +48,10 @@ from homebot.navigation.astar import cached_jump_tables, forget_jump_tables, lib
 from homebot.navigation.dwa import DynamicWindowPlanner
 from homebot.navigation.jump_points import jump_tables
 from homebot.navigation.local_planner import MotionSearchPlanner
+from homebot.navigation.localisation import MclParameters, MonteCarloLocalisation
 from homebot.navigation.localmap import LocalController
-from homebot.navigation.navigate import (
-    NavigateToPose,
-    NavigationFeedback,
-    NavigationGoal,
-    OdometryPose,
-)
+from homebot.navigation.navigate import OdometryPose
+from homebot.navigation.recovery import RecoveringNavigation, RecoveryPolicy
 from homebot.robot import DriveKind, LaserScan, Pose, Twist, VelocityLimits
 from homebot.sim.body import SimBody
 from homebot.sim.simulation import Simulation
@@ -60,7 +60,12 @@ from homebot.world import PlacementKind, World
 __all__ = ["add_arguments", "run"]
 
 _REACHED = 0.3  #: metres from the goal, by the truth
+_TOLERANCE = 0.15  #: metres: the navigation's own goal tolerance (by its pose estimate)
+_HEADING_TOLERANCE = 0.2  #: radians
 _GOAL_CLEARANCE = 0.45  #: a random free goal keeps this far from walls and furniture
+# Nobody here asks people to step aside (the executive does that for the robot), so the
+# robot waits for the way to clear as long as its budget allows.
+_POLICY = RecoveryPolicy(patience=RecoveryPolicy.wait_budget)
 _PLANNERS: dict[str, Callable[[], LocalController]] = {
     "stage2": MotionSearchPlanner, "dwa": DynamicWindowPlanner}
 
@@ -73,8 +78,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "figure is --goals 200)")
     parser.add_argument("--planner", choices=["stage2", "dwa", "both"], default="both",
                         help="which local controller drives")
-    parser.add_argument("--pose", choices=["truth", "odometry"], default="truth",
-                        help="the pose the controllers steer by")
+    parser.add_argument("--pose", choices=["truth", "odometry", "mcl"], default="truth",
+                        help="the pose the controllers steer by (mcl: Monte Carlo "
+                             "localisation from the laser, as the robot does)")
     parser.add_argument("--walkers", type=count("--walkers", 0, 20), default=3,
                         help="people walking about")
     parser.add_argument("--seed", type=seed, default=1, help="seeds goals, people and sensors")
@@ -265,6 +271,9 @@ class _Outcome:
     cycles: list[float] = field(default_factory=list)
     travelled: float = 0.0
     wall_seconds: float = 0.0
+    replans: int = 0
+    waits: int = 0
+    pose_errors: list[float] = field(default_factory=list)
 
     def summary(self) -> dict[str, Any]:
         goals = len(self.reached)
@@ -281,6 +290,10 @@ class _Outcome:
             "mean |linear acceleration|, m/s2": round(statistics.fmean(self.linear), 4)
             if self.linear else 0.0,
             "travelled, m": round(self.travelled, 1),
+            "replans round unexpected obstacles": self.replans,
+            "waits for the way to clear": self.waits,
+            "pose error at goal (mcl), median m": round(statistics.median(self.pose_errors), 3)
+            if self.pose_errors else None,
             "cycle median ms": _median_ms(self.cycles) if self.cycles else None,
             "cycle p95 ms": round(1000 * float(np.percentile(self.cycles, 95)), 3)
             if self.cycles else None,
@@ -298,42 +311,64 @@ def _drive(name: str, world: World, navigator: Navigator, targets: list[Pose],
     body = SimBody(sim, walkers=args.walkers)
     controller = _Timed(_PLANNERS[name]())
     outcome = _Outcome()
+    velocities: list[tuple[float, Twist]] = []
     previous: Pose | None = None
     for target in targets:
         if previous is not None and math.dist(sim.robot_pose[:2], previous.xy()) > _REACHED:
             body.teleport(previous)  # the last goal was missed: start where it should have
         truth = Pose(*sim.robot_pose)
-        velocities: list[Twist] = []
+        velocities.clear()
+        source = _pose_source(args.pose, sim, body, navigator, truth, args.seed,
+                              len(outcome.reached))
 
-        def sample(_: NavigationFeedback, velocities: list[Twist] = velocities) -> None:
-            velocities.append(body.odometry().twist)
+        def localise(source: Callable[[], Pose] = source) -> Pose:
+            # Once per control period: the navigation may ask again within one.
+            if not velocities or velocities[-1][0] < body.now():
+                velocities.append((body.now(), body.odometry().twist))
+            return source()
 
-        pose = (lambda: Pose(*sim.robot_pose)) if args.pose == "truth" else \
-            OdometryPose(body, truth)
+        navigation = RecoveringNavigation(body, navigator, controller, localise, _POLICY)
+        collisions = len(sim.collisions)
         try:
-            goal = NavigationGoal.planned(navigator, truth, target, sim.closed_doors())
+            attempt = navigation.drive(target, tolerance=_TOLERANCE,
+                                       heading_tolerance=_HEADING_TOLERANCE)
         except NavigationError:
             outcome.reached.append(False)
             outcome.durations.append(0.0)
             outcome.reasons["no path"] = outcome.reasons.get("no path", 0) + 1
             previous = target
             continue
-        collisions = len(sim.collisions)
-        action = NavigateToPose(goal, body, controller, pose, on_feedback=sample)
-        result = action.run(max_steps=int(2 * action.timeout / body.tick_period) + 100)
         reached = math.dist(sim.robot_pose[:2], target.xy()) <= _REACHED
         outcome.reached.append(reached)
-        outcome.durations.append(result.duration)
-        reason = str(result.reason) if reached or result.reason is None else \
-            f"{result.reason} (missed)"
+        outcome.durations.append(attempt.duration)
+        reason = str(attempt.reason) if reached else f"{attempt.reason} (missed)"
         outcome.reasons[reason] = outcome.reasons.get(reason, 0) + 1
+        outcome.replans += attempt.replans
+        outcome.waits += attempt.waits
         outcome.collisions.extend(sim.collisions[collisions:])
-        outcome.travelled += result.travelled
-        for before, after in itertools.pairwise(velocities):
+        outcome.travelled += attempt.travelled
+        for (_, before), (_, after) in itertools.pairwise(velocities):
             outcome.angular.append(abs(after.wz - before.wz) / body.tick_period)
             outcome.linear.append(math.hypot(after.vx - before.vx, after.vy - before.vy) /
                                   body.tick_period)
+        if args.pose == "mcl":
+            outcome.pose_errors.append(math.dist(source().xy(), sim.robot_pose[:2]))
         previous = target
     outcome.cycles = controller.seconds
     outcome.wall_seconds = time.perf_counter() - began
     return outcome
+
+
+def _pose_source(kind: str, sim: Simulation, body: SimBody, navigator: Navigator, truth: Pose,
+                 seed: int, goal: int) -> Callable[[], Pose]:
+    """What the robot steers by: the truth, odometry anchored at the goal's start, or MCL
+    (started near the truth at each goal, as a robot that knew where it was)."""
+    if kind == "truth":
+        return lambda: Pose(*sim.robot_pose)
+    if kind == "odometry":
+        return OdometryPose(body, truth)
+    localisation = MonteCarloLocalisation(
+        navigator.grid, np.random.default_rng([seed, goal, 7]),
+        MclParameters(odom_model_type=body.drive))
+    localisation.initialise(truth, spread=0.05, angle_spread=0.05)
+    return lambda: localisation.update(body.odometry(), body.scan())

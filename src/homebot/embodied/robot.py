@@ -15,17 +15,19 @@ Robot implementation over the same world.
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import dataclass
 from typing import Protocol
 
 import numpy as np
 
+from homebot.errors import NavigationError
 from homebot.events import EventLog
 from homebot.navigation import Navigator
 from homebot.navigation.localisation import MonteCarloLocalisation
 from homebot.navigation.localmap import LocalController
-from homebot.navigation.navigate import NavigateToPose, NavigationGoal, StopReason
+from homebot.navigation.recovery import RecoveringNavigation, scan_on_map
 from homebot.robot import (
     Blocker,
     Body,
@@ -35,7 +37,6 @@ from homebot.robot import (
     PersonPercept,
     Pose,
     Robot,
-    Twist,
 )
 from homebot.world import World
 
@@ -45,15 +46,8 @@ _STOP_BEFORE_DOOR = 0.6  #: metres in front of a door where the robot stops to l
 _DOORWAY = 0.35  #: laser returns this close to a door's centre mean something stands in it
 _GOAL_TOLERANCE = 0.15  #: metres: a leg ends this close to its end point
 _HEADING_TOLERANCE = 0.2  #: radians: the final turn ends this close to the goal's heading
-_STOP_TICKS = 60  #: control periods allowed beyond a goal's timeout to come to rest
-_SECONDS_PER_METRE = 6.0  #: a leg is given up after this long per metre of path ...
-_WAIT_BUDGET = 60.0  #: ... plus this long for waiting and going round
-_STUCK_SECONDS = 3.0  #: without headway this long, stage 1 plans round what the laser sees
-_OBSTACLE_MARGIN = 0.12  #: metres kept from an unexpected return beyond the robot's radius
-_STATIC_MARGIN = 0.14  #: metres kept from walls and furniture beyond it, where there is room
-_OBSTACLE_MEMORY = 45.0  #: seconds an unexpected return is remembered for stage 1
-_UNEXPLAINED = 0.15  #: a return this far from the static map's obstacles is unexpected
 _PARTICLES_SHOWN = 500
+_IN_THE_WAY = 0.8  #: metres from the robot's way within which a person stands in it
 
 
 class Companions(Protocol):
@@ -97,8 +91,8 @@ class BodyRobot(Robot):
         self.percepts = percepts
         self.companions = companions
         self.events = events
-        #: unexpected laser returns remembered for stage 1, with when they were seen
-        self._obstacles: list[tuple[float, np.ndarray]] = []
+        self.navigation = RecoveringNavigation(body, navigator, controller, self._localise,
+                                               on_replan=self._record_replan)
         self.localisation.update(body.odometry(), body.scan())
 
     # ------------------------------------------------------------ state
@@ -154,98 +148,22 @@ class BodyRobot(Robot):
         return MoveReport(True, self.pose(), travelled, doors_passed=tuple(passed))
 
     def _drive_leg(self, target: Pose, avoid_doors: frozenset[str], final: bool) -> MoveReport:
-        """Drive to ``target`` with the local planner along a stage-1 path.
-
-        When the robot makes no headway for a while (someone in the way, a chair
-        moved), stage 1 plans again round what the laser sees that the map lacks
-        (CAESAR's dynamic obstacle extension); when no way round exists the robot
-        waits for the way to clear. It gives up when the leg's time budget is spent.
-        """
-        here = self.pose()
-        plan = self.navigator.plan(here.xy(), target.xy(), avoid_doors)
-        if plan is None:
-            return MoveReport(False, here, 0.0, Blocker.NO_PATH)
-        body = self.body
-        deadline = body.now() + plan.length * _SECONDS_PER_METRE + _WAIT_BUDGET
-        # Stage 1 by length alone squeezes through gaps the local planner, keeping its
-        # safety margin, can only crawl through; a wider way is preferred when there is one.
-        path: tuple[tuple[float, float], ...] | None = \
-            self._plan_wide(here, target, avoid_doors, np.zeros((0, 2))) or plan.waypoints
-        travelled = 0.0
-        while body.now() < deadline:
-            if path is None:
-                self._wait(_STUCK_SECONDS)
-            else:
-                budget = max(deadline - body.now(), body.tick_period)
-                goal = NavigationGoal(target, path, _GOAL_TOLERANCE,
-                                      _HEADING_TOLERANCE if final else None, timeout=budget)
-                action = NavigateToPose(goal, body, self.controller, self._localise,
-                                        stuck_after=_STUCK_SECONDS)
-                result = action.run(int(budget / body.tick_period) + _STOP_TICKS)
-                travelled += result.travelled
-                if result.reached:
-                    return MoveReport(True, self.pose(), travelled)
-                if result.reason is not StopReason.BLOCKED:
-                    break
-            path = self._plan_wide(self._localise(), target, avoid_doors,
-                                   self._remembered_obstacles())
-            self.events.record("robot.replan", found=path is not None)
-        person = self._person_near(self.pose().xy(), 1.5)
+        """Drive to ``target`` along stage-1 paths, planning round what blocks the way."""
+        try:
+            attempt = self.navigation.drive(target, avoid_doors, tolerance=_GOAL_TOLERANCE,
+                                            heading_tolerance=_HEADING_TOLERANCE if final
+                                            else None)
+        except NavigationError:
+            return MoveReport(False, self.pose(), 0.0, Blocker.NO_PATH)
+        if attempt.reached:
+            return MoveReport(True, self.pose(), attempt.travelled)
+        person = self._person_in_the_way(target, avoid_doors)
         blocker = Blocker.PERSON if person else Blocker.NO_PATH
         self.events.record("robot.stuck", person=person)
-        return MoveReport(False, self.pose(), travelled, blocker, None, person)
+        return MoveReport(False, self.pose(), attempt.travelled, blocker, None, person)
 
-    def _plan_wide(self, here: Pose, target: Pose, avoid_doors: frozenset[str],
-                   obstacles: np.ndarray) -> tuple[tuple[float, float], ...] | None:
-        """Stage 1 round ``obstacles``, with a margin from walls and furniture where there is
-        room, else through the narrow gaps too (None: no way at all)."""
-        radius = self.body.radius
-        for static in (radius + _STATIC_MARGIN, None):
-            path = self.navigator.plan_around(here.xy(), target.xy(), avoid_doors, obstacles,
-                                              radius + _OBSTACLE_MARGIN, static)
-            if path is not None:
-                return path
-        return None
-
-    def _wait(self, seconds: float) -> None:
-        """Stand still for ``seconds`` (someone may move out of the way)."""
-        self._halt()
-        self.body.tick(max(1, int(seconds / self.body.tick_period)))
-
-    def _remembered_obstacles(self) -> np.ndarray:
-        """What the laser sees now that the map lacks, with what it saw lately.
-
-        Remembering keeps the robot from turning back to a way it has just seen
-        blocked once the obstacle is out of its laser's sight; forgetting after a
-        while lets people who walked off free the way again.
-        """
-        now = self.body.now()
-        self._obstacles = [(seen, points) for seen, points in self._obstacles
-                           if now - seen <= _OBSTACLE_MEMORY]
-        self._obstacles.append((now, self._unexpected_returns()))
-        return np.concatenate([points for _, points in self._obstacles])
-
-    def _unexpected_returns(self) -> np.ndarray:
-        """Laser returns on the map that the static map does not explain."""
-        points = self._scan_on_map()
-        grid = self.navigator.grid
-        rows, columns = grid.shape
-        column = np.clip(((points[:, 0] - grid.origin[0]) / grid.resolution).astype(int),
-                         0, columns - 1)
-        row = np.clip(((points[:, 1] - grid.origin[1]) / grid.resolution).astype(int),
-                      0, rows - 1)
-        clearance = self.navigator.clearance()
-        unexplained: np.ndarray = points[clearance[row, column] > _UNEXPLAINED]
-        return unexplained
-
-    def _halt(self) -> None:
-        """Command a stop and let the base decelerate to rest."""
-        body = self.body
-        body.command_velocity(Twist())
-        for _ in range(int(1.0 / body.tick_period)):  # a second is ample at any limit
-            if body.odometry().twist.is_zero():
-                break
-            body.tick()
+    def _record_replan(self, found: bool) -> None:
+        self.events.record("robot.replan", found=found)
 
     def _door_blocker(self, door: str) -> tuple[Blocker, str | None] | None:
         """Standing before ``door``: is it shut, or does someone stand in it?"""
@@ -262,6 +180,18 @@ class BodyRobot(Robot):
         return int(np.count_nonzero(np.hypot(points[:, 0] - point[0],
                                              points[:, 1] - point[1]) < _DOORWAY))
 
+    def _person_in_the_way(self, target: Pose, avoid_doors: frozenset[str]) -> str | None:
+        """Who stands on the way the robot would take if nobody were there (or, with no
+        such way, nearest the robot), so that they can be asked to let it by."""
+        here = self.pose()
+        path = self.navigation.plan_wide(here, target, avoid_doors, np.zeros((0, 2)))
+        if path is None:
+            return self._person_near(here.xy(), 1.5)
+        seen = [(_distance_to_path(p.position, path), p.name)
+                for p in self.percepts.perceive_people() if p.name]
+        blocking = sorted((gap, name) for gap, name in seen if gap <= _IN_THE_WAY)
+        return blocking[0][1] if blocking else None
+
     def _person_near(self, point: tuple[float, float], reach: float) -> str | None:
         seen = [p for p in self.percepts.perceive_people()
                 if p.name and math.dist(p.position, point) <= reach]
@@ -270,11 +200,7 @@ class BodyRobot(Robot):
 
     def _scan_on_map(self) -> np.ndarray:
         """The latest scan's returns on the map, placed by the pose estimate."""
-        pose = self.pose()
-        points = self.body.scan().points()
-        cos, sin = math.cos(pose.theta), math.sin(pose.theta)
-        return np.column_stack((pose.x + cos * points[:, 0] - sin * points[:, 1],
-                                pose.y + sin * points[:, 0] + cos * points[:, 1]))
+        return scan_on_map(self.pose(), self.body.scan())
 
     def _record_view(self) -> None:
         """Log what the robot saw and believed at the end of a motion, for the map picture."""
@@ -338,6 +264,21 @@ class BodyRobot(Robot):
 
     def request(self, person: str, request: HelpRequest, target: str) -> bool:
         return self.percepts.request(person, request, target)
+
+
+def _distance_to_path(point: tuple[float, float],
+                      path: tuple[tuple[float, float], ...]) -> float:
+    """Metres from ``point`` to the nearest segment of ``path``."""
+    if len(path) == 1:
+        return math.dist(point, path[0])
+    best = math.inf
+    for (ax, ay), (bx, by) in itertools.pairwise(path):
+        dx, dy = bx - ax, by - ay
+        length = dx * dx + dy * dy
+        t = 0.0 if length == 0 else max(0.0, min(1.0, ((point[0] - ax) * dx +
+                                                       (point[1] - ay) * dy) / length))
+        best = min(best, math.dist(point, (ax + t * dx, ay + t * dy)))
+    return best
 
 
 def _wrap(angle: float) -> float:

@@ -49,13 +49,16 @@ def _door_closed(context: SkillContext, skill: str, args: Mapping[str, Any],
 
 def _path_blocked(context: SkillContext, skill: str, args: Mapping[str, Any],
                   outcome: Outcome, run: StepRunner) -> bool:
-    """Ask the person in the way to step aside; if they do not, go round them."""
+    """Ask the person in the way to step aside; if they do not, go round them (past a
+    door they stand in; one who blocks the way elsewhere leaves no way to go round)."""
     person, door = outcome.data.get("person"), str(outcome.data.get("door", ""))
     if person:
         speak(context, f"Excuse me, {person}, could you please let me through?")
         if context.robot.request(str(person), HelpRequest.STEP_ASIDE, door):
             speak(context, "Thank you!")
             return True
+    if not door:
+        return False
     context.beliefs.door_closed(door)
     return _has_other_way(context, skill, args)
 

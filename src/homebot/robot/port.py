@@ -153,7 +153,8 @@ class Robot(ABC):
 
     @abstractmethod
     def request(self, person: str, request: HelpRequest, target: str) -> bool:
-        """Ask a nearby person for help (open ``target`` door, step aside from it)."""
+        """Ask a nearby person for help: open the ``target`` door, or step aside from it
+        (``target`` empty: step out of the robot's way wherever they stand)."""
 
     @abstractmethod
     def follow(self, person: str, goal: Pose | None) -> MoveReport:

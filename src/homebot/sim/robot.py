@@ -267,6 +267,12 @@ class SimRobot(Robot):
             room = sim.world.room_polygons[state.room].centroid
             sim.move_person(person, (room.x, room.y))
             return True
+        if request is HelpRequest.STEP_ASIDE and not target:
+            spot = sim.spot_aside(state.position)
+            if spot is None:
+                return False
+            sim.move_person(person, spot)
+            return True
         if request is HelpRequest.OPEN_DOOR and target in sim.door_state:
             sim.clock.advance(ActionDurations.OPEN_DOOR)
             sim.door_state[target] = DoorState.OPEN

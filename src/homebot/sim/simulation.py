@@ -30,6 +30,9 @@ __all__ = ["HAND_PREFIX", "PERSON_PREFIX", "Simulation"]
 
 HAND_PREFIX = "hand:"  #: object location held in a robot hand, e.g. ``hand:left``
 PERSON_PREFIX = "person:"  #: object location given to a person, e.g. ``person:Alex``
+_STEP_ASIDE = (0.8, 1.2, 1.6, 2.0)  #: metres a person letting the robot by may step
+_ASIDE_DIRECTIONS = 16
+_CLEAR_OF_ROBOT = 1.0  #: metres from the robot's centre a person stepping aside keeps
 
 
 @dataclass
@@ -203,6 +206,27 @@ class Simulation:
 
     def robot_room(self) -> str | None:
         return self.world.room_at(self.robot_pose[0], self.robot_pose[1])
+
+    def spot_aside(self, position: tuple[float, float]) -> tuple[float, float] | None:
+        """Where a person at ``position`` steps to get out of the robot's way: the
+        nearby spot with the most room round it, as people step into open floor
+        (None: no free spot within reach)."""
+        grid, clearance = self.navigator.grid, self.navigator.clearance()
+        best: tuple[float, tuple[float, float]] | None = None
+        for reach in _STEP_ASIDE:
+            for turn in range(_ASIDE_DIRECTIONS):
+                angle = 2 * math.pi * turn / _ASIDE_DIRECTIONS
+                spot = (position[0] + reach * math.cos(angle),
+                        position[1] + reach * math.sin(angle))
+                if self.world.room_at(*spot) is None or self.distance_to(spot) < _CLEAR_OF_ROBOT:
+                    continue
+                cell = grid.cell_of(*spot)
+                if grid.blocked[cell]:
+                    continue
+                score = min(float(clearance[cell]), 1.0) - 0.2 * reach
+                if best is None or score > best[0]:
+                    best = (score, spot)
+        return best[1] if best else None
 
     def distance_to(self, point: tuple[float, float]) -> float:
         return math.dist(self.robot_pose[:2], point)

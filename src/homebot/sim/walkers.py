@@ -12,6 +12,8 @@ import math
 import random
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from homebot.sim.simulation import Simulation
 from homebot.world import PlacementKind
 
@@ -23,6 +25,9 @@ _CARRY_CHANCE = 0.1  #: share of departures on which an object is taken along
 _LEG_SPREAD = 0.1  #: metres from a person's centre to each leg's
 _BESIDE = 0.75  #: metres sideways from a placement's approach spot, where people stand
 _YIELD_DISTANCE = 0.9  #: a walker waits when the robot's centre is this close ahead
+_PATIENCE = 4.0  #: seconds a walker waits for the robot before walking round it
+_ROUND_ROBOT = 0.75  #: metres a walker going round the robot keeps from its centre
+_DOORWAY = 0.9  #: metres from a door's centre within which nobody chooses to stand
 
 
 @dataclass
@@ -37,6 +42,7 @@ class Walker:
     at_place: str | None = None
     leaves_at: float = 0.0
     carrying: str | None = None
+    waiting_since: float | None = None  #: when the walker stopped for the robot
 
 
 class PeopleWalking:
@@ -111,8 +117,17 @@ class PeopleWalking:
         heading = math.atan2(target[1] - here[1], target[0] - here[0])
         to_robot = (robot[0] - here[0], robot[1] - here[1])
         ahead = to_robot[0] * math.cos(heading) + to_robot[1] * math.sin(heading)
-        if math.hypot(*to_robot) < _YIELD_DISTANCE and ahead > -0.1:
-            return  # the robot is in the way: wait for it to pass
+        beside = abs(to_robot[1] * math.cos(heading) - to_robot[0] * math.sin(heading))
+        if math.hypot(*to_robot) < _YIELD_DISTANCE and ahead > -0.1 and beside < _ROUND_ROBOT:
+            # The robot is in the way: wait for it to pass, and if it does not, go round it
+            # (a robot waiting for the person to move would otherwise wait for ever).
+            now = self.sim.clock.now()
+            if walker.waiting_since is None:
+                walker.waiting_since = now
+            elif now - walker.waiting_since >= _PATIENCE and self._go_round(walker, here, robot):
+                walker.waiting_since = None
+            return
+        walker.waiting_since = None
         walker.heading = heading
         step = walker.speed * seconds
         remaining = math.dist(here, target)
@@ -127,6 +142,25 @@ class PeopleWalking:
         self.sim.move_person(walker.name, position)
         if not walker.path:
             self._arrive(walker)
+
+    def _go_round(self, walker: Walker, here: tuple[float, float],
+                  robot: tuple[float, float]) -> bool:
+        """A new way to the walker's goal that keeps clear of the robot, or else a step
+        aside to let the robot by; False if neither."""
+        sim = self.sim
+        path = sim.navigator.plan_around(here, walker.path[-1], sim.closed_doors(),
+                                         np.asarray([robot]), _ROUND_ROBOT)
+        if path is not None:
+            walker.path = list(path[1:])
+            return True
+        # No way round (the robot stands in the doorway they need): let it by first.
+        spot = sim.spot_aside(here)
+        way = None if spot is None else sim.navigator.plan_around(
+            here, spot, sim.closed_doors(), np.asarray([robot]), _ROUND_ROBOT)
+        if way is None:
+            return False
+        walker.path = [*way[1:], *walker.path]
+        return True
 
     def _arrive(self, walker: Walker) -> None:
         sim = self.sim
@@ -146,6 +180,9 @@ class PeopleWalking:
         for side in (1, -1):
             spot = (x + side * _BESIDE * math.cos(theta + math.pi / 2),
                     y + side * _BESIDE * math.sin(theta + math.pi / 2))
-            if sim.world.room_at(*spot) is not None and not grid.blocked[grid.cell_of(*spot)]:
+            in_doorway = any(math.dist(spot, door.position) < _DOORWAY
+                             for door in sim.world.doors.values())
+            if (sim.world.room_at(*spot) is not None and not in_doorway
+                    and not grid.blocked[grid.cell_of(*spot)]):
                 return spot
         return None

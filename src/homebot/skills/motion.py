@@ -48,6 +48,9 @@ def _motion_outcome(context: SkillContext, report: MoveReport) -> Outcome:
         return Outcome.failed(ErrorCode.PATH_BLOCKED,
                               f"{report.person} is standing in the {report.door}",
                               door=report.door, person=report.person)
+    if report.blocker is Blocker.PERSON and report.person:
+        return Outcome.failed(ErrorCode.PATH_BLOCKED, f"{report.person} is standing in my way",
+                              person=report.person)
     return Outcome.failed(ErrorCode.NO_PATH, "there is no way there with the doors I know of")
 
 

@@ -1,0 +1,338 @@
+"""Navigation with recovery: drive to a pose, and when the way is blocked, plan round it or wait.
+
+``NavigateToPose`` alone gives up when it makes no headway. A robot among
+people needs what Nav2's navigator wraps round its controller (replanning and
+wait recoveries) and what CAESAR calls the dynamic obstacle extension: when the
+robot makes no headway for ``stuck_after`` seconds, stage 1 plans again round
+what the laser sees that the static map lacks (a person, a chair moved), with
+what it saw lately remembered for a while; when there is no way round, the
+robot waits for the way to clear. It gives up when the time budget is spent.
+
+Stage 1 by length alone squeezes through gaps that the local planner, keeping
+its safety margin, can only crawl through, so a path with a margin from walls
+and furniture is preferred wherever one exists.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from homebot.errors import NavigationError
+from homebot.navigation.localmap import LocalController
+from homebot.navigation.navigate import NavigateToPose, NavigationGoal, StopReason
+from homebot.navigation.navigator import Navigator
+from homebot.robot import Body, LaserScan, Pose, Twist
+
+__all__ = ["NavigationAttempt", "ObstacleMemory", "RecoveringNavigation", "RecoveryPolicy",
+           "scan_on_map"]
+
+_STOP_TICKS = 60  #: control periods allowed beyond a goal's budget to come to rest
+_FACE_AHEAD = 0.5  #: metres along the path to the point a spin recovery turns to face
+_FACED = 0.3  #: radians: a spin recovery stops this close to facing that point
+_AT_THE_MAP = 0.075  #: metres: a return this near a wall or furniture cell is that obstacle
+
+
+@dataclass(frozen=True)
+class RecoveryPolicy:
+    """How long to try, and how to plan round what the map lacks.
+
+    Args:
+        stuck_after: seconds without headway before planning again.
+        seconds_per_metre: the time budget per metre of the first path ...
+        wait_budget: ... plus this, for waiting and going round.
+        obstacle_margin: metres kept from an unexpected return beyond the robot's radius.
+        static_margin: metres kept from walls and furniture beyond it, where there is room.
+        obstacle_memory: seconds an unexpected return is remembered.
+        unexplained: a return this much shorter than the static map explains is unexpected.
+        wait: seconds to stand still when no way round exists.
+        patience: seconds of waiting in a row, with no way round, before giving up as
+            blocked (someone who stays in the way has to be asked to move).
+    """
+
+    stuck_after: float = 3.0
+    seconds_per_metre: float = 6.0
+    wait_budget: float = 60.0
+    # More than stage 2 keeps from a pair of legs (its safety plus leg margin), so that
+    # stage 1 never offers a gap past a person that stage 2 will not drive through.
+    obstacle_margin: float = 0.22
+    static_margin: float = 0.14
+    obstacle_memory: float = 45.0
+    unexplained: float = 0.15
+    wait: float = 3.0
+    patience: float = 20.0
+
+    def __post_init__(self) -> None:
+        for name in ("stuck_after", "seconds_per_metre", "obstacle_memory", "unexplained",
+                     "wait", "patience"):
+            value = getattr(self, name)
+            if not (math.isfinite(value) and value > 0):
+                raise NavigationError(f"the recovery policy's {name} must be a positive "
+                                      f"number, not {value!r}")
+        for name in ("wait_budget", "obstacle_margin", "static_margin"):
+            value = getattr(self, name)
+            if not (math.isfinite(value) and value >= 0):
+                raise NavigationError(f"the recovery policy's {name} cannot be negative or "
+                                      f"infinite, not {value!r}")
+
+
+@dataclass
+class ObstacleMemory:
+    """Laser returns the static map does not explain, remembered for a while.
+
+    Remembering keeps the robot from turning back to a way it has just seen
+    blocked once the obstacle is out of its laser's sight; forgetting after a
+    while lets people who walked off free the way again.
+    """
+
+    navigator: Navigator
+    unexplained: float
+    memory: float
+    _seen: list[tuple[float, np.ndarray]] = field(default_factory=list)
+
+    def unexpected(self, pose: Pose, scan: LaserScan) -> np.ndarray:
+        """The scan's returns, on the map by ``pose``, that no wall or furniture explains.
+
+        A return far from every wall and piece of furniture is unexpected; so is
+        one nearer to them (a person standing by a wall) when it comes back
+        shorter, by more than ``unexplained``, than the map's obstacle along its
+        beam. Returns right at the map's obstacles are always explained, as a
+        beam grazing a wall may end a little early on a map raster.
+        """
+        keep = scan.valid()
+        ranges = scan.ranges[keep]
+        cos, sin = math.cos(pose.theta), math.sin(pose.theta)
+        mount = scan.mount
+        origin = (pose.x + cos * mount.x - sin * mount.y, pose.y + sin * mount.x + cos * mount.y)
+        angles = scan.angles()[keep] + mount.theta + pose.theta
+        expected = self._expected_ranges(origin, angles, ranges + self.unexplained)
+        points = scan_on_map(pose, scan)
+        grid = self.navigator.grid
+        rows, columns = grid.shape
+        column = np.clip(((points[:, 0] - grid.origin[0]) / grid.resolution).astype(int),
+                         0, columns - 1)
+        row = np.clip(((points[:, 1] - grid.origin[1]) / grid.resolution).astype(int),
+                      0, rows - 1)
+        clearance = self.navigator.clearance()[row, column]
+        short = (ranges < expected - self.unexplained) & (clearance > _AT_THE_MAP)
+        unexplained: np.ndarray = points[short | (clearance > self.unexplained)]
+        return unexplained
+
+    def _expected_ranges(self, origin: tuple[float, float], angles: np.ndarray,
+                         reach: np.ndarray) -> np.ndarray:
+        """Range to the first wall or furniture cell along each beam (inf within ``reach``)."""
+        grid = self.navigator.grid
+        step = grid.resolution / 2  # half a cell: a wall cell is never stepped over
+        steps = np.arange(1, int(float(np.max(reach, initial=0.0)) / step) + 2) * step
+        xs = origin[0] + np.multiply.outer(np.cos(angles), steps)
+        ys = origin[1] + np.multiply.outer(np.sin(angles), steps)
+        rows, columns = grid.shape
+        column = ((xs - grid.origin[0]) / grid.resolution).astype(np.int64)
+        row = ((ys - grid.origin[1]) / grid.resolution).astype(np.int64)
+        inside = (column >= 0) & (column < columns) & (row >= 0) & (row < rows)
+        solid = np.zeros(xs.shape, dtype=bool)
+        solid[inside] = grid.occupied[row[inside], column[inside]]
+        solid &= steps[None, :] <= reach[:, None]
+        first = solid.argmax(axis=1)
+        expected: np.ndarray = np.where(solid[np.arange(len(angles)), first], steps[first],
+                                        np.inf)
+        return expected
+
+    def observe(self, now: float, pose: Pose, scan: LaserScan) -> np.ndarray:
+        """Remember what the scan shows unexpected; everything remembered, as (n, 2).
+
+        A remembered return that the scan now sees past (its beam reaches further)
+        is gone, as a costmap clears the cells its rays cross: someone who stepped
+        aside no longer blocks the way.
+        """
+        self._seen = [(seen, self._still_there(points, pose, scan))
+                      for seen, points in self._seen if now - seen <= self.memory]
+        self._seen.append((now, self.unexpected(pose, scan)))
+        return np.concatenate([points for _, points in self._seen])
+
+    def _still_there(self, points: np.ndarray, pose: Pose, scan: LaserScan) -> np.ndarray:
+        if not len(points):
+            return points
+        cos, sin = math.cos(pose.theta), math.sin(pose.theta)
+        mount = scan.mount
+        origin_x = pose.x + cos * mount.x - sin * mount.y
+        origin_y = pose.y + sin * mount.x + cos * mount.y
+        dx, dy = points[:, 0] - origin_x, points[:, 1] - origin_y
+        distance = np.hypot(dx, dy)
+        bearing = np.arctan2(dy, dx) - pose.theta - mount.theta
+        bearing = (bearing + math.pi) % (2 * math.pi) - math.pi
+        beam = np.rint((bearing - scan.angle_min) / scan.angle_increment).astype(np.int64)
+        seen = (beam >= 0) & (beam < len(scan.ranges))
+        measured = np.full(len(points), -np.inf)
+        ranges = np.where(np.isfinite(scan.ranges), scan.ranges, scan.range_max)
+        measured[seen] = ranges[beam[seen]]
+        # Seen through: the beam passed it by a margin (and it is within the beam's reach).
+        cleared = seen & (measured > distance + self.unexplained) & (distance < scan.range_max)
+        kept: np.ndarray = points[~cleared]
+        return kept
+
+
+def scan_on_map(pose: Pose, scan: LaserScan) -> np.ndarray:
+    """The scan's returns as (n, 2) map points, placed by ``pose``."""
+    points = scan.points()
+    cos, sin = math.cos(pose.theta), math.sin(pose.theta)
+    return np.column_stack((pose.x + cos * points[:, 0] - sin * points[:, 1],
+                            pose.y + sin * points[:, 0] + cos * points[:, 1]))
+
+
+@dataclass(frozen=True, slots=True)
+class NavigationAttempt:
+    """How a recovering navigation ended."""
+
+    reached: bool
+    reason: StopReason  #: REACHED, or why the last try stopped (BLOCKED, TIMEOUT, CANCELED)
+    travelled: float  #: metres driven, by odometry
+    duration: float  #: simulated seconds
+    replans: int  #: times stage 1 planned round what the laser saw
+    waits: int  #: times the robot stood waiting for the way to clear
+
+    def __bool__(self) -> bool:
+        return self.reached
+
+
+class RecoveringNavigation:
+    """Drive ``body`` to a target along stage-1 paths, recovering when blocked.
+
+    Args:
+        body: the robot's body.
+        navigator: stage 1, on the static map.
+        controller: stage 2, the local controller.
+        localise: the pose estimate; called every control period (MCL updates there).
+        policy: budgets and margins.
+        on_replan: told each time stage 1 plans again (True: a way round was found).
+    """
+
+    def __init__(self, body: Body, navigator: Navigator, controller: LocalController,
+                 localise: Callable[[], Pose], policy: RecoveryPolicy | None = None,
+                 on_replan: Callable[[bool], None] | None = None) -> None:
+        self.body = body
+        self.navigator = navigator
+        self.controller = controller
+        self.localise = localise
+        self.policy = policy or RecoveryPolicy()
+        self.on_replan = on_replan
+        self.memory = ObstacleMemory(navigator, self.policy.unexplained,
+                                     self.policy.obstacle_memory)
+
+    def drive(self, target: Pose, avoid_doors: frozenset[str] = frozenset(), *,
+              tolerance: float = 0.15, heading_tolerance: float | None = 0.2
+              ) -> NavigationAttempt:
+        """Drive to ``target``; a path round ``avoid_doors`` only.
+
+        Raises:
+            NavigationError: the static map has no path to the target at all.
+        """
+        body, policy = self.body, self.policy
+        started = body.now()
+        here = self.localise()
+        plan = self.navigator.plan(here.xy(), target.xy(), avoid_doors)
+        if plan is None:
+            raise NavigationError(f"no path from ({here.x:.2f}, {here.y:.2f}) to "
+                                  f"({target.x:.2f}, {target.y:.2f}) on the map")
+        deadline = started + plan.length * policy.seconds_per_metre + policy.wait_budget
+        path: tuple[tuple[float, float], ...] | None = \
+            self.plan_wide(here, target, avoid_doors, np.zeros((0, 2))) or plan.waypoints
+        travelled, replans, waits = 0.0, 0, 0
+        reason = StopReason.TIMEOUT
+        waiting_since: float | None = None
+        while body.now() < deadline:
+            if path is None:
+                if waiting_since is None:
+                    waiting_since = body.now()
+                elif body.now() - waiting_since >= policy.patience:
+                    reason = StopReason.BLOCKED
+                    break
+                waits += 1
+                self._wait(policy.wait)
+            else:
+                waiting_since = None
+                budget = max(deadline - body.now(), body.tick_period)
+                goal = NavigationGoal(target, path, tolerance, heading_tolerance, timeout=budget)
+                action = NavigateToPose(goal, body, self.controller, self.localise,
+                                        stuck_after=policy.stuck_after)
+                result = action.run(int(budget / body.tick_period) + _STOP_TICKS)
+                travelled += result.travelled
+                reason = result.reason or StopReason.TIMEOUT
+                if result.reached or reason is not StopReason.BLOCKED:
+                    break
+                self._face(path)
+            pose = self.localise()
+            obstacles = self.memory.observe(body.now(), pose, body.scan())
+            path = self.plan_wide(pose, target, avoid_doors, obstacles)
+            replans += 1
+            if self.on_replan is not None:
+                self.on_replan(path is not None)
+        else:
+            reason = StopReason.TIMEOUT
+        return NavigationAttempt(reason is StopReason.REACHED, reason, round(travelled, 3),
+                                 round(body.now() - started, 3), replans, waits)
+
+    def plan_wide(self, here: Pose, target: Pose, avoid_doors: frozenset[str],
+                  obstacles: np.ndarray) -> tuple[tuple[float, float], ...] | None:
+        """Stage 1 round ``obstacles``, with a margin from walls and furniture.
+
+        Through gaps narrower than the margin only when the static map itself has no
+        wider way: when it has one and ``obstacles`` stand in it, None (wait, or ask),
+        rather than squeezing through a gap the local planner can only crawl through.
+        """
+        radius, policy = self.body.radius, self.policy
+        around, wide = radius + policy.obstacle_margin, radius + policy.static_margin
+        path = self.navigator.plan_around(here.xy(), target.xy(), avoid_doors, obstacles,
+                                          around, wide)
+        if path is not None:
+            return path
+        if len(obstacles) and self.navigator.plan_around(
+                here.xy(), target.xy(), avoid_doors, np.zeros((0, 2)), around, wide):
+            return None
+        return self.navigator.plan_around(here.xy(), target.xy(), avoid_doors, obstacles,
+                                          around)
+
+    def _face(self, path: tuple[tuple[float, float], ...]) -> None:
+        """Turn on the spot to face along ``path`` (Nav2's spin recovery): a local
+        planner caught facing away from its way may find none it can start on."""
+        body = self.body
+        pose = self.localise()
+        ahead = _point_along(path, pose.xy(), _FACE_AHEAD)
+        for _ in range(int(2 * math.pi / (body.limits.angular * body.tick_period)) + 1):
+            error = _wrap(math.atan2(ahead[1] - pose.y, ahead[0] - pose.x) - pose.theta)
+            if abs(error) <= _FACED:
+                break
+            limit = math.sqrt(2 * body.limits.angular_acceleration * abs(error))
+            body.command_velocity(Twist(0.0, 0.0, math.copysign(
+                min(body.limits.angular, limit), error)))
+            body.tick()
+            pose = self.localise()
+        body.command_velocity(Twist())
+
+    def _wait(self, seconds: float) -> None:
+        """Come to rest and stand still for ``seconds`` (someone may move out of the way)."""
+        body = self.body
+        body.command_velocity(Twist())
+        body.tick(max(1, int(seconds / body.tick_period)))
+
+
+def _point_along(path: tuple[tuple[float, float], ...], here: tuple[float, float],
+                 distance: float) -> tuple[float, float]:
+    """The point ``distance`` metres along ``path`` past its point nearest to ``here``."""
+    nearest = min(range(len(path)), key=lambda index: math.dist(path[index], here))
+    point, left = here, distance
+    for waypoint in path[nearest + 1:] or path[-1:]:
+        step = math.dist(point, waypoint)
+        if step >= left:
+            t = left / step
+            return (point[0] + t * (waypoint[0] - point[0]),
+                    point[1] + t * (waypoint[1] - point[1]))
+        point, left = waypoint, left - step
+    return point
+
+
+def _wrap(angle: float) -> float:
+    return (angle + math.pi) % (2 * math.pi) - math.pi

@@ -1,0 +1,141 @@
+"""Navigation with recovery: what the laser sees that the map lacks, planning round it,
+waiting, giving up on someone who stays in the way, and the people's side of it."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from homebot.errors import NavigationError
+from homebot.navigation import Navigator
+from homebot.navigation.local_planner import MotionSearchPlanner
+from homebot.navigation.navigate import StopReason
+from homebot.navigation.recovery import ObstacleMemory, RecoveringNavigation, RecoveryPolicy
+from homebot.robot import HelpRequest, Pose
+from homebot.sim.body import SimBody
+from homebot.sim.robot import SimRobot
+from homebot.sim.simulation import Simulation
+from homebot.world import World
+
+pytest.importorskip("cv2")
+
+# The kitchen, north of the table: a corridor between the table and the cabinet.
+_CORRIDOR = (8.6, 2.75)
+_WEST_OF_IT = Pose(7.6, 2.0, 0.0)
+_HALL = Pose(5.5, 5.0, math.pi / 2)
+_INSIDE_BATHROOM = (5.5, 6.45)
+_AT_THE_SINK = Pose(5.98, 8.0, 0.0)
+
+
+def _sim(world: World, navigator: Navigator) -> tuple[Simulation, SimBody]:
+    simulation = Simulation(world, seed=3, navigator=navigator)
+    return simulation, SimBody(simulation)
+
+
+def _truth(simulation: Simulation) -> Pose:
+    return Pose(*simulation.robot_pose)
+
+
+def test_walls_and_furniture_are_explained_and_a_person_by_a_wall_is_not(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    simulation, body = _sim(apartment, apartment_navigator)
+    for name in simulation.people:
+        simulation.move_person(name, (0.6, 9.4))  # out of sight, in the bedroom corner
+    body.teleport(Pose(3.0, 2.4, math.pi / 2))
+    memory = ObstacleMemory(apartment_navigator, 0.15, 45.0)
+    assert len(memory.unexpected(_truth(simulation), body.scan())) == 0
+    # Someone standing against the living room's west wall, in the robot's view.
+    simulation.move_person("Alex", (3.0, 3.45))
+    body.tick()
+    seen = memory.unexpected(_truth(simulation), body.scan())
+    assert len(seen) > 0
+    assert np.all(np.hypot(seen[:, 0] - 3.0, seen[:, 1] - 3.45) < 0.3)
+
+
+def test_a_remembered_obstacle_is_forgotten_once_the_laser_sees_past_it(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    simulation, body = _sim(apartment, apartment_navigator)
+    body.teleport(_WEST_OF_IT)
+    simulation.move_person("Maria", _CORRIDOR)
+    body.tick()
+    memory = ObstacleMemory(apartment_navigator, 0.15, 45.0)
+    remembered = memory.observe(body.now(), _truth(simulation), body.scan())
+    assert np.any(np.hypot(remembered[:, 0] - _CORRIDOR[0], remembered[:, 1] - _CORRIDOR[1])
+                  < 0.3)
+    simulation.move_person("Maria", (10.6, 3.0))  # she walked off, out of that beam
+    body.tick()
+    remembered = memory.observe(body.now(), _truth(simulation), body.scan())
+    assert not np.any(np.hypot(remembered[:, 0] - _CORRIDOR[0],
+                               remembered[:, 1] - _CORRIDOR[1]) < 0.3)
+
+
+def test_a_person_in_the_way_is_driven_round_when_there_is_another_way(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    simulation, body = _sim(apartment, apartment_navigator)
+    body.teleport(_WEST_OF_IT)
+    simulation.move_person("Maria", _CORRIDOR)
+    closest = math.inf
+
+    def truth() -> Pose:
+        nonlocal closest
+        closest = min(closest, math.dist(simulation.robot_pose[:2], _CORRIDOR))
+        return _truth(simulation)
+
+    navigation = RecoveringNavigation(body, apartment_navigator, MotionSearchPlanner(), truth)
+    target = Pose(9.5, 2.62, -math.pi / 2)
+    attempt = navigation.drive(target)
+    assert attempt.reached
+    assert math.dist(simulation.robot_pose[:2], target.xy()) < 0.3
+    assert closest > 0.5  # round the kitchen's other way, not past her
+    assert simulation.collisions == []
+
+
+def _bathroom_doorway_blocked(world: World, navigator: Navigator
+                              ) -> tuple[Simulation, SimBody, RecoveringNavigation]:
+    """The robot in the hall, someone just inside the bathroom's only door."""
+    simulation, body = _sim(world, navigator)
+    body.teleport(_HALL)
+    simulation.move_person("Maria", _INSIDE_BATHROOM)
+    navigation = RecoveringNavigation(body, navigator, MotionSearchPlanner(),
+                                      lambda: _truth(simulation), RecoveryPolicy(patience=6.0))
+    return simulation, body, navigation
+
+
+def test_someone_who_stays_in_the_only_way_makes_the_robot_wait_then_give_up(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    simulation, _, navigation = _bathroom_doorway_blocked(apartment, apartment_navigator)
+    attempt = navigation.drive(_AT_THE_SINK)
+    assert not attempt.reached
+    assert attempt.reason is StopReason.BLOCKED
+    assert attempt.waits >= 1
+    assert simulation.collisions == []
+
+
+def test_asked_to_step_aside_the_person_clears_the_way_and_the_robot_gets_there(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    simulation, _, navigation = _bathroom_doorway_blocked(apartment, apartment_navigator)
+    assert not navigation.drive(_AT_THE_SINK)
+    assert SimRobot(simulation).request("Maria", HelpRequest.STEP_ASIDE, "")
+    moved = simulation.people["Maria"].position
+    assert math.dist(moved, _INSIDE_BATHROOM) >= 0.8
+    assert math.dist(moved, simulation.robot_pose[:2]) >= 1.0
+    assert navigation.drive(_AT_THE_SINK)
+    assert math.dist(simulation.robot_pose[:2], _AT_THE_SINK.xy()) < 0.3
+    assert simulation.collisions == []
+
+
+def test_a_target_off_the_map_is_a_navigation_error(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    simulation, body = _sim(apartment, apartment_navigator)
+    navigation = RecoveringNavigation(body, apartment_navigator, MotionSearchPlanner(),
+                                      lambda: _truth(simulation))
+    with pytest.raises(NavigationError, match="no path"):
+        navigation.drive(Pose(-50.0, -50.0, 0.0))
+
+
+@pytest.mark.parametrize("field", ["stuck_after", "patience", "wait"])
+def test_a_policy_with_a_non_positive_time_is_refused(field: str) -> None:
+    with pytest.raises(NavigationError, match=field):
+        RecoveryPolicy(**{field: 0.0})
