@@ -42,3 +42,11 @@ def test_chat_rejects_a_bad_question_cost(capsys: pytest.CaptureFixture[str]) ->
         main(["chat", "--question-cost", "lots"])
     assert exit_.value.code == 2
     assert "a cost from 0 to 10" in capsys.readouterr().err
+
+
+def test_do_acts_on_the_likeliest_reading_of_what_it_was_told(
+        capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["do", "take the cup from the table", "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["steps"][0]["args"] == {"to": "kitchen table"}
+    assert main(["do", "go to the table", "--json"]) == 1  # no evidence: it asks
+    assert main(["do", "go to the table", "--json", "--question-cost", "2"]) == 0

@@ -19,8 +19,9 @@ from homebot.cli.simulated import add_run_options, finish_run, keep_events, simu
 from homebot.executive.conversation import Conversation, Turn
 from homebot.language import ReadingModel, Vocabulary
 from homebot.scenarios import SimulatedRun
+from homebot.world import World
 
-__all__ = ["add_question_cost_option", "believed", "converse", "register"]
+__all__ = ["add_question_cost_option", "believed", "converse", "register", "told"]
 
 _QUIT = frozenset({"quit", "exit", "bye", "goodbye", "q"})
 
@@ -69,6 +70,14 @@ def _cost(text: str) -> float:
     if not 0.0 <= value <= 10.0:
         raise argparse.ArgumentTypeError(f"a cost from 0 to 10, not '{text}'")
     return value
+
+
+def told(world: World, question_cost: float) -> ReadingModel:
+    """What the robot is told before it starts (the world file: where things are kept),
+    as a reading model for a single command."""
+    return ReadingModel(object_at={name: obj.placement for name, obj in world.objects.items()},
+                        categories={name: obj.category for name, obj in world.objects.items()},
+                        question=question_cost, places=len(world.placements))
 
 
 def believed(run: SimulatedRun, question_cost: float) -> Callable[[], ReadingModel]:

@@ -9,6 +9,7 @@ from typing import Any
 from rich.console import Console
 from rich.markup import escape
 
+from homebot.cli.chat import add_question_cost_option, told
 from homebot.cli.options import GPSR_TIME_LIMIT, load_world
 from homebot.cli.simulated import add_run_options, finish_run, keep_events, simulated_run
 from homebot.cli.voice import add_voice_options, speak_to_file, spoken_or_typed
@@ -28,6 +29,7 @@ def register(subparsers: Any) -> None:
                              "intent an HTN goal and plan it from the robot's beliefs")
     parser.add_argument("--answer", action="append", default=[], metavar="TEXT",
                         help="a reply to a question the robot asks back (repeatable, in order)")
+    add_question_cost_option(parser)
     parser.set_defaults(handler=do)
 
 
@@ -36,7 +38,10 @@ def do(args: argparse.Namespace) -> int:
     command = spoken_or_typed(args, world)
     if command is None:
         return 1
-    parsed = parse_command(command, Vocabulary.from_world(world))
+    parsed = parse_command(command, Vocabulary.from_world(world),
+                           readings=told(world, args.question_cost))
+    if parsed.assumed and not args.json:
+        Console().print(f"  [cyan]robot:[/] {escape(parsed.assumed)}", highlight=False)
     if not parsed and args.answer:
         from homebot.cli.chat import converse
 
