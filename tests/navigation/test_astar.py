@@ -186,13 +186,13 @@ def test_jump_tables_and_libtcod_agree_round_a_long_wall_with_doorways() -> None
 
 def test_many_easy_searches_keep_the_tables_of_a_grid_in_use() -> None:
     forget_jump_tables()
-    static = np.zeros((40, 60), dtype=bool)
-    static[5:35, 30] = True
+    static = np.zeros((100, 120), dtype=bool)  # the window below is 1/38 of it
+    static[5:95, 60] = True
     kept = cached_jump_tables(static.ravel(), static.shape)
     for obstacle in range(100):  # as plan_around's masks: a new grid each call
         grid = static.copy()
         grid.ravel()[obstacle * 7 % grid.size] = True
-        astar(grid.ravel(), grid.shape, 2 * 60 + 2, 2 * 60 + 8)
+        assert astar(grid.ravel(), grid.shape, 2 * 120 + 2, 2 * 120 + 8) is not None
     assert cached_jump_tables(static.ravel(), static.shape) is kept
     forget_jump_tables()
     assert cached_jump_tables(static.ravel(), static.shape) is not kept

@@ -10,19 +10,22 @@ The search is jump point search over precomputed tables of the straight jumps
 (``jump_points``): a few tenths of a millisecond for a 15 m path, where a
 cell-by-cell A* round a long wall settles tens of thousands of cells.
 
-Every search first runs in a small window round start and goal, with tables
-of the window only (a fraction of a millisecond), and keeps that path when it
-is provably as short as any path that leaves the window (its cost is at most
-the octile lower bound through the ring of cells just outside). Otherwise it
+A search whose start and goal lie close (their box, with a margin, covers at
+most a thirty-second of the grid) first runs in that window, with tables of the
+window only (a fraction of a millisecond), and keeps that path when it is
+provably as short as any path that leaves the window (its cost is at most the
+octile lower bound through the ring of cells just outside). Otherwise it
 searches the whole grid, whose tables take about a millisecond to build for
 the apartment's grid and a few for a 400 x 400 one; they are kept per grid
 (keyed by the mask's bits, the last few grids), so a grid searched again, as
 the Navigator's static masks are, pays them once, while ``plan_around``'s new
-mask per call pays them when its window cannot prove the path. Kept or not,
-the tables are the same, so the path found never depends on what was searched
-before. ``libtcod_astar`` is the same search by libtcod's C A*
-(``tcod.path``), which stage 1 used before, kept to compare with: ``homebot
-bench navigation`` reports both, and the tables' build time apart.
+mask per call pays them unless its window proves the path. Which search runs
+depends on the grid, start and goal alone, and kept tables equal new ones, so
+the path found never depends on what was searched before.
+
+``libtcod_astar`` is the same search by libtcod's C A* (``tcod.path``), which
+stage 1 used before, kept to compare with: ``homebot bench navigation``
+reports both, and the tables' build time apart.
 """
 
 from __future__ import annotations
@@ -41,6 +44,10 @@ _STRAIGHT = 1000
 _DIAGONAL = 1414
 # Cells added round the start–goal box for the first, windowed search.
 _WINDOW_MARGIN = 12
+# A window larger than this share of the grid is not tried: on the apartment's
+# static masks (kept tables) windows of an eighth made Navigator.plan 3.5 times
+# slower; a new grid (plan_around) pays the whole grid's tables instead.
+_LARGEST_WINDOW = 1 / 32
 _STRAIGHT_MOVES = ((-1, 0), (1, 0), (0, -1), (0, 1))
 _DIAGONAL_MOVES = ((-1, -1), (-1, 1), (1, -1), (1, 1))
 # Grids whose jump tables are kept (up to a few megabytes each).
@@ -115,7 +122,7 @@ def astar(blocked: np.ndarray, shape: tuple[int, int], start: int, goal: int) ->
     if blocked[start] or blocked[goal]:
         return None
     mask = np.ascontiguousarray(blocked, dtype=bool)
-    found = _windowed(mask, shape, start, goal, _jump_search)
+    found = _windowed(mask, shape, start, goal, _jump_search, _LARGEST_WINDOW)
     if found is not None:
         return found
     searched = jump_point_search(cached_jump_tables(mask, shape), start, goal)
@@ -155,15 +162,19 @@ _Search = Callable[[np.ndarray, tuple[int, int], tuple[int, int]],
 
 
 def _windowed(mask: np.ndarray, shape: tuple[int, int], start: int, goal: int,
-              search: _Search) -> list[int] | None:
-    """The path ``search`` finds in a window round start and goal, if provably shortest."""
+              search: _Search, largest: float = 1.0) -> list[int] | None:
+    """The path ``search`` finds in a window round start and goal, if provably shortest.
+
+    None also when the window would cover more than ``largest`` of the grid.
+    """
     rows, columns = shape
     start_cell, goal_cell = divmod(start, columns), divmod(goal, columns)
     top = max(min(start_cell[0], goal_cell[0]) - _WINDOW_MARGIN, 0)
     bottom = min(max(start_cell[0], goal_cell[0]) + _WINDOW_MARGIN + 1, rows)
     left = max(min(start_cell[1], goal_cell[1]) - _WINDOW_MARGIN, 0)
     right = min(max(start_cell[1], goal_cell[1]) + _WINDOW_MARGIN + 1, columns)
-    if top == 0 and left == 0 and bottom == rows and right == columns:
+    if (bottom - top) * (right - left) > largest * rows * columns or (
+            top == 0 and left == 0 and bottom == rows and right == columns):
         return None
     free = ~mask.reshape(shape)[top:bottom, left:right]
     found = search(free, (start_cell[0] - top, start_cell[1] - left),
