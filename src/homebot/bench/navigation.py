@@ -105,12 +105,12 @@ def _astar_timing(repeat: int) -> dict[str, Any]:
     """Time stage-1 A* on 15 m cases and ``Navigator.plan`` (uncached) in the apartment.
 
     Per case: ``median_ms`` is ``astar`` on a grid whose jump tables are kept
-    (as the Navigator's static masks'): JPS in a window round start and goal,
-    or when that cannot prove its path, JPS over the kept tables;
-    ``first_search_ms`` on a grid never seen (``plan_around``'s new mask each
-    call), whose tables are built when the window cannot prove its path;
-    ``tables_ms`` building the whole grid's jump
-    tables alone; ``libtcod_ms`` the search by libtcod's A* alone, as stage 1
+    (as the Navigator's static masks'): JPS over the kept tables (or in a
+    small window round start and goal, when that window is at most 1/32 of the
+    grid and proves its path); ``first_search_ms`` on a grid never seen
+    (``plan_around``'s new mask each call), whose tables are built first;
+    ``tables_ms`` building the whole grid's jump tables alone;
+    ``libtcod_ms`` the search by libtcod's A* alone, as stage 1
     ran before jump point search. Each is a median wall-clock time, and beside
     it (``*cpu_ms``) the median CPU time of the thread: on a shared, loaded
     machine the wall clock also counts the time spent waiting for the core.
