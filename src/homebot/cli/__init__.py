@@ -51,6 +51,7 @@ COMMAND_GROUPS: dict[str, tuple[str, str]] = {
     "say": ("say", "speak a text with the robot's voice into a WAV"),
     "sim": ("sim_serve", "serve the simulated robot over ROS 2"),
     "ros": ("ros_serve", "offer homebot to a ROS 2 system"),
+    "serve": ("serve", "watch and command the robot in a browser"),
 }
 
 

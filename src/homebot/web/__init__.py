@@ -1,0 +1,7 @@
+"""The web console: watch the simulated home live and command the robot on three levels."""
+
+from __future__ import annotations
+
+from homebot.web.console import Console, ConsoleError, ConsoleSettings, Preempted, static_map
+
+__all__ = ["Console", "ConsoleError", "ConsoleSettings", "Preempted", "static_map"]

@@ -1,0 +1,512 @@
+"""``Console``: one simulated home run for the web console, paced against the wall clock.
+
+The robot's logic lives on simulated time only. The console is the one place where the wall
+clock enters: a worker thread runs the home, and every advance of the simulated clock waits
+until the wall clock has caught up with it (``speed`` times real time; 0 runs as fast as
+possible). While it waits, it releases the console's lock, so the server can read a
+consistent snapshot, take the operator's commands and press the emergency stop between ticks.
+
+Three levels of teleoperation (Cosero §7.4):
+
+- body: ``drive(vx, wz)`` velocity commands (embodied fidelity), capped and slowed by the
+  laser's nearest return ahead; a command holds for ``_COMMAND_HOLD`` simulated seconds;
+- skill: ``run_steps`` of one step (navigate to a clicked point, pick a clicked object);
+- task: ``command`` (the command box, through ``Conversation``) and ``run_steps`` (composer).
+
+The emergency stop engages the body's own stop (zero velocity from the next tick on) and
+preempts the running task at the next advance of the clock, that is within one tick.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import math
+import threading
+import time
+from collections import deque
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from homebot.errors import HomebotError
+from homebot.events import Event
+from homebot.executive.conversation import Conversation, Turn
+from homebot.executive.report import TaskReport
+from homebot.language import Vocabulary
+from homebot.robot import Twist
+from homebot.scenarios import SimulatedRun
+from homebot.scenarios.embodied import Fidelity
+from homebot.skills.catalogue import check_step, spelled_as_world
+from homebot.task import Step, Task
+from homebot.world import World
+
+__all__ = ["Console", "ConsoleError", "ConsoleSettings", "Preempted", "static_map"]
+
+_COMMAND_HOLD = 0.5  #: simulated seconds a body-level velocity command holds
+_EVENTS_KEPT = 2000  #: events the console keeps for late-joining watchers
+_TERMINAL = frozenset({"verified", "failed", "aborted"})
+_AHEAD = math.radians(35.0)  #: half-width of the cone "ahead" for obstacle slowing
+_SCAN_POINTS_SHOWN = 120
+
+
+class ConsoleError(HomebotError):
+    """Something the operator asked that the console cannot do now (says why)."""
+
+
+class Preempted(BaseException):  # like KeyboardInterrupt: no skill catches it
+    """Raised in the worker at the clock's next advance after the emergency stop."""
+
+
+@dataclass
+class ConsoleSettings:
+    """What ``homebot serve`` sets: the home, its fidelity, pace, caps and the token."""
+
+    world: World
+    token: str
+    seed: int = 0
+    fidelity: Fidelity = Fidelity.SYMBOLIC
+    speed: float = 1.0  #: real-time factor; 0: as fast as possible
+    walkers: int = 0
+    max_linear: float = 0.4  #: m/s, the body-level cap (below the base's own limit)
+    max_angular: float = 1.0  #: rad/s
+    time_limit: float | None = 900.0
+
+
+@dataclass
+class _Steps:
+    """The step view: the task's steps with their status, from the event log."""
+
+    description: str = ""
+    steps: list[dict[str, Any]] = field(default_factory=list)
+    depth: int = 0
+    current: int = -1
+    ended: bool | None = None
+    reason: str = ""
+
+
+def static_map(world: World) -> dict[str, Any]:
+    """The parts of the map that do not move: rooms, doors, furniture, bounds."""
+    rooms = {name: [list(map(float, xy)) for xy in polygon.exterior.coords]
+             for name, polygon in world.room_polygons.items()}
+    xs = [x for poly in rooms.values() for x, _ in poly]
+    ys = [y for poly in rooms.values() for _, y in poly]
+    return {
+        "type": "map", "name": world.name,
+        "bounds": [min(xs), min(ys), max(xs), max(ys)],
+        "rooms": rooms,
+        "doors": {name: {"x": door.position[0], "y": door.position[1], "width": door.width}
+                  for name, door in world.doors.items()},
+        "placements": {name: {"box": list(p.footprint.bounds), "room": p.room,
+                              "kind": p.model.kind.value}
+                       for name, p in world.placements.items()},
+        "radius": world.robot.radius,
+    }
+
+
+class Console:
+    """One simulated home, a worker thread that runs it, and the operator's controls."""
+
+    def __init__(self, settings: ConsoleSettings, *,
+                 wall: Callable[[], float] = time.monotonic) -> None:
+        if not (settings.speed == 0 or (math.isfinite(settings.speed) and settings.speed > 0)):
+            raise ConsoleError(f"--speed {settings.speed}: give a real-time factor above 0, "
+                               "or 0 for as fast as possible")
+        self.settings = settings
+        self.world = settings.world
+        self.run = SimulatedRun.create(settings.world, seed=settings.seed,
+                                       fidelity=settings.fidelity, walkers=settings.walkers,
+                                       time_limit=settings.time_limit)
+        self.sim = self.run.simulation
+        self.body: Any = getattr(self.run.robot, "body", None)
+        self.lock = threading.Condition(threading.RLock())
+        self._wall = wall
+        self._anchor = (wall(), self.sim.clock.now())
+        self._advance = self.sim.clock.advance
+        # the one seam where wall time enters: the simulated clock waits for the wall clock
+        self.sim.clock.advance = self._paced_advance  # type: ignore[method-assign]
+        self.events: deque[tuple[int, dict[str, Any]]] = deque(maxlen=_EVENTS_KEPT)
+        self.event_count = 0
+        self.sim.events.listeners.append(self._heard)
+        self.speech: deque[str] = deque(maxlen=20)
+        self.steps = _Steps()
+        self.path: list[list[float]] = []
+        self.controller: str | None = None
+        self.estop = False
+        self.estop_ticks: list[int] = []  #: ticks from each stop press to a standing base
+        self._pending_stop: int | None = None
+        self._jobs: deque[Callable[[], object]] = deque()
+        self._running = False
+        self.last_task: Task | None = None
+        self.failed_at: int | None = None
+        self.help_offer: dict[str, Any] | None = None
+        self.last_turn: dict[str, Any] | None = None
+        self._teleop = Twist()
+        self._teleop_until = -1.0
+        self.teleop_scale = 1.0
+        self.ticks = 0
+        self._closing = False
+        self._worker: threading.Thread | None = None
+        self.conversation = Conversation(Vocabulary.from_world(self.world), self._run_task)
+
+    # ------------------------------------------------------------ the worker
+
+    def start(self) -> None:
+        """Start the worker thread (idempotent)."""
+        if self._worker is None:
+            self._worker = threading.Thread(target=self._work, name="homebot-console",
+                                            daemon=True)
+            self._worker.start()
+
+    def close(self) -> None:
+        """Stop the worker thread and wait for it."""
+        with self.lock:
+            self._closing = True
+            self.lock.notify_all()
+        if self._worker is not None:
+            self._worker.join(timeout=10.0)
+
+    def _work(self) -> None:
+        with self.lock:
+            while not self._closing:
+                if self._jobs:
+                    job = self._jobs.popleft()
+                    self._running = True
+                    try:
+                        job()
+                    except Preempted:
+                        self.sim.events.record("console.preempted")
+                    finally:
+                        self._running = False
+                        self._anchor = (self._wall(), self.sim.clock.now())
+                elif self.body is not None and (self.settings.speed > 0 or self._driving()):
+                    with contextlib.suppress(Preempted):
+                        self.step_body()
+                else:
+                    self.lock.wait(0.05)
+
+    def _driving(self) -> bool:
+        return self.sim.clock.now() <= self._teleop_until
+
+    def step_body(self) -> None:
+        """One body tick while no task runs: the operator's velocity, slowed near obstacles."""
+        body = self.body
+        if self.sim.clock.now() > self._teleop_until or self.estop:
+            twist = Twist()
+        else:
+            twist = self._slowed(self._teleop)
+        body.command_velocity(twist)
+        body.tick()
+
+    def _paced_advance(self, seconds: float) -> float:
+        now = self._advance(seconds)
+        self.ticks += 1
+        if self._pending_stop is not None and self.body is not None:
+            velocity = self.body.odometry().velocity
+            if velocity.is_zero():
+                self.estop_ticks.append(self.ticks - self._pending_stop)
+                self._pending_stop = None
+        if threading.current_thread() is not self._worker:
+            return now
+        speed = self.settings.speed
+        if speed > 0:
+            wall0, sim0 = self._anchor
+            target = wall0 + (now - sim0) / speed
+            remaining = target - self._wall()
+            if remaining < -0.5:  # the home fell behind the wall clock: do not rush to catch up
+                self._anchor = (self._wall(), now)
+            while remaining > 0 and not self._closing and not self._preempting():
+                self.lock.wait(remaining)
+                remaining = target - self._wall()
+        else:
+            self.lock.wait(0)
+        if self._preempting() or self._closing:
+            raise Preempted
+        return now
+
+    @property
+    def busy(self) -> bool:
+        """A task runs or waits to run."""
+        return self._running or bool(self._jobs)
+
+    def _preempting(self) -> bool:
+        return self.estop and self._running
+
+    # ------------------------------------------------------------ events
+
+    def _heard(self, event: Event) -> None:
+        data = event.to_dict()
+        self.event_count += 1
+        kind = event.kind
+        if kind not in ("robot.laser", "robot.particles", "robot.trajectory"):
+            self.events.append((self.event_count, data))
+        if kind == "speech":
+            self.speech.append(str(event.data.get("text", "")))
+        elif kind == "task.start":
+            self.steps = _Steps(str(event.data.get("description", "")),
+                                [{**step, "status": "pending"}
+                                 for step in event.data.get("steps", [])])
+        elif kind == "skill.start":
+            self._skill_started(event)
+        elif kind == "skill.status":
+            self._skill_status(event)
+        elif kind == "task.end":
+            self.steps.ended = bool(event.data.get("success"))
+            self.steps.reason = str(event.data.get("reason", ""))
+        elif kind == "task.interrupted":
+            self.steps.ended = False
+            self.steps.reason = "stopped"
+
+    def _skill_started(self, event: Event) -> None:
+        view = self.steps
+        skill = str(event.data.get("skill"))
+        if view.depth == 0:
+            following = view.current + 1
+            if following < len(view.steps) and view.steps[following]["skill"] == skill:
+                view.current = following
+            elif not (0 <= view.current < len(view.steps)
+                      and view.steps[view.current]["skill"] == skill):
+                view.steps.insert(following, {"skill": skill, "status": "pending",
+                                              "recovery": True, **event.data.get("args", {})})
+                view.current = following
+            view.steps[view.current]["status"] = "running"
+            if skill in ("navigate", "guide", "follow"):
+                self.path = []
+        view.depth += 1
+
+    def _skill_status(self, event: Event) -> None:
+        view = self.steps
+        status = str(event.data.get("status"))
+        if view.depth == 1 and 0 <= view.current < len(view.steps):
+            view.steps[view.current]["status"] = status
+            if event.data.get("error"):
+                view.steps[view.current]["error"] = event.data["error"]
+        if status in _TERMINAL:
+            view.depth = max(0, view.depth - 1)
+
+    # ------------------------------------------------------------ operator actions
+
+    def take_control(self, operator: str) -> None:
+        with self.lock:
+            if self.controller not in (None, operator):
+                raise ConsoleError("another operator holds control; watch, or ask them to "
+                                   "release it")
+            self.controller = operator
+
+    def release_control(self, operator: str) -> None:
+        with self.lock:
+            if self.controller == operator:
+                self.controller = None
+
+    def require_control(self, operator: str) -> None:
+        if self.controller != operator:
+            raise ConsoleError("take control first (only the operator in control can "
+                               "command the robot)")
+
+    def emergency_stop(self) -> None:
+        """Stop the base from the next tick on and preempt whatever runs."""
+        with self.lock:
+            self.estop = True
+            self._jobs.clear()
+            self._teleop_until = -1.0
+            if self.body is not None:
+                self.body.emergency_stop(True)
+                if not self.body.odometry().velocity.is_zero():
+                    self._pending_stop = self.ticks
+            self.sim.events.record("console.estop")
+            self.lock.notify_all()
+
+    def release_stop(self, operator: str) -> None:
+        with self.lock:
+            self.require_control(operator)
+            self.estop = False
+            if self.body is not None:
+                self.body.emergency_stop(False)
+            self.sim.events.record("console.estop_released")
+            self.lock.notify_all()
+
+    def drive(self, operator: str, vx: float, wz: float) -> Twist:
+        """Body level: a velocity command, capped; held for half a simulated second."""
+        with self.lock:
+            self.require_control(operator)
+            self._check_can_act()
+            if self.body is None:
+                raise ConsoleError("driving the base needs a body: serve with --fidelity "
+                                   "embodied")
+            if self.busy:
+                raise ConsoleError("a task is running: press stop first, then drive")
+            if not (math.isfinite(vx) and math.isfinite(wz)):
+                raise ConsoleError("velocities must be numbers")
+            cap_v, cap_w = self.settings.max_linear, self.settings.max_angular
+            self._teleop = Twist(max(-cap_v, min(cap_v, vx)), 0.0, max(-cap_w, min(cap_w, wz)))
+            self._teleop_until = self.sim.clock.now() + _COMMAND_HOLD
+            self.lock.notify_all()
+            return self._teleop
+
+    def _slowed(self, twist: Twist) -> Twist:
+        """Scale forward speed by the nearest laser return ahead (stop near, cap far)."""
+        ahead = self.nearest_ahead()
+        radius = self.world.robot.radius
+        stop, free = radius + 0.15, radius + 1.2
+        scale = 1.0 if twist.vx <= 0 else max(0.0, min(1.0, (ahead - stop) / (free - stop)))
+        self.teleop_scale = scale
+        vx = twist.vx * scale if twist.vx > 0 else max(twist.vx, -0.15)
+        return Twist(vx, 0.0, twist.wz)
+
+    def nearest_ahead(self) -> float:
+        """The nearest laser return within ±35° of straight ahead (inf: none)."""
+        if self.body is None:
+            return math.inf
+        scan = self.body.scan()
+        angles = scan.angle_min + scan.angle_increment * np.arange(len(scan.ranges))
+        angles = (angles + scan.mount.theta + math.pi) % (2 * math.pi) - math.pi
+        cone = np.abs(angles) <= _AHEAD
+        ranges = np.asarray(scan.ranges)[cone]
+        finite = ranges[np.isfinite(ranges)]
+        return float(finite.min()) if len(finite) else math.inf
+
+    def run_steps(self, operator: str, steps: list[dict[str, Any]],
+                  description: str = "") -> Task:
+        """Skill and task level: check the steps against the catalogue and queue them."""
+        with self.lock:
+            self.require_control(operator)
+            self._check_can_act()
+            if not steps:
+                raise ConsoleError("give at least one step")
+            checked: list[Step] = []
+            for index, raw in enumerate(steps, 1):
+                if not isinstance(raw, dict) or "skill" not in raw:
+                    raise ConsoleError(f"step {index}: give a skill name")
+                step = spelled_as_world(Step.from_dict(raw), self.world)
+                check_step(step, self.world, f"step {index}")
+                checked.append(step)
+            task = Task(tuple(checked), description or " then ".join(map(str, checked)))
+            self._queue(lambda: self._run_task(task))
+            return task
+
+    def command(self, operator: str, text: str) -> None:
+        """Task level: a sentence for the robot (or an answer to its question)."""
+        with self.lock:
+            self.require_control(operator)
+            self._check_can_act()
+            if not text.strip():
+                raise ConsoleError("type a command for the robot")
+            self._queue(lambda: self._hear(text))
+
+    def resume(self, operator: str) -> Task:
+        """Go on with the failed task from the step that failed, after the operator helped."""
+        with self.lock:
+            self.require_control(operator)
+            self._check_can_act()
+            if self.last_task is None or self.failed_at is None:
+                raise ConsoleError("no failed task to go on with")
+            rest = Task(self.last_task.steps[self.failed_at:],
+                        f"go on: {self.last_task.description}")
+            self._queue(lambda: self._run_task(rest))
+            return rest
+
+    def _check_can_act(self) -> None:
+        if self.estop:
+            raise ConsoleError("the emergency stop is engaged: release it first")
+        if self.busy or self._jobs:
+            raise ConsoleError("the robot is busy: wait, or press stop")
+
+    def _queue(self, job: Callable[[], object]) -> None:
+        self._jobs.append(job)
+        self.lock.notify_all()
+
+    def _hear(self, text: str) -> None:
+        turn: Turn = self.conversation.hear(text)
+        self.last_turn = {"heard": turn.heard, "status": turn.status, "said": list(turn.said)}
+        if turn.status in ("asked", "refused", "cancelled"):
+            for line in turn.said:
+                self.speech.append(line)
+                self.event_count += 1
+                self.events.append((self.event_count, {"time": self.sim.clock.now(),
+                                                       "kind": "console.reply", "text": line}))
+
+    def _run_task(self, task: Task, *, interrupt: Callable[[], bool] | None = None
+                  ) -> TaskReport:
+        self.last_task, self.failed_at, self.help_offer = task, None, None
+        report = self.run.run(task, interrupt=lambda: self.estop or bool(
+            interrupt is not None and interrupt()))
+        if not report.success and report.steps:
+            index = len(report.steps) - 1
+            self.failed_at = index
+            failed = report.steps[-1]
+            self.help_offer = {
+                "step": index, "skill": failed.skill, "reason": report.reason,
+                "levels": ["skill", "body"] if self.body is not None else ["skill"],
+            }
+        return report
+
+    # ------------------------------------------------------------ the view
+
+    def snapshot(self) -> dict[str, Any]:
+        """Everything that moves, as one JSON-ready state message (take under the lock)."""
+        with self.lock:
+            sim = self.sim
+            x, y, theta = sim.robot_pose
+            state: dict[str, Any] = {
+                "type": "state", "time": round(sim.clock.now(), 3),
+                "robot": [round(x, 3), round(y, 3), round(theta, 3)],
+                "people": {name: [round(p.position[0], 2), round(p.position[1], 2)]
+                           for name, p in sim.people.items()},
+                "objects": self._objects(),
+                "doors": {name: str(getattr(state, "value", state))
+                          for name, state in sim.door_state.items()},
+                "hands": dict(sim.hands),
+                "trail": [list(p) for p in sim.trail[-200:]],
+                "speech": list(self.speech)[-5:],
+                "task": {"description": self.steps.description, "steps": self.steps.steps,
+                         "ended": self.steps.ended, "reason": self.steps.reason},
+                "help": self.help_offer, "turn": self.last_turn,
+                "busy": self.busy, "estop": self.estop, "controller": self.controller,
+                "fidelity": self.settings.fidelity.value, "speed": self.settings.speed,
+                "teleop_scale": round(self.teleop_scale, 3),
+                "events": self.event_count,
+            }
+            if self.body is not None:
+                state.update(self._embodied())
+            return state
+
+    def _objects(self) -> dict[str, Any]:
+        sim, shown = self.sim, {}
+        for name, where in sim.object_location.items():
+            if where is None:
+                continue
+            if where in self.world.placements:
+                px, py = sim.position_on(name, where)
+            elif where.startswith("person:") and where[7:] in sim.people:
+                px, py = sim.people[where[7:]].position
+            else:
+                px, py = sim.robot_pose[:2]
+            shown[name] = {"at": where, "xy": [round(px, 3), round(py, 3)]}
+        return shown
+
+    def _embodied(self) -> dict[str, Any]:
+        robot = self.run.robot
+        scan = self.body.scan()
+        ranges = np.asarray(scan.ranges)
+        x, y, theta = self.sim.robot_pose
+        step = max(1, len(ranges) // _SCAN_POINTS_SHOWN)
+        points = []
+        for index in range(0, len(ranges), step):
+            r = ranges[index]
+            if math.isfinite(r):
+                a = theta + scan.mount.theta + scan.angle_min + index * scan.angle_increment
+                points.append([round(x + r * math.cos(a), 2), round(y + r * math.sin(a), 2)])
+        particles = getattr(getattr(robot, "localisation", None), "particles", np.zeros((0, 3)))
+        if len(particles) > 150:
+            particles = particles[:: math.ceil(len(particles) / 150)]
+        return {"scan": points,
+                "particles": np.round(np.asarray(particles)[:, :2], 2).tolist(),
+                "nearest_ahead": round(min(self.nearest_ahead(), 99.0), 3),
+                "velocity": [round(self.body.odometry().velocity.vx, 3),
+                             round(self.body.odometry().velocity.wz, 3)]}
+
+    def events_since(self, number: int) -> list[dict[str, Any]]:
+        """The kept events numbered above ``number``, each with its number as ``n``."""
+        with self.lock:
+            return [{"n": n, **data} for n, data in self.events if n > number]

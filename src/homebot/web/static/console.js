@@ -1,0 +1,214 @@
+// homebot console: live map, speech, event log and step view; three levels of control.
+"use strict";
+const TOKEN = new URLSearchParams(location.search).get("token") || "";
+const OPERATOR = (crypto.randomUUID ? crypto.randomUUID() : String(Math.random())).slice(0, 12);
+const SVG = "http://www.w3.org/2000/svg";
+const svg = document.getElementById("map");
+let map = null, state = null, composed = [], scale = 40, layers = {};
+
+function el(name, attrs, parent) {
+  const node = document.createElementNS(SVG, name);
+  for (const [k, v] of Object.entries(attrs || {})) node.setAttribute(k, v);
+  if (parent) parent.appendChild(node);
+  return node;
+}
+function px(x, y) { return [(x - map.bounds[0]) * scale + 10, (map.bounds[3] - y) * scale + 10]; }
+function world(cx, cy) { return [(cx - 10) / scale + map.bounds[0], map.bounds[3] - (cy - 10) / scale]; }
+
+async function api(path, body) {
+  const response = await fetch(path, {
+    method: body === undefined ? "GET" : "POST",
+    headers: {"Content-Type": "application/json", "X-Homebot-Token": TOKEN,
+              "X-Homebot-Operator": OPERATOR},
+    body: body === undefined ? undefined : JSON.stringify(body)});
+  const data = await response.json();
+  document.getElementById("error").textContent = response.ok ? "" : (data.error || response.status);
+  return data;
+}
+
+function drawMap() {
+  svg.innerHTML = "";
+  const w = map.bounds[2] - map.bounds[0], h = map.bounds[3] - map.bounds[1];
+  const box = svg.getBoundingClientRect();
+  scale = Math.max(10, Math.min((box.width - 20) / w, (box.height - 20) / h));
+  svg.setAttribute("viewBox", `0 0 ${w * scale + 20} ${h * scale + 20}`);
+  const base = el("g", {}, svg);
+  for (const [name, poly] of Object.entries(map.rooms)) {
+    el("polygon", {points: poly.map(p => px(...p).join(",")).join(" "), fill: "#fff",
+                   stroke: "#333", "stroke-width": 2}, base);
+    const cx = poly.reduce((a, p) => a + p[0], 0) / poly.length;
+    const cy = poly.reduce((a, p) => a + p[1], 0) / poly.length;
+    const t = el("text", {x: px(cx, cy)[0], y: px(cx, cy)[1], "font-size": 12, fill: "#888",
+                          "text-anchor": "middle"}, base);
+    t.textContent = name;
+  }
+  for (const [name, p] of Object.entries(map.placements)) {
+    const [x0, y0] = px(p.box[0], p.box[3]), [x1, y1] = px(p.box[2], p.box[1]);
+    el("rect", {x: x0, y: y0, width: x1 - x0, height: y1 - y0,
+                fill: p.kind === "furniture" ? "#dcb" : "#eef", stroke: "#765"}, base)
+      .appendChild(document.createElementNS(SVG, "title")).textContent = name;
+  }
+  for (const name of ["doors", "trail", "scan", "particles", "objects", "people", "robot"])
+    layers[name] = el("g", {id: "layer-" + name}, svg);
+}
+
+function drawState() {
+  if (!map || !state) return;
+  for (const g of Object.values(layers)) g.innerHTML = "";
+  for (const [name, d] of Object.entries(map.doors)) {
+    const [cx, cy] = px(d.x, d.y);
+    const s = state.doors[name] || "open";
+    el("circle", {cx, cy, r: 5, fill: s === "open" ? "#6c6" : s === "locked" ? "#a00" : "#e80"},
+       layers.doors);
+  }
+  if (state.trail.length > 1)
+    el("polyline", {points: state.trail.map(p => px(...p).join(",")).join(" "), fill: "none",
+                    stroke: "#39f", "stroke-width": 2}, layers.trail);
+  for (const p of state.scan || []) el("circle", {cx: px(...p)[0], cy: px(...p)[1], r: 1.5,
+                                                   fill: "#e22"}, layers.scan);
+  for (const p of state.particles || []) el("circle", {cx: px(...p)[0], cy: px(...p)[1], r: 1,
+                                                        fill: "#a3a"}, layers.particles);
+  for (const [name, o] of Object.entries(state.objects)) {
+    const [cx, cy] = px(...o.xy);
+    const c = el("circle", {cx, cy, r: 4, fill: "#08a", "data-object": name, class: "object"},
+                 layers.objects);
+    el("title", {}, c).textContent = name;
+  }
+  for (const [name, p] of Object.entries(state.people)) {
+    const [cx, cy] = px(...p);
+    el("circle", {cx, cy, r: 7, fill: "#f90"}, layers.people);
+    el("text", {x: cx + 9, y: cy + 4, "font-size": 11}, layers.people).textContent = name;
+  }
+  const [x, y, th] = state.robot, [cx, cy] = px(x, y), r = Math.max(6, map.radius * scale);
+  el("circle", {cx, cy, r, fill: "none", stroke: "#06c", "stroke-width": 3, id: "robot",
+                "data-x": x, "data-y": y}, layers.robot);
+  el("line", {x1: cx, y1: cy, x2: cx + 1.8 * r * Math.cos(th), y2: cy - 1.8 * r * Math.sin(th),
+              stroke: "#06c", "stroke-width": 3}, layers.robot);
+}
+
+function drawPanels() {
+  const s = state;
+  document.getElementById("status").textContent =
+    `t=${s.time.toFixed(1)} s · ${s.fidelity} · speed ${s.speed || "max"}× · ` +
+    `robot (${s.robot[0].toFixed(2)}, ${s.robot[1].toFixed(2)}) · ` +
+    (s.busy ? "busy" : "idle") + (s.estop ? " · STOPPED" : "") +
+    (s.velocity ? ` · v=${s.velocity[0]} m/s · ahead ${s.nearest_ahead} m · ` +
+     `slowing ×${s.teleop_scale}` : "");
+  document.getElementById("estop").className = s.estop ? "engaged" : "";
+  document.getElementById("control").textContent = s.controller === OPERATOR ?
+    "you have control" : s.controller ? "someone else has control" : "nobody has control";
+  document.getElementById("speech").innerHTML = "";
+  for (const line of s.speech) {
+    const d = document.createElement("div"); d.textContent = "🤖 " + line;
+    document.getElementById("speech").appendChild(d);
+  }
+  const task = document.getElementById("task");
+  task.innerHTML = "";
+  const head = document.createElement("div");
+  head.textContent = s.task.description + (s.task.ended === null ? "" :
+    s.task.ended ? " — done" : " — ended: " + s.task.reason);
+  task.appendChild(head);
+  for (const step of s.task.steps) {
+    const d = document.createElement("div");
+    d.className = "step " + step.status;
+    d.dataset.status = step.status;
+    const args = Object.entries(step).filter(([k]) => !["skill", "status", "error",
+      "recovery"].includes(k)).map(([k, v]) => `${k}=${JSON.stringify(v)}`).join(", ");
+    d.textContent = `${step.recovery ? "↳ " : ""}${step.skill}(${args}) — ${step.status}` +
+      (step.error ? ` (${step.error})` : "");
+    task.appendChild(d);
+  }
+  const help = document.getElementById("help");
+  if (s.help && !s.busy) {
+    help.style.display = "block";
+    help.innerHTML = "";
+    help.append(`Step ${s.help.step + 1} (${s.help.skill}) failed: ${s.help.reason}. ` +
+      `Help on the ${s.help.levels.join(" or ")} level below (map clicks, composer` +
+      (s.help.levels.includes("body") ? ", arrow keys" : "") + "), then ");
+    const b = document.createElement("button");
+    b.textContent = "go on with the task"; b.onclick = () => api("/api/resume", {});
+    help.appendChild(b);
+  } else help.style.display = "none";
+}
+
+function logEvents(events, lost) {
+  const log = document.getElementById("log");
+  if (lost) { const d = document.createElement("div"); d.textContent = `(${lost} events skipped)`;
+              log.appendChild(d); }
+  for (const e of events) {
+    const d = document.createElement("div");
+    const {n, time, kind, ...rest} = e;
+    d.textContent = `${time.toFixed(1)} ${kind} ${JSON.stringify(rest).slice(0, 140)}`;
+    log.appendChild(d);
+  }
+  while (log.childNodes.length > 300) log.removeChild(log.firstChild);
+  log.scrollTop = log.scrollHeight;
+}
+
+function connect() {
+  const proto = location.protocol === "https:" ? "wss" : "ws";
+  const ws = new WebSocket(`${proto}://${location.host}/ws?token=${encodeURIComponent(TOKEN)}`);
+  ws.onmessage = (message) => {
+    const data = JSON.parse(message.data);
+    if (data.type === "map") { map = data; drawMap(); }
+    else if (data.type === "events") logEvents(data.events, data.lost);
+    else if (data.type === "state") { state = data; drawState(); drawPanels(); }
+  };
+  ws.onclose = () => { document.getElementById("status").textContent = "disconnected; retrying";
+                       setTimeout(connect, 1000); };
+}
+
+svg.addEventListener("click", (event) => {
+  if (!map) return;
+  const point = svg.createSVGPoint(); point.x = event.clientX; point.y = event.clientY;
+  const local = point.matrixTransform(svg.getScreenCTM().inverse());
+  const [x, y] = world(local.x, local.y);
+  const mode = document.querySelector("input[name=click]:checked").value;
+  if (mode === "navigate") {
+    api("/api/steps", {steps: [{skill: "navigate", to: [+x.toFixed(2), +y.toFixed(2)]}]});
+  } else if (state) {
+    let best = null, dist = 1e9;
+    for (const [name, o] of Object.entries(state.objects)) {
+      const d = Math.hypot(o.xy[0] - x, o.xy[1] - y);
+      if (d < dist && !o.at.startsWith("hand")) { best = name; dist = d; }
+    }
+    if (best) api("/api/steps", {steps: [{skill: "pick", object: best}],
+                                 description: "pick " + best});
+  }
+});
+
+const keys = new Set();
+document.addEventListener("keydown", (e) => {
+  if (e.target.tagName === "INPUT") return;
+  if (e.key.startsWith("Arrow")) { keys.add(e.key); e.preventDefault(); }
+});
+document.addEventListener("keyup", (e) => keys.delete(e.key));
+setInterval(() => {
+  if (!keys.size) return;
+  const f = keys.has("ArrowUp") ? 1 : keys.has("ArrowDown") ? -1 : 0;
+  const t = keys.has("ArrowLeft") ? 1 : keys.has("ArrowRight") ? -1 : 0;
+  api("/api/drive", {vx: f * 10, wz: t * 10});  // the server caps the speeds
+}, 100);
+
+document.getElementById("estop").onclick = () => api("/api/estop", {});
+document.getElementById("release-estop").onclick = () => api("/api/estop/release", {});
+document.getElementById("take").onclick = () => api("/api/control", {action: "take"});
+document.getElementById("give-up").onclick = () => api("/api/control", {action: "release"});
+document.getElementById("command-form").onsubmit = (e) => {
+  e.preventDefault();
+  const box = document.getElementById("command");
+  api("/api/command", {text: box.value}); box.value = "";
+};
+document.getElementById("add-step").onclick = () => {
+  let args = {};
+  try { args = JSON.parse(document.getElementById("args").value || "{}"); }
+  catch (err) { document.getElementById("error").textContent = "arguments: " + err; return; }
+  composed.push({skill: document.getElementById("skill").value, ...args});
+  const li = document.createElement("li"); li.textContent = JSON.stringify(composed.at(-1));
+  document.getElementById("composed").appendChild(li);
+};
+document.getElementById("clear-composed").onclick = () => {
+  composed = []; document.getElementById("composed").innerHTML = ""; };
+document.getElementById("run-composed").onclick = () => api("/api/steps", {steps: composed});
+window.addEventListener("resize", () => { if (map) { drawMap(); drawState(); } });
+connect();
