@@ -117,6 +117,7 @@ def create_app(settings: ConsoleSettings, *, rate: float = 10.0,
                   openapi_url=None)
     app.state.console = home
     app.state.watchers = watchers
+    app.state.stats = {"superseded": 0, "lost_events": 0, "watchers": 0}
 
     def authorised(query: str | None = Query(None, alias="token"),
                    header: str | None = Header(None, alias="X-Homebot-Token")) -> None:
@@ -228,6 +229,10 @@ def create_app(settings: ConsoleSettings, *, rate: float = 10.0,
             pass
         finally:
             watchers.discard(watcher)
+            stats = app.state.stats
+            stats["superseded"] += watcher.superseded
+            stats["lost_events"] += watcher.lost
+            stats["watchers"] += 1
 
     return app
 

@@ -136,6 +136,7 @@ class Console:
         self.estop = False
         self.estop_ticks: list[int] = []  #: ticks from each stop press to a standing base
         self._pending_stop: int | None = None
+        self._stop_tick = 0
         self._jobs: deque[Callable[[], object]] = deque()
         self._running = False
         self.last_task: Task | None = None
@@ -145,7 +146,8 @@ class Console:
         self._teleop = Twist()
         self._teleop_until = -1.0
         self.teleop_scale = 1.0
-        self.ticks = 0
+        self.ticks = 0  #: advances of the simulated clock (a body tick each, when embodied)
+        self.tick_hooks: list[Callable[[int], None]] = []  #: called in the worker per advance
         self._closing = False
         self._worker: threading.Thread | None = None
         self.conversation = Conversation(Vocabulary.from_world(self.world), self._run_task)
@@ -158,6 +160,11 @@ class Console:
             self._worker = threading.Thread(target=self._work, name="homebot-console",
                                             daemon=True)
             self._worker.start()
+
+    def wait_idle(self, timeout: float) -> bool:
+        """Wait (at most ``timeout`` wall seconds) until no task runs or waits to run."""
+        with self.lock:
+            return self.lock.wait_for(lambda: not self.busy, timeout)
 
     def close(self) -> None:
         """Stop the worker thread and wait for it."""
@@ -180,6 +187,7 @@ class Console:
                     finally:
                         self._running = False
                         self._anchor = (self._wall(), self.sim.clock.now())
+                        self.lock.notify_all()
                 elif self.body is not None and (self.settings.speed > 0 or self._driving()):
                     with contextlib.suppress(Preempted):
                         self.step_body()
@@ -202,8 +210,10 @@ class Console:
     def _paced_advance(self, seconds: float) -> float:
         now = self._advance(seconds)
         self.ticks += 1
+        for hook in self.tick_hooks:
+            hook(self.ticks)
         if self._pending_stop is not None and self.body is not None:
-            velocity = self.body.odometry().velocity
+            velocity = self.body.odometry().twist
             if velocity.is_zero():
                 self.estop_ticks.append(self.ticks - self._pending_stop)
                 self._pending_stop = None
@@ -231,7 +241,8 @@ class Console:
         return self._running or bool(self._jobs)
 
     def _preempting(self) -> bool:
-        return self.estop and self._running
+        """Stop pressed, a task running, and a tick gone since (the base stands now)."""
+        return self.estop and self._running and self.ticks > self._stop_tick
 
     # ------------------------------------------------------------ events
 
@@ -308,11 +319,12 @@ class Console:
         """Stop the base from the next tick on and preempt whatever runs."""
         with self.lock:
             self.estop = True
+            self._stop_tick = self.ticks
             self._jobs.clear()
             self._teleop_until = -1.0
             if self.body is not None:
                 self.body.emergency_stop(True)
-                if not self.body.odometry().velocity.is_zero():
+                if not self.body.odometry().twist.is_zero():
                     self._pending_stop = self.ticks
             self.sim.events.record("console.estop")
             self.lock.notify_all()
@@ -503,8 +515,8 @@ class Console:
         return {"scan": points,
                 "particles": np.round(np.asarray(particles)[:, :2], 2).tolist(),
                 "nearest_ahead": round(min(self.nearest_ahead(), 99.0), 3),
-                "velocity": [round(self.body.odometry().velocity.vx, 3),
-                             round(self.body.odometry().velocity.wz, 3)]}
+                "velocity": [round(self.body.odometry().twist.vx, 3),
+                             round(self.body.odometry().twist.wz, 3)]}
 
     def events_since(self, number: int) -> list[dict[str, Any]]:
         """The kept events numbered above ``number``, each with its number as ``n``."""
