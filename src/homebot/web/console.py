@@ -49,6 +49,7 @@ _EVENTS_KEPT = 2000  #: events the console keeps for late-joining watchers
 _TERMINAL = frozenset({"verified", "failed", "aborted"})
 _AHEAD = math.radians(35.0)  #: half-width of the cone "ahead" for obstacle slowing
 _SCAN_POINTS_SHOWN = 120
+_SLICE = 0.05  #: simulated seconds: the longest single advance (one body tick at 20 Hz)
 
 
 class ConsoleError(HomebotError):
@@ -208,17 +209,30 @@ class Console:
         body.tick()
 
     def _paced_advance(self, seconds: float) -> float:
+        """The clock's advance, in slices of at most a body tick, each paced and stoppable.
+
+        A symbolic move is one long advance; slicing it lets the stop preempt it at the next
+        slice (before the robot arrives), as the body's own tick does when embodied.
+        """
+        clock = self.sim.clock
+        target = clock.now() + seconds
+        while target - clock.now() > _SLICE + 1e-9:  # a body tick is one slice, not two
+            self._paced_slice(_SLICE)
+        self._paced_slice(max(0.0, target - clock.now()))
+        clock.time = target  # exactly where one unsliced advance would have put it
+        return target
+
+    def _paced_slice(self, seconds: float) -> None:
         now = self._advance(seconds)
         self.ticks += 1
         for hook in self.tick_hooks:
             hook(self.ticks)
-        if self._pending_stop is not None and self.body is not None:
-            velocity = self.body.odometry().twist
-            if velocity.is_zero():
-                self.estop_ticks.append(self.ticks - self._pending_stop)
-                self._pending_stop = None
+        if self._pending_stop is not None and self.body is not None and \
+                self.body.odometry().twist.is_zero():
+            self.estop_ticks.append(self.ticks - self._pending_stop)
+            self._pending_stop = None
         if threading.current_thread() is not self._worker:
-            return now
+            return
         speed = self.settings.speed
         if speed > 0:
             wall0, sim0 = self._anchor
@@ -233,7 +247,6 @@ class Console:
             self.lock.wait(0)
         if self._preempting() or self._closing:
             raise Preempted
-        return now
 
     @property
     def busy(self) -> bool:
@@ -380,7 +393,10 @@ class Console:
 
     def run_steps(self, operator: str, steps: list[dict[str, Any]],
                   description: str = "") -> Task:
-        """Skill and task level: check the steps against the catalogue and queue them."""
+        """Skill and task level: check the steps against the catalogue and queue them.
+
+        One step run while a failed task waits helps that task (it stays ready to go on).
+        """
         with self.lock:
             self.require_control(operator)
             self._check_can_act()
@@ -394,7 +410,9 @@ class Console:
                 check_step(step, self.world, f"step {index}")
                 checked.append(step)
             task = Task(tuple(checked), description or " then ".join(map(str, checked)))
-            self._queue(lambda: self._run_task(task))
+            # one skill while a failed task waits is the operator helping it on
+            helping = len(checked) == 1 and self.failed_at is not None
+            self._queue(lambda: self._run_task(task, helping=helping))
             return task
 
     def command(self, operator: str, text: str) -> None:
@@ -438,17 +456,22 @@ class Console:
                 self.events.append((self.event_count, {"time": self.sim.clock.now(),
                                                        "kind": "console.reply", "text": line}))
 
-    def _run_task(self, task: Task, *, interrupt: Callable[[], bool] | None = None
-                  ) -> TaskReport:
-        self.last_task, self.failed_at, self.help_offer = task, None, None
+    def _run_task(self, task: Task, *, interrupt: Callable[[], bool] | None = None,
+                  helping: bool = False) -> TaskReport:
+        """Run a task; when it fails, offer the level below and keep it to go on with.
+
+        ``helping``: a single skill the operator runs to help a failed task on; the failed
+        task stays ready to go on with, whatever this skill's outcome.
+        """
+        if not helping:
+            self.last_task, self.failed_at, self.help_offer = task, None, None
         report = self.run.run(task, interrupt=lambda: self.estop or bool(
             interrupt is not None and interrupt()))
-        if not report.success and report.steps:
+        if not report.success and report.steps and not helping:
             index = len(report.steps) - 1
             self.failed_at = index
-            failed = report.steps[-1]
             self.help_offer = {
-                "step": index, "skill": failed.skill, "reason": report.reason,
+                "step": index, "skill": report.steps[-1].skill, "reason": report.reason,
                 "levels": ["skill", "body"] if self.body is not None else ["skill"],
             }
         return report

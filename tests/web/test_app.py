@@ -1,0 +1,148 @@
+"""The console's API and websocket in-process: access, control, a full run, stop, help."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from typing import Any
+
+import pytest
+
+pytest.importorskip("fastapi")
+pytest.importorskip("httpx")
+
+from fastapi.testclient import TestClient
+from starlette.websockets import WebSocketDisconnect
+
+from homebot.web import Console, ConsoleSettings
+from homebot.web.app import create_app
+from homebot.world import World
+
+TOKEN = "test-token-123"
+ANN = {"X-Homebot-Token": TOKEN, "X-Homebot-Operator": "ann"}
+BOB = {"X-Homebot-Token": TOKEN, "X-Homebot-Operator": "bob"}
+_WAIT = 120.0  # wall seconds at most for a task in a test (it takes well under one)
+
+
+@pytest.fixture
+def client() -> Iterator[TestClient]:
+    settings = ConsoleSettings(world=World.load("apartment"), token=TOKEN, speed=0.0)
+    with TestClient(create_app(settings)) as test_client:
+        yield test_client
+
+
+def _console(client: TestClient) -> Console:
+    home: Console = client.app.state.console  # type: ignore[attr-defined]
+    return home
+
+
+ROUTES = [("get", "/", None), ("get", "/api/map", None), ("get", "/api/state", None),
+          ("get", "/api/events", None), ("post", "/api/control", {"action": "take"}),
+          ("post", "/api/estop", {}), ("post", "/api/estop/release", {}),
+          ("post", "/api/drive", {"vx": 0.1}), ("post", "/api/command", {"text": "hi"}),
+          ("post", "/api/steps", {"steps": [{"skill": "say", "text": "hi"}]}),
+          ("post", "/api/resume", {})]
+
+
+@pytest.mark.parametrize(("method", "path", "body"), ROUTES)
+def test_every_request_without_the_token_is_refused(client: TestClient, method: str,
+                                                    path: str, body: Any) -> None:
+    for headers in ({"X-Homebot-Operator": "ann"},
+                    {"X-Homebot-Token": "wrong-token", "X-Homebot-Operator": "ann"}):
+        response = client.request(method, path, json=body, headers=headers)
+        assert response.status_code == 401
+    assert _console(client).estop is False  # nothing got through
+    assert _console(client).controller is None
+
+
+def test_the_websocket_without_the_token_is_refused(client: TestClient) -> None:
+    for url in ("/ws", "/ws?token=wrong"):
+        with pytest.raises(WebSocketDisconnect) as refused, client.websocket_connect(url) as ws:
+            ws.receive_json()
+        assert refused.value.code == 1008
+
+
+def test_the_page_loads_with_the_token(client: TestClient) -> None:
+    page = client.get(f"/?token={TOKEN}")
+    assert page.status_code == 200
+    assert "EMERGENCY STOP" in page.text and "function connect()" in page.text
+
+
+def test_a_second_operator_cannot_take_control(client: TestClient) -> None:
+    assert client.post("/api/control", json={"action": "take"}, headers=ANN).status_code == 200
+    taken = client.post("/api/control", json={"action": "take"}, headers=BOB)
+    assert taken.status_code == 409 and "another operator" in taken.json()["error"]
+    refused = client.post("/api/command", json={"text": "go to the kitchen"}, headers=BOB)
+    assert refused.status_code == 409
+    assert client.post("/api/estop", headers=BOB).status_code == 200  # anyone may stop
+    assert client.post("/api/estop/release", headers=BOB).status_code == 409
+    assert client.post("/api/estop/release", headers=ANN).status_code == 200
+    client.post("/api/control", json={"action": "release"}, headers=ANN)
+    assert client.post("/api/control", json={"action": "take"}, headers=BOB).status_code == 200
+
+
+def test_a_fetch_command_completes_with_the_map_log_speech_and_steps_live(
+        client: TestClient) -> None:
+    home = _console(client)
+    client.post("/api/control", json={"action": "take"}, headers=ANN)
+    with client.websocket_connect(f"/ws?token={TOKEN}") as ws:
+        assert ws.receive_json()["type"] == "map"
+        sent = client.post("/api/command", json={"text": "bring me the cola from the fridge"},
+                           headers=ANN)
+        assert sent.status_code == 200
+        assert home.wait_idle(_WAIT)
+        kinds: set[str] = set()
+        statuses: set[str] = set()
+        positions: set[tuple[float, float]] = set()
+        for _ in range(400):
+            message = ws.receive_json()
+            if message["type"] == "events":
+                kinds.update(event["kind"] for event in message["events"])
+                continue
+            positions.add(tuple(message["robot"][:2]))
+            statuses.update(step["status"] for step in message["task"]["steps"])
+            if message["task"]["ended"] is not None and not message["busy"]:
+                break
+    assert message["task"]["ended"] is True
+    assert [step["skill"] for step in message["task"]["steps"]][-1] == "give"
+    assert statuses >= {"verified"}
+    assert "I have done what you asked." in message["speech"]
+    assert {"task.start", "skill.start", "skill.status", "speech", "task.end"} <= kinds
+    with home.lock:  # ground truth: the operator holds the cola
+        assert home.sim.object_location["cola"] == f"person:{home.world.model.operator}"
+    assert message["objects"]["cola"]["at"].startswith("person:")
+
+
+def test_the_stop_preempts_a_running_task_and_the_operator_helps_it_on(
+        client: TestClient) -> None:
+    home = _console(client)
+    client.post("/api/control", json={"action": "take"}, headers=ANN)
+    steps = [{"skill": "pick", "object": "cola"}, {"skill": "pick", "object": "milk"},
+             {"skill": "pick", "object": "water"}]
+    assert client.post("/api/steps", json={"steps": steps}, headers=ANN).status_code == 200
+    assert home.wait_idle(_WAIT)
+    state = client.get("/api/state", headers=ANN).json()
+    assert [step["status"] for step in state["task"]["steps"]][:2] == ["verified", "verified"]
+    assert state["task"]["ended"] is False and state["help"]["skill"] == "pick"
+    assert state["help"]["levels"] == ["skill"]  # symbolic: no body to drive
+    # the operator steps down a level: puts the milk away, then lets the task go on
+    place = [{"skill": "place", "placement": "kitchen counter", "object": "milk"}]
+    assert client.post("/api/steps", json={"steps": place}, headers=ANN).status_code == 200
+    assert home.wait_idle(_WAIT)
+    assert client.post("/api/resume", headers=ANN).status_code == 200
+    assert home.wait_idle(_WAIT)
+    with home.lock:
+        assert set(home.sim.hands.values()) == {"cola", "water"}
+    # and a stop pressed while the robot drives preempts it where it is
+    go = [{"skill": "navigate", "to": "bedroom"}]
+    home.settings.speed = 1.0  # real time: the drive takes long enough to be stopped
+    assert client.post("/api/steps", json={"steps": go}, headers=ANN).status_code == 200
+    with home.lock:
+        home.lock.wait_for(lambda: home.steps.current >= 0 and
+                           home.steps.steps[home.steps.current]["status"] == "running", _WAIT)
+    assert client.post("/api/estop", headers=BOB).status_code == 200
+    assert home.wait_idle(_WAIT)
+    with home.lock:
+        assert home.world.room_at(*home.sim.robot_pose[:2]) != "bedroom"
+        assert any(True for _ in home.sim.events.of_kind("console.preempted"))
+    assert client.post("/api/command", json={"text": "go to the bedroom"},
+                       headers=ANN).status_code == 409  # stopped until released

@@ -1,0 +1,93 @@
+"""The console's controls on the embodied robot: teleop with obstacle slowing, e-stop, grasp."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+pytest.importorskip("cv2")
+
+from homebot.bench.console import estop_trials
+from homebot.scenarios.embodied import Fidelity
+from homebot.web import Console, ConsoleError, ConsoleSettings
+from homebot.world import World
+
+
+@pytest.fixture(scope="module")
+def apartment() -> World:
+    return World.load("apartment")
+
+
+def _embodied(world: World) -> Console:
+    return Console(ConsoleSettings(world=world, token="test-token", fidelity=Fidelity.EMBODIED,
+                                   speed=0.0))
+
+
+def test_a_keyboard_drive_into_the_kitchen_slows_before_what_is_ahead(
+        apartment: World) -> None:
+    home = _embodied(apartment)  # no worker: the test ticks the body itself
+    home.take_control("ann")
+    for _ in range(200):  # turn to face east (the kitchen arch)
+        if abs(home.sim.robot_pose[2]) < 0.05:
+            break
+        home.drive("ann", 0.0, -1.0 if home.sim.robot_pose[2] > 0 else 1.0)
+        home.step_body()
+    start = home.sim.robot_pose
+    samples: list[tuple[float, float]] = []  # (nearest return ahead, speed)
+    still = 0
+    for _ in range(1500):  # the arrow key held: full speed asked for
+        home.drive("ann", 10.0, 0.0)
+        ahead = home.nearest_ahead()
+        home.step_body()
+        speed = home.body.odometry().twist.vx
+        samples.append((ahead, speed))
+        still = still + 1 if speed < 0.01 else 0
+        if still > 20:
+            break
+    end = home.sim.robot_pose
+    cap = home.settings.max_linear
+    assert math.dist(start[:2], end[:2]) > 2.0
+    assert apartment.room_at(*end[:2]) == "kitchen"  # from the entrance into the kitchen
+    assert max(speed for _, speed in samples) <= cap + 1e-9
+    assert any(speed > 0.9 * cap for _, speed in samples)  # free floor: (near) the cap
+    near = [speed for ahead, speed in samples if ahead < 0.8]
+    assert near and max(near) < 0.75 * cap  # near an obstacle: well below the cap
+    assert home.sim.collisions == []  # slowed to a stop, touched nothing
+    assert still > 20  # it came to rest in front of the obstacle
+
+
+def test_a_drive_without_control_or_during_a_stop_is_refused(apartment: World) -> None:
+    home = _embodied(apartment)
+    with pytest.raises(ConsoleError, match="take control"):
+        home.drive("bob", 0.2, 0.0)
+    home.take_control("ann")
+    with pytest.raises(ConsoleError, match="another operator"):
+        home.take_control("bob")
+    home.emergency_stop()
+    with pytest.raises(ConsoleError, match="emergency stop"):
+        home.drive("ann", 0.2, 0.0)
+    home.release_stop("ann")
+    home.drive("ann", 0.2, 0.0)
+
+
+@pytest.mark.parametrize("kind", ["navigation", "follow"])
+def test_the_emergency_stop_stands_the_base_within_one_tick(apartment: World, kind: str) -> None:
+    trials = estop_trials(apartment, kind, 2, seed=3)
+    assert [trial.ticks for trial in trials] == [1, 1]
+    assert all(trial.passed for trial in trials)  # and it did not move after the press
+
+
+def test_a_skill_level_grasp_of_a_clicked_object(apartment: World) -> None:
+    home = _embodied(apartment)
+    home.start()
+    try:
+        home.take_control("ann")
+        target = sorted(home.sim.object_location)[0]
+        home.run_steps("ann", [{"skill": "pick", "object": target}])
+        assert home.wait_idle(120.0)
+        with home.lock:
+            assert target in home.sim.hands.values()  # ground truth: in the robot's hand
+            assert home.steps.steps[-1]["status"] == "verified"
+    finally:
+        home.close()
