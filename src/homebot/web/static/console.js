@@ -99,7 +99,7 @@ function drawPanels() {
     "you have control" : s.controller ? "someone else has control" : "nobody has control";
   document.getElementById("speech").innerHTML = "";
   for (const line of s.speech) {
-    const d = document.createElement("div"); d.textContent = "🤖 " + line;
+    const d = document.createElement("div"); d.textContent = "robot: " + line;
     document.getElementById("speech").appendChild(d);
   }
   const task = document.getElementById("task");

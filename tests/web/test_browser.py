@@ -1,0 +1,110 @@
+"""The console in a real headless Chromium: a fetch typed in the page, the map live, e-stop."""
+
+from __future__ import annotations
+
+import os
+import shutil
+import socket
+import threading
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("fastapi")
+pytest.importorskip("uvicorn")
+playwright_api = pytest.importorskip("playwright.sync_api")
+
+from homebot.web import Console, ConsoleSettings
+from homebot.web.app import create_app
+from homebot.world import World
+
+pytestmark = pytest.mark.browser
+
+TOKEN = "browser-test-token"
+_TIMEOUT_MS = 90_000  # the longest wait for anything in the page
+
+
+def _chromium() -> str | None:
+    named = os.environ.get("HOMEBOT_CHROMIUM")
+    candidates = [named] if named else []
+    candidates += [shutil.which(name) for name in ("chromium", "chromium-browser",
+                                                   "google-chrome")]
+    return next((path for path in candidates if path and Path(path).exists()), None)
+
+
+@pytest.fixture(scope="module")
+def served() -> Iterator[tuple[str, Console]]:
+    import uvicorn
+
+    settings = ConsoleSettings(world=World.load("apartment"), token=TOKEN, speed=10.0)
+    app = create_app(settings)
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        port = probe.getsockname()[1]
+    server = uvicorn.Server(uvicorn.Config(app, host="127.0.0.1", port=port,
+                                           log_level="warning"))
+    thread = threading.Thread(target=server.run, daemon=True)
+    thread.start()
+    try:
+        yield f"http://127.0.0.1:{port}", app.state.console
+    finally:
+        server.should_exit = True
+        thread.join(timeout=10.0)
+
+
+@pytest.fixture(scope="module")
+def browser() -> Iterator[object]:
+    executable = _chromium()
+    if executable is None:
+        pytest.skip("no Chromium installed (apt-get install chromium)")
+    with playwright_api.sync_playwright() as playwright:
+        launched = playwright.chromium.launch(executable_path=executable, headless=True,
+                                              args=["--no-sandbox"])
+        yield launched
+        launched.close()
+
+
+def _robot_xy(page: object) -> tuple[float, float]:
+    robot = page.locator("#robot")  # type: ignore[attr-defined]
+    return float(robot.get_attribute("data-x")), float(robot.get_attribute("data-y"))
+
+
+def test_a_fetch_typed_in_the_page_runs_live_and_the_stop_button_stops(
+        served: tuple[str, Console], browser: object, tmp_path: Path) -> None:
+    url, home = served
+    page = browser.new_page(viewport={"width": 1280, "height": 800})  # type: ignore[attr-defined]
+    page.set_default_timeout(_TIMEOUT_MS)
+    page.goto(f"{url}/?token={TOKEN}")
+    page.wait_for_selector("#robot", state="attached")
+    page.click("#take")
+    page.wait_for_function("document.getElementById('control').textContent"
+                           ".includes('you have control')")
+    start = _robot_xy(page)
+    page.fill("#command", "bring me the cola from the fridge")
+    page.press("#command", "Enter")
+    page.wait_for_function(
+        f"(() => {{ const r = document.getElementById('robot'); return r && "
+        f"Math.hypot(r.dataset.x - {start[0]}, r.dataset.y - {start[1]}) > 0.5; }})()")
+    page.screenshot(path=str(tmp_path / "moving.png"))
+    page.wait_for_function("document.getElementById('task').textContent.includes('— done')")
+    page.screenshot(path=str(tmp_path / "done.png"))
+    assert page.locator(".step[data-status=verified]").count() >= 4
+    assert "I have done what you asked." in page.inner_text("#speech")
+    assert "task.end" in page.inner_text("#log")
+    with home.lock:  # ground truth: the operator holds the cola
+        assert home.sim.object_location["cola"] == f"person:{home.world.model.operator}"
+    # a long drive, stopped from the page
+    page.fill("#command", "go to the bedroom")
+    page.press("#command", "Enter")
+    page.wait_for_function("document.querySelector('.step.running') !== null")
+    page.click("#estop")
+    page.wait_for_function("document.getElementById('estop').className === 'engaged'")
+    page.wait_for_function("document.getElementById('status').textContent.includes('idle')")
+    page.screenshot(path=str(tmp_path / "stopped.png"))
+    with home.lock:
+        assert home.estop
+        assert home.world.room_at(*home.sim.robot_pose[:2]) != "bedroom"
+    for name in ("moving.png", "done.png", "stopped.png"):
+        assert (tmp_path / name).stat().st_size > 10_000  # a real picture of the page
+    page.close()
