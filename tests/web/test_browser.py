@@ -15,9 +15,10 @@ pytest.importorskip("fastapi")
 pytest.importorskip("uvicorn")
 playwright_api = pytest.importorskip("playwright.sync_api")
 
-from homebot.web import Console, ConsoleSettings
-from homebot.web.app import create_app
-from homebot.world import World
+from homebot.scenarios.embodied import Fidelity  # noqa: E402
+from homebot.web import Console, ConsoleSettings  # noqa: E402
+from homebot.web.app import create_app  # noqa: E402
+from homebot.world import World  # noqa: E402
 
 pytestmark = pytest.mark.browser
 
@@ -46,6 +47,10 @@ def served() -> Iterator[tuple[str, Console]]:
                                            log_level="warning"))
     thread = threading.Thread(target=server.run, daemon=True)
     thread.start()
+    for _ in range(400):  # at most 20 s for the server to listen
+        if server.started:
+            break
+        thread.join(0.05)
     try:
         yield f"http://127.0.0.1:{port}", app.state.console
     finally:
@@ -108,3 +113,55 @@ def test_a_fetch_typed_in_the_page_runs_live_and_the_stop_button_stops(
     for name in ("moving.png", "done.png", "stopped.png"):
         assert (tmp_path / name).stat().st_size > 10_000  # a real picture of the page
     page.close()
+
+
+def test_arrow_keys_drive_the_embodied_base_capped_and_slowed(browser: object,
+                                                             tmp_path: Path) -> None:
+    pytest.importorskip("cv2")
+    import uvicorn
+
+    settings = ConsoleSettings(world=World.load("apartment"), token=TOKEN, speed=2.0,
+                               fidelity=Fidelity.EMBODIED)
+    app = create_app(settings)
+    home: Console = app.state.console
+    with socket.socket() as probe:
+        probe.bind(("127.0.0.1", 0))
+        port = probe.getsockname()[1]
+    server = uvicorn.Server(uvicorn.Config(app, host="127.0.0.1", port=port,
+                                           log_level="warning"))
+    thread = threading.Thread(target=server.run, daemon=True)
+    thread.start()
+    speeds: list[tuple[float, float]] = []  # (nearest return ahead, forward speed)
+    home.tick_hooks.append(lambda tick: speeds.append(
+        (home.nearest_ahead(), home.body.odometry().twist.vx)))
+    try:
+        for _ in range(400):
+            if server.started:
+                break
+            thread.join(0.05)
+        page = browser.new_page(viewport={"width": 1280, "height": 800})  # type: ignore[attr-defined]
+        page.set_default_timeout(_TIMEOUT_MS)
+        page.goto(f"http://127.0.0.1:{port}/?token={TOKEN}")
+        page.wait_for_selector("#robot", state="attached")
+        page.click("#take")
+        page.wait_for_function("document.getElementById('control').textContent"
+                               ".includes('you have control')")
+        start = _robot_xy(page)
+        page.click("#map", position={"x": 5, "y": 5}, modifiers=[])  # focus the page
+        page.keyboard.down("ArrowUp")  # north: out of the entrance, through its door
+        page.wait_for_function(
+            f"(() => {{ const r = document.getElementById('robot'); return r && "
+            f"Math.hypot(r.dataset.x - {start[0]}, r.dataset.y - {start[1]}) > 1.5; }})()")
+        page.keyboard.up("ArrowUp")
+        page.screenshot(path=str(tmp_path / "driven.png"))
+        page.close()
+    finally:
+        server.should_exit = True
+        thread.join(timeout=10.0)
+    cap = settings.max_linear
+    moving = [(ahead, speed) for ahead, speed in speeds if speed > 0.01]
+    assert moving and max(speed for _, speed in moving) <= cap + 1e-9
+    assert any(speed > 0.9 * cap for _, speed in moving)  # free floor: the cap
+    assert any(ahead < 1.0 and speed < 0.75 * cap for ahead, speed in moving)  # slowed near
+    assert home.sim.collisions == []
+    assert (tmp_path / "driven.png").stat().st_size > 10_000

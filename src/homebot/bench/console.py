@@ -184,6 +184,10 @@ def load_test(world: World, clients: int, rate: int, seconds: float) -> dict[str
                                            log_level="warning", ws_max_queue=64))
     thread = threading.Thread(target=server.run, daemon=True)
     thread.start()
+    for _ in range(400):  # at most 20 s for the server to listen
+        if server.started:
+            break
+        thread.join(0.05)
     done = threading.Event()
     commander = threading.Thread(target=_keep_busy, args=(app.state.console, done), daemon=True)
     commander.start()
