@@ -88,6 +88,7 @@ def test_a_fetch_typed_in_the_page_runs_live_and_the_stop_button_stops(
     start = _robot_xy(page)
     page.fill("#command", "bring me the cola from the fridge")
     page.press("#command", "Enter")
+    page.wait_for_selector("#plan", state="attached")  # the planned path, drawn dashed
     page.wait_for_function(
         f"(() => {{ const r = document.getElementById('robot'); return r && "
         f"Math.hypot(r.dataset.x - {start[0]}, r.dataset.y - {start[1]}) > 0.5; }})()")

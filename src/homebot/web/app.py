@@ -90,6 +90,8 @@ def create_app(settings: ConsoleSettings, *, rate: float = 10.0,
 
     async def broadcast() -> None:
         seq, seen = 0, home.event_count
+        loop = asyncio.get_running_loop()
+        due = loop.time()
         while True:
             state = await asyncio.to_thread(home.snapshot)
             events = await asyncio.to_thread(home.events_since, seen)
@@ -101,7 +103,9 @@ def create_app(settings: ConsoleSettings, *, rate: float = 10.0,
             text = json.dumps(state, ensure_ascii=False)
             for watcher in list(watchers):
                 watcher.offer(text, events)
-            await asyncio.sleep(1.0 / rate)  # the server's sampling period, in wall time
+            # the server's sampling period, in wall time, on a fixed cadence (not drifting)
+            due = max(due + 1.0 / rate, loop.time() - 1.0 / rate)
+            await asyncio.sleep(max(0.0, due - loop.time()))
 
     @contextlib.asynccontextmanager
     async def lifespan(app: FastAPI) -> AsyncIterator[None]:

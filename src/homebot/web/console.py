@@ -39,6 +39,7 @@ from homebot.robot import Twist
 from homebot.scenarios import SimulatedRun
 from homebot.scenarios.embodied import Fidelity
 from homebot.skills.catalogue import check_step, spelled_as_world
+from homebot.skills.places import resolve_target
 from homebot.task import Step, Task
 from homebot.world import World
 
@@ -295,9 +296,18 @@ class Console:
                                               "recovery": True, **event.data.get("args", {})})
                 view.current = following
             view.steps[view.current]["status"] = "running"
-            if skill in ("navigate", "guide", "follow"):
-                self.path = []
+            if skill in ("navigate", "guide"):
+                self.path = self._planned(event.data.get("args", {}).get("to"))
         view.depth += 1
+
+    def _planned(self, target: Any) -> list[list[float]]:
+        """The global plan from here to a navigation target (the robot's own map and
+        its beliefs about doors; empty when it cannot be resolved)."""
+        goal = resolve_target(self.run.context, target) if target is not None else None
+        if goal is None:
+            return []
+        plan = self.run.context.navigator.plan(self.run.robot.pose().xy(), goal.xy())
+        return [] if plan is None else [[round(x, 2), round(y, 2)] for x, y in plan.waypoints]
 
     def _skill_status(self, event: Event) -> None:
         view = self.steps
@@ -493,6 +503,7 @@ class Console:
                           for name, state in sim.door_state.items()},
                 "hands": dict(sim.hands),
                 "trail": [list(p) for p in sim.trail[-200:]],
+                "path": self.path if self.busy else [],
                 "speech": list(self.speech)[-5:],
                 "task": {"description": self.steps.description, "steps": self.steps.steps,
                          "ended": self.steps.ended, "reason": self.steps.reason},

@@ -61,6 +61,10 @@ function drawState() {
     el("circle", {cx, cy, r: 5, fill: s === "open" ? "#6c6" : s === "locked" ? "#a00" : "#e80"},
        layers.doors);
   }
+  if (state.path && state.path.length > 1)
+    el("polyline", {points: state.path.map(p => px(...p).join(",")).join(" "), fill: "none",
+                    stroke: "#0a0", "stroke-width": 2, "stroke-dasharray": "6 4", id: "plan"},
+       layers.trail);
   if (state.trail.length > 1)
     el("polyline", {points: state.trail.map(p => px(...p).join(",")).join(" "), fill: "none",
                     stroke: "#39f", "stroke-width": 2}, layers.trail);
