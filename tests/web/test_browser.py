@@ -100,6 +100,13 @@ def test_a_fetch_typed_in_the_page_runs_live_and_the_stop_button_stops(
     assert "task.end" in page.inner_text("#log")
     with home.lock:  # ground truth: the operator holds the cola
         assert home.sim.object_location["cola"] == f"person:{home.world.model.operator}"
+    # skill level: a click on an object picks it
+    page.check("input[name=click][value=pick]")
+    page.click("[data-object='milk']", force=True)
+    page.wait_for_function("document.getElementById('task').textContent.includes('pick milk')")
+    page.wait_for_function("document.getElementById('task').textContent.includes('— done')")
+    with home.lock:  # ground truth: the milk is in the robot's hand
+        assert "milk" in home.sim.hands.values()
     # a long drive, stopped from the page
     page.fill("#command", "go to the bedroom")
     page.press("#command", "Enter")
