@@ -79,7 +79,8 @@ def test_the_emergency_stop_stands_the_base_within_one_tick(apartment: World, ki
 
 
 def test_a_skill_level_grasp_of_a_clicked_object(apartment: World) -> None:
-    home = _embodied(apartment)
+    # symbolic (fast); the browser test clicks the object in the page
+    home = Console(ConsoleSettings(world=apartment, token="test-token", speed=0.0))
     home.start()
     try:
         home.take_control("ann")
