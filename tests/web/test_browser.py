@@ -155,7 +155,6 @@ def test_arrow_keys_drive_the_embodied_base_capped_and_slowed(browser: object,
         page.wait_for_function("document.getElementById('control').textContent"
                                ".includes('you have control')")
         start = _robot_xy(page)
-        page.click("#map", position={"x": 5, "y": 5}, modifiers=[])  # focus the page
         page.keyboard.down("ArrowUp")  # north: out of the entrance, through its door
         page.wait_for_function(
             f"(() => {{ const r = document.getElementById('robot'); return r && "
