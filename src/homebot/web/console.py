@@ -208,6 +208,9 @@ class Console:
             twist = self._slowed(self._teleop)
         body.command_velocity(twist)
         body.tick()
+        localisation = getattr(self.run.robot, "localisation", None)
+        if localisation is not None:  # the robot keeps track of where it is driven
+            localisation.update(body.odometry(), body.scan())
 
     def _paced_advance(self, seconds: float) -> float:
         """The clock's advance, in slices of at most a body tick, each paced and stoppable.
