@@ -302,7 +302,8 @@ class RecoveringNavigation:
         pose = self.localise()
         ahead = _point_along(path, pose.xy(), _FACE_AHEAD)
         for _ in range(int(2 * math.pi / (body.limits.angular * body.tick_period)) + 1):
-            error = _wrap(math.atan2(ahead[1] - pose.y, ahead[0] - pose.x) - pose.theta)
+            error = math.remainder(math.atan2(ahead[1] - pose.y, ahead[0] - pose.x) - pose.theta,
+                                   math.tau)
             if abs(error) <= _FACED:
                 break
             limit = math.sqrt(2 * body.limits.angular_acceleration * abs(error))
@@ -332,7 +333,3 @@ def _point_along(path: tuple[tuple[float, float], ...], here: tuple[float, float
                     point[1] + t * (waypoint[1] - point[1]))
         point, left = waypoint, left - step
     return point
-
-
-def _wrap(angle: float) -> float:
-    return (angle + math.pi) % (2 * math.pi) - math.pi
