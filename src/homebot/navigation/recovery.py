@@ -104,10 +104,8 @@ class ObstacleMemory:
         """
         keep = scan.valid()
         ranges = scan.ranges[keep]
-        cos, sin = math.cos(pose.theta), math.sin(pose.theta)
-        mount = scan.mount
-        origin = (pose.x + cos * mount.x - sin * mount.y, pose.y + sin * mount.x + cos * mount.y)
-        angles = scan.angles()[keep] + mount.theta + pose.theta
+        origin = _laser_origin(pose, scan)
+        angles = scan.angles()[keep] + scan.mount.theta + pose.theta
         expected = self._expected_ranges(origin, angles, ranges + self.unexplained)
         points = scan_on_map(pose, scan)
         grid = self.navigator.grid
@@ -156,13 +154,10 @@ class ObstacleMemory:
     def _still_there(self, points: np.ndarray, pose: Pose, scan: LaserScan) -> np.ndarray:
         if not len(points):
             return points
-        cos, sin = math.cos(pose.theta), math.sin(pose.theta)
-        mount = scan.mount
-        origin_x = pose.x + cos * mount.x - sin * mount.y
-        origin_y = pose.y + sin * mount.x + cos * mount.y
+        origin_x, origin_y = _laser_origin(pose, scan)
         dx, dy = points[:, 0] - origin_x, points[:, 1] - origin_y
         distance = np.hypot(dx, dy)
-        bearing = np.arctan2(dy, dx) - pose.theta - mount.theta
+        bearing = np.arctan2(dy, dx) - pose.theta - scan.mount.theta
         bearing = (bearing + math.pi) % (2 * math.pi) - math.pi
         beam = np.rint((bearing - scan.angle_min) / scan.angle_increment).astype(np.int64)
         seen = (beam >= 0) & (beam < len(scan.ranges))
@@ -173,6 +168,13 @@ class ObstacleMemory:
         cleared = seen & (measured > distance + self.unexplained) & (distance < scan.range_max)
         kept: np.ndarray = points[~cleared]
         return kept
+
+
+def _laser_origin(pose: Pose, scan: LaserScan) -> tuple[float, float]:
+    """Where the laser stands on the map when the robot stands at ``pose``."""
+    cos, sin = math.cos(pose.theta), math.sin(pose.theta)
+    mount = scan.mount
+    return (pose.x + cos * mount.x - sin * mount.y, pose.y + sin * mount.x + cos * mount.y)
 
 
 def scan_on_map(pose: Pose, scan: LaserScan) -> np.ndarray:
