@@ -1,6 +1,17 @@
 """The home as data: rooms, doors, placements, objects, people and the robot."""
 
+from homebot.world.catalogue import (
+    CATEGORY_DEFAULTS,
+    CatalogueEntry,
+    CategoryDefaults,
+    catalogue_entry,
+    defaults_for,
+    object_catalogue,
+    surface_height,
+)
 from homebot.world.model import (
+    COLOUR_PALETTE,
+    Colour,
     DisturbanceModel,
     DoorModel,
     DoorState,
@@ -14,13 +25,19 @@ from homebot.world.model import (
     Posture,
     RobotModel,
     RoomModel,
+    Shape,
     WorldModel,
 )
 from homebot.world.surfaces import FRONT_HEADINGS, front_heading, object_positions
 from homebot.world.world import Placement, World, shipped_world_names, shipped_world_path
 
 __all__ = [
+    "CATEGORY_DEFAULTS",
+    "COLOUR_PALETTE",
     "FRONT_HEADINGS",
+    "CatalogueEntry",
+    "CategoryDefaults",
+    "Colour",
     "DisturbanceModel",
     "DoorModel",
     "DoorState",
@@ -35,10 +52,15 @@ __all__ = [
     "Posture",
     "RobotModel",
     "RoomModel",
+    "Shape",
     "World",
     "WorldModel",
+    "catalogue_entry",
+    "defaults_for",
     "front_heading",
+    "object_catalogue",
     "object_positions",
     "shipped_world_names",
     "shipped_world_path",
+    "surface_height",
 ]

@@ -177,7 +177,8 @@ def _describe(document: LocatedDocument, model: type[BaseModel], detail: Any) ->
     elif kind == "missing":
         message = "required field is missing; add it"
     else:
-        text = str(detail["msg"]).replace("Input should be", "must be", 1)
+        text = str(detail["msg"]).replace("Input should be", "must be", 1).replace(
+            "Value error, ", "", 1)
         message = f"{text} (got {short_repr(detail.get('input'))})"
         meaning = _description_at(model, location)
         if meaning:

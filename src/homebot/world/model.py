@@ -9,9 +9,18 @@ from __future__ import annotations
 from enum import StrEnum
 from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, ConfigDict, Field, field_validator
+from pydantic import (
+    BaseModel,
+    BeforeValidator,
+    ConfigDict,
+    Field,
+    field_validator,
+    model_validator,
+)
 
 __all__ = [
+    "COLOUR_PALETTE",
+    "Colour",
     "DisturbanceModel",
     "DoorModel",
     "DoorState",
@@ -25,6 +34,7 @@ __all__ = [
     "Posture",
     "RobotModel",
     "RoomModel",
+    "Shape",
     "WorldModel",
 ]
 
@@ -35,6 +45,51 @@ Probability = Annotated[float, Field(ge=0.0, le=1.0)]
 Name = Annotated[str, Field(min_length=1, pattern=r"^\p{L}[\p{L}\p{M}\p{N}_ '\-]*$")]
 
 
+#: the colour names a world file may use, with their RGB values (0-255)
+COLOUR_PALETTE: dict[str, tuple[int, int, int]] = {
+    "red": (200, 30, 30), "green": (40, 160, 60), "blue": (40, 70, 200),
+    "yellow": (230, 210, 40), "orange": (240, 130, 20), "purple": (120, 50, 150),
+    "pink": (240, 140, 180), "brown": (120, 75, 35), "black": (25, 25, 25),
+    "white": (235, 235, 235), "grey": (128, 128, 128), "gray": (128, 128, 128),
+    "beige": (220, 200, 160), "cyan": (40, 200, 210), "silver": (190, 190, 200),
+    "gold": (210, 170, 50),
+}
+
+
+def _colour(value: Any) -> Any:
+    """A palette name (any case) or an RGB triple of integers 0-255."""
+    if isinstance(value, str):
+        if value.strip().lower() not in COLOUR_PALETTE:
+            raise ValueError(f"'{value}' is no colour; use one of "
+                             f"{', '.join(sorted(COLOUR_PALETTE))} or [r, g, b] (0-255)")
+        return value.strip().lower()
+    if isinstance(value, list | tuple):
+        if len(value) != 3 or not all(isinstance(c, int) and not isinstance(c, bool)
+                                      and 0 <= c <= 255 for c in value):
+            raise ValueError(f"{value!r} is no colour; give [r, g, b] as three integers "
+                             "0-255, or a colour name")
+        return tuple(value)
+    raise ValueError(f"{value!r} is no colour; give a colour name or [r, g, b]")
+
+
+#: a colour: a name of ``COLOUR_PALETTE`` or ``(r, g, b)`` with 0-255 components
+Colour = Annotated[str | tuple[int, int, int], BeforeValidator(_colour)]
+
+
+class Shape(StrEnum):
+    """The primitive an object's catalogue entry is drawn and grasped as."""
+
+    BOX = "box"  #: dimensions [x, y, z] (width, depth, height)
+    CYLINDER = "cylinder"  #: dimensions [diameter, height], standing upright
+    SPHERE = "sphere"  #: dimensions [diameter]
+
+
+#: how many dimensions each shape takes
+SHAPE_DIMENSIONS = {Shape.BOX: 3, Shape.CYLINDER: 2, Shape.SPHERE: 1}
+
+Dimension = Annotated[float, Field(gt=0.0, le=2.0)]
+
+
 class _Strict(BaseModel):
     """Base for world entities: unknown fields are errors (they are usually typos).
 
@@ -42,6 +97,22 @@ class _Strict(BaseModel):
     """
 
     model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
+
+
+def _check_dimensions(shape: Shape | None, dimensions: list[float] | None) -> None:
+    """Dimensions need a shape, and as many numbers as the shape takes."""
+    if dimensions is None:
+        return
+    if shape is None:
+        raise ValueError("dimensions need a shape (box, cylinder or sphere) beside them")
+    wanted = SHAPE_DIMENSIONS[shape]
+    if len(dimensions) != wanted:
+        raise ValueError(f"a {shape.value} takes {wanted} dimension(s), got {len(dimensions)} "
+                         "(box: [x, y, z], cylinder: [diameter, height], sphere: [diameter])")
+
+
+_DIMENSIONS_MEANING = ("metres: [x, y, z] for a box, [diameter, height] for a cylinder, "
+                       "[diameter] for a sphere")
 
 
 class DoorState(StrEnum):
@@ -115,6 +186,8 @@ class PlacementModel(_Strict):
     approach: tuple[float, float, float] | None = None
     holds: list[Name] = Field(default_factory=list)
     front: Literal["north", "south", "east", "west"] | None = None
+    height: float | None = Field(default=None, gt=0.0, le=2.5, description=(
+        "the height of its top surface in metres (default: by category, a table 0.75)"))
 
     @field_validator("size")
     @classmethod
@@ -125,10 +198,24 @@ class PlacementModel(_Strict):
 
 
 class ObjectCategoryModel(_Strict):
-    """An object category with its plural, as people say it."""
+    """An object category with its plural, as people say it, and its catalogue defaults.
+
+    ``shape``, ``dimensions``, ``colour`` and ``mass`` (kg) hold for every object of
+    the category that does not give its own; left out, ``homebot.world.catalogue``
+    supplies a default for the category (a drink is a bottle, a fruit a sphere...).
+    """
 
     name: Name
     plural: Name
+    shape: Shape | None = None
+    dimensions: list[Dimension] | None = Field(default=None, description=_DIMENSIONS_MEANING)
+    colour: Colour | None = None
+    mass: float | None = Field(default=None, gt=0.0, le=30.0)
+
+    @model_validator(mode="after")
+    def _dimensions_fit_shape(self) -> ObjectCategoryModel:
+        _check_dimensions(self.shape, self.dimensions)
+        return self
 
 
 class ObjectModel(_Strict):
@@ -137,7 +224,8 @@ class ObjectModel(_Strict):
     ``size`` is its largest dimension in metres and ``weight`` its mass in kg
     (used to answer "the heaviest object on the desk"). ``position`` is where it
     stands on its placement's surface (x, y in the map frame, metres); when left out,
-    ``homebot.world.object_positions`` samples one with the run's seed.
+    ``homebot.world.object_positions`` samples one with the run's seed. ``shape``,
+    ``dimensions`` and ``colour`` are its catalogue entry (defaults: its category's).
     """
 
     name: Name
@@ -146,6 +234,14 @@ class ObjectModel(_Strict):
     size: float = Field(default=0.12, gt=0.0, le=2.0)
     weight: float = Field(default=0.3, gt=0.0, le=30.0)
     position: Point | None = None
+    shape: Shape | None = None
+    dimensions: list[Dimension] | None = Field(default=None, description=_DIMENSIONS_MEANING)
+    colour: Colour | None = None
+
+    @model_validator(mode="after")
+    def _dimensions_fit_shape(self) -> ObjectModel:
+        _check_dimensions(self.shape, self.dimensions)
+        return self
 
 
 class PersonModel(_Strict):
