@@ -2,15 +2,21 @@
 
 from homebot.robot.actions import Action, ActionStatus
 from homebot.robot.body import (
+    Arm,
+    ArmState,
     Body,
     BodyError,
     DriveKind,
+    Gripper,
+    GripperState,
     HeadState,
+    JointTarget,
     LaserScan,
     Odometry,
     PartMissing,
     Twist,
     VelocityLimits,
+    Wrench,
 )
 from homebot.robot.port import (
     Blocker,
@@ -25,13 +31,18 @@ from homebot.robot.port import (
 __all__ = [
     "Action",
     "ActionStatus",
+    "Arm",
+    "ArmState",
     "Blocker",
     "Body",
     "BodyError",
     "Detection",
     "DriveKind",
+    "Gripper",
+    "GripperState",
     "HeadState",
     "HelpRequest",
+    "JointTarget",
     "LaserScan",
     "MoveReport",
     "Odometry",
@@ -41,4 +52,5 @@ __all__ = [
     "Robot",
     "Twist",
     "VelocityLimits",
+    "Wrench",
 ]

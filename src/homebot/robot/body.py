@@ -18,6 +18,7 @@ import math
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from enum import StrEnum
+from pathlib import Path
 
 import numpy as np
 
@@ -25,15 +26,21 @@ from homebot.errors import HomebotError
 from homebot.robot.port import Pose
 
 __all__ = [
+    "Arm",
+    "ArmState",
     "Body",
     "BodyError",
     "DriveKind",
+    "Gripper",
+    "GripperState",
     "HeadState",
+    "JointTarget",
     "LaserScan",
     "Odometry",
     "PartMissing",
     "Twist",
     "VelocityLimits",
+    "Wrench",
 ]
 
 
@@ -152,6 +159,81 @@ class HeadState:
     tilt: float = 0.0
 
 
+@dataclass(frozen=True)
+class ArmState:
+    """The arm's joints as ``sensor_msgs/JointState`` has them, and the torso lift's height."""
+
+    stamp: float
+    names: tuple[str, ...]
+    positions: np.ndarray  #: radians
+    velocities: np.ndarray  #: rad/s
+    efforts: np.ndarray  #: N·m
+    torso: float  #: metres the torso is lifted
+
+
+@dataclass(frozen=True)
+class JointTarget:
+    """Where the arm's joints should go (radians, in ``Arm.joint_names`` order), the torso's
+    height (None: stay) and extra joint torques for compliance (None: none)."""
+
+    positions: tuple[float, ...]
+    torso: float | None = None
+    torques: tuple[float, ...] | None = None
+
+
+@dataclass(frozen=True, slots=True)
+class GripperState:
+    """The parallel gripper: metres between the fingers and the force they squeeze with."""
+
+    stamp: float
+    width: float
+    effort: float  #: newtons, positive when squeezing
+    max_width: float
+
+
+@dataclass(frozen=True)
+class Wrench:
+    """The wrist's force-torque reading, in the sensor's frame (``geometry_msgs/Wrench``)."""
+
+    stamp: float
+    force: np.ndarray  #: newtons (x, y, z)
+    torque: np.ndarray  #: N·m
+
+
+class Arm(ABC):
+    """The arm's joint interface: state, position targets that hold until replaced, and
+    the robot description (an MJCF file, as ROS's ``robot_description`` names the URDF)."""
+
+    joint_names: tuple[str, ...]
+    limits: tuple[tuple[float, float], ...]  #: per joint, radians
+    torso_limits: tuple[float, float]
+    payload: float  #: kilograms the arm is rated to lift
+
+    @abstractmethod
+    def state(self) -> ArmState:
+        """The joints after the last tick."""
+
+    @abstractmethod
+    def command(self, target: JointTarget) -> None:
+        """Drive the joints to ``target`` (taking effect at the next tick)."""
+
+    @abstractmethod
+    def description(self) -> Path:
+        """The arm's MJCF model, for planning."""
+
+
+class Gripper(ABC):
+    """A parallel gripper."""
+
+    @abstractmethod
+    def state(self) -> GripperState:
+        """The fingers after the last tick."""
+
+    @abstractmethod
+    def command(self, width: float, force: float | None = None) -> None:
+        """Move the fingers to ``width`` apart, squeezing with at most ``force`` newtons."""
+
+
 class Body(ABC):
     """The port between the action/perception layer and a robot's drivers.
 
@@ -208,15 +290,15 @@ class Body(ABC):
         """The head's RGB-D camera image."""
         raise PartMissing("RGB-D camera")
 
-    def arm(self) -> object:
+    def arm(self) -> Arm:
         """The arm's joint interface."""
         raise PartMissing("arm")
 
-    def gripper(self) -> object:
+    def gripper(self) -> Gripper:
         """The gripper."""
         raise PartMissing("gripper")
 
-    def wrist_wrench(self) -> object:
+    def wrist_wrench(self) -> Wrench:
         """The wrist's force-torque reading."""
         raise PartMissing("wrist force-torque sensor")
 
