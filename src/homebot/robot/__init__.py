@@ -18,6 +18,7 @@ from homebot.robot.body import (
     VelocityLimits,
     Wrench,
 )
+from homebot.robot.camera import CameraIntrinsics, RgbdFrame
 from homebot.robot.port import (
     Blocker,
     Detection,
@@ -36,6 +37,7 @@ __all__ = [
     "Blocker",
     "Body",
     "BodyError",
+    "CameraIntrinsics",
     "Detection",
     "DriveKind",
     "Gripper",
@@ -49,6 +51,7 @@ __all__ = [
     "PartMissing",
     "PersonPercept",
     "Pose",
+    "RgbdFrame",
     "Robot",
     "Twist",
     "VelocityLimits",

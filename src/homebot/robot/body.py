@@ -23,6 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from homebot.errors import HomebotError
+from homebot.robot.camera import RgbdFrame
 from homebot.robot.port import Pose
 
 __all__ = [
@@ -286,8 +287,8 @@ class Body(ABC):
 
     # Parts that later modules fit. A body without them says so.
 
-    def camera(self) -> object:
-        """The head's RGB-D camera image."""
+    def camera(self) -> RgbdFrame:
+        """The head's RGB-D camera image, taken now with the head where it points."""
         raise PartMissing("RGB-D camera")
 
     def arm(self) -> Arm:
