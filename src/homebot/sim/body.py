@@ -25,15 +25,17 @@ from homebot.robot import (
     LaserScan,
     Odometry,
     Pose,
+    RgbdFrame,
     Twist,
     VelocityLimits,
 )
+from homebot.sim.camera import CameraSimulator, SceneGeometry, Solid, object_yaw
 from homebot.sim.components import ComponentSimulation
 from homebot.sim.geometry import TrueGeometry
 from homebot.sim.laser import LaserSimulator
 from homebot.sim.simulation import Simulation
 from homebot.sim.walkers import PeopleWalking
-from homebot.world import LaserModel
+from homebot.world import LaserModel, object_catalogue, surface_height
 
 __all__ = ["FOOT_RADIUS", "OdometryNoise", "SimBody"]
 
@@ -49,7 +51,7 @@ _CONTACT_HYSTERESIS = 0.03  #: metres clear of an obstacle before a new touch co
 _TRAJECTORY_STEP = 0.1  #: metres between recorded trajectory points
 _CATCH_UP_STEP = 0.5  #: seconds per walking step when time passed outside the ticks
 # Seeds of the body's own random streams, apart from the simulation's disturbances.
-_SENSOR_STREAM, _WALKER_STREAM = 101, 202
+_SENSOR_STREAM, _WALKER_STREAM, _CAMERA_STREAM = 101, 202, 404
 
 
 class OdometryNoise:
@@ -107,6 +109,9 @@ class SimBody(Body):
         self._last_tick_end = simulation.clock.now()
         self._scan: LaserScan | None = None
         self.components = components
+        self._catalogue = object_catalogue(world)
+        self.camera_simulator = CameraSimulator(
+            SceneGeometry.of(world), np.random.default_rng([simulation.seed, _CAMERA_STREAM]))
         self._travelled_since_point = 0.0
         self._trajectory: list[tuple[float, float]] = [self._rounded_position()]
 
@@ -160,6 +165,25 @@ class SimBody(Body):
     def point_head(self, pan: float, tilt: float) -> None:
         self._head = HeadState(max(-_PAN_LIMIT, min(_PAN_LIMIT, pan)),
                                max(_TILT_LIMITS[0], min(_TILT_LIMITS[1], tilt)))
+
+    def camera(self) -> RgbdFrame:
+        """The head camera's frame of the true home: furniture, walls and the objects on
+        their surfaces (``homebot.sim.camera``)."""
+        return self.camera_simulator.render(self.now(), self.sim.robot_pose, self._head,
+                                            self._solids())
+
+    def _solids(self) -> list[Solid]:
+        sim = self.sim
+        solids = []
+        for name, where in sorted(sim.object_location.items()):
+            placement = sim.world.placements.get(where or "")
+            if placement is None:
+                continue  # in a hand, given away, on the floor or gone
+            entry = self._catalogue[name]
+            x, y = sim.position_on(name, placement.name)
+            solids.append(Solid(entry.shape, entry.extent, entry.rgb, x, y,
+                                surface_height(placement.model), object_yaw(name, sim.seed)))
+        return solids
 
     def tick(self, ticks: int = 1) -> None:
         for _ in range(ticks):
