@@ -36,9 +36,10 @@ __all__ = [
 #: the arm's seven joints, shoulder to wrist, as the MJCF model names them
 ARM_JOINTS = ("shoulder_pan", "shoulder_lift", "upper_arm_roll", "elbow_flex", "forearm_roll",
               "wrist_flex", "wrist_roll")
-#: a tucked arm: folded above the base, clear of tables in front of it
-HOME = (0.0, -1.2, 0.0, 2.3, 0.0, 0.6, 0.0)
-MAX_GRIPPER_WIDTH = 0.14  #: metres between the finger pads, fully open
+#: a tucked arm: upper arm up, forearm folded back over the base, hand down behind the
+#: shoulder; clear of anything in front of the robot below 1.2 m
+HOME = (0.0, -1.4, 0.0, -1.8, 0.0, -1.3, 0.0)
+MAX_GRIPPER_WIDTH = 0.2  #: metres between the finger pads, fully open
 _SETTLE = 0.05  #: seconds of physics after building a scene (objects come to rest)
 _WORLD_CONTYPE, _WORLD_CONAFFINITY = 1, 3
 

@@ -1,0 +1,51 @@
+"""Inverse kinematics: damped least squares on MuJoCo's Jacobian of the grasp site."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from homebot.manipulation.scene import PlanningScene
+
+__all__ = ["solve_ik"]
+
+_DAMPING = 0.05
+_POSITION_TOLERANCE = 0.004  #: metres
+_ANGLE_TOLERANCE = 0.03  #: radians
+_MAX_STEP = 0.25  #: radians (or metres of torso) per iteration
+#: the torso moves less readily than the joints (its column is heavy): weight in the solve
+_TORSO_WEIGHT = 0.5
+
+
+def _rotation_error(current: np.ndarray, target: np.ndarray) -> np.ndarray:
+    """The small rotation (axis × angle) taking ``current`` to ``target``."""
+    error: np.ndarray = 0.5 * np.cross(current.T, target.T).sum(axis=0)
+    return error
+
+
+def solve_ik(scene: PlanningScene, position: np.ndarray, rotation: np.ndarray,
+             seeds: list[np.ndarray], iterations: int = 80) -> np.ndarray | None:
+    """A configuration that puts the grasp site at ``position`` with ``rotation``.
+
+    Damped least squares (Levenberg-Marquardt step ``Jᵀ(JJᵀ + λ²I)⁻¹e``) from each seed in
+    turn, joints clipped to their limits. None when no seed converges.
+    """
+    weights = np.ones(len(scene.lower))
+    weights[0] = _TORSO_WEIGHT
+    for seed in seeds:
+        q = np.clip(np.array(seed, dtype=float), scene.lower, scene.upper)
+        for _ in range(iterations):
+            scene.set(q)
+            here, turn = scene.site()
+            error = np.concatenate((position - here, _rotation_error(turn, rotation)))
+            if np.linalg.norm(error[:3]) < _POSITION_TOLERANCE and \
+                    np.linalg.norm(error[3:]) < _ANGLE_TOLERANCE:
+                found: np.ndarray = q
+                return found
+            jac = scene.jacobian() * weights
+            step = jac.T @ np.linalg.solve(jac @ jac.T + _DAMPING ** 2 * np.eye(6), error)
+            step *= weights
+            largest = np.max(np.abs(step))
+            if largest > _MAX_STEP:
+                step *= _MAX_STEP / largest
+            q = np.clip(q + step, scene.lower, scene.upper)
+    return None
