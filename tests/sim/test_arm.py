@@ -31,9 +31,10 @@ def test_objects_rest_on_their_surface_where_the_world_puts_them() -> None:
 def test_the_base_is_placed_at_the_robots_pose() -> None:
     cup = ObjectBody("cup", "sphere", (0.06, 0.06, 0.06), 0.2, position=(3.0, 2.5))
     arm = ArmSimulation(base=(3.0, 2.0, np.pi / 2), objects=[cup],
-                        surfaces=[SurfaceBox("t", (3.0, 2.7), (0.8, 0.5), 0.7)])
+                        surfaces=[SurfaceBox("t", (3.0, 2.7), (0.8, 0.5), 0.7)],
+                        arm=(0.0, -0.3, 0.0, 0.3, 0.0, 0.0, 0.0))
     grasp = arm.grasp_point()
-    assert grasp[1] > 2.2 and abs(grasp[0] - 3.0) < 0.05  # the arm reaches along +y
+    assert grasp[1] > 2.9 and abs(grasp[0] - 3.0) < 0.05  # the arm reaches along +y
 
 
 def test_joints_and_gripper_follow_their_targets() -> None:
