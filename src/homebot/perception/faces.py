@@ -1,0 +1,428 @@
+"""Faces: a boosted Haar-feature cascade finds them, random forests tell whose they are.
+
+CAESAR §2.4 and Cosero §7.1.2. Both steps read Haar-like features: sums of
+rectangles of the image, each taken in four look-ups of the integral image
+(Viola and Jones), normalised by the window's area and contrast so that light
+level does not matter.
+
+- **Detection** (``FaceDetector``): windows slide over the image at several
+  sizes; a cascade of two AdaBoost stages of decision stumps (scikit-learn)
+  rejects most windows with a few features and scores the rest with more; the
+  best-scoring windows, overlaps merged, are faces. OpenCV's shipped cascade
+  would be the first choice, but the OpenCV in use (5.x) no longer has
+  ``CascadeClassifier`` nor ships the cascade files, so the cascade is trained
+  here, on example faces and faceless images the caller gives.
+- **Identification** (``FaceMemory``): a random forest on a larger bank of Haar
+  features of the face window. ``enrol(name, images)`` adds a person online (the
+  forest is grown again on everything enrolled; growing it takes milliseconds).
+  A face whose best vote share is under ``threshold`` is nobody known.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from homebot.errors import HomebotError
+
+__all__ = ["FaceDetector", "FaceMemory", "FaceWindow", "HaarFeatures", "integral_image"]
+
+Window = tuple[int, int, int]  #: x, y, side in pixels
+
+
+class FaceError(HomebotError):
+    """Faces used wrongly: identifying before anyone is enrolled, an empty enrolment."""
+
+
+def integral_image(image: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The integral image of ``image`` and of its square, each padded with a zero row and
+    column: the sum over rows r0:r1, columns c0:c1 is I[r1,c1] - I[r0,c1] - I[r1,c0] + I[r0,c0]."""
+    values = np.asarray(image, dtype=np.float64)
+    padded = np.zeros((values.shape[0] + 1, values.shape[1] + 1))
+    squares = np.zeros_like(padded)
+    padded[1:, 1:] = values.cumsum(0).cumsum(1)
+    squares[1:, 1:] = (values ** 2).cumsum(0).cumsum(1)
+    return padded, squares
+
+
+class HaarFeatures:
+    """A seeded bank of Haar-like features on the unit window: two-, three- and
+    four-rectangle patterns, horizontal and vertical, at random places and sizes.
+
+    Args:
+        count: how many features.
+        seed: the bank's layout.
+    """
+
+    def __init__(self, count: int, seed: int = 0, inset: float = 0.0) -> None:
+        rng = np.random.default_rng([seed, 2004])
+        rects: list[tuple[float, float, float, float, float]] = []
+        owners: list[int] = []
+        for feature in range(count):
+            kind = int(rng.integers(0, 5))
+            span = 1.0 - 2 * inset
+            w, h = rng.uniform(0.1, 0.8, 2) * span
+            x, y = inset + rng.uniform(0.0, span - w), inset + rng.uniform(0.0, span - h)
+            parts: list[tuple[float, float, float, float, float]]
+            if kind == 0:  # left | right
+                parts = [(x, y, x + w / 2, y + h, 1.0), (x + w / 2, y, x + w, y + h, -1.0)]
+            elif kind == 1:  # top / bottom
+                parts = [(x, y, x + w, y + h / 2, 1.0), (x, y + h / 2, x + w, y + h, -1.0)]
+            elif kind == 2:  # three across: the middle against both sides
+                parts = [(x, y, x + w, y + h, 1.0), (x + w / 3, y, x + 2 * w / 3, y + h, -3.0)]
+            elif kind == 3:  # three down
+                parts = [(x, y, x + w, y + h, 1.0), (x, y + h / 3, x + w, y + 2 * h / 3, -3.0)]
+            else:  # four: a chequer
+                parts = [(x, y, x + w, y + h, 1.0), (x + w / 2, y, x + w, y + h / 2, -2.0),
+                         (x, y + h / 2, x + w / 2, y + h, -2.0)]
+            rects.extend(parts)
+            owners.extend([feature] * len(parts))
+        table = np.asarray(rects)
+        self.count = count
+        self._box = table[:, :4]
+        self._weight = table[:, 4]
+        self._starts = np.flatnonzero(np.r_[True, np.diff(owners) != 0])
+
+    def compute(self, integrals: tuple[np.ndarray, np.ndarray], windows: np.ndarray,
+                only: np.ndarray | None = None) -> np.ndarray:
+        """The features of each window (k, 3: x, y, side) of the image whose
+        ``integral_image`` is given, as a (k, count) array; with ``only`` (feature
+        indices), just those, as (k, len(only))."""
+        integral, squares = integrals
+        windows = np.asarray(windows, dtype=np.float64).reshape(-1, 3)
+        box, weight, starts = self._box, self._weight, self._starts
+        if only is not None:
+            ends = np.r_[self._starts[1:], len(self._box)]
+            rows = np.concatenate([np.arange(self._starts[i], ends[i]) for i in only])
+            lengths = ends[only] - self._starts[only]
+            box, weight = box[rows], weight[rows]
+            starts = np.r_[0, np.cumsum(lengths)[:-1]]
+        wx, wy, side = windows[:, 0:1], windows[:, 1:2], windows[:, 2:3]
+        x0 = np.rint(wx + box[None, :, 0] * side).astype(np.intp)
+        y0 = np.rint(wy + box[None, :, 1] * side).astype(np.intp)
+        x1 = np.maximum(np.rint(wx + box[None, :, 2] * side).astype(np.intp), x0 + 1)
+        y1 = np.maximum(np.rint(wy + box[None, :, 3] * side).astype(np.intp), y0 + 1)
+        sums = integral[y1, x1] - integral[y0, x1] - integral[y1, x0] + integral[y0, x0]
+        areas = (x1 - x0) * (y1 - y0)
+        values = sums / areas * weight[None, :]
+        features = np.add.reduceat(values, starts, axis=1)
+        # normalise by the window's contrast: light level and gain drop out
+        a, b = windows[:, :2].astype(np.intp).T
+        s = windows[:, 2].astype(np.intp)
+        total = integral[b + s, a + s] - integral[b, a + s] - integral[b + s, a] + integral[b, a]
+        total2 = squares[b + s, a + s] - squares[b, a + s] - squares[b + s, a] + squares[b, a]
+        mean = total / (s * s)
+        spread = np.sqrt(np.maximum(total2 / (s * s) - mean ** 2, 1.0))
+        normalised: np.ndarray = features / spread[:, None]
+        return normalised
+
+
+@dataclass(frozen=True, slots=True)
+class FaceWindow:
+    """A face found: its square window in the image and the cascade's score."""
+
+    x: int
+    y: int
+    side: int
+    score: float
+
+    def window(self) -> Window:
+        return (self.x, self.y, self.side)
+
+
+@dataclass(frozen=True)
+class _Stage:
+    """One boosted stage as a table of stumps: feature, threshold and the signed vote
+    (the stump's weight, + for "face" when the feature is above the threshold)."""
+
+    features: np.ndarray
+    thresholds: np.ndarray
+    votes: np.ndarray
+    threshold: float = 0.0
+
+    @classmethod
+    def of(cls, booster: object) -> _Stage:
+        features, thresholds, votes = [], [], []
+        weights = booster.estimator_weights_  # type: ignore[attr-defined]
+        for stump, weight in zip(booster.estimators_, weights, strict=False):  # type: ignore[attr-defined]
+            tree = stump.tree_
+            if tree.node_count < 3:  # a stump that never split votes the same for all
+                continue
+            left = int(np.argmax(tree.value[tree.children_left[0]]))
+            features.append(int(tree.feature[0]))
+            thresholds.append(float(tree.threshold[0]))
+            votes.append(float(weight) * (-1.0 if left == 1 else 1.0))
+        total = float(np.sum(weights)) or 1.0
+        return cls(np.asarray(features, dtype=np.intp), np.asarray(thresholds),
+                   np.asarray(votes) / total)
+
+    def score(self, values: np.ndarray) -> np.ndarray:
+        """The stage's score of windows whose ``features`` are ``values`` (k, stumps)."""
+        above = values > self.thresholds[None, :]
+        scores: np.ndarray = np.where(above, self.votes[None, :], -self.votes[None, :]).sum(1)
+        return scores
+
+
+class FaceDetector:
+    """A two-stage boosted cascade of Haar-feature stumps over sliding windows.
+
+    Args:
+        sizes: the window sides tried, in pixels.
+        stride: pixels between windows, as a share of the side.
+        features: the Haar feature bank's size.
+        seed: the bank's layout and the boosting's randomness.
+    """
+
+    def __init__(self, sizes: Sequence[int] = (30, 35, 40, 46), stride: float = 0.1,
+                 features: int = 400, seed: int = 0) -> None:
+        self.sizes = tuple(sizes)
+        self.stride = stride
+        self.bank = HaarFeatures(features, seed)
+        self.seed = seed
+        self._stages: list[_Stage] = []
+
+    def train(self, images: Sequence[np.ndarray], faces: Sequence[Window],
+              faceless: Sequence[np.ndarray]) -> None:
+        """Learn from ``images`` with one face each at ``faces`` (x, y, side) and from
+        ``faceless`` images (every window of them is a negative)."""
+        from sklearn.ensemble import AdaBoostClassifier
+        from sklearn.tree import DecisionTreeClassifier
+
+        rng = np.random.default_rng([self.seed, 7])
+        positives, negatives = [], []
+        for image, (x, y, side) in zip(images, faces, strict=True):
+            integrals = integral_image(image)
+            jitter = [(x + dx, y + dy, side + ds) for dx, dy, ds in
+                      rng.integers(-1, 2, (3, 3))]
+            jitter = [w for w in jitter if _fits(w, image.shape)]
+            positives.append(self.bank.compute(integrals, np.asarray([(x, y, side), *jitter])))
+            # windows of the same image well off the face are negatives too
+            off = [w for w in self._windows(image.shape) if _overlap(w, (x, y, side)) < 0.3]
+            pick = rng.choice(len(off), size=min(6, len(off)), replace=False)
+            negatives.append(self.bank.compute(integrals, np.asarray(off)[pick]))
+        for image in faceless:
+            windows = self._windows(image.shape)
+            pick = rng.choice(len(windows), size=min(20, len(windows)), replace=False)
+            negatives.append(self.bank.compute(integral_image(image), windows[pick]))
+        pos, neg = np.vstack(positives), np.vstack(negatives)
+        data = np.vstack((pos, neg))
+        labels = np.r_[np.ones(len(pos)), np.zeros(len(neg))]
+        self._stages = []
+        for stumps, keep in ((12, 0.995), (120, 0.5)):
+            booster = AdaBoostClassifier(DecisionTreeClassifier(max_depth=1),
+                                         n_estimators=stumps, random_state=self.seed)
+            booster.fit(data, labels)
+            stage = _Stage.of(booster)
+            # the first stage passes nearly every face; the last decides at zero
+            threshold = float(np.quantile(stage.score(pos[:, stage.features]), 1.0 - keep)) \
+                if keep > 0.5 else 0.0
+            stage = _Stage(stage.features, stage.thresholds, stage.votes, threshold)
+            self._stages.append(stage)
+            # the next stage learns from what passed this one
+            passed = stage.score(neg[:, stage.features]) >= threshold
+            neg = neg[passed] if passed.any() else neg[:1]
+            data = np.vstack((pos, neg))
+            labels = np.r_[np.ones(len(pos)), np.zeros(len(neg))]
+
+    @property
+    def trained(self) -> bool:
+        return bool(self._stages)
+
+    def _windows(self, shape: tuple[int, ...]) -> np.ndarray:
+        height, width = shape[:2]
+        windows = []
+        for side in self.sizes:
+            step = max(1, round(side * self.stride))
+            for y in range(0, height - side + 1, step):
+                for x in range(0, width - side + 1, step):
+                    windows.append((x, y, side))
+        return np.asarray(windows, dtype=np.intp).reshape(-1, 3)
+
+    def detect(self, image: np.ndarray) -> list[FaceWindow]:
+        """The faces in a grey image, best first (overlapping windows merged)."""
+        if not self._stages:
+            raise FaceError("the face detector is not trained: call train(...) first")
+        windows = self._windows(image.shape)
+        if not len(windows):
+            return []
+        integrals = integral_image(image)
+        alive = np.arange(len(windows))
+        score = np.zeros(len(windows))
+        for stage in self._stages:
+            values = stage.score(self.bank.compute(integrals, windows[alive], stage.features))
+            keep = values >= stage.threshold
+            alive, score = alive[keep], values[keep]
+            if not len(alive):
+                return []
+        found: list[FaceWindow] = []
+        for index in np.argsort(-score):
+            x, y, side = (int(v) for v in windows[alive[index]])
+            if all(_overlap((x, y, side), f.window()) < 0.3 for f in found):
+                found.append(FaceWindow(x, y, side, float(score[index])))
+        return found
+
+
+class FaceMemory:
+    """Who is who: enrolled people's faces and a random forest over their Haar features.
+
+    Args:
+        detector: finds the face in each image (trained).
+        threshold: the least vote share of the best identity; below it, unknown.
+        trees: the forest's size.
+        features: the identification bank's size.
+        seed: the bank's layout and the forest's randomness.
+    """
+
+    def __init__(self, detector: FaceDetector, threshold: float = 0.3, trees: int = 60,
+                 features: int = 600, seed: int = 0) -> None:
+        self.detector = detector
+        self.threshold = threshold
+        self.trees = trees
+        # inside the face's oval: the window's corners show the background
+        self.bank = HaarFeatures(features, seed + 1, inset=0.12)
+        self.seed = seed
+        self._samples: dict[str, list[np.ndarray]] = {}
+        self._forest: _Forest | None = None
+        self._names: list[str] = []
+        self._leaves = np.zeros((0, trees), dtype=np.intp)
+        self._labels = np.zeros(0, dtype=np.intp)
+
+    @property
+    def people(self) -> list[str]:
+        """The names enrolled."""
+        return sorted(self._samples)
+
+    def describe(self, image: np.ndarray, window: Window | None = None) -> np.ndarray | None:
+        """The identification features of the face in ``image`` (found by the detector
+        unless its ``window`` is given); None when no face is found."""
+        if window is None:
+            found = self.detector.detect(image)
+            if not found:
+                return None
+            window = found[0].window()
+        vector: np.ndarray = self.bank.compute(integral_image(image), np.asarray([window]))[0]
+        return vector
+
+    def enrol(self, name: str, images: Sequence[np.ndarray]) -> int:
+        """Add ``name``'s faces (online: the forest is grown again); how many of the
+        images had a face."""
+        if not name.strip():
+            raise FaceError("a person to enrol needs a name")
+        described = []
+        for image in images:
+            found = self.detector.detect(image)
+            if found:
+                # the detector's window wanders by a few pixels: learn the face so too
+                x, y, side = found[0].window()
+                shifts = [(0, 0, 0), (-2, 0, 0), (2, 0, 0), (0, -2, 0), (0, 2, 0),
+                          (-1, -1, 2), (1, 1, -2)]
+                windows = [w for w in ((x + a, y + b, side + c) for a, b, c in shifts)
+                           if _fits(w, image.shape)]
+                described.append(self.bank.compute(integral_image(image), np.asarray(windows)))
+        if not described:
+            raise FaceError(f"no face found in the {len(images)} image(s) of {name}; "
+                            "enrol with images in which the face is seen from the front")
+        self._samples.setdefault(name, []).extend(described)
+        self._grow()
+        return len(described)
+
+    def _grow(self) -> None:
+        from sklearn.ensemble import RandomForestClassifier
+
+        self._names = sorted(self._samples)
+        blocks = [np.vstack(self._samples[name]) for name in self._names]
+        data = np.vstack(blocks)
+        labels = np.concatenate([np.full(len(block), index)
+                                 for index, block in enumerate(blocks)])
+        forest = RandomForestClassifier(n_estimators=self.trees, max_features="sqrt",
+                                        random_state=self.seed, n_jobs=1)
+        forest.fit(data, labels)
+        self._forest = _Forest.of(forest, len(self._names))
+        self._leaves = forest.apply(data)
+        self._labels = labels
+
+    def identify(self, image: np.ndarray, window: Window | None = None
+                 ) -> tuple[str | None, float]:
+        """Whose face ``image`` shows, and how close it is to that person's enrolled
+        faces (the share of trees in which it shares a leaf with one of them, the
+        forest's proximity); (None, closeness) when it is under ``threshold`` (a
+        stranger), (None, 0.0) when no face is found."""
+        if self._forest is None:
+            raise FaceError("nobody is enrolled yet: enrol(name, images) first")
+        vector = self.describe(image, window)
+        if vector is None:
+            return None, 0.0
+        leaves = self._forest.leaves(vector)
+        best = int(np.argmax(self._forest.shares(leaves)))
+        same = self._leaves[self._labels == best] == leaves[None, :]
+        closeness = float(same.mean(axis=1).max())
+        return (self._names[best], closeness) if closeness >= self.threshold else (None,
+                                                                                  closeness)
+
+
+@dataclass(frozen=True)
+class _Forest:
+    """A grown forest as padded arrays, walked for all trees at once with numpy
+    (scikit-learn's per-call overhead is ~0.1 ms a tree, for one face)."""
+
+    feature: np.ndarray  #: (trees, nodes)
+    threshold: np.ndarray
+    left: np.ndarray
+    right: np.ndarray
+    value: np.ndarray  #: (trees, nodes, classes): class shares at each node
+    depth: int
+
+    @classmethod
+    def of(cls, forest: object, classes: int) -> _Forest:
+        trees = [estimator.tree_ for estimator in forest.estimators_]  # type: ignore[attr-defined]
+        nodes = max(tree.node_count for tree in trees)
+        shape = (len(trees), nodes)
+        feature = np.zeros(shape, dtype=np.intp)
+        threshold = np.zeros(shape)
+        left = np.full(shape, -1, dtype=np.intp)
+        right = np.full(shape, -1, dtype=np.intp)
+        value = np.zeros((*shape, classes))
+        for index, tree in enumerate(trees):
+            n = tree.node_count
+            feature[index, :n] = np.maximum(tree.feature, 0)
+            threshold[index, :n] = tree.threshold
+            left[index, :n] = tree.children_left
+            right[index, :n] = tree.children_right
+            counts = tree.value[:, 0, :]
+            value[index, :n, :counts.shape[1]] = counts / np.maximum(
+                counts.sum(axis=1, keepdims=True), 1e-12)
+        depth = max(int(estimator.get_depth()) for estimator in forest.estimators_)  # type: ignore[attr-defined]
+        return cls(feature, threshold, left, right, value, depth)
+
+    def leaves(self, vector: np.ndarray) -> np.ndarray:
+        """The leaf each tree sends ``vector`` to."""
+        trees = np.arange(len(self.feature))
+        node = np.zeros(len(trees), dtype=np.intp)
+        for _ in range(self.depth):
+            left = self.left[trees, node]
+            inner = left >= 0
+            go_left = vector[self.feature[trees, node]] <= self.threshold[trees, node]
+            node = np.where(inner, np.where(go_left, left, self.right[trees, node]), node)
+        return node
+
+    def shares(self, leaves: np.ndarray) -> np.ndarray:
+        """Each identity's share of the trees' votes."""
+        shares: np.ndarray = self.value[np.arange(len(leaves)), leaves].mean(axis=0)
+        return shares
+
+
+def _fits(window: Window, shape: tuple[int, ...]) -> bool:
+    x, y, side = window
+    return x >= 0 and y >= 0 and side > 4 and x + side <= shape[1] and y + side <= shape[0]
+
+
+def _overlap(a: Window | tuple[int, ...], b: Window) -> float:
+    """Intersection over union of two square windows."""
+    ax, ay, aside = (int(v) for v in a)
+    bx, by, bside = b
+    w = max(0, min(ax + aside, bx + bside) - max(ax, bx))
+    h = max(0, min(ay + aside, by + bside) - max(ay, by))
+    inter = w * h
+    return inter / (aside * aside + bside * bside - inter)
