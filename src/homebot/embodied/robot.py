@@ -22,7 +22,7 @@ from typing import Protocol
 
 import numpy as np
 
-from homebot.errors import NavigationError
+from homebot.errors import NavigationError, SpeechError
 from homebot.events import EventLog
 from homebot.navigation import Navigator
 from homebot.navigation.localisation import MonteCarloLocalisation
@@ -34,9 +34,11 @@ from homebot.robot import (
     Detection,
     HelpRequest,
     MoveReport,
+    PartMissing,
     PersonPercept,
     Pose,
     Robot,
+    Speaker,
 )
 from homebot.world import World
 
@@ -257,7 +259,30 @@ class BodyRobot(Robot):
         return self.percepts.door_is_open(door)
 
     def say(self, text: str) -> None:
-        self.percepts.say(text)
+        """Speak ``text`` through the body's speaker (espeak-ng, the ``speech`` extra): the
+        body's clock runs for as long as it sounds. Without a speaker or the extra, as the
+        symbolic robot says it."""
+        spoken = self._spoken(text)
+        if spoken is None:
+            self.percepts.say(text)
+            return
+        speaker, samples = spoken
+        speaker.play(samples, text=text)
+
+    def _spoken(self, text: str) -> tuple[Speaker, np.ndarray] | None:
+        """The body's speaker and ``text`` synthesised at its rate; None when it cannot."""
+        try:
+            speaker = self.body.speaker()
+        except PartMissing:
+            return None
+        try:
+            from homebot.speech.audio import SAMPLE_RATE, resample
+            from homebot.speech.voice import espeak
+
+            samples = espeak().synthesise(text)
+        except (ImportError, SpeechError):
+            return None
+        return speaker, resample(samples, SAMPLE_RATE, speaker.rate)
 
     def ask(self, person: str, question: str) -> str | None:
         return self.percepts.ask(person, question)

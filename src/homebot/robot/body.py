@@ -37,8 +37,10 @@ __all__ = [
     "HeadState",
     "JointTarget",
     "LaserScan",
+    "Microphone",
     "Odometry",
     "PartMissing",
+    "Speaker",
     "Twist",
     "VelocityLimits",
     "Wrench",
@@ -235,6 +237,29 @@ class Gripper(ABC):
         """Move the fingers to ``width`` apart, squeezing with at most ``force`` newtons."""
 
 
+class Speaker(ABC):
+    """The loudspeaker: plays 16-bit mono samples at ``rate`` (as audio_common's
+    ``AudioData``). Playing takes the sound's duration on the body's clock."""
+
+    rate: int  #: samples per second
+
+    @abstractmethod
+    def play(self, samples: np.ndarray, *, text: str | None = None) -> float:
+        """Play ``samples`` (int16 at ``rate``) to the end; ``text`` is what they say, for
+        the log. Returns the seconds it took."""
+
+
+class Microphone(ABC):
+    """The microphone: 16-bit mono samples at ``rate``."""
+
+    rate: int  #: samples per second
+
+    @abstractmethod
+    def read(self) -> np.ndarray:
+        """The sound since the previous ``read`` (int16 at ``rate``; at most the last
+        30 seconds)."""
+
+
 class Body(ABC):
     """The port between the action/perception layer and a robot's drivers.
 
@@ -303,10 +328,10 @@ class Body(ABC):
         """The wrist's force-torque reading."""
         raise PartMissing("wrist force-torque sensor")
 
-    def microphone(self) -> object:
-        """Audio from the microphone."""
+    def microphone(self) -> Microphone:
+        """The microphone: the sound that reached the robot."""
         raise PartMissing("microphone")
 
-    def speaker(self) -> object:
-        """The speaker."""
+    def speaker(self) -> Speaker:
+        """The loudspeaker the robot speaks through."""
         raise PartMissing("speaker")

@@ -23,12 +23,15 @@ from homebot.robot import (
     DriveKind,
     HeadState,
     LaserScan,
+    Microphone,
     Odometry,
     Pose,
     RgbdFrame,
+    Speaker,
     Twist,
     VelocityLimits,
 )
+from homebot.sim.audio import AudioScene, SimMicrophone, SimSpeaker
 from homebot.sim.camera import CameraSimulator, SceneGeometry, Solid, object_yaw
 from homebot.sim.components import ComponentSimulation
 from homebot.sim.geometry import TrueGeometry
@@ -114,6 +117,10 @@ class SimBody(Body):
             SceneGeometry.of(world), np.random.default_rng([simulation.seed, _CAMERA_STREAM]))
         self._travelled_since_point = 0.0
         self._trajectory: list[tuple[float, float]] = [self._rounded_position()]
+        #: the simulation's sounds: what the speaker plays and the microphone hears
+        self.audio = AudioScene(simulation.clock.now, simulation.seed)
+        self._speaker = SimSpeaker(self.audio, simulation.events, self.tick, self.tick_period)
+        self._microphone = SimMicrophone(self.audio, simulation.clock.now)
 
     def _walker_names(self, walkers: int | Sequence[str]) -> list[str]:
         people = self.sim.people
@@ -184,6 +191,15 @@ class SimBody(Body):
             solids.append(Solid(entry.shape, entry.extent, entry.rgb, x, y,
                                 surface_height(placement.model), object_yaw(name, sim.seed)))
         return solids
+
+    def speaker(self) -> Speaker:
+        """The loudspeaker: its sound goes into ``audio`` and the body ticks while it
+        plays (``homebot.sim.audio``)."""
+        return self._speaker
+
+    def microphone(self) -> Microphone:
+        """The microphone: ``audio`` since the previous read."""
+        return self._microphone
 
     def tick(self, ticks: int = 1) -> None:
         for _ in range(ticks):
