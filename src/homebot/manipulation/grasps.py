@@ -179,14 +179,10 @@ def select_grasp(scene: PlanningScene, obj: ObjectGeometry, current: np.ndarray,
     feasible: list[tuple[float, Grasp]] = []
     allowed = scene.without([obj.name])
     for candidate in grasp_candidates(obj, np.array(scene.base[:2]))[:budget]:
-        pre = solve_ik(scene, candidate.pre_grasp(), candidate.rotation,
-                       [current, *_IK_SEEDS])
-        if pre is None or scene.collides(pre, gripper=candidate.opening()):
+        found = _feasible(scene, candidate, current, allowed)
+        if found is None:
             continue
-        grasp = solve_ik(scene, candidate.position, candidate.rotation, [pre])
-        if grasp is None or scene.collides(grasp, gripper=candidate.opening(),
-                                           allowed=allowed):
-            continue
+        pre, grasp = found
         travel = float(np.linalg.norm(pre - current))
         feasible.append((candidate.score - 0.05 * travel, Grasp(candidate, pre, grasp)))
         if len(feasible) >= keep:
@@ -194,3 +190,22 @@ def select_grasp(scene: PlanningScene, obj: ObjectGeometry, current: np.ndarray,
     if not feasible:
         return None
     return max(feasible, key=lambda pair: pair[0])[1]
+
+
+def _feasible(scene: PlanningScene, candidate: GraspCandidate, current: np.ndarray,
+              allowed: frozenset[str]) -> tuple[np.ndarray, np.ndarray] | None:
+    """Collision-free IK solutions for the grasp and its pre-grasp, trying each seed
+    (the current configuration first), or None."""
+    opening = candidate.opening()
+    for seed in (current, *_IK_SEEDS):
+        posture = seed.copy()
+        posture[0] = scene.upper[0] - 0.05  # a high torso keeps the arm above the table
+        grasp = solve_ik(scene, candidate.position, candidate.rotation, [seed],
+                         posture=posture)
+        if grasp is None or scene.collides(grasp, gripper=opening, allowed=allowed):
+            continue
+        pre = solve_ik(scene, candidate.pre_grasp(), candidate.rotation, [grasp])
+        if pre is None or scene.collides(pre, gripper=opening):
+            continue
+        return pre, grasp
+    return None

@@ -14,6 +14,7 @@ _ANGLE_TOLERANCE = 0.03  #: radians
 _MAX_STEP = 0.25  #: radians (or metres of torso) per iteration
 #: the torso moves less readily than the joints (its column is heavy): weight in the solve
 _TORSO_WEIGHT = 0.5
+_POSTURE_GAIN = 0.2  #: how strongly the null space pulls towards the preferred posture
 
 
 def _rotation_error(current: np.ndarray, target: np.ndarray) -> np.ndarray:
@@ -23,16 +24,20 @@ def _rotation_error(current: np.ndarray, target: np.ndarray) -> np.ndarray:
 
 
 def solve_ik(scene: PlanningScene, position: np.ndarray, rotation: np.ndarray,
-             seeds: list[np.ndarray], iterations: int = 80) -> np.ndarray | None:
+             seeds: list[np.ndarray], iterations: int = 80,
+             posture: np.ndarray | None = None) -> np.ndarray | None:
     """A configuration that puts the grasp site at ``position`` with ``rotation``.
 
     Damped least squares (Levenberg-Marquardt step ``Jᵀ(JJᵀ + λ²I)⁻¹e``) from each seed in
-    turn, joints clipped to their limits. None when no seed converges.
+    turn, joints clipped to their limits; the redundant freedom (8 joints for 6 numbers)
+    drifts towards ``posture`` (default: the seed) in the Jacobian's null space, which
+    keeps the elbow where the seed had it. None when no seed converges.
     """
     weights = np.ones(len(scene.lower))
     weights[0] = _TORSO_WEIGHT
     for seed in seeds:
         q = np.clip(np.array(seed, dtype=float), scene.lower, scene.upper)
+        rest = q.copy() if posture is None else posture
         for _ in range(iterations):
             scene.set(q)
             here, turn = scene.site()
@@ -42,7 +47,9 @@ def solve_ik(scene: PlanningScene, position: np.ndarray, rotation: np.ndarray,
                 found: np.ndarray = q
                 return found
             jac = scene.jacobian() * weights
-            step = jac.T @ np.linalg.solve(jac @ jac.T + _DAMPING ** 2 * np.eye(6), error)
+            inverse = jac.T @ np.linalg.inv(jac @ jac.T + _DAMPING ** 2 * np.eye(6))
+            step = inverse @ error
+            step += (np.eye(len(q)) - inverse @ jac) @ (_POSTURE_GAIN * (rest - q))
             step *= weights
             largest = np.max(np.abs(step))
             if largest > _MAX_STEP:
