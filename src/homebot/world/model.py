@@ -288,6 +288,8 @@ class RobotModel(_Strict):
     #: how the base moves in the embodied fidelity (``homebot.robot.DriveKind``)
     drive: Literal["omnidirectional", "differential"] = "differential"
     laser: LaserModel = Field(default_factory=LaserModel)
+    #: the arm's MJCF model, relative to the world file (default: homebot's own)
+    arm: str | None = Field(default=None, min_length=1)
 
 
 class DisturbanceModel(_Strict):

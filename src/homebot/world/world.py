@@ -459,6 +459,21 @@ class World:
         if problem is not None:
             self._problem(["robot", "pose"], f"the robot at ({x:g}, {y:g}) {problem}; place it "
                           "inside a room, at least its radius from walls and furniture")
+        arm = self.arm_model_path()
+        if arm is not None and (arm.suffix.lower() != ".xml" or not arm.is_file()):
+            self._problem(["robot", "arm"], f"{arm} is no MJCF file (.xml) that exists; name "
+                          "the arm's model relative to the world file, or leave 'arm' out")
+
+    def arm_model_path(self) -> Path | None:
+        """The arm's MJCF file the world names (``robot.arm``, relative to the world file's
+        folder), or None for homebot's own."""
+        arm = self.model.robot.arm
+        if arm is None:
+            return None
+        path = Path(arm)
+        if not path.is_absolute() and self._document is not None:
+            path = Path(self.source).parent / path
+        return path
 
 
 def _unknown(kind: str, name: str, known: Iterable[str]) -> str:
