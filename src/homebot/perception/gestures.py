@@ -1,0 +1,132 @@
+"""Gestures from arm keypoints: pointing, waving and stop (Cosero §7.1.3, CAESAR §2.4).
+
+The input is a short window of frames, each with the head, shoulder, elbow and
+hand of one arm (map frame, metres, z up), as a depth camera's body
+segmentation gives them.
+
+- **pointing**: the arm is stretched out (hand far from the shoulder), the hand
+  held still, and it does not reach towards the robot. The pointing ray runs
+  from the head (the eyes) through the hand: for distant targets the eye-hand
+  line is the better aim. It is returned as the ``homebot.space.deixis.Pointing``
+  the symbolic world already uses (its ``shoulder`` is the ray's origin: here the
+  head), and ``pointed_target`` intersects it with placement tops and objects.
+- **waving**: the hand, raised above the shoulder, swings from side to side: its
+  sideways position over the window spreads and crosses its mean several times.
+- **stop**: a raised open hand held out towards the robot, still.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+
+from homebot.space.deixis import Pointing
+
+__all__ = ["Surface", "classify_gesture", "pointed_object", "pointed_target", "pointing_ray"]
+
+_STRETCHED = 0.45  #: metres from shoulder to hand: an extended arm
+_STILL = 0.06  #: metres: the hand's spread when held still
+_WAVE_SPREAD = 0.05  #: metres: the raised hand's sideways spread when waving
+_WAVE_CROSSINGS = 3
+_TOWARDS = math.radians(35.0)  #: the arm within this of the line to the robot reaches to it
+
+
+@dataclass(frozen=True, slots=True)
+class Surface:
+    """A placement's top: axis-aligned footprint (centre, size) at a height, metres."""
+
+    center: tuple[float, float]
+    size: tuple[float, float]
+    height: float
+
+
+def classify_gesture(frames: np.ndarray, robot: tuple[float, float]) -> str:
+    """``pointing``, ``waving``, ``stop`` or ``none`` for keypoint frames (n, 4, 3):
+    head, shoulder, elbow, hand; ``robot`` is where the robot stands on the map."""
+    frames = np.asarray(frames, dtype=float)
+    head, shoulder, hand = (frames[:, index].mean(axis=0) for index in (0, 1, 3))
+    hands = frames[:, 3]
+    raised = hand[2] > shoulder[2] + 0.05
+    # waving: sideways (across the line to the robot) swing of the raised hand
+    to_robot = np.array([robot[0] - head[0], robot[1] - head[1]])
+    to_robot /= max(float(np.linalg.norm(to_robot)), 1e-9)
+    across = np.array([-to_robot[1], to_robot[0]])
+    sideways = hands[:, :2] @ across
+    sideways = sideways - sideways.mean()
+    crossings = int(np.count_nonzero(np.diff(np.sign(sideways)) != 0))
+    if raised and float(sideways.std()) > _WAVE_SPREAD and crossings >= _WAVE_CROSSINGS:
+        return "waving"
+    still = float(np.linalg.norm(hands.std(axis=0))) < _STILL
+    arm = hand - shoulder
+    reach = float(np.linalg.norm(arm))
+    if not still or reach < 0.3:
+        return "none"
+    flat = float(np.linalg.norm(arm[:2]))
+    towards = flat > 1e-6 and math.acos(max(-1.0, min(1.0, float(arm[:2] @ to_robot) / flat))
+                                        ) < _TOWARDS
+    if towards and raised and hand[2] > head[2] - 0.3:
+        return "stop"
+    lifted = flat > 0.5 * reach  # the arm is held out, not hanging (over 30° from down)
+    if reach >= _STRETCHED and lifted and not (towards and raised):
+        return "pointing"
+    return "none"
+
+
+def pointing_ray(frames: np.ndarray) -> Pointing:
+    """The pointing ray of a window of frames: from the head through the hand (means)."""
+    frames = np.asarray(frames, dtype=float)
+    head, hand = frames[:, 0].mean(axis=0), frames[:, 3].mean(axis=0)
+    return Pointing((float(head[0]), float(head[1]), float(head[2])),
+                    (float(hand[0]), float(hand[1]), float(hand[2])))
+
+
+def _ray(gesture: Pointing) -> tuple[np.ndarray, np.ndarray]:
+    origin = np.asarray(gesture.shoulder, dtype=float)
+    direction = np.asarray(gesture.hand, dtype=float) - origin
+    return origin, direction / max(float(np.linalg.norm(direction)), 1e-9)
+
+
+def pointed_target(gesture: Pointing, surfaces: Mapping[str, Surface],
+                   margin: float = 0.25) -> str | None:
+    """The placement whose top the ray meets first (its footprint grown by ``margin``
+    metres, for aim); if it meets none, the one whose top's centre lies at the smallest
+    angle from the ray, within 12°; None when nothing is near."""
+    origin, direction = _ray(gesture)
+    hits = []
+    for name, surface in surfaces.items():
+        if direction[2] >= -1e-6:
+            break
+        along = (surface.height - origin[2]) / direction[2]
+        if along <= 0:
+            continue
+        x, y = origin[0] + along * direction[0], origin[1] + along * direction[1]
+        if abs(x - surface.center[0]) <= surface.size[0] / 2 + margin and \
+                abs(y - surface.center[1]) <= surface.size[1] / 2 + margin:
+            # rank by how deep inside the grown footprint, then by distance along the ray
+            inside = max(abs(x - surface.center[0]) - surface.size[0] / 2,
+                         abs(y - surface.center[1]) - surface.size[1] / 2)
+            hits.append((inside > 0, along, name))
+    if hits:
+        return min(hits)[2]
+    points = {name: (s.center[0], s.center[1], s.height) for name, s in surfaces.items()}
+    return pointed_object(gesture, points, math.radians(12.0))
+
+
+def pointed_object(gesture: Pointing, objects: Mapping[str, tuple[float, float, float]],
+                   within: float = math.radians(8.0)) -> str | None:
+    """The object (name → map point) at the smallest angle from the pointing ray, if it
+    is within ``within`` radians: "that one"."""
+    origin, direction = _ray(gesture)
+    best, best_angle = None, within
+    for name, point in objects.items():
+        offset = np.asarray(point, dtype=float) - origin
+        distance = float(np.linalg.norm(offset))
+        if distance < 1e-6:
+            continue
+        angle = math.acos(max(-1.0, min(1.0, float(offset @ direction) / distance)))
+        if angle < best_angle:
+            best, best_angle = name, angle
+    return best
