@@ -1,5 +1,6 @@
 """The embodied robot: the Robot port over a Body, through localisation and navigation."""
 
+from homebot.embodied.looking import ObjectWorld, TableLook
 from homebot.embodied.robot import BodyRobot, Companions
 
-__all__ = ["BodyRobot", "Companions"]
+__all__ = ["BodyRobot", "Companions", "ObjectWorld", "TableLook"]

@@ -8,9 +8,10 @@ meant to be. A route goes door by door: the robot stops in front of each door,
 looks whether it is open and whether someone stands in it, and reports a shut
 or blocked door so the executive's door protocol can act.
 
-Perception, manipulation and conversation stay symbolic until the perception
-and manipulation modules replace them: those calls go to ``percepts``, another
-Robot implementation over the same world.
+Objects on placements are seen with the head camera through the table-top
+pipeline (``looking``). The rest of perception, manipulation and conversation
+stay symbolic until their modules replace them: those calls go to ``percepts``,
+another Robot implementation over the same world.
 """
 
 from __future__ import annotations
@@ -22,6 +23,7 @@ from typing import Protocol
 
 import numpy as np
 
+from homebot.embodied.looking import TableLook
 from homebot.errors import NavigationError, SpeechError
 from homebot.events import EventLog
 from homebot.navigation import Navigator
@@ -80,11 +82,14 @@ class BodyRobot(Robot):
             conversation.
         companions: moves people who walk with the robot (guide, follow).
         events: where the robot's laser, particles and motions are recorded.
+        looking: sees objects on placements with the head camera and the table-top
+            pipeline (None: ``percepts`` answers, symbolically).
     """
 
     def __init__(self, body: Body, world: World, navigator: Navigator,
                  localisation: MonteCarloLocalisation, controller: LocalController,
-                 percepts: Robot, companions: Companions, events: EventLog) -> None:
+                 percepts: Robot, companions: Companions, events: EventLog, *,
+                 looking: TableLook | None = None) -> None:
         self.body = body
         self.world = world
         self.navigator = navigator
@@ -93,6 +98,7 @@ class BodyRobot(Robot):
         self.percepts = percepts
         self.companions = companions
         self.events = events
+        self.looking = looking
         self.navigation = RecoveringNavigation(body, navigator, controller, self._localise,
                                                on_replan=self._record_replan)
         self.localisation.update(body.odometry(), body.scan())
@@ -235,6 +241,8 @@ class BodyRobot(Robot):
     # ------------------------------------------------------------ the rest stays symbolic
 
     def perceive_objects(self, placement: str) -> list[Detection]:
+        if self.looking is not None:
+            return self.looking.look(placement, self.pose())
         return self.percepts.perceive_objects(placement)
 
     def perceive_people(self) -> list[PersonPercept]:

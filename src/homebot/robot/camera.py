@@ -7,6 +7,7 @@ optical frame follows REP 103's camera convention: z forward, x right, y down;
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -51,10 +52,17 @@ class RgbdFrame:
     intrinsics: CameraIntrinsics
     camera_pose: np.ndarray
 
-    def points(self) -> tuple[np.ndarray, np.ndarray]:
-        """The valid depth pixels as (n, 3) points in the base frame and their (n, 3) colours."""
-        valid = np.isfinite(self.depth)
-        rays = self.intrinsics.rays()[valid]
-        optical = rays * self.depth[valid][:, None].astype(np.float64)
+    def points(self, step: int = 1) -> tuple[np.ndarray, np.ndarray]:
+        """The valid depth pixels (every ``step``-th row and column) as (n, 3) points in the
+        base frame and their (n, 3) colours."""
+        depth = self.depth[::step, ::step]
+        valid = np.isfinite(depth)
+        rays = _rays(self.intrinsics)[::step, ::step][valid]
+        optical = rays * depth[valid][:, None].astype(np.float64)
         rotation, translation = self.camera_pose[:3, :3], self.camera_pose[:3, 3]
-        return optical @ rotation.T + translation, self.rgb[valid]
+        return optical @ rotation.T + translation, self.rgb[::step, ::step][valid]
+
+
+@functools.lru_cache(maxsize=8)
+def _rays(intrinsics: CameraIntrinsics) -> np.ndarray:
+    return intrinsics.rays()

@@ -59,12 +59,16 @@ class MoveReport:
 @dataclass(frozen=True, slots=True)
 class Detection:
     """An object seen by perception. ``handle`` lets the arm reach that very object;
-    ``position`` is where it stands (map frame, metres) when perception tells."""
+    ``position`` is where it stands (map frame, metres) when perception tells; ``size``
+    (largest dimension, metres) and ``mass`` (kg) are perception's estimates, when it
+    makes them (None: ask the world file)."""
 
     label: str
     category: str
     handle: int
     position: tuple[float, float] | None = None
+    size: float | None = None
+    mass: float | None = None
 
 
 @dataclass(frozen=True, slots=True)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import importlib.util
+import math
 from enum import StrEnum
 
 import numpy as np
@@ -23,6 +24,7 @@ __all__ = [
 
 # Seed stream of the robot's own filter, apart from the simulation's and the body's.
 _LOCALISATION_STREAM = 303
+_HAND_REACH = 0.08  #: metres from an object's centre within which a grasp closes on it
 
 
 class Fidelity(StrEnum):
@@ -61,9 +63,10 @@ def embodied_robot(simulation: Simulation, navigator: Navigator, *,
         known_start: the robot is told where it starts (else it localises globally).
     """
     require_embodied()
-    from homebot.embodied import BodyRobot
+    from homebot.embodied import BodyRobot, TableLook
     from homebot.navigation.local_planner import MotionSearchPlanner
     from homebot.navigation.localisation import MclParameters, MonteCarloLocalisation
+    from homebot.scenarios.perceiving import perception_for
     from homebot.sim.body import SimBody
 
     world = simulation.world
@@ -76,5 +79,26 @@ def embodied_robot(simulation: Simulation, navigator: Navigator, *,
     else:
         localisation.initialise_globally()
     percepts = SimRobot(simulation)
+    looking = TableLook(body, world, perception_for(world, simulation.seed),
+                        _SimulatedObjects(simulation))
     return BodyRobot(body, world, navigator, localisation, MotionSearchPlanner(), percepts,
-                     percepts, simulation.events)
+                     percepts, simulation.events, looking=looking)
+
+
+class _SimulatedObjects:
+    """What the simulated world does when the robot looks or reaches (``ObjectWorld``)."""
+
+    def __init__(self, simulation: Simulation) -> None:
+        self.sim = simulation
+
+    def object_at(self, point: tuple[float, float], placement: str) -> int | None:
+        """The object on ``placement`` nearest ``point``, if the hand reaching there meets it."""
+        sim = self.sim
+        near = sorted((math.dist(point, sim.position_on(name, placement)), name)
+                      for name in sim.objects_on(placement))
+        if not near or near[0][0] > _HAND_REACH:
+            return None
+        return sim.object_ids[near[0][1]]
+
+    def looked_at(self, placement: str) -> None:
+        self.sim.maybe_move_during_task(placement)

@@ -236,13 +236,30 @@ def _referent(context: SkillContext, wanted: str, placement: str, found: Sequenc
 
 
 def _superlative(context: SkillContext, found: Sequence[Detection], prop: str) -> Detection:
-    """The detection with the property ("lightest", "biggest") among those of known objects."""
-    known = [d for d in found if d.label in context.world.objects] or list(found)
+    """The detection with the property ("lightest", "biggest") among those of known objects:
+    by perception's estimates where it made them, else by the world file."""
     measure = "weight" if prop in {"heaviest", "lightest"} else "size"
     choose = max if prop in {"biggest", "largest", "heaviest", "thickest"} else min
+    if all(_estimated(d, measure) is not None for d in found):
+        return choose(found, key=lambda d: float(_estimated(d, measure) or 0.0))
+    known = [d for d in found if d.label in context.world.objects] or list(found)
     if not all(d.label in context.world.objects for d in known):
         return known[0]
     return choose(known, key=lambda d: float(getattr(context.world.objects[d.label], measure)))
+
+
+def _estimated(detection: Detection, measure: str) -> float | None:
+    """Perception's own estimate of ``measure`` ("size" or "weight"), if it made one."""
+    return detection.mass if measure == "weight" else detection.size
+
+
+def _measured(context: SkillContext, detection: Detection, measure: str) -> float:
+    """A detection's ``measure`` ("size" or "weight"): perception's estimate where it made
+    one, else the world file's."""
+    estimate = _estimated(detection, measure)
+    if estimate is not None:
+        return estimate
+    return float(getattr(context.world.objects[detection.label], measure))
 
 
 def looked_everywhere(wanted: str, searched: Sequence[str]) -> str:
@@ -454,7 +471,7 @@ class Describe(Skill):
         field = measure.get(prop, "size")
         pick_max = prop in {"biggest", "largest", "heaviest"}
         choose = max if pick_max else min
-        best = choose(known, key=lambda d: getattr(context.world.objects[d.label], field))
+        best = choose(known, key=lambda d: _measured(context, d, field))
         text = (f"The {prop} {wanted} {place_in(context.world, placement)} is the "
                 f"{best.label}.")
         return Outcome.finished(text, result=text)

@@ -131,6 +131,12 @@ def object_catalogue(world: World) -> dict[str, CatalogueEntry]:
     return {name: _entry(world, obj) for name, obj in world.objects.items()}
 
 
+def _rank(world: World, obj: ObjectModel) -> int:
+    """The object's place among its category's objects in the file (0 for the first)."""
+    same = [other.name for other in world.model.objects if other.category == obj.category]
+    return same.index(obj.name)
+
+
 def _entry(world: World, obj: ObjectModel) -> CatalogueEntry:
     declared = world.categories.get(obj.category)
     builtin = defaults_for(obj.category)
@@ -154,7 +160,7 @@ def _entry(world: World, obj: ObjectModel) -> CatalogueEntry:
         dims = tuple(round(d * factor, 4) for d in dims)
     colour_value = obj.colour if obj.colour is not None else (
         declared.colour if declared is not None and declared.colour is not None
-        else builtin.colours[(stamp // 1000) % len(builtin.colours)])
+        else builtin.colours[_rank(world, obj) % len(builtin.colours)])
     if isinstance(colour_value, str):
         colour, rgb = colour_value, COLOUR_PALETTE[colour_value]
     else:

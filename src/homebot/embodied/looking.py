@@ -1,0 +1,122 @@
+"""Looking at a placement with the head camera: views, the table-top pipeline, detections.
+
+The robot, standing at a placement, tilts its head at the surface (whose height
+the map gives) and pans across it in as many views as the surface spans; each
+frame goes through ``homebot.perception`` (support plane, clusters, recognition)
+and every estimate is placed on the map by the robot's own pose estimate. An
+estimate off the placement's surface is dropped; two from overlapping views
+within a few centimetres are one object. Detections carry the estimated
+position, size and mass, so "the biggest" and "the leftmost" come from what was
+seen.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Protocol
+
+from shapely.geometry import Point
+
+from homebot.perception.recognition import ObjectEstimate, TabletopPerception
+from homebot.robot import Body, Detection, Pose
+from homebot.world import World, surface_height
+
+__all__ = ["ObjectWorld", "TableLook"]
+
+_CAMERA_HEIGHT = 1.3  #: metres: the head camera above the floor
+_HALF_FIELD = 0.5  #: radians: half the camera's horizontal field of view, less a margin
+_REACH = 0.6  #: metres from the approach pose within which the robot sees the surface
+_ON_SURFACE = 0.03  #: metres outside the footprint an estimate may lie (its own error)
+_SAME_OBJECT = 0.05  #: metres between estimates from two views of one object
+_VIEW_SECONDS = 0.7  #: the head turns and the camera settles
+
+
+class ObjectWorld(Protocol):
+    """What the robot does not decide: which object the hand meets where it reaches, and
+    the world changing while the robot looks."""
+
+    def object_at(self, point: tuple[float, float], placement: str) -> int | None:
+        """The handle of the object standing at ``point`` on ``placement`` (None: nothing)."""
+
+    def looked_at(self, placement: str) -> None:
+        """The robot looks at ``placement`` now."""
+
+
+class TableLook:
+    """Looks at placements for a ``BodyRobot``.
+
+    Args:
+        body: the head and camera.
+        world: the map: placement footprints, surface heights, approach poses.
+        perception: the trained table-top pipeline.
+        objects: where a grasp would land (``ObjectWorld``).
+    """
+
+    def __init__(self, body: Body, world: World, perception: TabletopPerception,
+                 objects: ObjectWorld) -> None:
+        self.body = body
+        self.world = world
+        self.perception = perception
+        self.objects = objects
+
+    def look(self, placement: str, pose: Pose) -> list[Detection]:
+        """The objects seen on ``placement`` from ``pose`` (the robot's estimate)."""
+        where = self.world.placements.get(placement)
+        if where is None or math.dist(pose.xy(), where.approach[:2]) > _REACH:
+            return []
+        self.objects.looked_at(placement)
+        height = surface_height(where.model)
+        seen: list[tuple[ObjectEstimate, tuple[float, float]]] = []
+        for pan, tilt in self._views(placement, pose, height):
+            self.body.point_head(pan, tilt)
+            self.body.tick(max(1, round(_VIEW_SECONDS / self.body.tick_period)))
+            for estimate in self.perception.perceive(self.body.camera(), height):
+                point = _on_map(pose, estimate.position)
+                if where.footprint.buffer(_ON_SURFACE).contains(Point(point)):
+                    seen.append((estimate, point))
+        self.body.point_head(0.0, 0.0)
+        return [self._detection(estimate, point, placement)
+                for estimate, point in _merged(seen)]
+
+    def _views(self, placement: str, pose: Pose,
+               height: float) -> list[tuple[float, float]]:
+        """Head angles (pan, tilt) whose frames together cover the placement's surface."""
+        footprint = self.world.placements[placement].footprint
+        corners = list(footprint.exterior.coords)[:-1]
+        bearings = [_wrap(math.atan2(y - pose.y, x - pose.x) - pose.theta) for x, y in corners]
+        centre = footprint.centroid
+        distance = max(math.dist(pose.xy(), (centre.x, centre.y)), 0.3)
+        tilt = math.atan2(_CAMERA_HEIGHT - height, distance)
+        low, high = min(bearings), max(bearings)
+        span = high - low
+        if span > math.pi:  # the robot stands over the surface: look ahead only
+            return [(0.0, tilt)]
+        views = max(1, math.ceil((span - 0.2) / (2 * _HALF_FIELD)))
+        step = span / views
+        return [(low + step * (index + 0.5), tilt) for index in range(views)]
+
+    def _detection(self, estimate: ObjectEstimate, point: tuple[float, float],
+                   placement: str) -> Detection:
+        handle = self.objects.object_at(point, placement)
+        return Detection(estimate.label, estimate.category, -1 if handle is None else handle,
+                         (round(point[0], 3), round(point[1], 3)),
+                         size=round(estimate.size, 3), mass=round(estimate.mass, 3))
+
+
+def _merged(seen: list[tuple[ObjectEstimate, tuple[float, float]]],
+            ) -> list[tuple[ObjectEstimate, tuple[float, float]]]:
+    """One estimate per object: of two closer than ``_SAME_OBJECT``, the surer one."""
+    kept: list[tuple[ObjectEstimate, tuple[float, float]]] = []
+    for estimate, point in sorted(seen, key=lambda item: -item[0].confidence):
+        if all(math.dist(point, other) > _SAME_OBJECT for _, other in kept):
+            kept.append((estimate, point))
+    return kept
+
+
+def _on_map(pose: Pose, position: tuple[float, float, float]) -> tuple[float, float]:
+    c, s = math.cos(pose.theta), math.sin(pose.theta)
+    return (pose.x + c * position[0] - s * position[1], pose.y + s * position[0] + c * position[1])
+
+
+def _wrap(angle: float) -> float:
+    return (angle + math.pi) % (2 * math.pi) - math.pi

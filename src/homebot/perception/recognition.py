@@ -1,0 +1,147 @@
+"""Object recognition on table-top segments: a random forest trained from the catalogue.
+
+Each segment's features (``homebot.perception.tabletop.cluster_features``) go to a
+scikit-learn ``RandomForestClassifier`` whose classes are the catalogue's objects;
+the category is the recognised object's. The forest learns from labelled
+examples: views of catalogue objects, rendered and segmented by the same
+pipeline (``training_examples`` takes any source of frames with their truth, so
+the simulator renders them and this layer never imports it).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import linear_sum_assignment
+
+from homebot.perception.tabletop import cluster_features, segment_tabletop
+from homebot.robot import RgbdFrame
+from homebot.world import CatalogueEntry
+
+__all__ = [
+    "LabelledFrame",
+    "ObjectEstimate",
+    "Recogniser",
+    "TabletopPerception",
+    "match_positions",
+    "training_examples",
+]
+
+#: a frame and the objects truly in it: (object name, bottom centre in the base frame)
+LabelledFrame = tuple[RgbdFrame, Sequence[tuple[str, tuple[float, float, float]]]]
+_MATCH = 0.05  #: metres within which a segment is the object it is matched to
+
+
+@dataclass(frozen=True, slots=True)
+class ObjectEstimate:
+    """An object as perception estimates it (base frame of the camera's robot)."""
+
+    label: str  #: the catalogue object it looks most like
+    category: str
+    confidence: float  #: the forest's vote share for ``label``
+    position: tuple[float, float, float]  #: bottom centre, metres
+    size: float  #: largest measured dimension, metres
+    height: float  #: metres above the support plane
+    rgb: tuple[int, int, int]  #: median colour seen
+    mass: float  #: kg, the recognised object's
+
+
+def match_positions(estimated: Sequence[Sequence[float]], truth: Sequence[Sequence[float]],
+                    radius: float = _MATCH) -> list[tuple[int, int]]:
+    """One-to-one pairs (estimate index, truth index) closer than ``radius`` in the plane,
+    by least total distance (Hungarian assignment)."""
+    if not len(estimated) or not len(truth):
+        return []
+    a = np.asarray(estimated, dtype=np.float64)[:, :2]
+    b = np.asarray(truth, dtype=np.float64)[:, :2]
+    cost = np.linalg.norm(a[:, None, :] - b[None, :, :], axis=2)
+    rows, cols = linear_sum_assignment(np.where(cost <= radius, cost, 1e6))
+    return [(int(r), int(c)) for r, c in zip(rows, cols, strict=True) if cost[r, c] <= radius]
+
+
+def training_examples(frames: Iterable[LabelledFrame],
+                      rng: np.random.Generator) -> tuple[np.ndarray, list[str]]:
+    """Features and object names of every segment that matches a true object."""
+    features: list[np.ndarray] = []
+    labels: list[str] = []
+    for frame, truth in frames:
+        segments = segment_tabletop(frame, rng).segments
+        pairs = match_positions([s.position() for s in segments], [t[1] for t in truth])
+        for segment_index, truth_index in pairs:
+            features.append(cluster_features(segments[segment_index]))
+            labels.append(truth[truth_index][0])
+    return (np.array(features) if features else np.zeros((0, 0))), labels
+
+
+class Recogniser:
+    """Which catalogue object a segment is: a random forest over segment features.
+
+    Args:
+        catalogue: the objects it can name, by name.
+        seed: the forest's randomness.
+        trees: how many trees.
+    """
+
+    def __init__(self, catalogue: Mapping[str, CatalogueEntry], *, seed: int = 0,
+                 trees: int = 80) -> None:
+        from sklearn.ensemble import RandomForestClassifier
+
+        self.catalogue = dict(catalogue)
+        self.forest = RandomForestClassifier(n_estimators=trees, random_state=seed,
+                                             min_samples_leaf=1, n_jobs=1)
+        self.trained = False
+
+    def fit(self, features: np.ndarray, labels: Sequence[str]) -> Recogniser:
+        """Learn from labelled segment features; returns itself."""
+        unknown = sorted(set(labels) - set(self.catalogue))
+        if unknown:
+            raise ValueError(f"labels not in the catalogue: {', '.join(unknown)}")
+        self.forest.fit(features, list(labels))
+        self.trained = True
+        return self
+
+    def predict(self, features: np.ndarray) -> list[tuple[str, float]]:
+        """The most likely object and its vote share, per row of ``features`` (``""`` and 0
+        while untrained: a catalogue with no objects)."""
+        if not len(features):
+            return []
+        if not self.trained:
+            return [("", 0.0)] * len(features)
+        votes = self.forest.predict_proba(features)
+        best = votes.argmax(axis=1)
+        classes = self.forest.classes_
+        return [(str(classes[i]), float(votes[row, i])) for row, i in enumerate(best)]
+
+
+class TabletopPerception:
+    """The whole pipeline for one frame: segment, describe, recognise, estimate.
+
+    Args:
+        recogniser: a trained recogniser.
+        rng: RANSAC's draws.
+    """
+
+    def __init__(self, recogniser: Recogniser, rng: np.random.Generator) -> None:
+        self.recogniser = recogniser
+        self.rng = rng
+
+    def perceive(self, frame: RgbdFrame,
+                 expected_height: float | None = None) -> list[ObjectEstimate]:
+        """The objects on the support surface in ``frame`` (base frame positions)."""
+        segments = segment_tabletop(frame, self.rng, expected_height=expected_height).segments
+        if not segments:
+            return []
+        features = np.array([cluster_features(segment) for segment in segments])
+        estimates = []
+        for segment, row, (label, confidence) in zip(
+                segments, features, self.recogniser.predict(features), strict=True):
+            entry = self.recogniser.catalogue.get(label)
+            height, major = float(row[0]), float(row[1])
+            rgb = np.median(segment.colours, axis=0)
+            estimates.append(ObjectEstimate(
+                label or "object", entry.category if entry else "object", confidence,
+                segment.position(), max(height, major), height,
+                (int(rgb[0]), int(rgb[1]), int(rgb[2])), entry.mass if entry else 0.0))
+        return estimates

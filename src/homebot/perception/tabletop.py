@@ -1,0 +1,236 @@
+"""Table-top segmentation (Cosero §6.1.1): support plane by RANSAC, objects by clustering.
+
+The depth image is back-projected to a point cloud in the robot's base frame. A
+RANSAC fit finds the largest plane whose normal is within a few degrees of
+vertical (the table, never a wall; the floor is left out by height). The points
+above that plane and inside its outline are grouped by Euclidean distance; each
+group is one object candidate with its features (extent, colour, shape cues)
+and a position: the centre of its top face, which the camera looks down on.
+
+Small pure functions in Open3D's style (numpy in, numpy out, no hidden state):
+``segment_plane``, ``cluster``, ``segment_tabletop``, ``cluster_features``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
+from scipy.spatial import ConvexHull, QhullError, cKDTree
+
+from homebot.robot import RgbdFrame
+
+__all__ = [
+    "FEATURE_NAMES",
+    "Plane",
+    "Segment",
+    "Tabletop",
+    "cluster",
+    "cluster_features",
+    "segment_plane",
+    "segment_tabletop",
+]
+
+_FLOOR_CLEARANCE = 0.2  #: metres: a support plane lies higher than this (not the floor)
+_PLANE_DISTANCE = 0.012  #: metres from the plane that still count as on it
+_MAX_TILT = 0.1  #: radians between a support plane's normal and the vertical
+_ABOVE = (0.012, 0.6)  #: metres above the plane where object points are
+_EDGE_MARGIN = 0.01  #: metres inside the plane's outline an object point must lie
+_CLUSTER_DISTANCE = 0.02  #: metres between neighbouring points of one object
+_MIN_POINTS = 12  #: smaller groups are noise
+_STEP = 2  #: every second row and column of the image is used
+_SAMPLE = 4000  #: points RANSAC scores each hypothesis on
+
+#: what ``cluster_features`` returns, in order
+FEATURE_NAMES = ("height", "major", "minor", "top_share", "top_fill", "top_width_ratio",
+                 "red", "green", "blue", "brightness", "saturation")
+
+
+@dataclass(frozen=True, slots=True)
+class Plane:
+    """``z = a x + b y + c`` in the base frame, and the outline of its points."""
+
+    a: float
+    b: float
+    c: float
+    inliers: int
+    #: (k, 3) half-planes of its outline: inside where ``hull[:, :2] @ xy + hull[:, 2] <= 0``
+    hull: np.ndarray
+
+    def height_of(self, points: np.ndarray) -> np.ndarray:
+        """Each point's height above the plane."""
+        above: np.ndarray = points[:, 2] - (self.a * points[:, 0] + self.b * points[:, 1]
+                                            + self.c)
+        return above
+
+
+@dataclass(frozen=True, slots=True)
+class Segment:
+    """One object candidate: its points (base frame), their colours and heights."""
+
+    points: np.ndarray
+    colours: np.ndarray
+    heights: np.ndarray  #: above the support plane
+
+    def top(self) -> np.ndarray:
+        """The points of its top face (within a centimetre of its highest)."""
+        peak = float(np.percentile(self.heights, 98))
+        band = min(0.01, 0.2 * peak)
+        top: np.ndarray = self.points[self.heights >= peak - band]
+        return top
+
+    def position(self) -> tuple[float, float, float]:
+        """Where it stands (base frame): under the centre of its top face, on the plane."""
+        top = self.top()
+        bottom = self.points[:, 2] - self.heights
+        return (float(np.mean(top[:, 0])), float(np.mean(top[:, 1])), float(np.mean(bottom)))
+
+
+@dataclass(frozen=True, slots=True)
+class Tabletop:
+    """A segmented frame: the support plane (None: none found) and the objects on it."""
+
+    plane: Plane | None
+    segments: tuple[Segment, ...]
+
+
+def segment_plane(points: np.ndarray, distance: float, iterations: int,
+                  rng: np.random.Generator,
+                  max_tilt: float = _MAX_TILT) -> tuple[np.ndarray, np.ndarray]:
+    """RANSAC for the plane with the most points whose normal is near vertical.
+
+    Returns ``(model, inlier_indices)``: ``model`` is ``(a, b, c)`` of ``z = a x + b y + c``
+    (least squares over the inliers); empty inliers when no plane was found.
+    """
+    count = len(points)
+    if count < 3:
+        return np.zeros(3), np.zeros(0, dtype=np.int64)
+    scored = points if count <= _SAMPLE else points[rng.choice(count, _SAMPLE, replace=False)]
+    picks = points[rng.integers(0, count, (iterations, 3))]
+    normals = np.cross(picks[:, 1] - picks[:, 0], picks[:, 2] - picks[:, 0])
+    length = np.linalg.norm(normals, axis=1)
+    upright = (length > 1e-9) & (np.abs(normals[:, 2]) >= np.cos(max_tilt) * length)
+    if not np.any(upright):
+        return np.zeros(3), np.zeros(0, dtype=np.int64)
+    normals, picks = normals[upright] / length[upright, None], picks[upright]
+    offsets = -np.einsum("ij,ij->i", normals, picks[:, 0])
+    residuals = np.abs(scored @ normals.T + offsets)  # (points, hypotheses)
+    best = int(np.argmax((residuals < distance).sum(axis=0)))
+    normal, offset = normals[best], offsets[best]
+    inliers = np.flatnonzero(np.abs(points @ normal + offset) < distance)
+    model = _fit(points[inliers])
+    residual = np.abs(points[:, 2] - (model[0] * points[:, 0] + model[1] * points[:, 1]
+                                      + model[2]))
+    return model, np.flatnonzero(residual < distance)
+
+
+def _fit(points: np.ndarray) -> np.ndarray:
+    """Least squares ``z = a x + b y + c``."""
+    design = np.column_stack((points[:, 0], points[:, 1], np.ones(len(points))))
+    model: np.ndarray = np.linalg.lstsq(design, points[:, 2], rcond=None)[0]
+    return model
+
+
+def cluster(points: np.ndarray, eps: float, min_points: int) -> np.ndarray:
+    """Euclidean clustering: points closer than ``eps`` are one group; labels, -1 for groups
+    smaller than ``min_points``."""
+    count = len(points)
+    if count == 0:
+        return np.zeros(0, dtype=np.int64)
+    pairs = cKDTree(points).query_pairs(eps, output_type="ndarray")
+    graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(count, count))
+    _, labels = connected_components(graph, directed=False)
+    sizes = np.bincount(labels)
+    small = sizes[labels] < min_points
+    kept = np.unique(labels[~small])
+    renumber = np.full(len(sizes), -1)
+    renumber[kept] = np.arange(len(kept))
+    result: np.ndarray = np.where(small, -1, renumber[labels])
+    return result
+
+
+def segment_tabletop(frame: RgbdFrame, rng: np.random.Generator, *,
+                     expected_height: float | None = None,
+                     iterations: int = 60) -> Tabletop:
+    """The support plane in ``frame`` and the object candidates standing on it.
+
+    Args:
+        frame: the camera image.
+        rng: RANSAC's draws.
+        expected_height: where the surface should be (metres above the floor), if known:
+            the plane is then looked for within 15 cm of it.
+        iterations: RANSAC hypotheses.
+    """
+    points, colours = frame.points(_STEP)
+    high = points[:, 2] > _FLOOR_CLEARANCE
+    if expected_height is not None:
+        high &= np.abs(points[:, 2] - expected_height) < 0.15
+    candidates = points[high]
+    model, inliers = segment_plane(candidates, _PLANE_DISTANCE, iterations, rng)
+    if len(inliers) < 200:
+        return Tabletop(None, ())
+    outline = candidates[inliers][:, :2]
+    try:
+        hull = ConvexHull(outline)
+    except QhullError:
+        return Tabletop(None, ())
+    plane = Plane(float(model[0]), float(model[1]), float(model[2]), len(inliers),
+                  hull.equations)
+    heights = plane.height_of(points)
+    chosen = np.flatnonzero((heights > _ABOVE[0]) & (heights < _ABOVE[1]))
+    inside = np.all(points[chosen, :2] @ plane.hull[:, :2].T + plane.hull[:, 2]
+                    <= -_EDGE_MARGIN, axis=1)
+    chosen = chosen[inside]
+    labels = cluster(points[chosen], _CLUSTER_DISTANCE, _MIN_POINTS)
+    segments = []
+    for label in range(int(labels.max(initial=-1)) + 1):
+        members = chosen[labels == label]
+        segments.append(Segment(points[members], colours[members], heights[members]))
+    return Tabletop(plane, tuple(segments))
+
+
+def cluster_features(segment: Segment) -> np.ndarray:
+    """The features ``FEATURE_NAMES`` name: size, shape cues and colour of one candidate."""
+    heights = segment.heights
+    height = float(np.percentile(heights, 98))
+    xy = segment.points[:, :2]
+    major, minor = _extents(xy)
+    top = segment.top()
+    top_share = len(top) / len(xy)
+    top_major, top_minor = _extents(top[:, :2]) if len(top) >= 3 else (0.0, 0.0)
+    top_fill = _fill(top[:, :2], top_major, top_minor)
+    middle = segment.points[np.abs(heights - height / 2) < max(0.1 * height, 0.005)]
+    middle_width = _extents(middle[:, :2])[1] if len(middle) >= 3 else minor
+    ratio = top_minor / middle_width if middle_width > 1e-6 else 1.0
+    rgb = np.median(segment.colours.astype(np.float64), axis=0)
+    total = float(rgb.sum()) or 1.0
+    brightest, darkest = float(rgb.max()), float(rgb.min())
+    saturation = (brightest - darkest) / brightest if brightest > 0 else 0.0
+    return np.array([height, major, minor, top_share, top_fill, ratio,
+                     rgb[0] / total, rgb[1] / total, rgb[2] / total, brightest / 255.0,
+                     saturation])
+
+
+def _extents(xy: np.ndarray) -> tuple[float, float]:
+    """The spread (2nd to 98th percentile) of points along their two principal axes."""
+    if len(xy) < 3:
+        return (0.0, 0.0)
+    centred = xy - xy.mean(axis=0)
+    _, vectors = np.linalg.eigh(np.cov(centred.T))
+    along = centred @ vectors
+    low, high = np.percentile(along, [2, 98], axis=0)
+    spread = high - low
+    return (float(spread[1]), float(spread[0]))
+
+
+def _fill(xy: np.ndarray, major: float, minor: float) -> float:
+    """How much of its bounding rectangle the top face's outline fills (box 1, disc π/4)."""
+    if len(xy) < 4 or major * minor <= 0:
+        return 0.0
+    try:
+        area = float(ConvexHull(xy).volume)
+    except QhullError:
+        return 0.0
+    return min(area / (major * minor), 1.5)

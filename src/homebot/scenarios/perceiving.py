@@ -1,0 +1,61 @@
+"""Wiring table-top perception to the simulator: a recogniser trained on rendered views.
+
+The recogniser of ``homebot.perception`` learns from labelled frames; here the
+simulator renders them (``homebot.sim.tabletop``): generated table-top scenes of
+the world's catalogue objects, segmented by the same pipeline the robot runs.
+A trained recogniser is kept per catalogue for the life of the process, so the
+runs of one benchmark train once.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+from collections.abc import Iterator, Mapping
+
+import numpy as np
+
+from homebot.perception.recognition import (
+    LabelledFrame,
+    Recogniser,
+    TabletopPerception,
+    training_examples,
+)
+from homebot.sim.tabletop import tabletop_scene
+from homebot.world import CatalogueEntry, World, object_catalogue
+
+__all__ = ["labelled_frames", "perception_for", "trained_recogniser"]
+
+_VIEWS_PER_OBJECT = 12  #: training views of each catalogue object (about)
+_OBJECTS_PER_SCENE = (4, 9)  #: training scenes hold 4 to 8 objects
+
+
+def labelled_frames(catalogue: Mapping[str, CatalogueEntry], scenes: int,
+                    rng: np.random.Generator) -> Iterator[LabelledFrame]:
+    """``scenes`` rendered table-top frames of catalogue objects, with their truth."""
+    entries = list(catalogue.values())
+    for _ in range(scenes):
+        scene = tabletop_scene(entries, int(rng.integers(*_OBJECTS_PER_SCENE)), rng)
+        yield scene.frame, [(placed.entry.name, placed.position) for placed in scene.objects]
+
+
+def trained_recogniser(catalogue: Mapping[str, CatalogueEntry], seed: int = 0) -> Recogniser:
+    """A recogniser for ``catalogue``, trained on views rendered with ``seed`` (remembered)."""
+    return _trained(tuple(sorted(catalogue.items())), seed)
+
+
+@functools.lru_cache(maxsize=8)
+def _trained(items: tuple[tuple[str, CatalogueEntry], ...], seed: int) -> Recogniser:
+    catalogue = dict(items)
+    rng = np.random.default_rng([seed, 1515])
+    mean_objects = sum(_OBJECTS_PER_SCENE) / 2 - 0.5
+    scenes = math.ceil(_VIEWS_PER_OBJECT * len(catalogue) / mean_objects)
+    features, labels = training_examples(labelled_frames(catalogue, scenes, rng), rng)
+    recogniser = Recogniser(catalogue, seed=seed)
+    return recogniser.fit(features, labels) if labels else recogniser
+
+
+def perception_for(world: World, seed: int = 0) -> TabletopPerception:
+    """The table-top pipeline for ``world``'s catalogue (trained once per catalogue)."""
+    recogniser = trained_recogniser(object_catalogue(world))
+    return TabletopPerception(recogniser, np.random.default_rng([seed, 1516]))

@@ -1,0 +1,68 @@
+"""In the loop: the embodied robot sees objects on a placement through its camera pipeline."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+pytest.importorskip("sklearn")
+pytest.importorskip("cv2")
+
+from homebot.embodied import BodyRobot
+from homebot.navigation import Navigator
+from homebot.robot import Pose
+from homebot.scenarios.embodied import embodied_robot
+from homebot.sim import Simulation
+from homebot.world import World, catalogue_entry
+
+WORLD = """\
+name: corner
+rooms:
+  - {name: kitchen, polygon: [[0, 0], [6, 0], [6, 4], [0, 4]]}
+categories:
+  - {name: drink, plural: drinks}
+  - {name: food, plural: foods}
+  - {name: fruit, plural: fruits}
+placements:
+  - {name: table, category: table, room: kitchen, center: [3, 2], size: [1.2, 0.7],
+     approach: [3, 1.28, 1.5708]}
+  - {name: shelf, category: storage, room: kitchen, center: [0.5, 3.5], size: [0.6, 0.6]}
+objects:
+  - {name: cola, category: drink, placement: table, position: [2.7, 2.0]}
+  - {name: cereal, category: food, placement: table, position: [3.05, 2.1]}
+  - {name: apple, category: fruit, placement: table, position: [3.3, 1.9]}
+  - {name: soup, category: food, placement: shelf}
+robot:
+  pose: [3, 1.28, 1.5708]
+"""
+
+
+def test_the_embodied_robot_sees_what_stands_on_the_table() -> None:
+    world = World.from_yaml_text(WORLD)
+    simulation = Simulation(world, seed=1)
+    robot = embodied_robot(simulation, Navigator(world))
+    before = simulation.clock.now()
+    detections = robot.perceive_objects("table")
+    assert simulation.clock.now() > before  # looking takes time
+    assert sorted(d.label for d in detections) == ["apple", "cereal", "cola"]
+    for detection in detections:
+        truth = simulation.object_by_id(detection.handle)
+        assert truth == detection.label
+        assert detection.category == world.objects[detection.label].category
+        assert detection.position is not None
+        assert math.dist(detection.position, simulation.object_position[truth]) < 0.03
+        assert detection.size is not None and detection.mass is not None
+    by_estimate = max(detections, key=lambda d: d.size or 0.0).label
+    assert by_estimate == max(("apple", "cereal", "cola"),
+                              key=lambda name: catalogue_entry(world, name).size)
+    assert robot.perceive_objects("shelf") == []  # too far away to see it
+
+
+def test_a_robot_lost_elsewhere_sees_nothing_on_the_table() -> None:
+    world = World.from_yaml_text(WORLD)
+    simulation = Simulation(world, seed=1)
+    robot = embodied_robot(simulation, Navigator(world))
+    assert isinstance(robot, BodyRobot)
+    robot.localisation.initialise(Pose(1.0, 1.0, 0.0), spread=0.01, angle_spread=0.01)
+    assert robot.perceive_objects("table") == []

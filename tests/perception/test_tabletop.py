@@ -1,0 +1,109 @@
+"""Table-top perception: RANSAC support plane, clustering, features, recognition, estimates."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+pytest.importorskip("sklearn")
+
+from homebot.perception.recognition import (
+    Recogniser,
+    TabletopPerception,
+    match_positions,
+    training_examples,
+)
+from homebot.perception.tabletop import (
+    FEATURE_NAMES,
+    cluster,
+    cluster_features,
+    segment_plane,
+    segment_tabletop,
+)
+from homebot.scenarios.perceiving import labelled_frames
+from homebot.sim.tabletop import tabletop_scene
+from homebot.world import CatalogueEntry, Shape
+
+CATALOGUE = {
+    "can": CatalogueEntry("can", "drink", Shape.CYLINDER, (0.07, 0.2), "red", (200, 30, 30),
+                          0.4),
+    "box": CatalogueEntry("box", "food", Shape.BOX, (0.07, 0.15, 0.2), "green", (40, 160, 60),
+                          0.5),
+    "ball": CatalogueEntry("ball", "toy", Shape.SPHERE, (0.09,), "yellow", (230, 210, 40),
+                           0.1),
+    "plate": CatalogueEntry("plate", "dish", Shape.CYLINDER, (0.16, 0.04), "white",
+                            (235, 235, 235), 0.3),
+}
+
+
+def test_ransac_finds_the_horizontal_plane_not_the_bigger_wall() -> None:
+    rng = np.random.default_rng(0)
+    table = np.column_stack((rng.uniform(0, 1, 2000), rng.uniform(-0.5, 0.5, 2000),
+                             0.75 + 0.001 * rng.standard_normal(2000)))
+    wall = np.column_stack((np.full(5000, 1.2), rng.uniform(-1, 1, 5000),
+                            rng.uniform(0, 2, 5000)))
+    model, inliers = segment_plane(np.vstack((table, wall)), 0.01, 60, rng)
+    assert model[2] == pytest.approx(0.75, abs=0.002)
+    assert abs(model[0]) < 0.01 and abs(model[1]) < 0.01
+    assert set(inliers.tolist()) >= set(range(1950))
+    assert np.count_nonzero(inliers >= 2000) < 100  # only where the wall crosses it
+
+
+def test_cluster_groups_by_distance_and_drops_small_groups() -> None:
+    rng = np.random.default_rng(1)
+    first = rng.normal((0, 0, 0), 0.004, (100, 3))
+    second = rng.normal((0.3, 0, 0), 0.004, (80, 3))
+    speck = rng.normal((0, 0.5, 0), 0.001, (3, 3))
+    labels = cluster(np.vstack((first, second, speck)), 0.02, 10)
+    assert len(set(labels[:100])) == 1 and len(set(labels[100:180])) == 1
+    assert labels[0] != labels[100] and set(labels[180:]) == {-1}
+
+
+def test_segments_lie_where_the_objects_stand() -> None:
+    rng = np.random.default_rng(5)
+    scene = tabletop_scene(list(CATALOGUE.values()), 4, rng)
+    tabletop = segment_tabletop(scene.frame, rng)
+    assert tabletop.plane is not None
+    assert tabletop.plane.c == pytest.approx(scene.surface, abs=0.01)
+    positions = [segment.position() for segment in tabletop.segments]
+    pairs = match_positions(positions, [placed.position for placed in scene.objects])
+    assert len(pairs) == len(scene.objects) == len(positions)
+    for found, truth in pairs:
+        assert np.hypot(*np.subtract(positions[found][:2],
+                                     scene.objects[truth].position[:2])) < 0.025
+    features = cluster_features(tabletop.segments[0])
+    assert features.shape == (len(FEATURE_NAMES),)
+
+
+def test_a_frame_without_a_table_has_no_objects() -> None:
+    rng = np.random.default_rng(2)
+    frame = tabletop_scene(list(CATALOGUE.values()), 2, rng).frame
+    floor_only = type(frame)(frame.stamp, frame.rgb, np.where(
+        frame.depth > 0, np.nan, frame.depth).astype(np.float32), frame.intrinsics,
+        frame.camera_pose)
+    assert segment_tabletop(floor_only, rng).segments == ()
+
+
+def test_recognition_trained_on_rendered_views_names_the_objects() -> None:
+    rng = np.random.default_rng(3)
+    features, labels = training_examples(labelled_frames(CATALOGUE, 12, rng), rng)
+    assert set(labels) == set(CATALOGUE)
+    perception = TabletopPerception(Recogniser(CATALOGUE).fit(features, labels),
+                                    np.random.default_rng(4))
+    right = total = 0
+    for seed in range(5):
+        scene = tabletop_scene(list(CATALOGUE.values()), 3, np.random.default_rng(100 + seed))
+        estimates = perception.perceive(scene.frame)
+        for found, truth in match_positions([e.position for e in estimates],
+                                            [p.position for p in scene.objects]):
+            total += 1
+            right += estimates[found].label == scene.objects[truth].entry.name
+            assert estimates[found].category == CATALOGUE[estimates[found].label].category
+    assert total >= 12 and right / total >= 0.9
+
+
+def test_an_untrained_recogniser_says_object() -> None:
+    rng = np.random.default_rng(6)
+    scene = tabletop_scene(list(CATALOGUE.values()), 2, rng)
+    estimates = TabletopPerception(Recogniser(CATALOGUE), rng).perceive(scene.frame)
+    assert estimates and {e.category for e in estimates} == {"object"}
