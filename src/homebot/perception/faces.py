@@ -172,12 +172,15 @@ class FaceDetector:
         sizes: the window sides tried, in pixels.
         stride: pixels between windows, as a share of the side.
         features: the Haar feature bank's size.
+        stumps: the stumps of the first (quick) and of the second stage.
         seed: the bank's layout and the boosting's randomness.
     """
 
     def __init__(self, sizes: Sequence[int] = (30, 35, 40, 46), stride: float = 0.1,
-                 features: int = 400, seed: int = 0) -> None:
+                 features: int = 400, stumps: tuple[int, int] = (12, 120),
+                 seed: int = 0) -> None:
         self.sizes = tuple(sizes)
+        self.stumps = stumps
         self.stride = stride
         self.bank = HaarFeatures(features, seed)
         self.seed = seed
@@ -210,7 +213,7 @@ class FaceDetector:
         data = np.vstack((pos, neg))
         labels = np.r_[np.ones(len(pos)), np.zeros(len(neg))]
         self._stages = []
-        for stumps, keep in ((12, 0.995), (120, 0.5)):
+        for stumps, keep in zip(self.stumps, (0.995, 0.5), strict=True):
             booster = AdaBoostClassifier(DecisionTreeClassifier(max_depth=1),
                                          n_estimators=stumps, random_state=self.seed)
             booster.fit(data, labels)

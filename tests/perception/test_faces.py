@@ -1,0 +1,85 @@
+"""Faces: integral image, Haar features, the trained cascade, enrolment and identification."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+pytest.importorskip("sklearn")
+
+from homebot.perception.faces import (
+    FaceDetector,
+    FaceError,
+    FaceMemory,
+    HaarFeatures,
+    integral_image,
+)
+from homebot.sim.faces import background_patch, face_identity, face_view
+
+
+def test_the_integral_image_sums_any_rectangle_in_four_look_ups() -> None:
+    image = np.arange(20, dtype=float).reshape(4, 5)
+    integral, _ = integral_image(image)
+    r0, r1, c0, c1 = 1, 3, 2, 5
+    total = integral[r1, c1] - integral[r0, c1] - integral[r1, c0] + integral[r0, c0]
+    assert total == image[r0:r1, c0:c1].sum()
+
+
+def test_haar_features_ignore_the_light_level() -> None:
+    rng = np.random.default_rng(0)
+    image, window = face_view(face_identity("Ada"), rng, light=0.0, noise=0.0)
+    bank = HaarFeatures(50)
+    dim = (image.astype(float) * 0.6).astype(np.uint8)
+    bright, darker = (bank.compute(integral_image(i), np.asarray([window])) for i in (image, dim))
+    assert np.allclose(bright, darker, atol=0.15)
+    some = bank.compute(integral_image(image), np.asarray([window]), only=np.array([3, 7]))
+    assert np.allclose(some, bright[:, [3, 7]])
+
+
+@pytest.fixture(scope="module")
+def detector() -> FaceDetector:
+    rng = np.random.default_rng(5)
+    strangers = [face_identity(f"stranger{i}", 9) for i in range(12)]
+    views = [face_view(strangers[i % 12], rng) for i in range(80)]
+    found = FaceDetector(features=200, stumps=(8, 40))
+    found.train([image for image, _ in views], [window for _, window in views],
+                [background_patch(rng) for _ in range(60)])
+    return found
+
+
+def test_the_cascade_finds_a_new_face(detector: FaceDetector) -> None:
+    rng = np.random.default_rng(6)
+    hits = 0
+    for index in range(10):
+        image, (x, y, side) = face_view(face_identity(f"new{index}"), rng)
+        found = detector.detect(image)
+        hits += bool(found) and abs(found[0].x - x) <= side // 3 and \
+            abs(found[0].y - y) <= side // 3
+    assert hits >= 8
+
+
+def test_enrolled_people_are_told_apart(detector: FaceDetector) -> None:
+    rng = np.random.default_rng(7)
+    people = [face_identity(name) for name in ("Ada", "Ben", "Cy")]
+    memory = FaceMemory(detector, threshold=0.0, trees=30)
+    with pytest.raises(FaceError):
+        memory.identify(face_view(people[0], rng)[0])
+    for person in people:
+        assert memory.enrol(person.name, [face_view(person, rng)[0] for _ in range(12)]) >= 10
+    assert memory.people == ["Ada", "Ben", "Cy"]
+    right = sum(memory.identify(face_view(person, rng)[0])[0] == person.name
+                for person in people for _ in range(6))
+    assert right >= 14
+
+
+def test_enrolment_needs_a_name_and_a_face(detector: FaceDetector) -> None:
+    memory = FaceMemory(detector)
+    with pytest.raises(FaceError):
+        memory.enrol(" ", [])
+    with pytest.raises(FaceError, match="no face"):
+        memory.enrol("Ada", [np.zeros((80, 80), dtype=np.uint8)])
+
+
+def test_an_untrained_detector_says_so() -> None:
+    with pytest.raises(FaceError, match="not trained"):
+        FaceDetector().detect(np.zeros((80, 80), dtype=np.uint8))
