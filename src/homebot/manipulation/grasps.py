@@ -22,7 +22,8 @@ import numpy as np
 from homebot.manipulation.ik import solve_ik
 from homebot.manipulation.scene import PlanningScene
 
-__all__ = ["Grasp", "GraspCandidate", "ObjectGeometry", "grasp_candidates", "select_grasp"]
+__all__ = ["IK_SEEDS", "Grasp", "GraspCandidate", "ObjectGeometry", "grasp_candidates",
+           "select_grasp"]
 
 MAX_WIDTH = 0.2  #: the gripper's widest opening, metres
 _WIDTH_MARGIN = 0.04  #: the fingers open this much wider than the object before closing
@@ -34,7 +35,7 @@ _TABLE_CLEARANCE = 0.012  #: metres the fingers keep above the surface
 _SIDE_YAWS = np.radians([-50.0, -25.0, 0.0, 25.0, 50.0])
 #: IK starts besides the arm's current configuration: bent forward over a table, hand
 #: down (top grasps) and hand level (side grasps); torso first
-_IK_SEEDS = (np.array([0.2, 0.0, -1.2, 0.0, 2.3, 0.0, 0.6, 0.0]),
+IK_SEEDS = (np.array([0.2, 0.0, -1.2, 0.0, 2.3, 0.0, 0.6, 0.0]),
              np.array([0.2, 0.0, 0.3, 0.0, 1.0, 0.0, -1.2, 0.0]))
 
 
@@ -197,7 +198,7 @@ def _feasible(scene: PlanningScene, candidate: GraspCandidate, current: np.ndarr
     """Collision-free IK solutions for the grasp and its pre-grasp, trying each seed
     (the current configuration first), or None."""
     opening = candidate.opening()
-    for seed in (current, *_IK_SEEDS):
+    for seed in (current, *IK_SEEDS):
         posture = seed.copy()
         posture[0] = scene.upper[0] - 0.05  # a high torso keeps the arm above the table
         grasp = solve_ik(scene, candidate.position, candidate.rotation, [seed],

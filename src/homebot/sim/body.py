@@ -18,23 +18,28 @@ from dataclasses import replace
 import numpy as np
 
 from homebot.robot import (
+    Arm,
     Body,
     BodyError,
     DriveKind,
+    Gripper,
     HeadState,
     LaserScan,
     Microphone,
     Odometry,
+    PartMissing,
     Pose,
     RgbdFrame,
     Speaker,
     Twist,
     VelocityLimits,
+    Wrench,
 )
 from homebot.sim.audio import AudioScene, SimMicrophone, SimSpeaker
 from homebot.sim.camera import CameraSimulator, SceneGeometry, Solid, object_yaw
 from homebot.sim.components import ComponentSimulation
 from homebot.sim.geometry import TrueGeometry
+from homebot.sim.hands import ArmDriver, SimHands
 from homebot.sim.laser import LaserSimulator
 from homebot.sim.simulation import Simulation
 from homebot.sim.walkers import PeopleWalking
@@ -121,6 +126,13 @@ class SimBody(Body):
         self.audio = AudioScene(simulation.clock.now, simulation.seed)
         self._speaker = SimSpeaker(self.audio, simulation.events, self.tick, self.tick_period)
         self._microphone = SimMicrophone(self.audio, simulation.clock.now)
+        #: the arm, gripper and wrist sensor in MuJoCo where the robot stands
+        arm_model = world.arm_model_path()
+        self.hands = SimHands(simulation, self.tick_period, arm_model)
+        if arm_model is not None and _has_mujoco():
+            from homebot.sim.arm import load_arm_spec
+
+            load_arm_spec(arm_model)  # a broken model is an error at the start, not mid-task
 
     def _walker_names(self, walkers: int | Sequence[str]) -> list[str]:
         people = self.sim.people
@@ -178,6 +190,21 @@ class SimBody(Body):
         their surfaces (``homebot.sim.camera``)."""
         return self.camera_simulator.render(self.now(), self.sim.robot_pose, self._head,
                                             self._solids())
+
+    def arm(self) -> Arm:
+        """The arm (MuJoCo physics where the robot stands)."""
+        return self._arm_driver().arm()
+
+    def gripper(self) -> Gripper:
+        return self._arm_driver().gripper()
+
+    def wrist_wrench(self) -> Wrench:
+        return self._arm_driver().wrist_wrench()
+
+    def _arm_driver(self) -> ArmDriver:
+        if not _has_mujoco():
+            raise PartMissing("arm in physics (MuJoCo): pip install 'homebot[embodied]'")
+        return self.hands.driver()
 
     def _solids(self) -> list[Solid]:
         sim = self.sim
@@ -251,6 +278,7 @@ class SimBody(Body):
         self._odometry_step(*moved)
         self.people.advance(dt, self.sim.robot_pose[:2], self.radius + _PERSONAL_SPACE)
         self._last_tick_end = self.sim.clock.advance(dt)
+        self.hands.advance(dt)
         if self.components is not None:  # the components live on the body's clock
             self.components.advance(max(0.0, self._last_tick_end - self.components.now))
 
@@ -326,6 +354,12 @@ class SimBody(Body):
     def _rounded_position(self) -> tuple[float, float]:
         x, y, _ = self.sim.robot_pose
         return (round(x, 3), round(y, 3))
+
+
+def _has_mujoco() -> bool:
+    import importlib.util
+
+    return importlib.util.find_spec("mujoco") is not None
 
 
 def _wrap(angle: float) -> float:

@@ -8,21 +8,26 @@ joint states, position targets (with optional torques), the gripper, the wrist's
 
 from __future__ import annotations
 
-import math
 from collections.abc import Iterable, Mapping
 from pathlib import Path
+from typing import Any
+
+import numpy as np
 
 from homebot.robot import Arm, ArmState, Gripper, GripperState, JointTarget, Wrench
 from homebot.sim.arm import (
     ARM_JOINTS,
+    HOME,
     MAX_GRIPPER_WIDTH,
     ArmSimulation,
     ObjectBody,
     SurfaceBox,
 )
+from homebot.sim.camera import object_yaw
+from homebot.sim.simulation import HAND_PREFIX
 from homebot.world import World, catalogue_entry, surface_height
 
-__all__ = ["PAYLOAD", "ArmDriver", "object_body", "world_scene"]
+__all__ = ["PAYLOAD", "ArmDriver", "SimHands", "object_body", "world_scene"]
 
 PAYLOAD = 1.5  #: kilograms the arm is rated to lift
 #: friction of an object's surface, by catalogue shape (rounder things roll and slip more)
@@ -109,17 +114,13 @@ def object_body(world: World, name: str, position: tuple[float, float], base: fl
                       _FRICTION.get(shape, 0.7), rgba, position, base, yaw)
 
 
-def object_yaw(name: str) -> float:
-    """A stable heading for an object (its name's hash), so boxes do not all face alike."""
-    return (sum(map(ord, name)) * 0.6180339887) % 1.0 * math.pi
-
-
 def world_scene(world: World, placements: Iterable[str],
-                positions: Mapping[str, tuple[str, tuple[float, float]]]
+                positions: Mapping[str, tuple[str, tuple[float, float]]], seed: int = 0
                 ) -> tuple[list[SurfaceBox], list[ObjectBody]]:
     """The surfaces of ``placements`` and the objects on them.
 
-    ``positions`` maps each object standing on one of them to (placement, (x, y)).
+    ``positions`` maps each object standing on one of them to (placement, (x, y)); objects
+    stand turned as the camera draws them (``object_yaw`` with the run's ``seed``).
     """
     surfaces, objects = [], []
     for name in placements:
@@ -131,6 +132,147 @@ def world_scene(world: World, placements: Iterable[str],
                                    (float(model.size[0]), float(model.size[1])), height))
         for obj, (where, xy) in positions.items():
             if where == name:
-                objects.append(object_body(world, obj, xy, height, object_yaw(obj)))
+                objects.append(object_body(world, obj, xy, height, object_yaw(obj, seed)))
     return surfaces, objects
 
+
+
+#: metres from the robot's centre within which a surface is part of the arm's scene
+_SCENE_REACH = 1.4
+_HELD_RISE = 0.02  #: metres above its resting height for a held object to count as lifted
+_AT_REST = 0.02  #: m/s: an object slower than this has come to rest
+
+
+class SimHands:
+    """The arm of a ``SimBody``: a physics scene around where the robot stands, kept in
+    step with the simulation's truth.
+
+    The scene is built on first use at the robot's true pose, from the surfaces within
+    reach and the objects the truth has on them. It steps with the body's ticks while the
+    base stands still; when the base moves, physics pauses (the arm and what it holds ride
+    along) and the next use rebuilds the scene where the robot then stands. After every
+    step the truth follows physics: an object lifted between both fingers is in a hand,
+    an object that came to rest on a surface is on that placement, one on the floor is on
+    the floor of its room.
+
+    Args:
+        simulation: the truth.
+        tick_period: the body's control period.
+        model_path: the arm's MJCF file (default: homebot's).
+    """
+
+    def __init__(self, simulation: Any, tick_period: float,
+                 model_path: Path | None = None) -> None:
+        self.simulation = simulation
+        self.tick_period = tick_period
+        self.model_path = model_path
+        self._driver: ArmDriver | None = None
+        self._base: tuple[float, float, float] | None = None
+        self._arm: tuple[float, ...] = HOME
+        self._torso = 0.2
+        self._gripper = MAX_GRIPPER_WIDTH
+        self._held: tuple[ObjectBody, np.ndarray] | None = None
+        self._surfaces: dict[str, SurfaceBox] = {}
+
+    def driver(self) -> ArmDriver:
+        """The arm's drivers where the robot stands now (built when it has moved)."""
+        pose = tuple(self.simulation.robot_pose)
+        if self._driver is None or pose != self._base:
+            self._build((float(pose[0]), float(pose[1]), float(pose[2])))
+        assert self._driver is not None
+        return self._driver
+
+    def advance(self, seconds: float) -> None:
+        """Physics for ``seconds`` while the base stands where the scene was built."""
+        if self._driver is None:
+            return
+        if tuple(self.simulation.robot_pose) != self._base:
+            self._remember()
+            self._driver = None
+            return
+        self._driver.sim.step(seconds)
+        self._follow_physics()
+
+    # ------------------------------------------------------------ building
+
+    def _remember(self) -> None:
+        """Keep the arm's state and what its fingers hold for the next scene."""
+        if self._driver is None:
+            return
+        sim = self._driver.sim
+        self._arm = tuple(float(v) for v in sim.arm_positions())
+        self._torso = sim.torso_height()
+        self._gripper = sim.gripper_width()
+        held = sim.held_object()
+        self._held = (sim.objects[held], sim.relative_to_grasp(held)) if held else None
+
+    def _build(self, pose: tuple[float, float, float]) -> None:
+        self._remember()
+        truth = self.simulation
+        world = truth.world
+        near = [name for name, placement in world.placements.items()
+                if placement.footprint.distance(_point(pose[:2])) < _SCENE_REACH]
+        positions = {obj: (where, truth.position_on(obj, where))
+                     for obj, where in truth.object_location.items() if where in near}
+        surfaces, objects = world_scene(world, near, positions, truth.seed)
+        self._surfaces = {s.name: s for s in surfaces}
+        holding = {name for name in truth.hands.values() if name}
+        held = self._held if self._held is not None and self._held[0].name in holding \
+            else None
+        sim = ArmSimulation(base=pose, surfaces=surfaces, objects=objects,
+                            model_path=self.model_path, arm=self._arm, torso=self._torso,
+                            gripper=self._gripper if held else MAX_GRIPPER_WIDTH, held=held)
+        self._driver = ArmDriver(sim, self.tick_period, start=truth.clock.now())
+        self._base = pose
+
+    # ------------------------------------------------------------ truth follows physics
+
+    def _follow_physics(self) -> None:
+        assert self._driver is not None
+        sim, truth = self._driver.sim, self.simulation
+        in_hand = {name: hand for hand, name in truth.hands.items() if name}
+        for name, body in sim.objects.items():
+            position = sim.object_position(name)
+            gripped = sim.touching_fingers(name) == 2
+            rest = body.base + body.extents[2] / 2
+            if gripped and position[2] > rest + _HELD_RISE and name not in in_hand:
+                free = [hand for hand, held in truth.hands.items() if held is None]
+                if free:
+                    truth.hands[free[0]] = name
+                    truth.object_location[name] = HAND_PREFIX + free[0]
+                    truth.events.record("sim.arm", what="lifted", object=name, hand=free[0])
+                continue
+            if gripped or not self._resting(name):
+                continue
+            where = self._surface_under(position, body)
+            xy = (round(float(position[0]), 4), round(float(position[1]), 4))
+            if name in in_hand:
+                truth.hands[in_hand[name]] = None
+            location = where or f"floor:{truth.world.room_at(*xy)}"
+            if truth.object_location.get(name) != location or \
+                    truth.object_position.get(name) != xy:
+                if truth.object_location.get(name) != location:
+                    truth.events.record("sim.arm", what="put down", object=name, on=location)
+                truth.object_location[name] = location
+                truth.object_position[name] = xy
+
+    def _resting(self, name: str) -> bool:
+        assert self._driver is not None
+        sim = self._driver.sim
+        joint = sim.model.joint(f"{name}:free")
+        address = int(sim.model.jnt_dofadr[joint.id])
+        return float(np.linalg.norm(sim.data.qvel[address:address + 3])) < _AT_REST
+
+    def _surface_under(self, position: np.ndarray, body: ObjectBody) -> str | None:
+        for surface in self._surfaces.values():
+            inside = abs(position[0] - surface.center[0]) <= surface.size[0] / 2 and \
+                abs(position[1] - surface.center[1]) <= surface.size[1] / 2
+            if inside and position[2] >= surface.height:
+                return surface.name
+        return None
+
+
+def _point(xy: tuple[float, ...]) -> Any:
+    from shapely.geometry import Point
+
+    return Point(xy)
