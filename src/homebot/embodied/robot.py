@@ -16,12 +16,13 @@ another Robot implementation over the same world.
 
 from __future__ import annotations
 
-import itertools
 import math
 from dataclasses import dataclass
 from typing import Protocol
 
 import numpy as np
+from shapely.geometry import LineString
+from shapely.geometry import Point as ShapelyPoint
 
 from homebot.embodied.looking import TableLook
 from homebot.errors import NavigationError, SpeechError
@@ -166,7 +167,7 @@ class BodyRobot(Robot):
         if attempt.reached:
             return MoveReport(True, self.pose(), attempt.travelled)
         person = self._person_in_the_way(target, avoid_doors)
-        blocker = Blocker.PERSON if person else Blocker.NO_PATH
+        blocker = Blocker.PERSON if person else Blocker.OBSTRUCTED
         self.events.record("robot.stuck", person=person)
         return MoveReport(False, self.pose(), attempt.travelled, blocker, None, person)
 
@@ -304,17 +305,4 @@ def _distance_to_path(point: tuple[float, float],
     """Metres from ``point`` to the nearest segment of ``path``."""
     if len(path) == 1:
         return math.dist(point, path[0])
-    best = math.inf
-    for (ax, ay), (bx, by) in itertools.pairwise(path):
-        dx, dy = bx - ax, by - ay
-        length = dx * dx + dy * dy
-        t = 0.0 if length == 0 else max(0.0, min(1.0, ((point[0] - ax) * dx +
-                                                       (point[1] - ay) * dy) / length))
-        best = min(best, math.dist(point, (ax + t * dx, ay + t * dy)))
-    return best
-
-
-def _wrap(angle: float) -> float:
-    return (angle + math.pi) % (2 * math.pi) - math.pi
-
-
+    return float(LineString(path).distance(ShapelyPoint(point)))

@@ -50,7 +50,10 @@ def _door_closed(context: SkillContext, skill: str, args: Mapping[str, Any],
 def _path_blocked(context: SkillContext, skill: str, args: Mapping[str, Any],
                   outcome: Outcome, run: StepRunner) -> bool:
     """Ask the person in the way to step aside; if they do not, go round them (past a
-    door they stand in; one who blocks the way elsewhere leaves no way to go round)."""
+    door they stand in; one who blocks the way elsewhere leaves no way to go round).
+    When nobody is known to be in the way, set off again: the robot has already waited,
+    and what stood there (a passer-by, a chair pushed back) may be gone, or a way round
+    open; the executive's limit on recoveries ends the trying."""
     person, door = outcome.data.get("person"), str(outcome.data.get("door", ""))
     if person:
         speak(context, f"Excuse me, {person}, could you please let me through?")
@@ -58,7 +61,7 @@ def _path_blocked(context: SkillContext, skill: str, args: Mapping[str, Any],
             speak(context, "Thank you!")
             return True
     if not door:
-        return False
+        return not person
     context.beliefs.door_closed(door)
     return _has_other_way(context, skill, args)
 

@@ -20,7 +20,7 @@ from enum import StrEnum
 
 from homebot.errors import NavigationError
 from homebot.navigation.localmap import LocalController
-from homebot.navigation.navigator import Navigator
+from homebot.navigation.navigator import Navigator, polyline_length
 from homebot.robot import Action, ActionStatus, Body, Pose, Twist
 
 __all__ = [
@@ -92,7 +92,7 @@ class NavigationGoal:
         return cls(target, plan.waypoints, **options)  # type: ignore[arg-type]
 
     def path_length(self) -> float:
-        return sum(math.dist(a, b) for a, b in itertools.pairwise(self.path))
+        return polyline_length(self.path)
 
 
 @dataclass(frozen=True, slots=True)

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import itertools
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -14,7 +15,7 @@ from homebot.navigation.grid import OccupancyGrid
 from homebot.navigation.topology import Route, TopologicalMap
 from homebot.world import World
 
-__all__ = ["NavigationPlan", "Navigator"]
+__all__ = ["NavigationPlan", "Navigator", "polyline_length"]
 
 # Metres round the start and goal of plan_around where only the robot's radius is kept clear.
 _END_ALLOWANCE = 0.6
@@ -90,7 +91,7 @@ class Navigator:
                 return None
             cells.extend(segment[1:])
         points = [self.grid.center_of(*divmod(cell, columns)) for cell in cells]
-        length = sum(math.dist(a, b) for a, b in itertools.pairwise(points))
+        length = polyline_length(points)
         length += math.dist(start, points[0]) + math.dist(goal, points[-1])
         waypoints = (start, *_simplify(points)[1:-1], goal)
         return NavigationPlan(waypoints, length, route.doors, route)
@@ -186,3 +187,8 @@ def _simplify(points: list[tuple[float, float]]) -> list[tuple[float, float]]:
             kept.append(current)
     kept.append(points[-1])
     return kept
+
+
+def polyline_length(points: Sequence[tuple[float, float]]) -> float:
+    """The length of the polyline through ``points``, metres."""
+    return sum(math.dist(a, b) for a, b in itertools.pairwise(points))

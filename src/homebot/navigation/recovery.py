@@ -24,7 +24,7 @@ import numpy as np
 from homebot.errors import NavigationError
 from homebot.navigation.localmap import LocalController
 from homebot.navigation.navigate import NavigateToPose, NavigationGoal, StopReason
-from homebot.navigation.navigator import Navigator
+from homebot.navigation.navigator import Navigator, polyline_length
 from homebot.robot import Body, LaserScan, Pose, Twist
 
 __all__ = ["NavigationAttempt", "ObstacleMemory", "RecoveringNavigation", "RecoveryPolicy",
@@ -33,6 +33,7 @@ __all__ = ["NavigationAttempt", "ObstacleMemory", "RecoveringNavigation", "Recov
 _STOP_TICKS = 60  #: control periods allowed beyond a goal's budget to come to rest
 _FACE_AHEAD = 0.5  #: metres along the path to the point a spin recovery turns to face
 _FACED = 0.3  #: radians: a spin recovery stops this close to facing that point
+_DETOUR_BUDGETS = 3.0  #: a goal's whole time, detours included, in first budgets
 _AT_THE_MAP = 0.075  #: metres: a return this near a wall or furniture cell is that obstacle
 
 
@@ -239,7 +240,11 @@ class RecoveringNavigation:
         if plan is None:
             raise NavigationError(f"no path from ({here.x:.2f}, {here.y:.2f}) to "
                                   f"({target.x:.2f}, {target.y:.2f}) on the map")
-        deadline = started + plan.length * policy.seconds_per_metre + policy.wait_budget
+        budget = plan.length * policy.seconds_per_metre + policy.wait_budget
+        deadline = started + budget
+        # A way round may be much longer than the first path: each one found earns its own
+        # time per metre, up to a few first budgets in all.
+        last_call = started + _DETOUR_BUDGETS * budget
         path: tuple[tuple[float, float], ...] | None = \
             self.plan_wide(here, target, avoid_doors, np.zeros((0, 2))) or plan.waypoints
         travelled, replans, waits = 0.0, 0, 0
@@ -269,6 +274,9 @@ class RecoveringNavigation:
             pose = self.localise()
             obstacles = self.memory.observe(body.now(), pose, body.scan())
             path = self.plan_wide(pose, target, avoid_doors, obstacles)
+            if path is not None:
+                needed = body.now() + polyline_length(path) * policy.seconds_per_metre
+                deadline = min(last_call, max(deadline, needed + policy.stuck_after))
             replans += 1
             if self.on_replan is not None:
                 self.on_replan(path is not None)

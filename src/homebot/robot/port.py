@@ -41,6 +41,7 @@ class Blocker(StrEnum):
     DOOR_CLOSED = "door_closed"  #: a shut (or locked) door is on the way
     PERSON = "person"  #: someone stands in a doorway on the way
     NO_PATH = "no_path"  #: no way exists even with every door open
+    OBSTRUCTED = "obstructed"  #: something the map lacks stays in the way, nobody known
 
 
 @dataclass(frozen=True, slots=True)

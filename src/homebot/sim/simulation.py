@@ -11,6 +11,7 @@ import math
 import random
 from dataclasses import dataclass
 
+from shapely.geometry import LineString
 from shapely.geometry import Point as ShapelyPoint
 
 from homebot.events import EventLog
@@ -33,6 +34,8 @@ PERSON_PREFIX = "person:"  #: object location given to a person, e.g. ``person:A
 _STEP_ASIDE = (0.8, 1.2, 1.6, 2.0)  #: metres a person letting the robot by may step
 _ASIDE_DIRECTIONS = 16
 _CLEAR_OF_ROBOT = 1.0  #: metres from the robot's centre a person stepping aside keeps
+_ALONG_THE_WAY = 2.5  #: metres past the person that the robot's way is taken to go on
+_CLEAR_OF_THE_WAY = 0.9  #: metres a person stepping aside keeps from that way
 
 
 @dataclass
@@ -209,16 +212,24 @@ class Simulation:
 
     def spot_aside(self, position: tuple[float, float]) -> tuple[float, float] | None:
         """Where a person at ``position`` steps to get out of the robot's way: the
-        nearby spot with the most room round it, as people step into open floor
-        (None: no free spot within reach)."""
+        nearby spot with the most room round it, as people step into open floor, and to
+        the side of the way the robot comes from, not further along it (None: no free
+        spot within reach)."""
         grid, clearance = self.navigator.grid, self.navigator.clearance()
+        robot = self.robot_pose[:2]
+        away = math.dist(robot, position)
+        ahead = (position if away < 1e-6 else
+                 (position[0] + _ALONG_THE_WAY * (position[0] - robot[0]) / away,
+                  position[1] + _ALONG_THE_WAY * (position[1] - robot[1]) / away))
+        way = LineString([robot, ahead])
         best: tuple[float, tuple[float, float]] | None = None
         for reach in _STEP_ASIDE:
             for turn in range(_ASIDE_DIRECTIONS):
                 angle = 2 * math.pi * turn / _ASIDE_DIRECTIONS
                 spot = (position[0] + reach * math.cos(angle),
                         position[1] + reach * math.sin(angle))
-                if self.world.room_at(*spot) is None or self.distance_to(spot) < _CLEAR_OF_ROBOT:
+                if self.world.room_at(*spot) is None or self.distance_to(spot) < _CLEAR_OF_ROBOT \
+                        or way.distance(ShapelyPoint(spot)) < _CLEAR_OF_THE_WAY:
                     continue
                 cell = grid.cell_of(*spot)
                 if grid.blocked[cell]:

@@ -43,7 +43,7 @@ class ErrorCode(StrEnum):
     NOT_HOLDING = "not_holding"  #: nothing in hand to place or give
     NO_PERSON = "no_person"  #: a step needs a person found before it
     # planning / motion
-    PATH_BLOCKED = "path_blocked"  #: someone stands in the way
+    PATH_BLOCKED = "path_blocked"  #: someone (or something) stands in the way
     DOOR_CLOSED = "door_closed"  #: a closed door is on the way
     NO_PATH = "no_path"  #: no route exists
     # execution / postcondition
