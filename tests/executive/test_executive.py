@@ -7,6 +7,7 @@ import pytest
 from homebot.bench.fetch_tasks import delivered, fetch_tasks
 from homebot.bench.robustness import compare_modes
 from homebot.navigation import Navigator
+from homebot.robot import Blocker, MoveReport, Pose
 from homebot.scenarios import SimulatedRun
 from homebot.sim import PERSON_PREFIX
 from homebot.skills import ErrorCode
@@ -196,3 +197,38 @@ def test_the_report_names_the_object_a_recovery_really_picked(
     report = run.run(Task((Step("navigate", {"to": "fridge"}), Step("pick", {"object": "cola"}))))
     assert report.success
     assert report.steps[1].args == {"object": "orange juice"}
+
+
+def _obstructed(run: SimulatedRun, times: int) -> list[object]:
+    """Make the robot's first ``times`` motions stop at something nobody is known to be."""
+    robot = run.executive.context.robot
+    real, calls = robot.move_to, []
+
+    def move_to(goal: Pose, avoid_doors: frozenset[str] = frozenset(),
+                escort: str | None = None) -> MoveReport:
+        calls.append(goal)
+        if len(calls) <= times:
+            return MoveReport(False, robot.pose(), 0.0, Blocker.OBSTRUCTED)
+        return real(goal, avoid_doors, escort)
+
+    robot.move_to = move_to  # type: ignore[method-assign]
+    return calls
+
+
+def test_an_unknown_obstruction_is_tried_again(apartment: World,
+                                               apartment_navigator: Navigator) -> None:
+    run = _run(apartment, apartment_navigator)
+    calls = _obstructed(run, times=1)
+    report = run.run(Task((Step("navigate", {"to": "desk"}),)))
+    assert report.success
+    assert report.steps[0].recoveries == ("path_blocked",) and len(calls) == 2
+
+
+def test_an_obstruction_that_stays_ends_the_trying_and_says_so(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    run = _run(apartment, apartment_navigator)
+    _obstructed(run, times=1000)
+    report = run.run(Task((Step("navigate", {"to": "desk"}),)))
+    assert not report.success
+    assert 1 <= len(report.steps[0].recoveries) <= 4
+    assert any("something I cannot get past" in text for text in report.speech)

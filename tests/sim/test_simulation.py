@@ -110,3 +110,25 @@ def test_interactive_people_answer_what_is_typed(apartment: World) -> None:
         raise EOFError
 
     assert InteractiveResponder(closed)(apartment.person("Maria"), "Anything?") is None
+
+
+def test_a_person_asked_aside_steps_off_the_robots_way(apartment: World,
+                                                       apartment_navigator: Navigator) -> None:
+    import math
+
+    import numpy as np
+
+    simulation = Simulation(apartment, seed=1, navigator=apartment_navigator)
+    grid, clearance = apartment_navigator.grid, apartment_navigator.clearance()
+    person = grid.center_of(*np.unravel_index(int(np.argmax(clearance)), clearance.shape))
+    for heading in np.linspace(0, 2 * math.pi, 8, endpoint=False):
+        robot = (person[0] - 1.2 * math.cos(heading), person[1] - 1.2 * math.sin(heading))
+        simulation.robot_pose = (*robot, float(heading))
+        spot = simulation.spot_aside(person)
+        assert spot is not None
+        # Measured across the robot's heading: to the side of its way, not ahead on it.
+        along = (spot[0] - robot[0]) * math.cos(heading) + (spot[1] - robot[1]) * math.sin(heading)
+        across = -(spot[0] - robot[0]) * math.sin(heading) + \
+            (spot[1] - robot[1]) * math.cos(heading)
+        assert abs(across) >= 0.9 or along < 0 or along > 1.2 + 2.5
+        assert math.dist(spot, robot) >= 1.0
