@@ -81,8 +81,35 @@ def embodied_robot(simulation: Simulation, navigator: Navigator, *,
     percepts = SimRobot(simulation)
     looking = TableLook(body, world, perception_for(world, simulation.seed),
                         _SimulatedObjects(simulation))
-    return BodyRobot(body, world, navigator, localisation, MotionSearchPlanner(), percepts,
-                     percepts, simulation.events, looking=looking)
+    if importlib.util.find_spec("mujoco") is None:  # no physics: grasps stay symbolic
+        return BodyRobot(body, world, navigator, localisation, MotionSearchPlanner(), percepts,
+                         percepts, simulation.events, looking=looking)
+    from homebot.embodied.hands import ArmedBodyRobot
+    from homebot.manipulation.control import ArmControl
+
+    arm = ArmControl(body, world, _TrueObjectPoses(simulation), seed=simulation.seed)
+    return ArmedBodyRobot(body, world, navigator, localisation, MotionSearchPlanner(),
+                          percepts, percepts, simulation.events, looking=looking, arm=arm)
+
+
+class _TrueObjectPoses:
+    """Where objects stand, for the arm's planning scene: the simulator's truth (x, y,
+    heading, surface height), standing in until perception reports object poses; a
+    detection's own position, when perception gives one, takes precedence for the target."""
+
+    def __init__(self, simulation: Simulation) -> None:
+        self.sim = simulation
+
+    def __call__(self, name: str) -> tuple[float, float, float, float] | None:
+        from homebot.sim.camera import object_yaw
+        from homebot.world import surface_height
+
+        where = self.sim.object_location.get(name)
+        if where is None or where not in self.sim.world.placements:
+            return None
+        x, y = self.sim.position_on(name, where)
+        return (x, y, object_yaw(name, self.sim.seed),
+                surface_height(self.sim.world.placements[where].model))
 
 
 class _SimulatedObjects:

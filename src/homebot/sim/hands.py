@@ -173,6 +173,7 @@ class SimHands:
         self._gripper = MAX_GRIPPER_WIDTH
         self._held: tuple[ObjectBody, np.ndarray] | None = None
         self._surfaces: dict[str, SurfaceBox] = {}
+        self._gone: set[str] = set()
 
     def driver(self) -> ArmDriver:
         """The arm's drivers where the robot stands now (built when it has moved)."""
@@ -224,6 +225,7 @@ class SimHands:
                             gripper=self._gripper if held else MAX_GRIPPER_WIDTH, held=held)
         self._driver = ArmDriver(sim, self.tick_period, start=truth.clock.now())
         self._base = pose
+        self._gone = set()
 
     # ------------------------------------------------------------ truth follows physics
 
@@ -232,6 +234,11 @@ class SimHands:
         sim, truth = self._driver.sim, self.simulation
         in_hand = {name: hand for hand, name in truth.hands.items() if name}
         for name, body in sim.objects.items():
+            where = truth.object_location.get(name)
+            if name in self._gone or not (where is None or where in truth.world.placements or
+                                          where.startswith((HAND_PREFIX, "floor:"))):
+                self._take_away(name)  # someone took it (a person): it leaves the scene
+                continue
             position = sim.object_position(name)
             gripped = sim.touching_fingers(name) == 2
             rest = body.base + body.extents[2] / 2
@@ -255,6 +262,18 @@ class SimHands:
                     truth.events.record("sim.arm", what="put down", object=name, on=location)
                 truth.object_location[name] = location
                 truth.object_position[name] = xy
+
+    def _take_away(self, name: str) -> None:
+        assert self._driver is not None
+        if name in self._gone:
+            return
+        self._gone.add(name)
+        sim = self._driver.sim
+        joint = sim.model.joint(f"{name}:free")
+        address = int(sim.model.jnt_qposadr[joint.id])
+        far = 100.0 + 2.0 * len(self._gone)
+        sim.data.qpos[address:address + 3] = (far, far, 0.5)
+        sim.data.qvel[int(sim.model.jnt_dofadr[joint.id]):][:6] = 0.0
 
     def _resting(self, name: str) -> bool:
         assert self._driver is not None
