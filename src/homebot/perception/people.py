@@ -49,6 +49,7 @@ __all__ = [
 _LEG_WIDTH = (0.07, 0.25)  #: metres between a leg segment's endpoints
 _LEG_POINTS = 3
 _TWO_LEGS = 0.45  #: metres: a wider round segment is no person's legs
+_NEARER_SIDES = 2  #: a segment with nearer returns on this many sides is glimpsed, not free
 _BULGE = 0.008  #: metres: a leg's returns lie this far in front of their chord, on average
 _PAIR = 0.45  #: metres: two legs of one person are at most this far apart
 _UNASSIGNED = 1e6
@@ -111,11 +112,12 @@ def _in_front(scan: LaserScan, segment: np.ndarray) -> bool:
     """Whether the segment stands free: no neighbouring beam returns nearer (a piece of
     wall glimpsed between two people's shadows has nearer returns on both sides)."""
     ranges = scan.ranges
+    nearer = 0
     for end, beside in ((segment[0], segment[0] - 1), (segment[-1], segment[-1] + 1)):
         if 0 <= beside < len(ranges) and np.isfinite(ranges[beside]) and \
                 ranges[beside] < ranges[end]:
-            return False
-    return True
+            nearer += 1
+    return nearer < _NEARER_SIDES
 
 
 def _round(xs: np.ndarray, ys: np.ndarray, mount: Pose) -> bool:
@@ -173,6 +175,8 @@ class TrackerParameters:
     tentative: float = 0.35  #: s an unconfirmed track survives unseen
     coast: float = 0.6  #: s a confirmed track survives unseen where the laser sees past it
     hidden: float = 3.0  #: s it survives unseen in the shadow of something nearer
+    unseen_slowing: float = 0.7  #: s: an unseen track's velocity decays with this time constant
+    remember: float = 3.0  #: s an ended track's identity waits for its person to come back
     duplicate: float = 0.25  #: m; two confirmed tracks this close for long are one person
     max_speed: float = 2.0  #: m/s; faster velocity estimates are clipped
 
@@ -211,6 +215,7 @@ class PeopleTracker:
         self.tracks: list[Track] = []
         self.stamp: float | None = None
         self._next_id = 1
+        self._lost: list[Track] = []  #: confirmed tracks ended lately, who may come back
 
     def confirmed(self) -> list[Track]:
         """The tracks reported as people."""
@@ -228,6 +233,9 @@ class PeopleTracker:
         self.stamp = stamp
         for track in self.tracks:
             self._predict(track, dt)
+            if stamp - track.seen > 0.3 and p.unseen_slowing > 0:
+                # unseen, a person may have stopped or turned: trust the velocity less
+                track.state[2:] *= math.exp(-dt / p.unseen_slowing)
         legs = np.asarray(legs, dtype=float).reshape(-1, 2)
         assigned = self._assign(legs)
         taken: set[int] = set()
@@ -239,8 +247,9 @@ class PeopleTracker:
             self._correct(track, legs[indices].mean(axis=0), noise)
             track.seen = stamp
             track.hits += 1
-            if track.hits >= p.confirm:
+            if track.hits >= p.confirm and not track.confirmed:
                 track.confirmed = True
+                self._revive(stamp, track)
         self._end_tracks(stamp, scan, pose)
         free = np.array([i for i in range(len(legs)) if i not in taken], dtype=int)
         for group in pair_legs(legs[free]):
@@ -319,7 +328,27 @@ class PeopleTracker:
                     _hidden(track.position, scan, pose)
             if alive:
                 kept.append(track)
+            elif track.confirmed:
+                self._lost.append(track)
         self.tracks = kept
+        self._lost = [track for track in self._lost if stamp - track.seen <= p.remember]
+
+    def _revive(self, stamp: float, track: Track) -> None:
+        """A new track confirmed where a lost one would have walked to since it was last
+        seen takes the lost one's identity (a person back from behind someone)."""
+        best, best_gap = None, math.inf
+        for lost in self._lost:
+            age = stamp - lost.seen
+            walked = min(age, 1.0)
+            expected = (lost.state[0] + lost.state[2] * walked,
+                        lost.state[1] + lost.state[3] * walked)
+            gap = math.dist(expected, track.position)
+            if gap <= self.parameters.gate + 0.5 * age and gap < best_gap:
+                best, best_gap = lost, gap
+        if best is not None:
+            self._lost.remove(best)
+            track.id = best.id
+            track.born = best.born
 
     def _merge_duplicates(self, stamp: float) -> None:
         confirmed = sorted(self.confirmed(), key=lambda track: track.born)
