@@ -1,0 +1,67 @@
+"""The embodied robot's arm in the apartment: picks and places change the truth by physics."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("mujoco")
+
+from homebot.cli import main
+from homebot.errors import WorldError
+from homebot.manipulation.control import ArmControl
+from homebot.robot import Pose
+from homebot.sim import Simulation
+from homebot.sim.body import SimBody
+from homebot.sim.camera import object_yaw
+from homebot.world import World, shipped_world_path, surface_height
+
+
+def _locate(sim: Simulation) -> object:
+    def locate(name: str) -> tuple[float, float, float, float] | None:
+        where = sim.object_location.get(name)
+        if where is None or where not in sim.world.placements:
+            return None
+        x, y = sim.position_on(name, where)
+        return (x, y, object_yaw(name, sim.seed),
+                surface_height(sim.world.placements[where].model))
+    return locate
+
+
+def test_a_pick_puts_the_object_in_a_hand_and_a_place_puts_it_back_on_the_table() -> None:
+    world = World.load("apartment")
+    sim = Simulation(world, seed=1)
+    body = SimBody(sim)
+    control = ArmControl(body, world, _locate(sim), seed=1)  # type: ignore[arg-type]
+    stand = Pose(*world.placements["coffee table"].approach)
+    body.teleport(stand)
+    assert control.pick("crisps", stand)
+    assert sim.object_location["crisps"] == "hand:left" and sim.hands["left"] == "crisps"
+    body.tick(20)  # the base stands still: the arm goes on holding it
+    assert sim.hands["left"] == "crisps" and control.gripper_holds()
+    placed = control.place("coffee table", stand)
+    assert placed and placed.spot is not None
+    body.tick(20)
+    assert sim.object_location["crisps"] == "coffee table"
+    assert sim.hands["left"] is None
+    x, y = sim.object_position["crisps"]
+    assert abs(x - placed.spot[0]) < 0.05 and abs(y - placed.spot[1]) < 0.05
+
+
+def test_a_broken_arm_model_in_a_world_file_names_the_file_and_line(tmp_path: Path) -> None:
+    (tmp_path / "arm.xml").write_text("<mujoco>\n  <worldbody>\n    <body><geom size='x'/>"
+                                      "</body>\n  </worldbody>\n</mujoco>\n", encoding="utf-8")
+    text = shipped_world_path("apartment").read_text(encoding="utf-8")
+    world_file = tmp_path / "home.yaml"
+    world_file.write_text(text.replace("robot:\n", "robot:\n  arm: arm.xml\n", 1),
+                          encoding="utf-8")
+    with pytest.raises(WorldError, match=r"arm\.xml:3"):
+        SimBody(Simulation(World.load(world_file)))
+    assert main(["do", "--fidelity", "embodied", "--world", str(world_file),
+                 "bring me the crisps"]) == 2
+    missing = tmp_path / "missing.yaml"
+    missing.write_text(text.replace("robot:\n", "robot:\n  arm: nowhere.xml\n", 1),
+                       encoding="utf-8")
+    with pytest.raises(WorldError, match=r"missing\.yaml: line \d+: robot\.arm"):
+        World.load(missing)
