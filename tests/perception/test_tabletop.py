@@ -86,12 +86,12 @@ def test_a_frame_without_a_table_has_no_objects() -> None:
 
 def test_recognition_trained_on_rendered_views_names_the_objects() -> None:
     rng = np.random.default_rng(3)
-    features, labels = training_examples(labelled_frames(CATALOGUE, 12, rng), rng)
+    features, labels = training_examples(labelled_frames(CATALOGUE, 8, rng), rng)
     assert set(labels) == set(CATALOGUE)
     perception = TabletopPerception(Recogniser(CATALOGUE).fit(features, labels),
                                     np.random.default_rng(4))
     right = total = 0
-    for seed in range(5):
+    for seed in range(4):
         scene = tabletop_scene(list(CATALOGUE.values()), 3, np.random.default_rng(100 + seed))
         estimates = perception.perceive(scene.frame)
         for found, truth in match_positions([e.position for e in estimates],
@@ -99,7 +99,7 @@ def test_recognition_trained_on_rendered_views_names_the_objects() -> None:
             total += 1
             right += estimates[found].label == scene.objects[truth].entry.name
             assert estimates[found].category == CATALOGUE[estimates[found].label].category
-    assert total >= 12 and right / total >= 0.9
+    assert total >= 10 and right / total >= 0.9
 
 
 def test_an_untrained_recogniser_says_object() -> None:

@@ -85,7 +85,7 @@ class Recogniser:
     """
 
     def __init__(self, catalogue: Mapping[str, CatalogueEntry], *, seed: int = 0,
-                 trees: int = 80) -> None:
+                 trees: int = 30) -> None:
         from sklearn.ensemble import RandomForestClassifier
 
         self.catalogue = dict(catalogue)

@@ -38,9 +38,10 @@ _PLANE_DISTANCE = 0.012  #: metres from the plane that still count as on it
 _MAX_TILT = 0.1  #: radians between a support plane's normal and the vertical
 _ABOVE = (0.012, 0.6)  #: metres above the plane where object points are
 _EDGE_MARGIN = 0.01  #: metres inside the plane's outline an object point must lie
-_CLUSTER_DISTANCE = 0.02  #: metres between neighbouring points of one object
+_CLUSTER_DISTANCE = 0.016  #: metres between neighbouring points of one object
 _MIN_POINTS = 12  #: smaller groups are noise
-_STEP = 2  #: every second row and column of the image is used
+_VOXEL = 0.006  #: metres: object points are thinned to one per voxel before clustering
+_PLANE_SHARE = 4  #: RANSAC looks for the plane among every 4th point
 _SAMPLE = 4000  #: points RANSAC scores each hypothesis on
 
 #: what ``cluster_features`` returns, in order
@@ -82,10 +83,21 @@ class Segment:
         return top
 
     def position(self) -> tuple[float, float, float]:
-        """Where it stands (base frame): under the centre of its top face, on the plane."""
-        top = self.top()
+        """Where it stands (base frame): under the centre of its top face, on the plane.
+
+        The centre is the middle of the top face's spread along the line of sight and
+        across it (2nd to 98th percentile), not the mean of its points: seen at a
+        grazing angle, the near rim of a top face has more points than the far one.
+        """
+        top = self.top()[:, :2]
         bottom = self.points[:, 2] - self.heights
-        return (float(np.mean(top[:, 0])), float(np.mean(top[:, 1])), float(np.mean(bottom)))
+        middle = top.mean(axis=0)
+        sight = middle / (float(np.linalg.norm(middle)) or 1.0)
+        frame = np.array([sight, (-sight[1], sight[0])])  # along, across the line of sight
+        along = top @ frame.T
+        low, high = np.percentile(along, [2, 98], axis=0)
+        centre = ((low + high) / 2) @ frame
+        return (float(centre[0]), float(centre[1]), float(np.mean(bottom)))
 
 
 @dataclass(frozen=True, slots=True)
@@ -163,11 +175,12 @@ def segment_tabletop(frame: RgbdFrame, rng: np.random.Generator, *,
             the plane is then looked for within 15 cm of it.
         iterations: RANSAC hypotheses.
     """
-    points, colours = frame.points(_STEP)
-    high = points[:, 2] > _FLOOR_CLEARANCE
+    points, colours = frame.points()
+    sample = points[::_PLANE_SHARE]
+    high = sample[:, 2] > _FLOOR_CLEARANCE
     if expected_height is not None:
-        high &= np.abs(points[:, 2] - expected_height) < 0.15
-    candidates = points[high]
+        high &= np.abs(sample[:, 2] - expected_height) < 0.15
+    candidates = sample[high]
     model, inliers = segment_plane(candidates, _PLANE_DISTANCE, iterations, rng)
     if len(inliers) < 200:
         return Tabletop(None, ())
@@ -183,12 +196,25 @@ def segment_tabletop(frame: RgbdFrame, rng: np.random.Generator, *,
     inside = np.all(points[chosen, :2] @ plane.hull[:, :2].T + plane.hull[:, 2]
                     <= -_EDGE_MARGIN, axis=1)
     chosen = chosen[inside]
+    chosen = chosen[_voxel_thin(points[chosen], _VOXEL)]
     labels = cluster(points[chosen], _CLUSTER_DISTANCE, _MIN_POINTS)
     segments = []
     for label in range(int(labels.max(initial=-1)) + 1):
         members = chosen[labels == label]
         segments.append(Segment(points[members], colours[members], heights[members]))
     return Tabletop(plane, tuple(segments))
+
+
+def _voxel_thin(points: np.ndarray, size: float) -> np.ndarray:
+    """Indices of one point per ``size`` voxel (the first in image order), sorted."""
+    if len(points) == 0:
+        return np.zeros(0, dtype=np.int64)
+    cells = np.floor(points / size).astype(np.int64)
+    cells -= cells.min(axis=0)
+    span = cells.max(axis=0) + 1
+    keys = (cells[:, 0] * span[1] + cells[:, 1]) * span[2] + cells[:, 2]
+    _, first = np.unique(keys, return_index=True)
+    return np.sort(first)
 
 
 def cluster_features(segment: Segment) -> np.ndarray:

@@ -16,13 +16,20 @@ from dataclasses import dataclass
 import numpy as np
 
 from homebot.robot import HeadState, RgbdFrame
-from homebot.sim.camera import CAMERA_HEIGHT, CameraSimulator, SceneGeometry, Solid
+from homebot.sim.camera import (
+    CAMERA_HEIGHT,
+    DEFAULT_INTRINSICS,
+    CameraSimulator,
+    SceneGeometry,
+    Solid,
+    camera_pose,
+)
 from homebot.world import CatalogueEntry
 
 __all__ = ["PlacedObject", "TabletopScene", "tabletop_scene"]
 
 _APPROACH_GAP = 0.37  #: metres between the robot's centre and the table's near edge
-_GAP = 0.015  #: metres kept between two objects' footprints
+_GAP = 0.03  #: metres kept between two objects' footprints (Euclidean clustering joins closer)
 _TRIES = 60
 
 
@@ -55,8 +62,9 @@ def tabletop_scene(entries: Sequence[CatalogueEntry], count: int, rng: np.random
     drop = CAMERA_HEIGHT - surface
     tilt = math.atan2(drop, cx) + float(rng.uniform(-0.08, 0.08))
     head = HeadState(float(rng.uniform(-0.08, 0.08)), tilt)
-    # objects stand where the camera sees the table: within ±0.45 m across, on the table
-    lateral = min(width / 2 - 0.08, 0.42)
+    # objects stand where the camera sees the whole of them, on the table
+    lateral = min(width / 2 - 0.08, 0.6)
+    pose = camera_pose(head)
     placed: list[tuple[CatalogueEntry, float, float, float, float]] = []
     for _ in range(count):
         entry = entries[int(rng.integers(len(entries)))]
@@ -64,8 +72,9 @@ def tabletop_scene(entries: Sequence[CatalogueEntry], count: int, rng: np.random
         for _ in range(_TRIES):
             x = float(rng.uniform(table[0] + reach + 0.02, table[2] - reach - 0.02))
             y = float(rng.uniform(cy - lateral, cy + lateral))
-            if all(math.dist((x, y), (ox, oy)) >= reach + other + _GAP
-                   for _, ox, oy, _, other in placed):
+            if _in_view(pose, x, y, reach, surface, entry.extent[2]) and all(
+                    math.dist((x, y), (ox, oy)) >= reach + other + _GAP
+                    for _, ox, oy, _, other in placed):
                 placed.append((entry, x, y, float(rng.uniform(0, math.pi)), reach))
                 break
     geometry = SceneGeometry(np.zeros((0, 4)), np.array([[*table, surface]]))
@@ -75,3 +84,17 @@ def tabletop_scene(entries: Sequence[CatalogueEntry], count: int, rng: np.random
     frame = camera.render(0.0, (0.0, 0.0, 0.0), head, solids)
     return TabletopScene(frame, tuple(PlacedObject(entry, (x, y, surface))
                                       for entry, x, y, _, _ in placed), surface)
+
+
+def _in_view(pose: np.ndarray, x: float, y: float, reach: float, bottom: float,
+             height: float) -> bool:
+    """Whether the camera at ``pose`` sees the whole upright box round an object."""
+    corners = np.array([(x + dx, y + dy, bottom + dz) for dx in (-reach, reach)
+                        for dy in (-reach, reach) for dz in (0.0, height)])
+    optical = (corners - pose[:3, 3]) @ pose[:3, :3]
+    if np.any(optical[:, 2] < 0.1):
+        return False
+    k = DEFAULT_INTRINSICS
+    u = k.fx * optical[:, 0] / optical[:, 2] + k.cx
+    v = k.fy * optical[:, 1] / optical[:, 2] + k.cy
+    return bool(np.all((u > 2) & (u < k.width - 3) & (v > 2) & (v < k.height - 3)))

@@ -58,7 +58,7 @@ CATEGORY_DEFAULTS: dict[str, CategoryDefaults] = {
                               ("red", "green", "yellow", "orange", "purple")),
     "dish": CategoryDefaults(Shape.CYLINDER, (0.16, 0.05), 0.35,
                              ("white", "blue", "grey", "beige", "green")),
-    "cleaning supply": CategoryDefaults(Shape.CYLINDER, (0.075, 0.25), 0.7,
+    "cleaning supply": CategoryDefaults(Shape.CYLINDER, (0.075, 0.27), 0.7,
                                         ("blue", "green", "yellow", "white", "pink")),
     "toy": CategoryDefaults(Shape.BOX, (0.1, 0.1, 0.1), 0.2,
                             ("red", "blue", "yellow", "green", "pink", "orange")),
@@ -72,7 +72,7 @@ CATEGORY_DEFAULTS: dict[str, CategoryDefaults] = {
 _GENERIC = CategoryDefaults(Shape.BOX, (0.08, 0.08, 0.12), 0.3,
                             ("red", "green", "blue", "yellow", "orange", "purple", "white"))
 #: how much a defaulted object's dimensions vary by its name (fraction, either way)
-_SPREAD = 0.15
+_SPREAD = 0.1
 
 #: the top surface's height (metres) by furniture category, when the file gives none
 _SURFACE_HEIGHTS = {"table": 0.75, "desk": 0.75, "counter": 0.9, "storage": 0.8,
