@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 
@@ -61,7 +63,7 @@ def test_the_cascade_finds_a_new_face(detector: FaceDetector) -> None:
 def test_enrolled_people_are_told_apart(detector: FaceDetector) -> None:
     rng = np.random.default_rng(7)
     people = [face_identity(name) for name in ("Ada", "Ben", "Cy")]
-    memory = FaceMemory(detector, threshold=0.0, trees=30)
+    memory = FaceMemory(detector, threshold=math.inf, trees=30)
     with pytest.raises(FaceError):
         memory.identify(face_view(people[0], rng)[0])
     for person in people:
@@ -70,6 +72,13 @@ def test_enrolled_people_are_told_apart(detector: FaceDetector) -> None:
     right = sum(memory.identify(face_view(person, rng)[0])[0] == person.name
                 for person in people for _ in range(6))
     assert right >= 14
+    # strangers are further from anyone's enrolled views than those people's own faces
+    memory.threshold = 1.0
+    strangers = sum(memory.identify(face_view(face_identity(f"x{i}", 3), rng)[0])[0] is None
+                    for i in range(10))
+    known = sum(memory.identify(face_view(person, rng)[0])[0] == person.name
+                for person in people for _ in range(4))
+    assert strangers >= 5 and known >= 6
 
 
 def test_enrolment_needs_a_name_and_a_face(detector: FaceDetector) -> None:

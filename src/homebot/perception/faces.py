@@ -13,13 +13,17 @@ level does not matter.
   ``CascadeClassifier`` nor ships the cascade files, so the cascade is trained
   here, on example faces and faceless images the caller gives.
 - **Identification** (``FaceMemory``): a random forest on a larger bank of Haar
-  features of the face window. ``enrol(name, images)`` adds a person online (the
-  forest is grown again on everything enrolled; growing it takes milliseconds).
-  A face whose best vote share is under ``threshold`` is nobody known.
+  features of the face window votes for an identity. ``enrol(name, images)`` adds
+  a person online (the forest is grown again on everything enrolled: tens of
+  milliseconds). Strangers are rejected by distance: a face further from the
+  voted person's enrolled views than ``threshold`` times their usual spacing (in
+  the forest's most telling features) is nobody known. The forest's own vote
+  share and leaf proximity separated strangers worse on our faces.
 """
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -30,6 +34,8 @@ from homebot.errors import HomebotError
 __all__ = ["FaceDetector", "FaceMemory", "FaceWindow", "HaarFeatures", "integral_image"]
 
 Window = tuple[int, int, int]  #: x, y, side in pixels
+_TELLING = 200  #: features the forest rates highest, for the distance to a person's views
+_NEAREST = 3  #: enrolled views a face is compared with
 
 
 class FaceError(HomebotError):
@@ -272,13 +278,14 @@ class FaceMemory:
 
     Args:
         detector: finds the face in each image (trained).
-        threshold: the least vote share of the best identity; below it, unknown.
+        threshold: how far (over the person's typical spacing) a face may be from the
+            voted person's enrolled views; further, it is a stranger's.
         trees: the forest's size.
         features: the identification bank's size.
         seed: the bank's layout and the forest's randomness.
     """
 
-    def __init__(self, detector: FaceDetector, threshold: float = 0.3, trees: int = 60,
+    def __init__(self, detector: FaceDetector, threshold: float = 1.0, trees: int = 60,
                  features: int = 600, seed: int = 0) -> None:
         self.detector = detector
         self.threshold = threshold
@@ -289,8 +296,11 @@ class FaceMemory:
         self._samples: dict[str, list[np.ndarray]] = {}
         self._forest: _Forest | None = None
         self._names: list[str] = []
-        self._leaves = np.zeros((0, trees), dtype=np.intp)
         self._labels = np.zeros(0, dtype=np.intp)
+        self._telling: tuple[np.ndarray, np.ndarray, np.ndarray] = (
+            np.zeros(0, dtype=np.intp), np.zeros(0), np.ones(0))
+        self._standard = np.zeros((0, 0))
+        self._typical = np.ones(0)
 
     @property
     def people(self) -> list[str]:
@@ -343,26 +353,40 @@ class FaceMemory:
                                         random_state=self.seed, n_jobs=1)
         forest.fit(data, labels)
         self._forest = _Forest.of(forest, len(self._names))
-        self._leaves = forest.apply(data)
         self._labels = labels
+        # For rejecting strangers: the features the forest found telling, standardised;
+        # a face is far from a person when its nearest enrolled views of them are further
+        # than their views are from one another.
+        telling = np.argsort(-forest.feature_importances_)[:_TELLING]
+        centre, scale = data[:, telling].mean(axis=0), data[:, telling].std(axis=0) + 1e-9
+        self._telling = (telling, centre, scale)
+        self._standard = (data[:, telling] - centre) / scale
+        self._typical = np.ones(len(self._names))
+        for index in range(len(self._names)):
+            own = self._standard[labels == index]
+            gaps = np.linalg.norm(own[:, None, :] - own[None, :, :], axis=2)
+            # leave out each image's own jittered copies (the same enrolment image)
+            gaps[gaps < 1e-6] = np.inf
+            self._typical[index] = float(np.median(np.sort(gaps, axis=1)[:, _NEAREST:
+                                                                         2 * _NEAREST]))
 
     def identify(self, image: np.ndarray, window: Window | None = None
                  ) -> tuple[str | None, float]:
-        """Whose face ``image`` shows, and how close it is to that person's enrolled
-        faces (the share of trees in which it shares a leaf with one of them, the
-        forest's proximity); (None, closeness) when it is under ``threshold`` (a
-        stranger), (None, 0.0) when no face is found."""
+        """Whose face ``image`` shows by the forest's vote, and how far it is from that
+        person's enrolled views (mean distance to the nearest few, over their typical
+        spacing, in the forest's most telling features); (None, far) when it is further
+        than ``threshold`` (a stranger), (None, inf) when no face is found."""
         if self._forest is None:
             raise FaceError("nobody is enrolled yet: enrol(name, images) first")
         vector = self.describe(image, window)
         if vector is None:
-            return None, 0.0
-        leaves = self._forest.leaves(vector)
-        best = int(np.argmax(self._forest.shares(leaves)))
-        same = self._leaves[self._labels == best] == leaves[None, :]
-        closeness = float(same.mean(axis=1).max())
-        return (self._names[best], closeness) if closeness >= self.threshold else (None,
-                                                                                  closeness)
+            return None, math.inf
+        best = int(np.argmax(self._forest.shares(self._forest.leaves(vector))))
+        telling, centre, scale = self._telling
+        gaps = np.linalg.norm(self._standard[self._labels == best] -
+                              (vector[telling] - centre) / scale, axis=1)
+        far = float(np.sort(gaps)[:_NEAREST].mean()) / self._typical[best]
+        return (self._names[best], far) if far <= self.threshold else (None, far)
 
 
 @dataclass(frozen=True)
