@@ -49,6 +49,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--world", default="apartment",
                         help="the world whose catalogue the objects come from (a shipped "
                              "name or a YAML file)")
+    parser.add_argument("--gap", type=count("--gap", 0, 50), default=3,
+                        help="centimetres kept between objects' footprints (the clustering "
+                             "joins objects closer than 1.6 cm)")
+    parser.add_argument("--partial-views", action="store_true",
+                        help="objects may stand partly outside the picture")
     parser.add_argument("--only", choices=["all", "objects", "people", "faces", "pointing"],
                         default="all", help="run one part only")
 
@@ -57,7 +62,9 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
     """Every part asked for; each prints its figures."""
     figures: dict[str, Any] = {}
     parts: dict[str, Callable[[], dict[str, Any]]] = {
-        "objects": lambda: object_figures(World.load(args.world), args.scenes, args.seed),
+        "objects": lambda: object_figures(World.load(args.world), args.scenes, args.seed,
+                                          gap=args.gap / 100,
+                                          whole_in_view=not args.partial_views),
         "people": lambda: _other("people", "people_figures", args.seed, args.scenes),
         "faces": lambda: _other("faces", "face_figures", args.seed),
         "pointing": lambda: _other("gestures", "pointing_figures", args.seed),
@@ -83,7 +90,8 @@ def _other(module: str, function: str, *arguments: int) -> dict[str, Any]:
     return result
 
 
-def object_figures(world: World, scenes: int, scene_seed: int) -> dict[str, Any]:
+def object_figures(world: World, scenes: int, scene_seed: int, *, gap: float = 0.03,
+                   whole_in_view: bool = True) -> dict[str, Any]:
     """Detection, recognition and position figures over generated table-top scenes."""
     catalogue = object_catalogue(world)
     if not catalogue:
@@ -99,7 +107,8 @@ def object_figures(world: World, scenes: int, scene_seed: int) -> dict[str, Any]
     cpu: list[float] = []
     for index in range(scenes):
         rng = np.random.default_rng([scene_seed, index])
-        scene = tabletop_scene(entries, int(rng.integers(1, 9)), rng)
+        scene = tabletop_scene(entries, int(rng.integers(1, 9)), rng, gap=gap,
+                               whole_in_view=whole_in_view)
         started, started_cpu = time.perf_counter(), time.thread_time()
         estimates = perception.perceive(scene.frame)
         cpu.append(time.thread_time() - started_cpu)
@@ -117,6 +126,7 @@ def object_figures(world: World, scenes: int, scene_seed: int) -> dict[str, Any]
                                          estimate.position[1] - truth.position[1])))
     figures: dict[str, Any] = {
         "world": world.name, "catalogue_objects": len(catalogue), "scenes": scenes,
+        "gap_cm": round(gap * 100, 1), "whole_in_view": whole_in_view,
         "objects": truths, "detections": found,
         "precision": round(matched / max(found, 1), 4),
         "recall": round(matched / max(truths, 1), 4),

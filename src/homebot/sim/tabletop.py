@@ -51,8 +51,11 @@ class TabletopScene:
 
 
 def tabletop_scene(entries: Sequence[CatalogueEntry], count: int, rng: np.random.Generator,
-                   *, noise: bool = True) -> TabletopScene:
-    """A scene with ``count`` objects drawn from ``entries`` (with replacement)."""
+                   *, noise: bool = True, gap: float = _GAP,
+                   whole_in_view: bool = True) -> TabletopScene:
+    """A scene with ``count`` objects drawn from ``entries`` (with replacement), ``gap``
+    metres apart at least; with ``whole_in_view`` off, objects may stand partly outside
+    the picture (anywhere within ±0.42 m across the line of sight)."""
     width, depth = rng.uniform(0.8, 1.6), rng.uniform(0.5, 1.0)
     surface = float(rng.uniform(0.45, 0.95))
     near = _APPROACH_GAP + float(rng.uniform(-0.05, 0.1))
@@ -63,7 +66,7 @@ def tabletop_scene(entries: Sequence[CatalogueEntry], count: int, rng: np.random
     tilt = math.atan2(drop, cx) + float(rng.uniform(-0.08, 0.08))
     head = HeadState(float(rng.uniform(-0.08, 0.08)), tilt)
     # objects stand where the camera sees the whole of them, on the table
-    lateral = min(width / 2 - 0.08, 0.6)
+    lateral = min(width / 2 - 0.08, 0.6 if whole_in_view else 0.42)
     pose = camera_pose(head)
     placed: list[tuple[CatalogueEntry, float, float, float, float]] = []
     for _ in range(count):
@@ -72,8 +75,9 @@ def tabletop_scene(entries: Sequence[CatalogueEntry], count: int, rng: np.random
         for _ in range(_TRIES):
             x = float(rng.uniform(table[0] + reach + 0.02, table[2] - reach - 0.02))
             y = float(rng.uniform(cy - lateral, cy + lateral))
-            if _in_view(pose, x, y, reach, surface, entry.extent[2]) and all(
-                    math.dist((x, y), (ox, oy)) >= reach + other + _GAP
+            seen = not whole_in_view or _in_view(pose, x, y, reach, surface, entry.extent[2])
+            if seen and all(
+                    math.dist((x, y), (ox, oy)) >= reach + other + gap
                     for _, ox, oy, _, other in placed):
                 placed.append((entry, x, y, float(rng.uniform(0, math.pi)), reach))
                 break
