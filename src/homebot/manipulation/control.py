@@ -236,7 +236,7 @@ def _release_configurations(scene: PlanningScene, release: np.ndarray, high: np.
     """Collision-free configurations with the hand at ``release`` and above it at ``high``."""
     for seed in (current, *IK_SEEDS):
         posture = seed.copy()
-        posture[0] = scene.upper[0] - 0.05
+        posture[0] = scene.upper[0] - 0.15
         down = solve_ik(scene, release, rotation, [seed], posture=posture)
         if down is None or scene.collides(down, gripper=0.2):
             continue

@@ -32,6 +32,8 @@ _FINGER_TIP = 0.025  #: metres the finger tips reach beyond the grasp site
 _PALM = 0.065  #: metres from the grasp site back to the palm
 _FINGER_HALF_HEIGHT = 0.015
 _TABLE_CLEARANCE = 0.012  #: metres the fingers keep above the surface
+#: torso heights tried for a grasp, each leaving room to lift the object by the torso
+_TORSO_LEVELS = (0.25, 0.38, 0.1)
 _SIDE_YAWS = np.radians([-50.0, -25.0, 0.0, 25.0, 50.0])
 #: IK starts besides the arm's current configuration: bent forward over a table, hand
 #: down (top grasps) and hand level (side grasps); torso first
@@ -198,15 +200,14 @@ def _feasible(scene: PlanningScene, candidate: GraspCandidate, current: np.ndarr
     """Collision-free IK solutions for the grasp and its pre-grasp, trying each seed
     (the current configuration first), or None."""
     opening = candidate.opening()
-    for seed in (current, *IK_SEEDS):
-        posture = seed.copy()
-        posture[0] = scene.upper[0] - 0.05  # a high torso keeps the arm above the table
-        grasp = solve_ik(scene, candidate.position, candidate.rotation, [seed],
-                         posture=posture)
-        if grasp is None or scene.collides(grasp, gripper=opening, allowed=allowed):
-            continue
-        pre = solve_ik(scene, candidate.pre_grasp(), candidate.rotation, [grasp])
-        if pre is None or scene.collides(pre, gripper=opening):
-            continue
-        return pre, grasp
+    for torso in _TORSO_LEVELS:
+        for seed in (current, *IK_SEEDS):
+            grasp = solve_ik(scene, candidate.position, candidate.rotation, [seed],
+                             posture=seed, torso=torso)
+            if grasp is None or scene.collides(grasp, gripper=opening, allowed=allowed):
+                continue
+            pre = solve_ik(scene, candidate.pre_grasp(), candidate.rotation, [grasp])
+            if pre is None or scene.collides(pre, gripper=opening):
+                continue
+            return pre, grasp
     return None

@@ -25,18 +25,22 @@ def _rotation_error(current: np.ndarray, target: np.ndarray) -> np.ndarray:
 
 def solve_ik(scene: PlanningScene, position: np.ndarray, rotation: np.ndarray,
              seeds: list[np.ndarray], iterations: int = 80,
-             posture: np.ndarray | None = None) -> np.ndarray | None:
+             posture: np.ndarray | None = None,
+             torso: float | None = None) -> np.ndarray | None:
     """A configuration that puts the grasp site at ``position`` with ``rotation``.
 
     Damped least squares (Levenberg-Marquardt step ``Jᵀ(JJᵀ + λ²I)⁻¹e``) from each seed in
     turn, joints clipped to their limits; the redundant freedom (8 joints for 6 numbers)
     drifts towards ``posture`` (default: the seed) in the Jacobian's null space, which
-    keeps the elbow where the seed had it. None when no seed converges.
+    keeps the elbow where the seed had it. ``torso`` holds the torso at that height. None
+    when no seed converges.
     """
     weights = np.ones(len(scene.lower))
-    weights[0] = _TORSO_WEIGHT
+    weights[0] = _TORSO_WEIGHT if torso is None else 0.0
     for seed in seeds:
         q = np.clip(np.array(seed, dtype=float), scene.lower, scene.upper)
+        if torso is not None:
+            q[0] = torso
         rest = q.copy() if posture is None else posture
         for _ in range(iterations):
             scene.set(q)

@@ -40,6 +40,8 @@ _ESCAPE = 0.15  #: radians from a start in contact within which contact is toler
 _JOINT_SPEED = 1.2  #: rad/s along a planned path
 _TORSO_SPEED = 0.15  #: m/s
 _LIFT = 0.12  #: metres the object is lifted after closing
+_RISEN = 0.05  #: metres the hand must have risen for the object to count as lifted
+_ARRIVED = 0.1  #: radians (metres for the torso) from the carry pose: the arm got there
 _CARRY_REACH = 0.45  #: metres from the base's centre where the hand carries an object
 _GRIP_FORCE = 20.0  #: newtons per finger
 _GRAVITY = 9.81
@@ -83,6 +85,7 @@ class PickPlan:
     lift: np.ndarray
     carry: np.ndarray  #: raised and drawn back: where the object is held afterwards
     planning_seconds: float  #: CPU seconds for grasp selection and RRT
+    rise: float = 0.0  #: metres the hand is higher at ``carry`` than at the grasp
 
 
 @dataclass(frozen=True)
@@ -139,14 +142,32 @@ def plan_pick(scene: PlanningScene, obj: ObjectGeometry, current: np.ndarray,
                           planning_seconds=time.process_time() - started)
     path = plan_motion(scene, current, grasp.pre_grasp, rng, gripper=grasp.candidate.opening())
     at, rotation = scene.grasp_frame(grasp.grasp)
-    lift = solve_ik(scene, at + np.array([0.0, 0.0, _LIFT]), rotation, [grasp.grasp])
-    lift = grasp.grasp if lift is None else lift
+    lift = _lift(scene, grasp.grasp, at, rotation)
     carry = _carry(scene, lift, rotation)
+    rise = float(scene.grasp_frame(carry)[0][2] - at[2])
     seconds = time.process_time() - started
     if path is None:
         return PickResult(PickOutcome.NO_PATH, detail=f"no collision-free reach to {obj.name}",
                           planning_seconds=seconds)
-    return PickPlan(grasp, path, lift, carry, seconds)
+    return PickPlan(grasp, path, lift, carry, seconds, rise)
+
+
+def _lift(scene: PlanningScene, grasp: np.ndarray, at: np.ndarray,
+          rotation: np.ndarray) -> np.ndarray:
+    """Straight up from the grasp: by the torso where it has room (a pure vertical lift),
+    else by IK, else as high as IK reaches in smaller steps."""
+    room = float(scene.upper[0]) - float(grasp[0])
+    if room >= _LIFT:
+        lifted = grasp.copy()
+        lifted[0] += _LIFT
+        return lifted
+    for rise in (_LIFT, 0.08, 0.05):
+        found = solve_ik(scene, at + np.array([0.0, 0.0, rise]), rotation, [grasp])
+        if found is not None:
+            return found
+    lifted = grasp.copy()
+    lifted[0] = scene.upper[0]
+    return lifted
 
 
 def _carry(scene: PlanningScene, lift: np.ndarray, rotation: np.ndarray) -> np.ndarray:
@@ -201,7 +222,10 @@ def execute_pick(body: Manipulator, plan: PickPlan, *, mass: float | None = None
     width = body.gripper().state().width
     weight = float(np.linalg.norm(body.wrist_wrench().force)) - before
     log.append(f"carrying: width {width:.3f} m, wrist {weight:+.2f} N")
-    held = width > _EMPTY_WIDTH
+    sensed = current_configuration(body)
+    # proprioception: the hand rose with the object (the arm got where it was sent)
+    held = width > _EMPTY_WIDTH and plan.rise >= _RISEN and \
+        float(np.max(np.abs(sensed - plan.carry))) < _ARRIVED
     if held and mass is not None:
         held = weight > _WEIGHT_SHARE * mass * _GRAVITY
     return PickResult(PickOutcome.HELD if held else PickOutcome.NOT_HELD, plan, width, weight,
