@@ -5,7 +5,8 @@ the simulator's truth:
 
 - ``people_figures``: crowd scenes (``homebot.sim.crowd``: 2–5 people walking and
   crossing, furniture legs, a 1081-beam laser); legs detected, tracked; CLEAR-MOT
-  figures from motmetrics (a track matches a person within 0.5 m).
+  figures from motmetrics (a track matches a person within 0.5 m); posture from
+  body clouds and clothes colour from torso patches (``homebot.sim.silhouettes``).
 - ``face_figures``: a cascade trained on 30 strangers' faces and faceless
   clutter; 10 people enrolled with 40 views each; 20 new views of each
   identified; 100 strangers' faces that should come out unknown.
@@ -34,11 +35,18 @@ from homebot.perception.gestures import (
     pointing_ray,
 )
 from homebot.perception.lateration import TagLocaliser, placement_hint
-from homebot.perception.people import PeopleTracker, detect_legs
+from homebot.perception.people import (
+    COLOURS,
+    PeopleTracker,
+    clothes_colour,
+    detect_legs,
+    posture_from_profile,
+)
 from homebot.sim.crowd import CrowdLaser, crowd_scene
 from homebot.sim.faces import background_patch, face_identity, face_view
 from homebot.sim.keypoints import GESTURES, gesture_keypoints
 from homebot.sim.radio import rssi_readings
+from homebot.sim.silhouettes import POSTURES, person_cloud, torso_patch
 from homebot.world import PlacementKind, World
 from homebot.world.catalogue import surface_height
 
@@ -80,6 +88,11 @@ def people_figures(seed: int, scenes: int) -> dict[str, Any]:
         generate_overall=True).loc["OVERALL"]
     switches = int(summary["num_switches"])
     laser = CrowdLaser()
+    rng = np.random.default_rng([seed, 13])
+    postures = [(truth, posture_from_profile(person_cloud((0.0, 0.0), truth, rng)))
+                for truth in POSTURES for _ in range(100)]
+    colours = [(name, clothes_colour(torso_patch(rgb, rng)))
+               for name, rgb in COLOURS.items() for _ in range(30)]
     return {
         "scenes": scenes,
         "people_per_scene": "2-5",
@@ -94,6 +107,10 @@ def people_figures(seed: int, scenes: int) -> dict[str, Any]:
         "false_positives": int(summary["num_false_positives"]),
         "person_frames": int(summary["num_objects"]),
         "ms_per_sweep_median": round(1000 * statistics.median(timings), 3),
+        "posture_right": {posture: round(sum(truth == seen for truth, seen in postures
+                                             if truth == posture) / 100, 3)
+                          for posture in POSTURES},
+        "clothes_colour_right": round(sum(a == b for a, b in colours) / len(colours), 3),
         "targets": {"mota": 0.9, "switches_per_100_track_seconds": 1.0},
     }
 

@@ -402,20 +402,33 @@ def posture_from_profile(points: np.ndarray) -> str:
     """Standing, sitting or lying from a person's points (n, 3): x, y on the map and
     height z, as a depth camera's cloud over a track gives them.
 
-    Crude thresholds: the top of the cloud (98th percentile of z) above 1.35 m is
-    standing; a cloud lower than 0.75 m that spreads over more than 1.2 m is lying;
-    anything else in between is sitting.
+    Crude rules on three numbers: the cloud's top (98th percentile of z), its length
+    along its main horizontal axis, and how far the points below the knees lie from
+    those above the hip, sideways (a seated person's feet are forward of the trunk).
+    Low and long is lying; tall and upright is standing; anything else is sitting.
     """
     points = np.asarray(points, dtype=float).reshape(-1, 3)
     if len(points) < 10:
         return "unknown"
     top = float(np.percentile(points[:, 2], 98))
-    spread = float(np.ptp(points[:, 0]) ** 2 + np.ptp(points[:, 1]) ** 2) ** 0.5
-    if top > 1.35:
-        return "standing"
-    if top < 0.75 and spread > 1.2:
+    length = _length(points[:, :2])
+    low, high = points[points[:, 2] < 0.4, :2], points[points[:, 2] > 0.9, :2]
+    # a seated person's feet are forward of their trunk; a standing person's are under it
+    lean = float(np.linalg.norm(low.mean(axis=0) - high.mean(axis=0))) \
+        if len(low) >= 5 and len(high) >= 5 else 0.0
+    if top < 1.0 and length > 1.1:
         return "lying"
+    if top > 1.3 and lean < 0.2:
+        return "standing"
     return "sitting"
+
+
+def _length(flat: np.ndarray) -> float:
+    """The extent (2nd to 98th percentile) of points along their main axis."""
+    centred = flat - flat.mean(axis=0)
+    _, _, axes = np.linalg.svd(centred, full_matrices=False)
+    along = centred @ axes[0]
+    return float(np.percentile(along, 98) - np.percentile(along, 2))
 
 
 def clothes_colour(patch: np.ndarray) -> str:
@@ -432,8 +445,8 @@ def clothes_colour(patch: np.ndarray) -> str:
     def distance(named: tuple[int, int, int]) -> float:
         reference = np.asarray(named, dtype=float)
         grey = max(reference) - min(reference) < 30
-        if saturation < 0.2 or grey:
-            # achromatic: compare brightness and (weakly) chromaticity
+        if saturation < 0.2:
+            # achromatic: black, grey and white by brightness; colours far behind
             return abs(brightness - float(reference.sum())) / 3 + (0.0 if grey else 500.0)
         chroma = median / brightness
         return float(np.linalg.norm(chroma - reference / (reference.sum() + 1e-6))) * 1000
