@@ -12,8 +12,10 @@ ones, the median position error, and the time per frame (segmentation to
 estimates; wall clock and the thread's CPU time; run under ``taskset -c 0``).
 
 **People, faces, pointing** come from ``homebot.perception.people``, ``faces``
-and ``gestures`` (``people_figures``, ``face_figures``, ``pointing_figures``);
-a section says "not built" while its module is absent.
+and ``gestures``, and tags from ``lateration``, with the figure functions in
+``homebot.bench.perception_people`` (``people_figures``, ``face_figures``,
+``pointing_figures``, ``lateration_figures``); a section says "not built" while
+its module is absent.
 """
 
 from __future__ import annotations
@@ -54,7 +56,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "joins objects closer than 1.6 cm)")
     parser.add_argument("--partial-views", action="store_true",
                         help="objects may stand partly outside the picture")
-    parser.add_argument("--only", choices=["all", "objects", "people", "faces", "pointing"],
+    parser.add_argument("--only", choices=["all", "objects", "people", "faces", "pointing",
+                                           "lateration"],
                         default="all", help="run one part only")
 
 
@@ -68,6 +71,7 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
         "people": lambda: _other("people", "people_figures", args.seed, args.scenes),
         "faces": lambda: _other("faces", "face_figures", args.seed),
         "pointing": lambda: _other("gestures", "pointing_figures", args.seed),
+        "lateration": lambda: _other("lateration", "lateration_figures", args.seed),
     }
     for name, part in parts.items():
         if args.only in ("all", name):
@@ -78,9 +82,13 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
 
 
 def _other(module: str, function: str, *arguments: int) -> dict[str, Any]:
-    """Figures from another perception module, or "not built" while it is absent."""
+    """Figures from another perception module, or "not built" while it is absent.
+
+    The figure functions live in ``homebot.bench.perception_people`` (they generate
+    scenes with ``homebot.sim``, which the perception modules never import)."""
     try:
-        found = importlib.import_module(f"homebot.perception.{module}")
+        importlib.import_module(f"homebot.perception.{module}")
+        found = importlib.import_module("homebot.bench.perception_people")
     except ModuleNotFoundError:
         return {"status": "not built"}
     make = getattr(found, function, None)

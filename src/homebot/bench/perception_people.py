@@ -186,7 +186,7 @@ def apartment_surfaces(world: World) -> dict[str, Surface]:
             for name, p in world.placements.items() if p.model.kind is PlacementKind.FURNITURE}
 
 
-def pointing_figures(seed: int, trials: int) -> dict[str, Any]:
+def pointing_figures(seed: int, trials: int = 1000) -> dict[str, Any]:
     """The right placement from pointing at 1–4 m, and how each gesture is classified."""
     world = World.load("apartment")
     surfaces = apartment_surfaces(world)
@@ -249,7 +249,7 @@ def _standing_spot(world: World, surfaces: dict[str, Surface], surface: Surface,
     return None
 
 
-def lateration_figures(seed: int) -> dict[str, Any]:
+def lateration_figures(seed: int, tags: int = 200) -> dict[str, Any]:
     """Tag position error and first-hint accuracy over the apartment's placements."""
     world = World.load("apartment")
     surfaces = apartment_surfaces(world)
@@ -260,7 +260,7 @@ def lateration_figures(seed: int) -> dict[str, Any]:
     footprints = {name: (s.center, s.size) for name, s in surfaces.items()}
     rng = np.random.default_rng([seed, 19])
     errors, single, first, top3 = [], [], 0, 0
-    trials = 200
+    trials = tags
     for _ in range(trials):
         name = sorted(surfaces)[int(rng.integers(len(surfaces)))]
         s = surfaces[name]
