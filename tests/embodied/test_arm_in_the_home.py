@@ -14,17 +14,16 @@ from homebot.manipulation.control import ArmControl
 from homebot.robot import Pose
 from homebot.sim import Simulation
 from homebot.sim.body import SimBody
-from homebot.sim.camera import object_yaw
 from homebot.world import World, shipped_world_path, surface_height
 
 
-def _locate(sim: Simulation) -> object:
+def _locate(sim: Simulation, body: SimBody) -> object:
     def locate(name: str) -> tuple[float, float, float, float] | None:
         where = sim.object_location.get(name)
         if where is None or where not in sim.world.placements:
             return None
         x, y = sim.position_on(name, where)
-        return (x, y, object_yaw(name, sim.seed),
+        return (x, y, body.hands.heading(name),
                 surface_height(sim.world.placements[where].model))
     return locate
 
@@ -33,7 +32,7 @@ def test_a_pick_puts_the_object_in_a_hand_and_a_place_puts_it_back_on_the_table(
     world = World.load("apartment")
     sim = Simulation(world, seed=1)
     body = SimBody(sim)
-    control = ArmControl(body, world, _locate(sim), seed=1)  # type: ignore[arg-type]
+    control = ArmControl(body, world, _locate(sim, body), seed=1)  # type: ignore[arg-type]
     stand = Pose(*world.placements["coffee table"].approach)
     body.teleport(stand)
     assert control.pick("crisps", stand)
@@ -47,6 +46,12 @@ def test_a_pick_puts_the_object_in_a_hand_and_a_place_puts_it_back_on_the_table(
     assert sim.hands["left"] is None
     x, y = sim.object_position["crisps"]
     assert abs(x - placed.spot[0]) < 0.05 and abs(y - placed.spot[1]) < 0.05
+    # dropped from above the surface's middle, as into a bin: it lands there by physics
+    assert control.pick("crisps", stand)
+    dropped = control.place("coffee table", stand, drop=True)
+    body.tick(30)
+    assert dropped and sim.object_location["crisps"] == "coffee table"
+    assert control.place("coffee table", stand).detail == "the hand holds nothing"
 
 
 def test_a_broken_arm_model_in_a_world_file_names_the_file_and_line(tmp_path: Path) -> None:

@@ -6,6 +6,7 @@ import argparse
 import importlib.util
 import math
 from enum import StrEnum
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -13,6 +14,9 @@ from homebot.errors import HomebotError
 from homebot.navigation import Navigator
 from homebot.robot import Pose, Robot
 from homebot.sim import SimRobot, Simulation
+
+if TYPE_CHECKING:
+    from homebot.sim.body import SimBody
 
 __all__ = [
     "Fidelity",
@@ -87,7 +91,7 @@ def embodied_robot(simulation: Simulation, navigator: Navigator, *,
     from homebot.embodied.hands import ArmedBodyRobot
     from homebot.manipulation.control import ArmControl
 
-    arm = ArmControl(body, world, _TrueObjectPoses(simulation), seed=simulation.seed)
+    arm = ArmControl(body, world, _TrueObjectPoses(simulation, body), seed=simulation.seed)
     return ArmedBodyRobot(body, world, navigator, localisation, MotionSearchPlanner(),
                           percepts, percepts, simulation.events, looking=looking, arm=arm)
 
@@ -97,18 +101,18 @@ class _TrueObjectPoses:
     heading, surface height), standing in until perception reports object poses; a
     detection's own position, when perception gives one, takes precedence for the target."""
 
-    def __init__(self, simulation: Simulation) -> None:
+    def __init__(self, simulation: Simulation, body: SimBody) -> None:
         self.sim = simulation
+        self.body = body
 
     def __call__(self, name: str) -> tuple[float, float, float, float] | None:
-        from homebot.sim.camera import object_yaw
         from homebot.world import surface_height
 
         where = self.sim.object_location.get(name)
         if where is None or where not in self.sim.world.placements:
             return None
         x, y = self.sim.position_on(name, where)
-        return (x, y, object_yaw(name, self.sim.seed),
+        return (x, y, self.body.hands.heading(name),
                 surface_height(self.sim.world.placements[where].model))
 
 

@@ -115,13 +115,16 @@ def object_body(world: World, name: str, position: tuple[float, float], base: fl
 
 
 def world_scene(world: World, placements: Iterable[str],
-                positions: Mapping[str, tuple[str, tuple[float, float]]], seed: int = 0
+                positions: Mapping[str, tuple[str, tuple[float, float]]], seed: int = 0,
+                headings: Mapping[str, float] | None = None
                 ) -> tuple[list[SurfaceBox], list[ObjectBody]]:
     """The surfaces of ``placements`` and the objects on them.
 
     ``positions`` maps each object standing on one of them to (placement, (x, y)); objects
-    stand turned as the camera draws them (``object_yaw`` with the run's ``seed``).
+    stand turned as the camera draws them (``object_yaw`` with the run's ``seed``) unless
+    ``headings`` says how physics left them.
     """
+    headings = headings or {}
     surfaces, objects = [], []
     for name in placements:
         model = world.placements[name].model
@@ -132,7 +135,8 @@ def world_scene(world: World, placements: Iterable[str],
                                    (float(model.size[0]), float(model.size[1])), height))
         for obj, (where, xy) in positions.items():
             if where == name:
-                objects.append(object_body(world, obj, xy, height, object_yaw(obj, seed)))
+                objects.append(object_body(world, obj, xy, height,
+                                           headings.get(obj, object_yaw(obj, seed))))
     return surfaces, objects
 
 
@@ -174,6 +178,8 @@ class SimHands:
         self._held: tuple[ObjectBody, np.ndarray] | None = None
         self._surfaces: dict[str, SurfaceBox] = {}
         self._gone: set[str] = set()
+        #: how objects physics moved stand turned now (radians, map frame)
+        self.headings: dict[str, float] = {}
 
     def driver(self) -> ArmDriver:
         """The arm's drivers where the robot stands now (built when it has moved)."""
@@ -215,7 +221,7 @@ class SimHands:
                 if placement.footprint.distance(_point(pose[:2])) < _SCENE_REACH]
         positions = {obj: (where, truth.position_on(obj, where))
                      for obj, where in truth.object_location.items() if where in near}
-        surfaces, objects = world_scene(world, near, positions, truth.seed)
+        surfaces, objects = world_scene(world, near, positions, truth.seed, self.headings)
         self._surfaces = {s.name: s for s in surfaces}
         holding = {name for name in truth.hands.values() if name}
         held = self._held if self._held is not None and self._held[0].name in holding \
@@ -262,6 +268,12 @@ class SimHands:
                     truth.events.record("sim.arm", what="put down", object=name, on=location)
                 truth.object_location[name] = location
                 truth.object_position[name] = xy
+                turn = sim.object_rotation(name)
+                self.headings[name] = float(np.arctan2(turn[1, 0], turn[0, 0]))
+
+    def heading(self, name: str) -> float:
+        """How the object stands turned (radians): as physics left it, else as it started."""
+        return self.headings.get(name, object_yaw(name, self.simulation.seed))
 
     def _take_away(self, name: str) -> None:
         assert self._driver is not None
