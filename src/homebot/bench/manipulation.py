@@ -40,7 +40,10 @@ __all__ = ["Scene", "add_arguments", "generate_scene", "run", "run_pick"]
 
 _ROBOT_RADIUS, _CLEARANCE = 0.25, 0.12  #: where the robot stands before a table's edge
 _LIFTED = 0.05  #: metres off the table for a verified pick
-_HRI_SECTIONS = ("handover", "guided_by_hand", "carry_table")
+#: physical HRI sections: figure functions ``f(seed) -> dict`` of
+#: ``homebot.bench.manipulation_hri`` (part B), each reported as "not built" while absent
+_HRI_SECTIONS = {"handover": "handover_figures", "guided by the hand": "guided_figures",
+                 "carrying a table": "carry_table_figures"}
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -195,15 +198,15 @@ def _malformed_mjcf() -> str:
     return "accepted (wrong: the file is malformed)"
 
 
-def _hri() -> dict[str, Any]:
+def _hri(seed: int) -> dict[str, Any]:
     try:
         module = importlib.import_module("homebot.bench.manipulation_hri")
     except ModuleNotFoundError:
         return {section: "not built" for section in _HRI_SECTIONS}
     figures: dict[str, Any] = {}
-    for section in _HRI_SECTIONS:
-        measure = getattr(module, section, None)
-        figures[section] = measure() if callable(measure) else "not built"
+    for section, function in _HRI_SECTIONS.items():
+        measure = getattr(module, function, None)
+        figures[section] = measure(seed) if callable(measure) else "not built"
     return figures
 
 
@@ -221,7 +224,7 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
     if args.only in ("all", "bad-input"):
         figures["bad input"] = _bad_input()
     if args.only in ("all", "hri"):
-        figures["physical HRI"] = _hri()
+        figures["physical HRI"] = _hri(args.seed)
     figures["wall seconds"] = round(time.perf_counter() - began, 1)
     if console is not None:
         table = Table(title="bench manipulation")
