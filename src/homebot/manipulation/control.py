@@ -138,6 +138,10 @@ class ArmControl:
         if self.holding is not None or self.gripper_holds():
             self.last = PickResult(PickOutcome.NOT_HELD, detail="the gripper is not empty")
             return self.last
+        if name not in self.world.objects:
+            self.last = PickResult(PickOutcome.UNREACHABLE,
+                                   detail=f"no catalogue entry for '{name}': its shape is unknown")
+            return self.last
         where = self.locate(name)
         if where is None and seen_at is None:
             self.last = PickResult(PickOutcome.UNREACHABLE, detail=f"{name} is nowhere known")
