@@ -1,0 +1,346 @@
+"""Physical human-robot interaction on a compliant arm (Cosero §7.3, §4.2).
+
+Each behaviour is a small state machine run once per control tick: it reads the arm
+(``ArmReading``: joints, hand pose, Jacobian) and, where it needs them, the wrist's
+force-torque sensor and the table's pitch, and returns a ``Command``: where the hand
+should be and how compliant (for ``ComplianceController``), whether the gripper is
+closed, how the base should move (a ``Twist`` in the base frame) and the torso's height.
+None of them reads the simulator; the person's intention reaches them only through the
+arm's displacement and the wrist.
+
+- ``Handover``: compliant forward, upward and in pitch; lets go when the hand is pulled
+  far enough that the pull must exceed the threshold, and never for less.
+- ``Receive``: offers the open hand, closes when an object is pushed into it (the palm
+  feels it at the wrist), and has it when the person lets go (the wrist feels its weight).
+- ``GuidedByHand``: compliant in the plane; the base drives to bring the hand back to its
+  place in front of the robot and turns towards where it is led.
+- ``CarryTable``: holds one end of a table, waits until the person lifts theirs
+  (pitch 0.02 rad), then keeps the table level while following in the plane, and
+  lowers when the person does.
+- ``DoorOpening``: holds a door handle compliant laterally and in yaw while the base
+  backs away, so the hand follows the handle's arc round the hinge.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from enum import StrEnum
+
+import numpy as np
+
+from homebot.manipulation.compliance import AxisCompliance, Compliance
+from homebot.robot.body import Twist
+
+__all__ = [
+    "CarryPhase",
+    "CarryTable",
+    "Command",
+    "DoorOpening",
+    "GuidedByHand",
+    "Handover",
+    "Receive",
+    "ReceivePhase",
+]
+
+
+@dataclass(frozen=True)
+class Command:
+    """What a behaviour wants this tick."""
+
+    hand_position: np.ndarray  #: base frame
+    hand_rotation: np.ndarray  #: base frame, 3 × 3
+    compliance: Compliance
+    gripper_closed: bool
+    base: Twist = field(default_factory=Twist)
+    torso: float | None = None  #: metres; None: stay
+
+
+def _soft(span: float, min_force: float, max_force: float, damping: float,
+          stiffness: float = 1500.0) -> AxisCompliance:
+    return AxisCompliance(stiffness=stiffness, damping=damping, max_force=max_force,
+                          min_force=min_force, span=span)
+
+
+class Handover:
+    """Hold an object out and release it when the person pulls (Cosero §7.3.1).
+
+    The hand is compliant forward (+x), upward (+z) and in pitch. A steady pull ``F``
+    moves it ``span·(F − min_force)/(max_force − min_force)`` along each compliant axis;
+    the behaviour reads the pull back from that displacement and lets go once the pull
+    read exceeds ``release_force`` for ``confirm`` ticks in a row. ``release_force`` sits
+    between the largest bump the person may give by accident and the pull threshold.
+    """
+
+    def __init__(self, hand_position: np.ndarray, hand_rotation: np.ndarray, *,
+                 threshold: float = 10.0, release_fraction: float = 0.75,
+                 confirm: int = 2) -> None:
+        self.target = np.asarray(hand_position, dtype=float)
+        self.rotation = np.asarray(hand_rotation, dtype=float)
+        self.threshold = threshold
+        self.release_force = release_fraction * threshold
+        self.confirm = confirm
+        forward = _soft(0.15, 2.0, 40.0, damping=40.0)
+        pitch = _soft(0.4, 0.2, 8.0, damping=3.0, stiffness=40.0)
+        self.compliance = Compliance().with_axes(
+            x=AxisCompliance(**{**forward.__dict__, "positive": True}),
+            z=AxisCompliance(**{**forward.__dict__, "positive": True}),
+            pitch=AxisCompliance(**{**pitch.__dict__, "positive": True, "negative": True}))
+        self.released_at: float | None = None
+        self._over = 0
+        self.pull_read = 0.0
+
+    def felt_pull(self, shift: np.ndarray) -> float:
+        """The pull (N) that would hold the hand where it is, read from the forward and
+        upward displacement."""
+        total = 0.0
+        for index in (0, 2):
+            axis = self.compliance.axes[index]
+            d = float(shift[index])
+            if d <= 0:
+                continue
+            force = axis.min_force + min(1.0, d / axis.span) * (axis.max_force - axis.min_force)
+            total += force * force
+        return math.sqrt(total)
+
+    def update(self, now: float, shift: np.ndarray) -> Command:
+        """``shift``: the hand's displacement from its target (``ComplianceController.shift``)."""
+        if self.released_at is None:
+            self.pull_read = self.felt_pull(shift)
+            self._over = self._over + 1 if self.pull_read >= self.release_force else 0
+            if self._over >= self.confirm:
+                self.released_at = now
+        return Command(self.target, self.rotation, self.compliance,
+                       gripper_closed=self.released_at is None)
+
+
+class ReceivePhase(StrEnum):
+    """Where a ``Receive`` is."""
+
+    OFFERING = "offering"  #: open hand held out, waiting for an object
+    CLOSING = "closing"  #: something touched the palm; the fingers close
+    HOLDING = "holding"  #: the person let go; the robot carries the weight
+    EMPTY = "empty"  #: the fingers closed on nothing
+
+
+class Receive:
+    """Take an object a person puts into the open hand (Cosero §7.3.1, the other way).
+
+    Cosero senses the object between its fingers with in-hand distance sensors; this
+    arm has none, so the palm's touch is felt at the wrist: the object pushed into the
+    hand presses back along the hand's axis (``touch`` newtons above the resting
+    reading). Then the fingers close; once they have closed (``close_time``), the robot
+    holds if the fingers stopped apart (something is between them) and the wrist feels
+    the object's weight after the person lets go.
+    """
+
+    def __init__(self, hand_position: np.ndarray, hand_rotation: np.ndarray, *,
+                 touch: float = 1.5, close_time: float = 0.6, min_width: float = 0.01,
+                 min_weight: float = 1.0) -> None:
+        self.target = np.asarray(hand_position, dtype=float)
+        self.rotation = np.asarray(hand_rotation, dtype=float)
+        self.touch, self.close_time = touch, close_time
+        self.min_width, self.min_weight = min_width, min_weight
+        self.compliance = Compliance()
+        self.phase = ReceivePhase.OFFERING
+        self.rest: np.ndarray | None = None  #: the wrist's reading with the hand empty
+        self.closed_at: float | None = None
+        self.weight = 0.0
+
+    def update(self, now: float, wrist_force: np.ndarray, gripper_width: float) -> Command:
+        """``wrist_force``: the sensor's force (its frame, x along the hand)."""
+        force = np.asarray(wrist_force, dtype=float)
+        if self.rest is None:
+            self.rest = force.copy()
+        change = force - self.rest
+        if self.phase is ReceivePhase.OFFERING and float(np.linalg.norm(change)) > self.touch:
+            self.phase, self.closed_at = ReceivePhase.CLOSING, now
+        elif self.phase is ReceivePhase.CLOSING and self.closed_at is not None and \
+                now - self.closed_at >= self.close_time:
+            self.weight = float(np.linalg.norm(change))
+            if gripper_width < self.min_width:
+                self.phase = ReceivePhase.EMPTY
+            elif self.weight >= self.min_weight:
+                self.phase = ReceivePhase.HOLDING
+        return Command(self.target, self.rotation, self.compliance,
+                       gripper_closed=self.phase is not ReceivePhase.OFFERING)
+
+
+class GuidedByHand:
+    """Follow the hand a person leads (Cosero §7.3.2).
+
+    The hand is compliant in x and y. How far it is pulled sets the base's speed
+    (``gain`` per second on the displacement, capped at ``speed``; below ``dead_band``, a
+    light touch, the base stays). Where the base goes: given the base's odometry, it
+    keeps a trail of where its hand has been and drives along that trail (pure pursuit,
+    ``lookahead`` metres ahead), turning to keep the hand straight ahead; so the base
+    walks in the person's footsteps instead of cutting corners behind its hand. Without
+    odometry it drives along the displacement itself.
+    """
+
+    def __init__(self, hand_position: np.ndarray, hand_rotation: np.ndarray, *,
+                 gain: float = 6.0, speed: float = 0.7, turn_gain: float = 2.0,
+                 dead_band: float = 0.005, lookahead: float = 0.3) -> None:
+        self.target = np.asarray(hand_position, dtype=float)
+        self.rotation = np.asarray(hand_rotation, dtype=float)
+        self.gain, self.speed, self.turn_gain, self.dead_band = gain, speed, turn_gain, dead_band
+        self.lookahead = lookahead
+        planar = _soft(0.2, 3.0, 50.0, damping=40.0)
+        both = {"positive": True, "negative": True}
+        self.compliance = Compliance().with_axes(
+            x=AxisCompliance(**{**planar.__dict__, **both}),
+            y=AxisCompliance(**{**planar.__dict__, **both}))
+        self.led = False
+        self.trail: list[np.ndarray] = []  #: where the hand has been (odometry frame)
+
+    def update(self, shift: np.ndarray, pose: tuple[float, float, float] | None = None
+               ) -> Command:
+        """``shift``: the hand's displacement; ``pose``: the base's odometry (x, y, yaw)."""
+        dx, dy = float(shift[0]), float(shift[1])
+        pull = math.hypot(dx, dy)
+        hand = self.target[:2] + np.array([dx, dy])
+        if pose is not None:
+            c, s = math.cos(pose[2]), math.sin(pose[2])
+            here = np.array(pose[:2])
+            crumb = here + np.array([c * hand[0] - s * hand[1], s * hand[0] + c * hand[1]])
+            if not self.trail:  # the way from the base to the hand, to start on
+                steps = max(1, int(math.dist(here, crumb) / 0.02))
+                self.trail.extend(here + (crumb - here) * k / steps for k in range(steps))
+            if math.dist(crumb, self.trail[-1]) > 0.02:
+                self.trail.append(crumb)
+        twist = Twist()
+        if pull > self.dead_band:
+            self.led = True
+            direction = np.array([dx, dy]) / pull
+            ahead = pull
+            if pose is not None:
+                along = self._along_trail(np.array(pose[:2]), pose[2])
+                ahead = float(np.dot(along, [dx, dy]))
+                if ahead > self.dead_band:  # led onwards: in the hand's footsteps
+                    direction = along
+                else:  # pushed back or aside: give way along the push itself
+                    ahead = pull
+            speed = min(self.speed, self.gain * (ahead - self.dead_band))
+            wz = self.turn_gain * math.atan2(hand[1], hand[0])
+            twist = Twist(speed * float(direction[0]), speed * float(direction[1]),
+                          max(-1.0, min(1.0, wz)))
+        return Command(self.target, self.rotation, self.compliance, gripper_closed=True,
+                       base=twist)
+
+    def _along_trail(self, here: np.ndarray, yaw: float) -> np.ndarray:
+        """The unit direction (base frame) to the trail point ``lookahead`` past the
+        trail's point nearest the base."""
+        trail = np.asarray(self.trail)
+        nearest = int(np.argmin(np.linalg.norm(trail - here, axis=1)))
+        goal = trail[-1]
+        for point in trail[nearest + 1:]:
+            if math.dist(point, here) >= self.lookahead:
+                goal = point
+                break
+        world = goal - here
+        norm = float(np.linalg.norm(world))
+        if norm < 1e-6:
+            return np.zeros(2)
+        c, s = math.cos(yaw), math.sin(yaw)
+        return np.array([c * world[0] + s * world[1], -s * world[0] + c * world[1]]) / norm
+
+
+class CarryPhase(StrEnum):
+    """Where a ``CarryTable`` is."""
+
+    WAITING = "waiting"  #: holding the table on the floor until the person lifts
+    CARRYING = "carrying"  #: lifted: level and following
+    LOWERING = "lowering"  #: the person put their end down: the robot lowers too
+    DONE = "done"  #: the table stands on the floor again
+
+
+class CarryTable:
+    """Carry a table with a person (Cosero §7.3.3).
+
+    The robot holds its end; it reads the table's pitch (positive: the person's end is
+    higher). A pitch over ``lift_pitch`` starts the carry. While carrying, the hand's
+    height follows the person's end (``level_gain`` per second on the height difference
+    over ``length``, the distance between the two ends), x, y and yaw are compliant and
+    the base drives and turns to bring the hand back to its grasping pose. Once the
+    person's end goes down past ``-lift_pitch`` after the table was up, the robot stops
+    following and lowers (levelling, and at least ``settle_speed``) until the floor holds
+    its end up: the hand stays above its target.
+    """
+
+    def __init__(self, hand_position: np.ndarray, hand_rotation: np.ndarray, *,
+                 length: float, lift_pitch: float = 0.02, level_gain: float = 8.0,
+                 max_lift_speed: float = 0.6, turn_gain: float = 1.0) -> None:
+        self.start = np.asarray(hand_position, dtype=float).copy()
+        self.target = self.start.copy()
+        self.rotation = np.asarray(hand_rotation, dtype=float)
+        self.length, self.lift_pitch = length, lift_pitch
+        self.level_gain, self.max_lift_speed = level_gain, max_lift_speed
+        self.turn_gain = turn_gain
+        self.settle_speed = 0.05  #: m/s the hand goes down at least while lowering
+        self.follow = GuidedByHand(hand_position, hand_rotation, gain=8.0, speed=0.6,
+                                   turn_gain=0.0)
+        self.phase = CarryPhase.WAITING
+        self.highest = 0.0
+        planar = self.follow.compliance.axes
+        self.compliance = Compliance().with_axes(
+            x=planar[0], y=planar[1],
+            yaw=AxisCompliance(stiffness=40.0, damping=2.0, max_force=6.0, min_force=0.2,
+                               span=0.5, positive=True, negative=True),
+            pitch=AxisCompliance(stiffness=30.0, damping=2.0, max_force=4.0, min_force=0.2,
+                                 span=0.5, positive=True, negative=True))
+        self.max_pitch = 0.0
+
+    def update(self, dt: float, shift: np.ndarray, pitch: float) -> Command:
+        """``pitch``: the table's pitch as the robot perceives it (rad)."""
+        base = Twist()
+        if self.phase is CarryPhase.WAITING and pitch > self.lift_pitch:
+            self.phase = CarryPhase.CARRYING
+        if self.phase is CarryPhase.CARRYING:
+            self.highest = max(self.highest, self.target[2] - self.start[2])
+            if self.highest > 0.05 and pitch < -self.lift_pitch:
+                self.phase = CarryPhase.LOWERING
+        if self.phase in (CarryPhase.CARRYING, CarryPhase.LOWERING):
+            rate = self.level_gain * self.length * math.sin(pitch)
+            if self.phase is CarryPhase.LOWERING:  # down, at least slowly, to the floor
+                rate = min(rate, -self.settle_speed)
+            rate = max(-self.max_lift_speed, min(self.max_lift_speed, rate))
+            self.target[2] = max(self.start[2] - 0.05, self.target[2] + rate * dt)
+        if self.phase is CarryPhase.CARRYING:  # realign the hand: the base follows
+            planar = self.follow.update(shift).base
+            base = Twist(planar.vx, planar.vy, self.turn_gain * float(shift[5]))
+        if self.phase is CarryPhase.LOWERING and float(shift[2]) > 0.015:
+            # The hand is held above its target: the table stands on its legs.
+            self.phase = CarryPhase.DONE
+            self.target[2] = self.target[2] + float(shift[2])
+        self.max_pitch = max(self.max_pitch, abs(pitch))
+        return Command(self.target.copy(), self.rotation, self.compliance, gripper_closed=True,
+                       base=base)
+
+
+class DoorOpening:
+    """Open a door by its handle (Cosero §4.2): compliant laterally and in yaw, the base
+    backs away, and the base corrects its heading and sideways drift so the hand stays
+    near its place; done when the hand has been carried ``pull`` metres back."""
+
+    def __init__(self, hand_position: np.ndarray, hand_rotation: np.ndarray, *,
+                 pull: float = 0.6, speed: float = 0.15, gain: float = 1.5) -> None:
+        self.target = np.asarray(hand_position, dtype=float)
+        self.rotation = np.asarray(hand_rotation, dtype=float)
+        self.pull, self.speed, self.gain = pull, speed, gain
+        both = {"positive": True, "negative": True}
+        lateral = _soft(0.25, 2.0, 40.0, damping=30.0)
+        self.compliance = Compliance().with_axes(
+            y=AxisCompliance(**{**lateral.__dict__, **both}),
+            yaw=AxisCompliance(stiffness=30.0, damping=2.0, max_force=5.0, min_force=0.1,
+                               span=0.8, positive=True, negative=True))
+        self.travelled = 0.0
+        self.done = False
+
+    def update(self, dt: float, shift: np.ndarray) -> Command:
+        base = Twist()
+        if not self.done:
+            self.travelled += self.speed * dt
+            self.done = self.travelled >= self.pull
+            base = Twist(-self.speed, self.gain * float(shift[1]), self.gain * float(shift[5]))
+        return Command(self.target, self.rotation, self.compliance, gripper_closed=True,
+                       base=base)
