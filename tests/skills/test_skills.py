@@ -22,7 +22,7 @@ def _do(run: SimulatedRun, skill: str, **args: object):
 
 
 def test_the_issue_lists_every_skill() -> None:
-    assert set(SKILLS) == {"navigate", "look", "find_object", "pick", "place", "give",
+    assert set(SKILLS) == {"navigate", "look", "find_object", "pick", "place", "give", "receive",
                            "find_person", "follow", "guide", "greet", "say", "ask", "count",
                            "describe", "open_door", "answer_question", "where_is"}
 

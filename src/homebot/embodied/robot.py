@@ -261,6 +261,9 @@ class BodyRobot(Robot):
     def hand_over(self, hand: str, person: str) -> bool:
         return self.percepts.hand_over(hand, person)
 
+    def receive(self, hand: str, person: str) -> Detection | None:
+        return self.percepts.receive(hand, person)
+
     def open_door(self, door: str) -> bool:
         return self.percepts.open_door(door)
 

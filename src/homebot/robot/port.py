@@ -140,6 +140,12 @@ class Robot(ABC):
     def hand_over(self, hand: str, person: str) -> bool:
         """Offer what ``hand`` holds to a nearby person; True when they took it."""
 
+    def receive(self, hand: str, person: str) -> Detection | None:
+        """Offer the open ``hand`` to a nearby person and close it on what they put in it;
+        what the hand's camera then sees there (None: they gave nothing). A robot whose
+        hands cannot take things from people keeps this default and never receives."""
+        return None
+
     @abstractmethod
     def open_door(self, door: str) -> bool:
         """Try to open a door the robot stands at; True when it is open afterwards."""

@@ -223,6 +223,21 @@ class SimRobot(Robot):
         sim.object_location[name] = PERSON_PREFIX + person
         return True
 
+    def receive(self, hand: str, person: str) -> Detection | None:
+        sim = self.sim
+        sim.clock.advance(ActionDurations.HAND_OVER)
+        state = sim.person_state(person)
+        if sim.hands.get(hand, "busy") is not None or state is None or \
+                sim.distance_to(state.position) > _REACH_PERSON:
+            return None
+        given = sorted(name for name, where in sim.object_location.items()
+                       if where == PERSON_PREFIX + person)
+        if not given:
+            return None
+        sim.hands[hand] = given[0]
+        sim.object_location[given[0]] = HAND_PREFIX + hand
+        return self.held(hand)
+
     def open_door(self, door: str) -> bool:
         sim = self.sim
         sim.clock.advance(ActionDurations.OPEN_DOOR)

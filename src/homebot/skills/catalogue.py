@@ -8,7 +8,7 @@ from typing import Any
 
 from homebot.errors import TaskError
 from homebot.skills.interaction import AnswerQuestion, Ask, Greet, Say, WhereIs
-from homebot.skills.manipulation import Give, Pick, Place
+from homebot.skills.manipulation import Give, Pick, Place, Receive
 from homebot.skills.motion import Follow, Guide, Navigate, OpenDoor
 from homebot.skills.perception import Count, Describe, FindObject, FindPerson, Look
 from homebot.skills.places import OPERATOR, point_goal
@@ -22,8 +22,8 @@ __all__ = ["SKILLS", "check_step", "skill_named", "spelled_as_world"]
 
 SKILLS: Mapping[str, type[Skill]] = {
     skill.name: skill
-    for skill in (Navigate, Look, FindObject, Pick, Place, Give, FindPerson, Follow, Guide,
-                  Greet, Say, Ask, Count, Describe, OpenDoor, AnswerQuestion, WhereIs)
+    for skill in (Navigate, Look, FindObject, Pick, Place, Give, Receive, FindPerson, Follow,
+                  Guide, Greet, Say, Ask, Count, Describe, OpenDoor, AnswerQuestion, WhereIs)
 }
 
 # Which kind of name each argument holds, for checking steps against the world.

@@ -1,4 +1,4 @@
-"""Skills that handle objects: pick, place, give."""
+"""Skills that handle objects: pick, place, give, receive."""
 
 from __future__ import annotations
 
@@ -12,7 +12,7 @@ from homebot.skills.places import person_name, resolve_target
 from homebot.skills.skill import ErrorCode, Outcome, Skill, SkillContext, Status, speak
 from homebot.skills.wording import be, here_is, place_in
 
-__all__ = ["Give", "Pick", "Place"]
+__all__ = ["Give", "Pick", "Place", "Receive"]
 
 
 class Pick(Skill):
@@ -169,3 +169,54 @@ class Give(Skill):
                                     person=finished.data["person"])
         return Outcome.aborted(ErrorCode.NOT_DELIVERED,
                                f"{finished.data['person']} did not take the object")
+
+
+class Receive(Skill):
+    """Take an object from a person (``operator``, a name, or the person last found).
+
+    The robot offers its open hand (Cosero §7.3.1); the person puts the object in, the
+    fingers close on it. Preconditions: a free hand. Monitor: the hand's camera sees
+    something in the hand (the named object, when one was named); an empty hand is
+    ``aborted``.
+    """
+
+    name = "receive"
+    optional = ("person", "object")
+    retries = 1
+
+    def execute(self, context: SkillContext, args: Mapping[str, Any]) -> Outcome:
+        person = person_name(context, args.get("person"))
+        if person is None:
+            return Outcome.failed(ErrorCode.NO_PERSON, "I do not know whom to take it from")
+        hand = context.beliefs.free_hand()
+        if hand is None:
+            return Outcome.failed(ErrorCode.HANDS_FULL, "both my hands are full")
+        position = context.beliefs.person_at.get(person)
+        if position is not None and math.dist(context.robot.pose().xy(), position) > 1.5:
+            goal = resolve_target(context, person)
+            moved = drive(context, goal) if goal else None
+            if moved is not None and moved.status is not Status.FINISHED:
+                return moved
+        wanted = f"the {args['object']}" if args.get("object") else "it"
+        speak(context, f"{person}, please put {wanted} in my hand")
+        context.robot.receive(hand, person)
+        return Outcome.finished(f"closed my {hand} hand", hand=hand, person=person)
+
+    def monitor(self, context: SkillContext, args: Mapping[str, Any],
+                finished: Outcome) -> Outcome:
+        hand, person = finished.data["hand"], finished.data["person"]
+        held = context.robot.held(hand)
+        if held is None:
+            return Outcome.aborted(ErrorCode.NOT_GRASPED, f"{person} gave me nothing")
+        wanted = args.get("object")
+        if wanted and held.label != wanted and not matches_object(context, str(wanted), held):
+            context.beliefs.took(held.label, hand)
+            return Outcome.aborted(ErrorCode.WRONG_OBJECT,
+                                   f"{person} gave me the {held.label}, not the {wanted}")
+        context.beliefs.took(held.label, hand)
+        return Outcome.verified(f"I have the {held.label} from {person}", object=held.label,
+                                hand=hand, person=person)
+
+    def assume(self, context: SkillContext, args: Mapping[str, Any], finished: Outcome) -> None:
+        if args.get("object"):
+            context.beliefs.took(str(args["object"]), finished.data["hand"])
