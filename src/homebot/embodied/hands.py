@@ -67,11 +67,15 @@ class ArmedBodyRobot(BodyRobot):
     def release(self, hand: str, placement: str) -> None:
         if self._holding.pop(hand, None) is None:
             return
-        category = self.world.placements[placement].model.category.lower()
-        outcome = self.arm.place(placement, self.pose(), drop=category in _BIN_CATEGORIES)
-        self.events.record("robot.place", placement=placement, done=outcome.done,
-                           detail=outcome.detail)
-        if not outcome:  # no spot: let go where the hand is; what happens is physics'
+        known = self.world.placements.get(placement)
+        done = False
+        if known is not None:
+            category = known.model.category.lower()
+            outcome = self.arm.place(placement, self.pose(), drop=category in _BIN_CATEGORIES)
+            self.events.record("robot.place", placement=placement, done=outcome.done,
+                               detail=outcome.detail)
+            done = outcome.done
+        if not done:  # no spot: let go where the hand is; what happens is physics'
             self.body.gripper().command(0.2)
             self.body.tick(max(1, round(0.5 / self.body.tick_period)))
             self.arm.holding = None
