@@ -14,7 +14,7 @@ from homebot.errors import HomebotError
 __all__ = ["benchmark_names", "register"]
 
 # Helper modules of homebot.bench that are not benchmarks themselves.
-_NOT_BENCHMARKS = {"arguments", "fetch_tasks"}
+_NOT_BENCHMARKS = {"arguments", "fetch_tasks", "manipulation_hri"}
 
 
 def benchmark_names() -> list[str]:
