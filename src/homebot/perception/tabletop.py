@@ -29,6 +29,7 @@ __all__ = [
     "Tabletop",
     "cluster",
     "cluster_features",
+    "row_spacing",
     "segment_plane",
     "segment_tabletop",
 ]
@@ -41,6 +42,8 @@ _EDGE_MARGIN = 0.01  #: metres inside the plane's outline an object point must l
 _CLUSTER_DISTANCE = 0.016  #: metres between neighbouring points of one object
 _MIN_POINTS = 12  #: smaller groups are noise
 _VOXEL = 0.006  #: metres: object points are thinned to one per voxel before clustering
+_ROWS_JOINED = 1.4  #: a point joins neighbours this many row spacings away ...
+_MAX_REACH = 0.04  #: ... but never farther than this (metres)
 _PLANE_SHARE = 4  #: RANSAC looks for the plane among every 4th point
 _SAMPLE = 4000  #: points RANSAC scores each hypothesis on
 
@@ -145,13 +148,24 @@ def _fit(points: np.ndarray) -> np.ndarray:
     return model
 
 
-def cluster(points: np.ndarray, eps: float, min_points: int) -> np.ndarray:
+def cluster(points: np.ndarray, eps: float, min_points: int,
+            reach: np.ndarray | None = None) -> np.ndarray:
     """Euclidean clustering: points closer than ``eps`` are one group; labels, -1 for groups
-    smaller than ``min_points``."""
+    smaller than ``min_points``. ``reach`` (per point, at least ``eps``) lets a point join
+    farther neighbours: where the camera's rows lie far apart on a surface seen edge-on."""
     count = len(points)
     if count == 0:
         return np.zeros(0, dtype=np.int64)
-    pairs = cKDTree(points).query_pairs(eps, output_type="ndarray")
+    tree = cKDTree(points)
+    pairs = tree.query_pairs(eps, output_type="ndarray")
+    if reach is not None:
+        far = np.flatnonzero(reach > eps)
+        if len(far):
+            found = tree.query_ball_point(points[far], reach[far])
+            extra = [(int(i), int(j)) for i, near in zip(far, found, strict=True)
+                     for j in near if reach[j] > eps]
+            if extra:
+                pairs = np.vstack((pairs.reshape(-1, 2), np.array(extra)))
     graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(count, count))
     _, labels = connected_components(graph, directed=False)
     sizes = np.bincount(labels)
@@ -161,6 +175,15 @@ def cluster(points: np.ndarray, eps: float, min_points: int) -> np.ndarray:
     renumber[kept] = np.arange(len(kept))
     result: np.ndarray = np.where(small, -1, renumber[labels])
     return result
+
+
+def row_spacing(points: np.ndarray, camera: np.ndarray, focal: float) -> np.ndarray:
+    """How far apart neighbouring image rows fall on a horizontal surface at each point:
+    ``r² / (f Δh)`` for a point ``r`` from the camera and ``Δh`` below it."""
+    ranges = np.linalg.norm(points - camera, axis=1)
+    below = np.maximum(camera[2] - points[:, 2], 0.01)
+    spacing: np.ndarray = ranges * ranges / (focal * below)
+    return spacing
 
 
 def segment_tabletop(frame: RgbdFrame, rng: np.random.Generator, *,
@@ -197,7 +220,9 @@ def segment_tabletop(frame: RgbdFrame, rng: np.random.Generator, *,
                     <= -_EDGE_MARGIN, axis=1)
     chosen = chosen[inside]
     chosen = chosen[_voxel_thin(points[chosen], _VOXEL)]
-    labels = cluster(points[chosen], _CLUSTER_DISTANCE, _MIN_POINTS)
+    spacing = row_spacing(points[chosen], frame.camera_pose[:3, 3], frame.intrinsics.fy)
+    reach = np.clip(_ROWS_JOINED * spacing, _CLUSTER_DISTANCE, _MAX_REACH)
+    labels = cluster(points[chosen], _CLUSTER_DISTANCE, _MIN_POINTS, reach)
     segments = []
     for label in range(int(labels.max(initial=-1)) + 1):
         members = chosen[labels == label]
