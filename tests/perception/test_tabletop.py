@@ -111,9 +111,10 @@ def test_an_untrained_recogniser_says_object() -> None:
 
 
 def test_points_seen_edge_on_reach_farther_neighbours() -> None:
-    strips = np.array([(x, y, 1.2) for x in (0.6, 0.625, 0.65) for y in np.arange(0, 0.1, 0.005)])
+    strips = np.array([(x, y, 1.25) for x in (0.6, 0.625, 0.65)
+                       for y in np.arange(0, 0.1, 0.005)])
     assert len(set(cluster(strips, 0.016, 5).tolist())) == 3  # rows 2.5 cm apart: three
     spacing = row_spacing(strips, np.array([0.0, 0.0, 1.3]), 285.0)
-    assert np.all(spacing > 0.02)  # 10 cm below the camera, the rows lie far apart
+    assert np.all(spacing > 0.02)  # 5 cm below the camera, the rows lie far apart
     reach = np.clip(1.4 * spacing, 0.016, 0.04)
     assert len(set(cluster(strips, 0.016, 5, reach).tolist())) == 1
