@@ -17,6 +17,7 @@ another Robot implementation over the same world.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Protocol
 
@@ -30,6 +31,7 @@ from homebot.events import EventLog
 from homebot.navigation import Navigator
 from homebot.navigation.localisation import MonteCarloLocalisation
 from homebot.navigation.localmap import LocalController
+from homebot.navigation.navigate import StopReason
 from homebot.navigation.recovery import RecoveringNavigation, scan_on_map
 from homebot.robot import (
     Blocker,
@@ -100,6 +102,11 @@ class BodyRobot(Robot):
         self.companions = companions
         self.events = events
         self.looking = looking
+        #: whether a person shows the stop gesture now (``homebot.perception.gestures``
+        #: over their arm keypoints); follow and guide stop when the person they walk
+        #: with does. None: nobody's gestures are seen.
+        self.stop_shown: Callable[[str], bool] | None = None
+        self._walking_with: str | None = None
         self.navigation = RecoveringNavigation(body, navigator, controller, self._localise,
                                                on_replan=self._record_replan)
         self.localisation.update(body.odometry(), body.scan())
@@ -134,8 +141,10 @@ class BodyRobot(Robot):
         legs.append(_Leg(goal, None))
         travelled = 0.0
         passed: list[str] = []
+        companion = escort or self._walking_with
         for leg in legs:
-            report = self._drive_leg(leg.target, avoid_doors, final=leg.door is None)
+            report = self._drive_leg(leg.target, avoid_doors, final=leg.door is None,
+                                     companion=companion)
             travelled += report.distance
             if not report.reached:
                 self._record_view()
@@ -156,16 +165,24 @@ class BodyRobot(Robot):
         self._record_view()
         return MoveReport(True, self.pose(), travelled, doors_passed=tuple(passed))
 
-    def _drive_leg(self, target: Pose, avoid_doors: frozenset[str], final: bool) -> MoveReport:
-        """Drive to ``target`` along stage-1 paths, planning round what blocks the way."""
+    def _drive_leg(self, target: Pose, avoid_doors: frozenset[str], final: bool,
+                   companion: str | None = None) -> MoveReport:
+        """Drive to ``target`` along stage-1 paths, planning round what blocks the way;
+        stop when ``companion`` (the person guided or followed) shows stop."""
+        shown = self.stop_shown
+        stop = (lambda: shown(companion)) if shown is not None and companion else None
         try:
             attempt = self.navigation.drive(target, avoid_doors, tolerance=_GOAL_TOLERANCE,
                                             heading_tolerance=_HEADING_TOLERANCE if final
-                                            else None)
+                                            else None, stop=stop)
         except NavigationError:
             return MoveReport(False, self.pose(), 0.0, Blocker.NO_PATH)
         if attempt.reached:
             return MoveReport(True, self.pose(), attempt.travelled)
+        if attempt.reason is StopReason.CANCELED and stop is not None:
+            self.events.record("robot.stopped", person=companion)
+            return MoveReport(False, self.pose(), attempt.travelled, Blocker.STOPPED, None,
+                              companion)
         person = self._person_in_the_way(target, avoid_doors)
         blocker = Blocker.PERSON if person else Blocker.OBSTRUCTED
         self.events.record("robot.stuck", person=person)
@@ -237,7 +254,11 @@ class BodyRobot(Robot):
         norm = math.hypot(dx, dy) or 1.0
         stop = Pose(destination[0] - dx / norm * 0.8, destination[1] - dy / norm * 0.8,
                     math.atan2(dy, dx))
-        return self.move_to(stop)
+        self._walking_with = person
+        try:
+            return self.move_to(stop)
+        finally:
+            self._walking_with = None
 
     # ------------------------------------------------------------ the rest stays symbolic
 

@@ -23,7 +23,12 @@ import numpy as np
 
 from homebot.errors import NavigationError
 from homebot.navigation.localmap import LocalController
-from homebot.navigation.navigate import NavigateToPose, NavigationGoal, StopReason
+from homebot.navigation.navigate import (
+    NavigateToPose,
+    NavigationGoal,
+    NavigationResult,
+    StopReason,
+)
 from homebot.navigation.navigator import Navigator, polyline_length
 from homebot.robot import Body, LaserScan, Pose, Twist
 
@@ -226,9 +231,10 @@ class RecoveringNavigation:
                                      self.policy.obstacle_memory)
 
     def drive(self, target: Pose, avoid_doors: frozenset[str] = frozenset(), *,
-              tolerance: float = 0.15, heading_tolerance: float | None = 0.2
-              ) -> NavigationAttempt:
-        """Drive to ``target``; a path round ``avoid_doors`` only.
+              tolerance: float = 0.15, heading_tolerance: float | None = 0.2,
+              stop: Callable[[], bool] | None = None) -> NavigationAttempt:
+        """Drive to ``target``; a path round ``avoid_doors`` only. ``stop`` is asked every
+        control period (a person's stop gesture): True cancels the drive (CANCELED).
 
         Raises:
             NavigationError: the static map has no path to the target at all.
@@ -265,7 +271,7 @@ class RecoveringNavigation:
                 goal = NavigationGoal(target, path, tolerance, heading_tolerance, timeout=budget)
                 action = NavigateToPose(goal, body, self.controller, self.localise,
                                         stuck_after=policy.stuck_after)
-                result = action.run(int(budget / body.tick_period) + _STOP_TICKS)
+                result = _run(action, int(budget / body.tick_period) + _STOP_TICKS, stop)
                 travelled += result.travelled
                 reason = result.reason or StopReason.TIMEOUT
                 if result.reached or reason is not StopReason.BLOCKED:
@@ -328,6 +334,19 @@ class RecoveringNavigation:
         body = self.body
         body.command_velocity(Twist())
         body.tick(max(1, int(seconds / body.tick_period)))
+
+
+def _run(action: NavigateToPose, steps: int, stop: Callable[[], bool] | None
+         ) -> NavigationResult:
+    """``action.run(steps)``, cancelled as soon as ``stop`` says so."""
+    if stop is None:
+        return action.run(steps)
+    for _ in range(steps):
+        if stop():
+            action.cancel()
+        if action.step().done:
+            return action.result()
+    return action.run(0)  # out of steps: aborted, as run does
 
 
 def _point_along(path: tuple[tuple[float, float], ...], here: tuple[float, float],

@@ -42,6 +42,7 @@ class Blocker(StrEnum):
     PERSON = "person"  #: someone stands in a doorway on the way
     NO_PATH = "no_path"  #: no way exists even with every door open
     OBSTRUCTED = "obstructed"  #: something the map lacks stays in the way, nobody known
+    STOPPED = "stopped"  #: the person walking with the robot showed the stop gesture
 
 
 @dataclass(frozen=True, slots=True)

@@ -40,6 +40,9 @@ def drive(context: SkillContext, goal: Pose, escort: str | None = None) -> Outco
 def _motion_outcome(context: SkillContext, report: MoveReport) -> Outcome:
     if report.reached:
         return Outcome.finished(f"moved {report.distance:.1f} m", distance=report.distance)
+    if report.blocker is Blocker.STOPPED:
+        return Outcome.failed(ErrorCode.STOPPED, f"{report.person or 'someone'} showed me to "
+                              "stop", person=report.person)
     if report.blocker is Blocker.DOOR_CLOSED and report.door:
         context.beliefs.door_closed(report.door)
         return Outcome.failed(ErrorCode.DOOR_CLOSED, f"the {report.door} is closed",
@@ -106,6 +109,8 @@ class Follow(Skill):
             return Outcome.failed(ErrorCode.NO_PERSON, "I have nobody to follow")
         goal = resolve_target(context, str(args["to"])) if args.get("to") else None
         report = context.robot.follow(person, goal)
+        if report.blocker is Blocker.STOPPED:  # the person showed stop: following ends here
+            return Outcome.finished(f"followed {person} until they showed stop", person=person)
         if not report.reached:
             return Outcome.failed(ErrorCode.LOST_PERSON, f"I could not follow {person}")
         return Outcome.finished(f"followed {person}", person=person)

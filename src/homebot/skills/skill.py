@@ -54,6 +54,7 @@ class ErrorCode(StrEnum):
     NOT_DELIVERED = "not_delivered"  #: the person did not take the object
     NOT_REACHED = "not_reached"  #: the robot is not where it drove to
     LOST_PERSON = "lost_person"  #: the person followed or guided is no longer there
+    STOPPED = "stopped"  #: the person walked with showed the stop gesture: the robot stopped
     DOOR_LOCKED = "door_locked"  #: the door did not open
     NO_ANSWER = "no_answer"  #: nobody answered
     # cancelled
