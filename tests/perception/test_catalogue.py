@@ -92,3 +92,10 @@ def test_bad_catalogue_entries_name_file_and_line(tmp_path: Path, old: str, new:
     assert main(["world", "check", str(path)]) == 2
     err = capsys.readouterr().err
     assert expected in err and "Traceback" not in err
+
+
+def test_the_catalogue_survives_a_round_trip() -> None:
+    world = World.from_yaml_text(WORLD)
+    again = World.from_dict(world.to_dict())
+    assert object_catalogue(again) == object_catalogue(world)
+    assert again.placements["bench"].model.height == 0.5
