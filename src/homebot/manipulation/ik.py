@@ -19,7 +19,14 @@ _POSTURE_GAIN = 0.2  #: how strongly the null space pulls towards the preferred 
 
 def _rotation_error(current: np.ndarray, target: np.ndarray) -> np.ndarray:
     """The small rotation (axis × angle) taking ``current`` to ``target``."""
-    error: np.ndarray = 0.5 * np.cross(current.T, target.T).sum(axis=0)
+    a, b = current, target  # columns: the frames' axes; sum of a_i × b_i, written out
+    error: np.ndarray = 0.5 * np.array([
+        a[1, 0] * b[2, 0] - a[2, 0] * b[1, 0] + a[1, 1] * b[2, 1] - a[2, 1] * b[1, 1]
+        + a[1, 2] * b[2, 2] - a[2, 2] * b[1, 2],
+        a[2, 0] * b[0, 0] - a[0, 0] * b[2, 0] + a[2, 1] * b[0, 1] - a[0, 1] * b[2, 1]
+        + a[2, 2] * b[0, 2] - a[0, 2] * b[2, 2],
+        a[0, 0] * b[1, 0] - a[1, 0] * b[0, 0] + a[0, 1] * b[1, 1] - a[1, 1] * b[0, 1]
+        + a[0, 2] * b[1, 2] - a[1, 2] * b[0, 2]])
     return error
 
 
@@ -35,6 +42,8 @@ def solve_ik(scene: PlanningScene, position: np.ndarray, rotation: np.ndarray,
     keeps the elbow where the seed had it. ``torso`` holds the torso at that height. None
     when no seed converges.
     """
+    damping = _DAMPING ** 2 * np.eye(6)
+    identity = np.eye(len(scene.lower))
     weights = np.ones(len(scene.lower))
     weights[0] = _TORSO_WEIGHT if torso is None else 0.0
     for seed in seeds:
@@ -46,14 +55,14 @@ def solve_ik(scene: PlanningScene, position: np.ndarray, rotation: np.ndarray,
             scene.set(q)
             here, turn = scene.site()
             error = np.concatenate((position - here, _rotation_error(turn, rotation)))
-            if np.linalg.norm(error[:3]) < _POSITION_TOLERANCE and \
-                    np.linalg.norm(error[3:]) < _ANGLE_TOLERANCE:
+            if float(error[:3] @ error[:3]) < _POSITION_TOLERANCE ** 2 and \
+                    float(error[3:] @ error[3:]) < _ANGLE_TOLERANCE ** 2:
                 found: np.ndarray = q
                 return found
             jac = scene.jacobian() * weights
-            inverse = jac.T @ np.linalg.inv(jac @ jac.T + _DAMPING ** 2 * np.eye(6))
+            inverse = np.linalg.solve(jac @ jac.T + damping, jac).T
             step = inverse @ error
-            step += (np.eye(len(q)) - inverse @ jac) @ (_POSTURE_GAIN * (rest - q))
+            step += (identity - inverse @ jac) @ (_POSTURE_GAIN * (rest - q))
             step *= weights
             largest = np.max(np.abs(step))
             if largest > _MAX_STEP:
