@@ -98,20 +98,30 @@ def camera_pose(head: HeadState, height: float = CAMERA_HEIGHT) -> np.ndarray:
 
 
 class _Buffers:
-    """Depth (ray parameter = depth, rays have unit optical z), base colour and shading."""
+    """Depth (ray parameter = depth, rays have unit optical z), the colour seen (an index
+    into ``colours``) and its shading."""
 
-    def __init__(self, shape: tuple[int, int]) -> None:
-        self.depth = np.full(shape, np.inf)
-        self.rgb = np.zeros((*shape, 3))
-        self.shade = np.ones(shape)
+    def __init__(self, shape: tuple[int, int], norms: np.ndarray) -> None:
+        self.norms = norms  #: each pixel's ray length
+        self.depth = np.full(shape, np.inf, dtype=np.float32)
+        self.colour = np.zeros(shape, dtype=np.int16)
+        self.colours: list[Sequence[int]] = [(0, 0, 0)]
+        self.shade = np.ones(shape, dtype=np.float32)
 
     def write(self, window: tuple[slice, slice], t: np.ndarray, rgb: Sequence[int],
               shade: np.ndarray) -> None:
         depth = self.depth[window]
         nearer = t < depth
-        depth[nearer] = t[nearer]
-        self.rgb[window][nearer] = rgb
-        self.shade[window][nearer] = shade[nearer]
+        np.copyto(depth, t, where=nearer)
+        self.colours.append(rgb)
+        np.copyto(self.colour[window], len(self.colours) - 1, where=nearer)
+        np.copyto(self.shade[window], shade, where=nearer)
+
+    def rgb(self) -> np.ndarray:
+        """The base colour of every pixel, (h, w, 3)."""
+        palette = np.array(self.colours, dtype=np.float32)
+        image: np.ndarray = palette[self.colour]
+        return image
 
 
 class CameraSimulator:
@@ -131,6 +141,8 @@ class CameraSimulator:
         self.intrinsics = intrinsics
         self.noise = noise
         self._rays = intrinsics.rays()
+        #: each ray's length (a rotation keeps it), for the shading's cosines
+        self._norms = np.linalg.norm(self._rays, axis=-1).astype(np.float32)
 
     def render(self, stamp: float, robot: tuple[float, float, float], head: HeadState,
                solids: Sequence[Solid]) -> RgbdFrame:
@@ -141,9 +153,10 @@ class CameraSimulator:
         base_to_map = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
         rotation = base_to_map @ pose[:3, :3]  # optical -> map
         origin = base_to_map @ pose[:3, 3] + (x, y, 0.0)
-        rays = self._rays @ rotation.T  # (h, w, 3) map-frame directions, unit optical depth
+        # (h, w, 3) map-frame directions, unit optical depth
+        rays = (self._rays @ rotation.T).astype(np.float32)
         shape = rays.shape[:2]
-        buffers = _Buffers(shape)
+        buffers = _Buffers(shape, self._norms)
         everywhere = (slice(0, shape[0]), slice(0, shape[1]))
         self._floor(buffers, origin, rays)
         self._walls(buffers, origin, rays, rotation, everywhere)
@@ -162,8 +175,7 @@ class CameraSimulator:
     def _floor(self, buffers: _Buffers, origin: np.ndarray, rays: np.ndarray) -> None:
         down = rays[..., 2] < -1e-9
         t = np.where(down, -origin[2] / np.where(down, rays[..., 2], -1.0), np.inf)
-        norm = np.linalg.norm(rays, axis=-1)
-        buffers.write((slice(None), slice(None)), t, _FLOOR_RGB, -rays[..., 2] / norm)
+        buffers.write((slice(None), slice(None)), t, _FLOOR_RGB, -rays[..., 2] / buffers.norms)
 
     def _walls(self, buffers: _Buffers, origin: np.ndarray, rays: np.ndarray,
                rotation: np.ndarray, everywhere: tuple[slice, slice]) -> None:
@@ -183,7 +195,7 @@ class CameraSimulator:
               rays: np.ndarray, segment: tuple[float, float, float, float]) -> None:
         x0, y0, x1, y1 = segment
         dx, dy = rays[..., 0], rays[..., 1]
-        norm = np.sqrt(np.einsum("...i,...i->...", rays, rays))
+        norm = buffers.norms[window]
         ex, ey = x1 - x0, y1 - y0
         ax, ay = x0 - origin[0], y0 - origin[1]
         denominator = dx * ey - dy * ex
@@ -256,7 +268,7 @@ class CameraSimulator:
             edges |= self.rng.random(depth.shape) < _DROPOUT
             depth = np.where(edges, np.nan, depth)
         shade = 0.45 + 0.55 * np.clip(buffers.shade, 0.0, 1.0)
-        rgb = buffers.rgb * shade[..., None]
+        rgb = buffers.rgb() * shade[..., None]
         if self.noise:
             rgb = rgb + self.rng.normal(0.0, 3.0, rgb.shape)
         return RgbdFrame(stamp, np.clip(rgb, 0, 255).astype(np.uint8),
@@ -293,8 +305,7 @@ def _box(buffers: _Buffers, window: tuple[slice, slice], origin: np.ndarray,
         facing = np.where(later, np.abs(component), facing)
         leave = np.fmin(leave, np.fmax(t_low, t_high))
     hit = (enter <= leave) & (enter > 0)
-    norm = np.sqrt(np.einsum("...i,...i->...", d, d))
-    buffers.write(window, np.where(hit, enter, np.inf), rgb, facing / norm)
+    buffers.write(window, np.where(hit, enter, np.inf), rgb, facing / buffers.norms[window])
 
 
 def _cylinder(buffers: _Buffers, window: tuple[slice, slice], origin: np.ndarray,
@@ -319,7 +330,7 @@ def _cylinder(buffers: _Buffers, window: tuple[slice, slice], origin: np.ndarray
     cap = (t_top > 0) & (px * px + py * py <= radius * radius)
     t = np.where(side, t_side, np.inf)
     t = np.where(cap & (t_top < t), t_top, t)
-    norm = np.linalg.norm(d, axis=-1)
+    norm = buffers.norms[window]
     hx, hy = ox + t_side * d[..., 0], oy + t_side * d[..., 1]
     side_facing = np.abs(hx * d[..., 0] + hy * d[..., 1]) / (radius * norm)
     facing = np.where(cap & (t == t_top), np.abs(d[..., 2]) / norm, side_facing)
@@ -340,7 +351,7 @@ def _sphere(buffers: _Buffers, window: tuple[slice, slice], origin: np.ndarray,
     t = (-b - np.sqrt(np.maximum(disc, 0.0))) / (2 * a)
     hit = (disc >= 0) & (t > 0)
     points = o + t[..., None] * d
-    facing = np.abs(np.einsum("...i,...i->...", points, d)) / (radius * np.sqrt(a))
+    facing = np.abs(np.einsum("...i,...i->...", points, d)) / (radius * buffers.norms[window])
     buffers.write(window, np.where(hit, t, np.inf), solid.rgb, facing)
 
 
