@@ -37,7 +37,7 @@ def test_engines_never_import_the_simulator(package: str) -> None:
     assert _imports_of(package, ("homebot.sim",)) == []
 
 
-@pytest.mark.parametrize("package", ["navigation", "embodied"])
+@pytest.mark.parametrize("package", ["navigation", "embodied", "perception"])
 def test_the_action_perception_layer_sees_the_world_only_through_the_body(package: str) -> None:
     assert _imports_of(package, ("homebot.sim",)) == []
 
