@@ -43,7 +43,7 @@ def test_the_action_perception_layer_sees_the_world_only_through_the_body(packag
 
 
 def test_the_simulator_never_imports_the_robots_algorithms() -> None:
-    algorithms = ("homebot.embodied", "homebot.navigation.localisation",
+    algorithms = ("homebot.embodied", "homebot.perception", "homebot.navigation.localisation",
                   "homebot.navigation.likelihood", "homebot.navigation.local_planner",
                   "homebot.navigation.dwa", "homebot.navigation.navigate")
     assert _imports_of("sim", algorithms) == []
