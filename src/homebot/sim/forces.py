@@ -93,11 +93,15 @@ class ForceProfile:
         if not self.pulses:
             return None
         end = until if until is not None else max(p.end for p in self.pulses)
-        for k in range(math.ceil(end / step) + 1):
-            t = k * step
-            if float(np.linalg.norm(self.at(t))) > threshold:
-                return t
-        return None
+        times = step * np.arange(math.ceil(end / step) + 1)
+        total = np.zeros((len(times), 3))
+        for pulse in self.pulses:
+            ramp = min(pulse.ramp, (pulse.end - pulse.start) / 2)
+            scale = np.clip(np.minimum((times - pulse.start) / ramp, (pulse.end - times) / ramp),
+                            0.0, 1.0)
+            total += scale[:, None] * np.asarray(pulse.force, dtype=float)
+        above = np.flatnonzero(np.linalg.norm(total, axis=1) > threshold)
+        return float(times[above[0]]) if len(above) else None
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,44 @@
+"""Physical HRI in MuJoCo, judged by the physics: handover, receiving, tool use, bad scenes."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("mujoco")
+
+from homebot.bench.manipulation_hri import handover_episode, receive_episode
+from homebot.cli import main
+from homebot.sim.hri import InteractionScene, SceneError
+
+
+def test_handover_releases_on_a_pull_and_holds_through_bumps() -> None:
+    pulled = handover_episode(5, 0, pull=True)
+    assert pulled.pull_above is not None and pulled.correct
+    assert pulled.left_hand_at is not None and pulled.left_hand_at >= pulled.pull_above
+    unpulled = handover_episode(5, 1, pull=False)
+    assert unpulled.pull_above is None and unpulled.left_hand_at is None
+    assert unpulled.decided_at is None and unpulled.correct
+
+
+def test_receive_takes_the_bottle_from_the_person() -> None:
+    result = receive_episode(3)
+    assert result.closed_at is not None and result.let_go_at is not None
+    assert result.held and result.success
+
+
+def test_the_watering_scenario_waters_the_plant(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["scenario", "water_plant", "--seed", "2", "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["success"] and summary["watered_l"] >= 0.3 and summary["spilled_l"] <= 0.03
+
+
+def test_a_bad_scene_is_an_error_that_names_the_file(tmp_path: Path) -> None:
+    with pytest.raises(SceneError, match="no interaction scene 'nowhere'"):
+        InteractionScene("nowhere")
+    broken = tmp_path / "broken.xml"
+    broken.write_text("<mujoco><worldbody><body><geom type='sphere'/></body></mujoco>")
+    with pytest.raises(SceneError, match=r"broken\.xml: not a usable MJCF scene"):
+        InteractionScene(broken)
