@@ -15,6 +15,7 @@ from __future__ import annotations
 import itertools
 import math
 import statistics
+import time
 from dataclasses import dataclass
 from typing import Any
 
@@ -136,6 +137,7 @@ class HandoverResult:
     decided_at: float | None  #: when the robot opened its hand
     left_hand_at: float | None  #: when the bottle truly left the fingers
     bumps: int
+    seconds: float = 0.0  #: simulated
 
     @property
     def delay(self) -> float | None:
@@ -175,13 +177,15 @@ def handover_episode(seed: int, index: int, *, pull: bool | None = None,
         scene.step()
         if left is None and scene.time > settle and not _in_hand(scene):
             left = scene.time - settle
-    return HandoverResult(trial.pull_above, behaviour.released_at, left, trial.bumps)
+    return HandoverResult(trial.pull_above, behaviour.released_at, left, trial.bumps, scene.time)
 
 
 def handover_figures(seed: int, trials: int = 100) -> dict[str, Any]:
     """Handover over ``trials`` seeded people: released within 0.5 s of a pull above the
     threshold, and never without one (a fifth of the people never pull; most bump)."""
+    began = time.perf_counter()
     results = [handover_episode(seed, k) for k in range(trials)]
+    wall = time.perf_counter() - began
     pulled = [r for r in results if r.pull_above is not None]
     unpulled = [r for r in results if r.pull_above is None]
     delays = [r.delay for r in pulled if r.delay is not None]
@@ -200,6 +204,7 @@ def handover_figures(seed: int, trials: int = 100) -> dict[str, Any]:
         "released_before_threshold": len(early),
         "median_delay_s": round(statistics.median(delays), 3) if delays else None,
         "max_delay_s": round(max(delays), 3) if delays else None,
+        "times_real_time": round(sum(r.seconds for r in results) / wall, 1),
         "success": all(r.correct for r in results),
     }
 
@@ -220,6 +225,7 @@ class GuidedResult:
     hand_deviations: tuple[float, ...]  #: the hand's distance from the person's path
     collisions: int  #: ticks the base's footprint overlapped a wall or furniture
     arrived: bool  #: the robot's hand ended within 0.5 m of the person's
+    seconds: float = 0.0  #: simulated
 
     @property
     def median_deviation(self) -> float:
@@ -334,13 +340,16 @@ def guided_episode(seed: int, index: int) -> GuidedResult:
             collisions += 1
     arrived = float(np.linalg.norm(scene.hand_world()[:2] - path[-1])) < 0.5
     length = float(sum(math.dist(a, b) for a, b in itertools.pairwise(route)))
-    return GuidedResult(length, tuple(deviations), tuple(hand_deviations), collisions, arrived)
+    return GuidedResult(length, tuple(deviations), tuple(hand_deviations), collisions, arrived,
+                        scene.time)
 
 
 def guided_figures(seed: int, routes: int = 20) -> dict[str, Any]:
     """Guided walks over ``routes`` seeded routes: median deviation of the base from the
     person's path (target ≤ 10 cm) and collisions of its footprint (target none)."""
+    began = time.perf_counter()
     results = [guided_episode(seed, k) for k in range(routes)]
+    wall = time.perf_counter() - began
     medians = [r.median_deviation for r in results]
     every = [d for r in results for d in r.deviations]
     return {
@@ -353,6 +362,7 @@ def guided_figures(seed: int, routes: int = 20) -> dict[str, Any]:
             d for r in results for d in r.hand_deviations), 4),
         "routes_with_collision": sum(1 for r in results if r.collisions),
         "arrived": sum(1 for r in results if r.arrived),
+        "times_real_time": round(sum(r.seconds for r in results) / wall, 1),
         "success": statistics.median(every) <= 0.10 and not any(r.collisions for r in results),
     }
 
@@ -389,13 +399,13 @@ def reach(scene: InteractionScene, position: np.ndarray, rotation: np.ndarray,
 class CarryResult:
     """One carry, judged by the table's true pose."""
 
-    lifted_at: float | None  #: when the robot began lifting (its own decision)
-    person_lift_at: float  #: when the person began lifting
+    lifted_at: float | None  #: seconds after the person began lifting that the robot did
     lowered: bool  #: the robot ended with the table down (phase done, table on its legs)
     max_tilt_deg: float  #: worst tilt of the table top while it was off the floor
     max_height: float  #: how high the table was carried (m)
     travelled: float  #: how far the table's centre moved on the floor (m)
     dropped: bool  #: the robot's fingers lost the table
+    seconds: float = 0.0  #: simulated
 
     @property
     def success(self) -> bool:
@@ -475,8 +485,9 @@ def carry_table_episode(seed: int, index: int = 0) -> CarryResult:
         scene.step()
     travelled = float(np.linalg.norm(scene.body_position("table")[:2] - start_xy))
     down_now = scene.body_position("table")[2] - floor_height < 0.02
-    return CarryResult(lifted_at, 0.0, behaviour.phase is CarryPhase.DONE and down_now,
-                       round(max_tilt, 3), round(max_height, 3), round(travelled, 3), dropped)
+    return CarryResult(lifted_at, bool(behaviour.phase is CarryPhase.DONE and down_now),
+                       round(max_tilt, 3), round(float(max_height), 3), round(travelled, 3),
+                       dropped, scene.time)
 
 
 def _eased(a: np.ndarray, b: np.ndarray, speed: float,
@@ -511,16 +522,22 @@ def _tracked_pitch(scene: InteractionScene, rng: np.random.Generator) -> float:
 def carry_table_figures(seed: int, trials: int = 5) -> dict[str, Any]:
     """Carrying a table with a person over ``trials`` seeded carries: the table's worst
     tilt while off the floor (target ≤ 3°), lifted and lowered with the person."""
+    began = time.perf_counter()
     results = [carry_table_episode(seed, k) for k in range(trials)]
+    wall = time.perf_counter() - began
     return {
         "trials": trials,
         "max_tilt_deg": max(r.max_tilt_deg for r in results),
         "median_max_tilt_deg": round(statistics.median(r.max_tilt_deg for r in results), 3),
+        "max_tilt_deg_while_held": max((r.max_tilt_deg for r in results if not r.dropped),
+                                       default=None),
         "lift_detected_after_s": [None if r.lifted_at is None else round(r.lifted_at, 2)
                                   for r in results],
         "lowered": sum(1 for r in results if r.lowered),
         "dropped": sum(1 for r in results if r.dropped),
         "travelled_m": [r.travelled for r in results],
+        "carried": sum(1 for r in results if r.success),
+        "times_real_time": round(sum(r.seconds for r in results) / wall, 1),
         "success": all(r.success for r in results),
     }
 
