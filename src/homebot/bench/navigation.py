@@ -62,6 +62,8 @@ __all__ = ["add_arguments", "run"]
 _REACHED = 0.3  #: metres from the goal, by the truth
 _TOLERANCE = 0.15  #: metres: the navigation's own goal tolerance (by its pose estimate)
 _HEADING_TOLERANCE = 0.2  #: radians
+_CLEARING_WAIT = 120.0  #: seconds the bench waits for people to leave a restart spot
+_CLEAR_SPOT = 0.4  #: metres beyond the robot's radius a restart spot keeps from legs
 _GOAL_CLEARANCE = 0.45  #: a random free goal keeps this far from walls and furniture
 # Nobody here asks people to step aside (the executive does that for the robot), so the
 # robot waits for the way to clear as long as its budget allows.
@@ -315,7 +317,10 @@ def _drive(name: str, world: World, navigator: Navigator, targets: list[Pose],
     previous: Pose | None = None
     for target in targets:
         if previous is not None and math.dist(sim.robot_pose[:2], previous.xy()) > _REACHED:
-            body.teleport(previous)  # the last goal was missed: start where it should have
+            # The last goal was missed: start where it should have, once nobody stands
+            # there (carrying the robot onto someone's feet is no collision of its own).
+            _wait_until_clear(body, previous)
+            body.teleport(previous)
         truth = Pose(*sim.robot_pose)
         velocities.clear()
         source = _pose_source(args.pose, sim, body, navigator, truth, args.seed,
@@ -357,6 +362,16 @@ def _drive(name: str, world: World, navigator: Navigator, targets: list[Pose],
     outcome.cycles = controller.seconds
     outcome.wall_seconds = time.perf_counter() - began
     return outcome
+
+
+def _wait_until_clear(body: SimBody, spot: Pose) -> None:
+    """Let the people walk on (the robot standing still) until none stands at ``spot``."""
+    body.command_velocity(Twist())
+    for _ in range(int(_CLEARING_WAIT / body.tick_period)):
+        if all(math.dist(leg, spot.xy()) > body.radius + _CLEAR_SPOT
+               for leg in body.people.legs()):
+            return
+        body.tick()
 
 
 def _pose_source(kind: str, sim: Simulation, body: SimBody, navigator: Navigator, truth: Pose,
