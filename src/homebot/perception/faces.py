@@ -285,8 +285,8 @@ class FaceMemory:
         seed: the bank's layout and the forest's randomness.
     """
 
-    def __init__(self, detector: FaceDetector, threshold: float = 1.0, trees: int = 60,
-                 features: int = 600, seed: int = 0) -> None:
+    def __init__(self, detector: FaceDetector, threshold: float = 1.1, trees: int = 100,
+                 features: int = 2000, seed: int = 0) -> None:
         self.detector = detector
         self.threshold = threshold
         self.trees = trees
