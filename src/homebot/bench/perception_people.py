@@ -129,9 +129,9 @@ def face_figures(seed: int) -> dict[str, Any]:
     memory = FaceMemory(detector, seed=seed)
     enrol_cpu = 0.0
     for identity in known:
-        views = [face_view(identity, rng)[0] for _ in range(40)]
+        enrolment = [face_view(identity, rng)[0] for _ in range(40)]
         started = time.thread_time()
-        memory.enrol(identity.name, views)
+        memory.enrol(identity.name, enrolment)
         enrol_cpu += time.thread_time() - started
     enrol_ms = 1000 * enrol_cpu / len(known)
     detected = identified = asked = 0
