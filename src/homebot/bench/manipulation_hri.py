@@ -614,3 +614,4 @@ def receive_episode(seed: int, index: int = 0) -> ReceiveResult:
         "object", "right_pad") and abs(scene.body_position("object")[2] - scene.hand_world()[2]) \
         < 0.06
     return ReceiveResult(behaviour.phase.value, behaviour.closed_at, state["let_go"], held)
+

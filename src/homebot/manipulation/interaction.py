@@ -18,7 +18,9 @@ arm's displacement and the wrist.
   (pitch 0.02 rad), then keeps the table level while following in the plane, and
   lowers when the person does.
 - ``DoorOpening``: holds a door handle compliant laterally and in yaw while the base
-  backs away, so the hand follows the handle's arc round the hinge.
+  backs away, so the hand follows the handle's arc round the hinge. Not yet shown in
+  physics: in a first door scene the handle slid out of the fingers along their length
+  before the door moved (see the report of issue 18, part B).
 """
 
 from __future__ import annotations
