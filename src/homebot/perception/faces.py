@@ -31,7 +31,8 @@ import numpy as np
 
 from homebot.errors import HomebotError
 
-__all__ = ["FaceDetector", "FaceMemory", "FaceWindow", "HaarFeatures", "integral_image"]
+__all__ = ["FaceDetector", "FaceError", "FaceMemory", "FaceWindow", "HaarFeatures",
+           "integral_image"]
 
 Window = tuple[int, int, int]  #: x, y, side in pixels
 _TELLING = 200  #: features the forest rates highest, for the distance to a person's views
