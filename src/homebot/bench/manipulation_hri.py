@@ -213,7 +213,7 @@ def handover_figures(seed: int, trials: int = 100) -> dict[str, Any]:
 
 GUIDE_SPEED = 0.5  #: m/s the person walks
 _CLEARANCE = 0.5  #: metres the person's route keeps from walls and furniture
-_HAND_REACH = 0.85  #: metres from the base's centre to the held-out hand, about
+_HAND_REACH = 1.0  #: metres from the base's centre to the held-out hand, at most
 
 
 @dataclass(frozen=True)
@@ -268,7 +268,7 @@ def guided_route(seed: int, index: int) -> tuple[tuple[float, float], ...]:
         heading = math.atan2(path[1][1] - path[0][1], path[1][0] - path[0][0])
         behind = (start[0] - _HAND_REACH * math.cos(heading),
                   start[1] - _HAND_REACH * math.sin(heading))
-        if world.footprint_problem(*behind, radius=world.model.robot.radius + 0.05):
+        if world.footprint_problem(*behind, radius=world.model.robot.radius + 0.1):
             continue
         return tuple((float(p[0]), float(p[1])) for p in path)
     raise RuntimeError("no guided route found in the apartment")  # the map is broken

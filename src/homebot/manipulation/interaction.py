@@ -215,15 +215,17 @@ class GuidedByHand:
             self.led = True
             direction = np.array([dx, dy]) / pull
             ahead = pull
+            turning = True
             if pose is not None:
                 along = self._along_trail(np.array(pose[:2]), pose[2])
                 ahead = float(np.dot(along, [dx, dy]))
                 if ahead > self.dead_band:  # led onwards: in the hand's footsteps
                     direction = along
-                else:  # pushed back or aside: give way along the push itself
-                    ahead = pull
-            speed = min(self.speed, self.gain * (ahead - self.dead_band))
-            wz = self.turn_gain * math.atan2(hand[1], hand[0])
+                else:  # pushed back: give way straight back, off no trail, not turning
+                    direction = np.array([-1.0, 0.0]) if dx < 0 else np.zeros(2)
+                    ahead, turning = abs(dx), False
+            speed = max(0.0, min(self.speed, self.gain * (ahead - self.dead_band)))
+            wz = self.turn_gain * math.atan2(hand[1], hand[0]) if turning else 0.0
             twist = Twist(speed * float(direction[0]), speed * float(direction[1]),
                           max(-1.0, min(1.0, wz)))
         return Command(self.target, self.rotation, self.compliance, gripper_closed=True,
