@@ -253,7 +253,7 @@ def guided_route(seed: int, index: int) -> tuple[tuple[float, float], ...]:
                        if door.state is not DoorState.OPEN)
     rng = np.random.default_rng([seed, _RNG_STREAM, 2, index])
     (x0, x1), (y0, y1) = _bounds(world)
-    for _ in range(2000):
+    for _ in range(5000):
         start = (float(rng.uniform(x0, x1)), float(rng.uniform(y0, y1)))
         goal = (float(rng.uniform(x0, x1)), float(rng.uniform(y0, y1)))
         if not 3.0 <= math.dist(start, goal) <= 8.0:
@@ -268,7 +268,7 @@ def guided_route(seed: int, index: int) -> tuple[tuple[float, float], ...]:
         heading = math.atan2(path[1][1] - path[0][1], path[1][0] - path[0][0])
         behind = (start[0] - _HAND_REACH * math.cos(heading),
                   start[1] - _HAND_REACH * math.sin(heading))
-        if world.footprint_problem(*behind, radius=world.model.robot.radius + 0.1):
+        if world.footprint_problem(*behind, radius=world.model.robot.radius + 0.05):
             continue
         return tuple((float(p[0]), float(p[1])) for p in path)
     raise RuntimeError("no guided route found in the apartment")  # the map is broken
