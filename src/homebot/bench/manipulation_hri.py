@@ -265,13 +265,24 @@ def guided_route(seed: int, index: int) -> tuple[tuple[float, float], ...]:
                                      static_clearance=_CLEARANCE)
         if path is None or len(path) < 2:
             continue
-        heading = math.atan2(path[1][1] - path[0][1], path[1][0] - path[0][0])
-        behind = (start[0] - _HAND_REACH * math.cos(heading),
-                  start[1] - _HAND_REACH * math.sin(heading))
-        if world.footprint_problem(*behind, radius=world.model.robot.radius + 0.05):
+        heading = _start_heading(path)
+        behind = [(start[0] - f * _HAND_REACH * math.cos(heading),
+                   start[1] - f * _HAND_REACH * math.sin(heading)) for f in (0.5, 0.75, 1.0)]
+        if any(world.footprint_problem(*point, radius=world.model.robot.radius + 0.05)
+               for point in behind):
             continue
         return tuple((float(p[0]), float(p[1])) for p in path)
     raise RuntimeError("no guided route found in the apartment")  # the map is broken
+
+
+def _start_heading(path: Any) -> float:
+    """The way the route leaves its start: towards its first point half a metre away (a
+    planner's first waypoint may be a few centimetres off to a side)."""
+    x0, y0 = path[0]
+    for x, y in path[1:]:
+        if math.dist((x0, y0), (x, y)) >= 0.5:
+            return math.atan2(y - y0, x - x0)
+    return math.atan2(path[-1][1] - y0, path[-1][0] - x0)
 
 
 _NAVIGATORS: dict[int, Any] = {}
@@ -300,7 +311,7 @@ def guided_episode(seed: int, index: int) -> GuidedResult:
     route = guided_route(seed, index)
     scene = InteractionScene("guide")
     scene.set_arm(HOLD_OUT, torso=_TORSO, gripper=0.0)
-    heading = math.atan2(route[1][1] - route[0][1], route[1][0] - route[0][0])
+    heading = _start_heading(route)
     hand_local = reading(scene).hand_position
     c, s = math.cos(heading), math.sin(heading)
     scene.move_base(route[0][0] - c * hand_local[0] + s * hand_local[1],
