@@ -174,8 +174,10 @@ class ArmSimulation:
             geom_type = {"box": mujoco.mjtGeom.mjGEOM_BOX,
                          "cylinder": mujoco.mjtGeom.mjGEOM_CYLINDER,
                          "sphere": mujoco.mjtGeom.mjGEOM_SPHERE}[obj.shape]
+            # round things roll, and rolling friction brings them to rest (condim 6)
             body.add_geom(name=obj.name, type=geom_type, size=obj.geom_size(), mass=obj.mass,
-                          friction=[obj.friction, 0.01, 0.001], condim=4, priority=1,
+                          friction=[obj.friction, 0.01, 0.002],
+                          condim=4 if obj.shape == "box" else 6, priority=1,
                           contype=_WORLD_CONTYPE, conaffinity=_WORLD_CONAFFINITY,
                           rgba=list(obj.rgba))
         self.model = spec.compile()

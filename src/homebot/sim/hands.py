@@ -145,6 +145,8 @@ def world_scene(world: World, placements: Iterable[str],
 _SCENE_REACH = 1.4
 _HELD_RISE = 0.02  #: metres above its resting height for a held object to count as lifted
 _AT_REST = 0.02  #: m/s: an object slower than this has come to rest
+_SETTLE_LIMIT = 3.0  #: seconds of physics for objects to come to rest when the robot leaves
+_SETTLE_STEP = 0.1
 
 
 class SimHands:
@@ -194,13 +196,27 @@ class SimHands:
         if self._driver is None:
             return
         if tuple(self.simulation.robot_pose) != self._base:
-            self._remember()
-            self._driver = None
+            self._leave()
             return
         self._driver.sim.step(seconds)
         self._follow_physics()
 
     # ------------------------------------------------------------ building
+
+    def _leave(self) -> None:
+        """The robot drives off: what is falling or rolling behind it comes to rest (up to
+        ``_SETTLE_LIMIT`` s more of physics); the truth takes every object as it then lies."""
+        assert self._driver is not None
+        sim = self._driver.sim
+        held = sim.held_object()
+        for _ in range(round(_SETTLE_LIMIT / _SETTLE_STEP)):
+            if all(self._resting(name) for name in sim.objects
+                   if name != held and name not in self._gone):
+                break
+            sim.step(_SETTLE_STEP)
+        self._follow_physics(final=True)
+        self._remember()
+        self._driver = None
 
     def _remember(self) -> None:
         """Keep the arm's state and what its fingers hold for the next scene."""
@@ -235,7 +251,7 @@ class SimHands:
 
     # ------------------------------------------------------------ truth follows physics
 
-    def _follow_physics(self) -> None:
+    def _follow_physics(self, final: bool = False) -> None:
         assert self._driver is not None
         sim, truth = self._driver.sim, self.simulation
         in_hand = {name: hand for hand, name in truth.hands.items() if name}
@@ -255,7 +271,7 @@ class SimHands:
                     truth.object_location[name] = HAND_PREFIX + free[0]
                     truth.events.record("sim.arm", what="lifted", object=name, hand=free[0])
                 continue
-            if gripped or not self._resting(name):
+            if gripped or not (final or self._resting(name)):
                 continue
             where = self._surface_under(position, body)
             xy = (round(float(position[0]), 4), round(float(position[1]), 4))
