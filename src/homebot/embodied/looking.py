@@ -25,6 +25,7 @@ __all__ = ["ObjectWorld", "TableLook"]
 
 _CAMERA_HEIGHT = 1.3  #: metres: the head camera above the floor
 _HALF_FIELD = 0.5  #: radians: half the camera's horizontal field of view, less a margin
+_HALF_HEIGHT = 0.34  #: radians: half its vertical field of view, less a margin
 _REACH = 0.6  #: metres from the approach pose within which the robot sees the surface
 _ON_SURFACE = 0.03  #: metres outside the footprint an estimate may lie (its own error)
 _SAME_OBJECT = 0.05  #: metres between estimates from two views of one object
@@ -80,20 +81,26 @@ class TableLook:
 
     def _views(self, placement: str, pose: Pose,
                height: float) -> list[tuple[float, float]]:
-        """Head angles (pan, tilt) whose frames together cover the placement's surface."""
+        """Head angles (pan, tilt) whose frames together cover the placement's surface: its
+        near edge and its far edge in one tilt when they fit, else in two."""
         footprint = self.world.placements[placement].footprint
         corners = list(footprint.exterior.coords)[:-1]
         bearings = [_wrap(math.atan2(y - pose.y, x - pose.x) - pose.theta) for x, y in corners]
-        centre = footprint.centroid
-        distance = max(math.dist(pose.xy(), (centre.x, centre.y)), 0.3)
-        tilt = math.atan2(_CAMERA_HEIGHT - height, distance)
+        drop = _CAMERA_HEIGHT - height
+        near = max(footprint.exterior.distance(Point(pose.xy())), 0.1)
+        far = max(math.dist(pose.xy(), corner) for corner in corners)
+        steep, flat = math.atan2(drop, near), math.atan2(drop, far)
+        if steep - flat <= 2 * _HALF_HEIGHT:
+            tilts = [(steep + flat) / 2]
+        else:
+            tilts = [steep - _HALF_HEIGHT, flat + _HALF_HEIGHT]
         low, high = min(bearings), max(bearings)
         span = high - low
         if span > math.pi:  # the robot stands over the surface: look ahead only
-            return [(0.0, tilt)]
+            return [(0.0, tilt) for tilt in tilts]
         views = max(1, math.ceil((span - 0.2) / (2 * _HALF_FIELD)))
         step = span / views
-        return [(low + step * (index + 0.5), tilt) for index in range(views)]
+        return [(low + step * (index + 0.5), tilt) for tilt in tilts for index in range(views)]
 
     def _detection(self, estimate: ObjectEstimate, point: tuple[float, float],
                    placement: str) -> Detection:
