@@ -85,3 +85,17 @@ def test_embodied_runs_are_deterministic_by_seed(apartment: World,
         return run.simulation.robot_pose
 
     assert drive(2) == drive(2)
+
+
+@pytest.mark.parametrize("door_state", [DoorState.OPEN, DoorState.LOCKED])
+def test_a_door_ahead_that_someone_stands_in_is_what_stops_the_robot(
+        apartment: World, apartment_navigator: Navigator, door_state: DoorState) -> None:
+    run = _run(apartment, apartment_navigator)
+    run.simulation.door_state["bedroom door"] = door_state
+    run.simulation.place_person_in_doorway("bedroom door", "Maria")
+    report = run.robot.move_to(Pose(*apartment.placements["bed"].approach))
+    assert not report.reached
+    assert report.door == "bedroom door"
+    assert report.blocker in (Blocker.PERSON, Blocker.DOOR_CLOSED)
+    assert report.person in (None, "Maria")  # named when the robot sees who it is
+    assert run.simulation.collisions == []

@@ -50,6 +50,7 @@ from homebot.world import World
 __all__ = ["BodyRobot", "Companions"]
 
 _STOP_BEFORE_DOOR = 0.6  #: metres in front of a door where the robot stops to look at it
+_SEES_THE_DOOR = 3.0  #: metres within which the robot, stopped short, looks at a door ahead
 _DOORWAY = 0.35  #: laser returns this close to a door's centre mean something stands in it
 _GOAL_TOLERANCE = 0.15  #: metres: a leg ends this close to its end point
 _HEADING_TOLERANCE = 0.2  #: radians: the final turn ends this close to the goal's heading
@@ -142,12 +143,20 @@ class BodyRobot(Robot):
         travelled = 0.0
         passed: list[str] = []
         companion = escort or self._walking_with
-        for leg in legs:
+        for index, leg in enumerate(legs):
             report = self._drive_leg(leg.target, avoid_doors, final=leg.door is None,
                                      companion=companion)
             travelled += report.distance
             if not report.reached:
                 self._record_view()
+                # Stopped short: a door still ahead that is shut, or that the laser sees
+                # someone (or something) stand in, is what keeps the robot out.
+                ahead = self._door_ahead_blocked(legs[index:])
+                if ahead is not None:
+                    door, blocker, person = ahead
+                    self.events.record("robot.blocked", door=door, blocker=blocker.value)
+                    return MoveReport(False, self.pose(), travelled, blocker, door, person,
+                                      tuple(passed))
                 return MoveReport(False, self.pose(), travelled, report.blocker, report.door,
                                   report.person, tuple(passed))
             if leg.door is not None:
@@ -200,6 +209,23 @@ class BodyRobot(Robot):
             return None
         person = self._person_near(position, 0.8)
         return (Blocker.PERSON, person) if person else None
+
+    def _door_ahead_blocked(self, legs: list[_Leg]
+                            ) -> tuple[str, Blocker, str | None] | None:
+        """The first door still to pass, within sight, that is shut or has something
+        standing in it: (door, blocker, who if known)."""
+        here = self.pose().xy()
+        for leg in legs:
+            if leg.door is None:
+                continue
+            position = self.world.doors[leg.door].position
+            if math.dist(here, position) > _SEES_THE_DOOR:
+                continue
+            if self.percepts.door_is_open(leg.door) is False:
+                return (leg.door, Blocker.DOOR_CLOSED, None)
+            if self._laser_returns_near(position) > 0:
+                return (leg.door, Blocker.PERSON, self._person_near(position, 0.8))
+        return None
 
     def _laser_returns_near(self, point: tuple[float, float]) -> int:
         points = self._scan_on_map()

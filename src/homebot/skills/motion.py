@@ -49,7 +49,7 @@ def _motion_outcome(context: SkillContext, report: MoveReport) -> Outcome:
                               door=report.door)
     if report.blocker is Blocker.PERSON and report.door:
         return Outcome.failed(ErrorCode.PATH_BLOCKED,
-                              f"{report.person} is standing in the {report.door}",
+                              f"{report.person or 'someone'} is standing in the {report.door}",
                               door=report.door, person=report.person)
     if report.blocker is Blocker.PERSON and report.person:
         return Outcome.failed(ErrorCode.PATH_BLOCKED, f"{report.person} is standing in my way",
