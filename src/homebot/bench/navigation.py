@@ -316,10 +316,11 @@ def _drive(name: str, world: World, navigator: Navigator, targets: list[Pose],
     velocities: list[tuple[float, Twist]] = []
     previous: Pose | None = None
     for target in targets:
-        if previous is not None and math.dist(sim.robot_pose[:2], previous.xy()) > _REACHED:
-            # The last goal was missed: start where it should have, once nobody stands
-            # there (carrying the robot onto someone's feet is no collision of its own).
-            _wait_until_clear(body, previous)
+        # The last goal was missed: start where it should have, once nobody stands there
+        # (carrying the robot onto someone's feet is no collision of its own; with someone
+        # standing there for good, it goes on from where it stopped).
+        if previous is not None and math.dist(sim.robot_pose[:2], previous.xy()) > _REACHED \
+                and _wait_until_clear(body, previous):
             body.teleport(previous)
         truth = Pose(*sim.robot_pose)
         velocities.clear()
@@ -364,14 +365,16 @@ def _drive(name: str, world: World, navigator: Navigator, targets: list[Pose],
     return outcome
 
 
-def _wait_until_clear(body: SimBody, spot: Pose) -> None:
-    """Let the people walk on (the robot standing still) until none stands at ``spot``."""
+def _wait_until_clear(body: SimBody, spot: Pose) -> bool:
+    """Let the people walk on (the robot standing still) until none stands at ``spot``;
+    False if someone still does after a while."""
     body.command_velocity(Twist())
     for _ in range(int(_CLEARING_WAIT / body.tick_period)):
         if all(math.dist(leg, spot.xy()) > body.radius + _CLEAR_SPOT
                for leg in body.people.legs()):
-            return
+            return True
         body.tick()
+    return False
 
 
 def _pose_source(kind: str, sim: Simulation, body: SimBody, navigator: Navigator, truth: Pose,
