@@ -66,3 +66,20 @@ def test_a_robot_lost_elsewhere_sees_nothing_on_the_table() -> None:
     assert isinstance(robot, BodyRobot)
     robot.localisation.initialise(Pose(1.0, 1.0, 0.0), spread=0.01, angle_spread=0.01)
     assert robot.perceive_objects("table") == []
+
+
+@pytest.mark.parametrize(("closer", "turned"), [(0.12, 0.2), (-0.1, -0.2)])
+def test_objects_at_the_near_edge_are_seen_from_an_imprecise_approach(closer: float,
+                                                                      turned: float) -> None:
+    text = WORLD.replace("  - {name: soup,", "  - {name: lemon, category: fruit, placement: table, "
+                         "position: [3.4, 1.72]}\n  - {name: soup,")
+    world = World.from_yaml_text(text)
+    simulation = Simulation(world, seed=3)
+    robot = embodied_robot(simulation, Navigator(world))
+    assert isinstance(robot, BodyRobot)
+    x, y, theta = world.placements["table"].approach
+    pose = Pose(x + closer * math.cos(theta), y + closer * math.sin(theta), theta + turned)
+    simulation.robot_pose = (pose.x, pose.y, pose.theta)
+    robot.localisation.initialise(pose, spread=0.01, angle_spread=0.01)
+    seen = robot.perceive_objects("table")
+    assert sorted(d.label for d in seen) == ["apple", "cereal", "cola", "lemon"]

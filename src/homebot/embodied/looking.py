@@ -24,8 +24,12 @@ from homebot.world import World, surface_height
 __all__ = ["ObjectWorld", "TableLook"]
 
 _CAMERA_HEIGHT = 1.3  #: metres: the head camera above the floor
-_HALF_FIELD = 0.5  #: radians: half the camera's horizontal field of view, less a margin
-_HALF_HEIGHT = 0.34  #: radians: half its vertical field of view, less a margin
+#: radians: half the camera's horizontal field of view less a margin, so that neighbouring
+#: views overlap by about 0.3 rad: an object cut by one view's edge is whole in the next
+_HALF_FIELD = 0.36
+_HALF_HEIGHT = 0.25  #: radians: the same for the vertical field of view
+_TRUNCATED_REACH = 0.15  #: metres: an estimate cut by the picture's edge this near a whole one
+
 _REACH = 0.6  #: metres from the approach pose within which the robot sees the surface
 _ON_SURFACE = 0.03  #: metres outside the footprint an estimate may lie (its own error)
 _SAME_OBJECT = 0.05  #: metres between estimates from two views of one object
@@ -112,10 +116,13 @@ class TableLook:
 
 def _merged(seen: list[tuple[ObjectEstimate, tuple[float, float]]],
             ) -> list[tuple[ObjectEstimate, tuple[float, float]]]:
-    """One estimate per object: of two closer than ``_SAME_OBJECT``, the surer one."""
+    """One estimate per object: of two closer than ``_SAME_OBJECT``, the surer one; an
+    estimate cut by the picture's edge only where no whole one lies near it."""
     kept: list[tuple[ObjectEstimate, tuple[float, float]]] = []
-    for estimate, point in sorted(seen, key=lambda item: -item[0].confidence):
-        if all(math.dist(point, other) > _SAME_OBJECT for _, other in kept):
+    ordered = sorted(seen, key=lambda item: (item[0].truncated, -item[0].confidence))
+    for estimate, point in ordered:
+        reach = _TRUNCATED_REACH if estimate.truncated else _SAME_OBJECT
+        if all(math.dist(point, other) > reach for _, other in kept):
             kept.append((estimate, point))
     return kept
 

@@ -46,6 +46,7 @@ class ObjectEstimate:
     height: float  #: metres above the support plane
     rgb: tuple[int, int, int]  #: median colour seen
     mass: float  #: kg, the recognised object's
+    truncated: bool = False  #: it reaches the picture's edge: part of it may be outside
 
 
 def match_positions(estimated: Sequence[Sequence[float]], truth: Sequence[Sequence[float]],
@@ -115,6 +116,18 @@ class Recogniser:
         return [(str(classes[i]), float(votes[row, i])) for row, i in enumerate(best)]
 
 
+def _at_edge(frame: RgbdFrame, points: np.ndarray, margin: int = 3) -> bool:
+    """Whether any of ``points`` (base frame) shows within ``margin`` pixels of the edge."""
+    rotation, translation = frame.camera_pose[:3, :3], frame.camera_pose[:3, 3]
+    optical = (points - translation) @ rotation
+    k = frame.intrinsics
+    depth = np.maximum(optical[:, 2], 1e-6)
+    u = k.fx * optical[:, 0] / depth + k.cx
+    v = k.fy * optical[:, 1] / depth + k.cy
+    return bool(np.any((u < margin) | (u > k.width - 1 - margin) | (v < margin)
+                       | (v > k.height - 1 - margin)))
+
+
 class TabletopPerception:
     """The whole pipeline for one frame: segment, describe, recognise, estimate.
 
@@ -143,5 +156,6 @@ class TabletopPerception:
             estimates.append(ObjectEstimate(
                 label or "object", entry.category if entry else "object", confidence,
                 segment.position(), max(height, major), height,
-                (int(rgb[0]), int(rgb[1]), int(rgb[2])), entry.mass if entry else 0.0))
+                (int(rgb[0]), int(rgb[1]), int(rgb[2])), entry.mass if entry else 0.0,
+                _at_edge(frame, segment.points)))
         return estimates
