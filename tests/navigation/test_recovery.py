@@ -92,6 +92,21 @@ def test_a_person_in_the_way_is_driven_round_when_there_is_another_way(
     assert simulation.collisions == []
 
 
+def test_a_way_round_earns_its_own_time(apartment: World,
+                                        apartment_navigator: Navigator) -> None:
+    # The first path is 2 m; the way round the kitchen, past Maria, some 12 m: a budget
+    # sized by the first path alone (23 s here) runs out on the way round.
+    simulation, body = _sim(apartment, apartment_navigator)
+    body.teleport(_WEST_OF_IT)
+    simulation.move_person("Maria", _CORRIDOR)
+    navigation = RecoveringNavigation(body, apartment_navigator, MotionSearchPlanner(),
+                                      lambda: _truth(simulation), RecoveryPolicy(wait_budget=10.0))
+    attempt = navigation.drive(Pose(9.5, 2.62, -math.pi / 2))
+    assert attempt.reached and attempt.replans >= 1
+    assert attempt.duration > 2.0 * 6.0 + 10.0  # longer than the first budget
+    assert simulation.collisions == []
+
+
 def _bathroom_doorway_blocked(world: World, navigator: Navigator
                               ) -> tuple[Simulation, SimBody, RecoveringNavigation]:
     """The robot in the hall, someone just inside the bathroom's only door."""
