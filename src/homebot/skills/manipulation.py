@@ -147,12 +147,9 @@ class Give(Skill):
         if hand is None:
             return Outcome.failed(ErrorCode.NOT_HOLDING, "I have nothing to give")
         label = context.beliefs.holding[hand]
-        position = context.beliefs.person_at.get(person)
-        if position is not None and math.dist(context.robot.pose().xy(), position) > 1.5:
-            goal = resolve_target(context, person)
-            moved = drive(context, goal) if goal else None
-            if moved is not None and moved.status is not Status.FINISHED:
-                return moved
+        moved = _come_to(context, person)
+        if moved is not None:
+            return moved
         speak(context, here_is(person, str(label)))
         context.robot.hand_over(hand, person)
         return Outcome.finished(f"offered it to {person}", hand=hand, person=person, object=label)
@@ -191,12 +188,9 @@ class Receive(Skill):
         hand = context.beliefs.free_hand()
         if hand is None:
             return Outcome.failed(ErrorCode.HANDS_FULL, "both my hands are full")
-        position = context.beliefs.person_at.get(person)
-        if position is not None and math.dist(context.robot.pose().xy(), position) > 1.5:
-            goal = resolve_target(context, person)
-            moved = drive(context, goal) if goal else None
-            if moved is not None and moved.status is not Status.FINISHED:
-                return moved
+        moved = _come_to(context, person)
+        if moved is not None:
+            return moved
         wanted = f"the {args['object']}" if args.get("object") else "it"
         speak(context, f"{person}, please put {wanted} in my hand")
         context.robot.receive(hand, person)
@@ -220,3 +214,16 @@ class Receive(Skill):
     def assume(self, context: SkillContext, args: Mapping[str, Any], finished: Outcome) -> None:
         if args.get("object"):
             context.beliefs.took(str(args["object"]), finished.data["hand"])
+
+
+def _come_to(context: SkillContext, person: str) -> Outcome | None:
+    """Drive up to ``person`` when they are believed more than arm's length away; the
+    motion's outcome if it did not get there, else None."""
+    position = context.beliefs.person_at.get(person)
+    if position is None or math.dist(context.robot.pose().xy(), position) <= 1.5:
+        return None
+    goal = resolve_target(context, person)
+    moved = drive(context, goal) if goal else None
+    if moved is not None and moved.status is not Status.FINISHED:
+        return moved
+    return None
