@@ -52,6 +52,7 @@ __all__ = ["BodyRobot", "Companions"]
 _STOP_BEFORE_DOOR = 0.6  #: metres in front of a door where the robot stops to look at it
 _SEES_THE_DOOR = 3.0  #: metres within which the robot, stopped short, looks at a door ahead
 _DOORWAY = 0.35  #: laser returns this close to a door's centre mean something stands in it
+_JAMB = 0.05  #: metres inside a door's jambs where returns may still be the jambs
 _GOAL_TOLERANCE = 0.15  #: metres: a leg ends this close to its end point
 _HEADING_TOLERANCE = 0.2  #: radians: the final turn ends this close to the goal's heading
 _PARTICLES_SHOWN = 500
@@ -200,15 +201,20 @@ class BodyRobot(Robot):
     def _record_replan(self, found: bool) -> None:
         self.events.record("robot.replan", found=found)
 
-    def _door_blocker(self, door: str) -> tuple[Blocker, str | None] | None:
-        """Standing before ``door``: is it shut, or does someone stand in it?"""
-        if not self.percepts.door_is_open(door):
+    def _door_blocker(self, door: str, *, from_afar: bool = False
+                      ) -> tuple[Blocker, str | None] | None:
+        """Is ``door`` shut, or does someone (or something) stand in it? None: the way
+        through is clear. Standing before it, a door the robot cannot tell is open counts
+        as shut; ``from_afar`` it may not tell, and only what stands in it counts."""
+        state = self.percepts.door_is_open(door)
+        if state is False or (state is None and not from_afar):
             return (Blocker.DOOR_CLOSED, None)
-        position = self.world.doors[door].position
-        if self._laser_returns_near(position) == 0:
+        model = self.world.doors[door]
+        # Returns off the door's jambs are no one standing in it, however narrow it is.
+        reach = min(_DOORWAY, model.width / 2 - _JAMB)
+        if self._laser_returns_near(model.position, reach) == 0:
             return None
-        person = self._person_near(position, 0.8)
-        return (Blocker.PERSON, person) if person else None
+        return (Blocker.PERSON, self._person_near(model.position, 0.8))
 
     def _door_ahead_blocked(self, legs: list[_Leg]
                             ) -> tuple[str, Blocker, str | None] | None:
@@ -216,21 +222,18 @@ class BodyRobot(Robot):
         standing in it: (door, blocker, who if known)."""
         here = self.pose().xy()
         for leg in legs:
-            if leg.door is None:
+            if leg.door is None or math.dist(
+                    here, self.world.doors[leg.door].position) > _SEES_THE_DOOR:
                 continue
-            position = self.world.doors[leg.door].position
-            if math.dist(here, position) > _SEES_THE_DOOR:
-                continue
-            if self.percepts.door_is_open(leg.door) is False:
-                return (leg.door, Blocker.DOOR_CLOSED, None)
-            if self._laser_returns_near(position) > 0:
-                return (leg.door, Blocker.PERSON, self._person_near(position, 0.8))
+            blocked = self._door_blocker(leg.door, from_afar=True)
+            if blocked is not None:
+                return (leg.door, *blocked)
         return None
 
-    def _laser_returns_near(self, point: tuple[float, float]) -> int:
+    def _laser_returns_near(self, point: tuple[float, float], reach: float) -> int:
         points = self._scan_on_map()
         return int(np.count_nonzero(np.hypot(points[:, 0] - point[0],
-                                             points[:, 1] - point[1]) < _DOORWAY))
+                                             points[:, 1] - point[1]) < reach))
 
     def _person_in_the_way(self, target: Pose, avoid_doors: frozenset[str]) -> str | None:
         """Who stands on the way the robot would take if nobody were there (or, with no

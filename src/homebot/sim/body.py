@@ -169,7 +169,9 @@ class SimBody(Body):
         return Odometry(self.now(), Pose(*self._odometry), self._velocity)
 
     def scan(self) -> LaserScan:
-        if self._scan is None:
+        # One scan per tick; time that passed outside the ticks (a door opened, people
+        # walked on while the robot talked) gives a new one.
+        if self._scan is None or self._scan.stamp != self.now():
             self._scan = self.laser.scan(self.now(), self.sim.robot_pose,
                                          self.sim.closed_doors(), self.people.legs())
             components = self.components
