@@ -3,12 +3,24 @@
 espeak-ng's C library keeps one global synthesiser per process, so ``Voice`` holds the
 loaded library and serialises every call with a lock. Audio comes back as 16-bit mono
 samples at espeak-ng's own rate (22 050 Hz) and is resampled to the recogniser's 16 kHz.
+
+Reproducible: the Klatt synthesiser keeps state in C statics from one utterance to the next
+(its F0 flutter is three sines of a ``time_count`` that only grows, period 20 calls; the
+output filter and echo buffer keep the last utterance's tail), so the same text in the
+same voice came out differently on each call (5 different waveforms cycling for one
+sentence; about 20 % of the signal's energy differs), and a benchmark's audio depended
+on everything spoken before it in the process. ``espeak_ng_SetRandSeed``, libc ``srand``
+and re-initialising do not reset that state. Where the platform can fork, each utterance
+is therefore synthesised in a forked child of this process, which never synthesises
+itself: every utterance starts from the same state, so a text in a voice gives the same
+samples whatever was said before (``reproducible=False`` synthesises in-process).
 """
 
 from __future__ import annotations
 
 import ctypes
 import functools
+import os
 import threading
 from dataclasses import dataclass
 from typing import Any
@@ -57,7 +69,8 @@ VOICES: tuple[VoiceSettings, ...] = (
 class Voice:
     """espeak-ng, loaded once: ``synthesise(text, settings)`` returns 16 kHz int16 samples."""
 
-    def __init__(self) -> None:
+    def __init__(self, *, reproducible: bool = hasattr(os, "fork")) -> None:
+        self.reproducible = reproducible
         try:
             import espeakng_loader
         except ImportError:
@@ -112,12 +125,43 @@ class Voice:
         encoded = text.encode("utf-8") + b"\0"
         with self._lock:
             self._use(settings)
-            self._chunks = []
-            self._lib.espeak_Synth(encoded, len(encoded), 0, 0, 0, _CHARS_UTF8, None, None)
-            self._lib.espeak_Synchronize()
-            chunks, self._chunks = self._chunks, []
-        audio = np.concatenate(chunks) if chunks else np.zeros(0, dtype=np.int16)
+            if self.reproducible:
+                audio = self._synthesise_in_child(encoded)
+            else:
+                audio = self._synthesise_here(encoded)
         return resample(audio, self.rate, SAMPLE_RATE)
+
+    def _synthesise_here(self, encoded: bytes) -> NDArray[np.int16]:
+        self._chunks = []
+        self._lib.espeak_Synth(encoded, len(encoded), 0, 0, 0, _CHARS_UTF8, None, None)
+        self._lib.espeak_Synchronize()
+        chunks, self._chunks = self._chunks, []
+        return np.concatenate(chunks) if chunks else np.zeros(0, dtype=np.int16)
+
+    def _synthesise_in_child(self, encoded: bytes) -> NDArray[np.int16]:
+        """Synthesise in a forked child (see the module docstring) and read its samples
+        through a pipe; the child only calls espeak-ng and writes."""
+        read, write = os.pipe()
+        pid = os.fork()
+        if pid == 0:  # pragma: no cover - runs in the child, which exits at once
+            status = 1
+            try:
+                os.close(read)
+                data = self._synthesise_here(encoded).tobytes()
+                view = memoryview(data)
+                while view:
+                    view = view[os.write(write, view):]
+                status = 0
+            finally:
+                os._exit(status)
+        os.close(write)
+        with os.fdopen(read, "rb") as handle:
+            data = handle.read()
+        _, status = os.waitpid(pid, 0)
+        if status != 0:  # pragma: no cover - the child crashed
+            raise SpeechError("espeak-ng failed to synthesise; reinstall the speech extra: "
+                              "pip install --force-reinstall espeakng-loader")
+        return np.frombuffer(data, dtype=np.int16).copy()
 
     def phonemes(self, word: str, settings: VoiceSettings = VoiceSettings()) -> str:
         """How espeak-ng pronounces ``word``, in IPA (used for words not in the dictionary)."""
