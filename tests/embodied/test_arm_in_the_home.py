@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 
 import pytest
@@ -70,3 +71,23 @@ def test_a_broken_arm_model_in_a_world_file_names_the_file_and_line(tmp_path: Pa
                        encoding="utf-8")
     with pytest.raises(WorldError, match=r"missing\.yaml: line \d+: robot\.arm"):
         World.load(missing)
+
+
+def test_out_of_reach_the_robot_steps_beside_the_nearest_free_side_of_the_surface() -> None:
+    from homebot.embodied.hands import ArmedBodyRobot
+    from homebot.navigation import Navigator
+    from homebot.scenarios.embodied import embodied_robot
+
+    world = World.load("apartment")
+    robot = embodied_robot(Simulation(world, seed=1), Navigator(world))
+    assert isinstance(robot, ArmedBodyRobot)
+    # The desk (x 9.2-10.8, y 9.15-9.85) stands against the office's wall at y = 10: an
+    # object at its back-left corner is reached from its left side, never from behind.
+    stands = robot._stands_before("rubik cube", (9.3, 9.75))
+    first = stands[0]
+    assert first.x < 9.2 - 0.3 and 9.3 < first.y < 9.85
+    assert abs(math.atan2(9.75 - first.y, 9.3 - first.x) - first.theta) < 1e-9
+    assert all(stand.y < 9.9 for stand in stands)  # the wall side offers no place
+    assert all(world.footprint_problem(stand.x, stand.y) is None for stand in stands)
+    assert [math.dist((s.x, s.y), (9.3, 9.75)) for s in stands] == sorted(
+        math.dist((s.x, s.y), (9.3, 9.75)) for s in stands)

@@ -3,18 +3,21 @@
 A grasp plans a grasp and an arm motion (``homebot.manipulation``), moves the arm, closes
 the gripper and lifts; whether the object is then in the hand is what the gripper and the
 wrist sense, and what the simulator's physics made of the grasp, never a die. When no
-grasp is feasible from where the robot stands, it steps to the surface's edge in front of
-the object and tries once more. A release puts the object on a free spot of the placement
-(or drops it into a bin). The robot has one arm: the world's second hand name is kept for
-the skills, but a grasp with the gripper full is refused (the hand stays empty).
+grasp is feasible from where the robot stands, it steps beside the surface where it is
+nearest the object (not against a wall or other furniture) and tries again, twice at most.
+A release puts the object on a free spot of the placement (or drops it into a bin). The
+robot has one arm: the world's second hand name is kept for the skills, but a grasp with the
+gripper full is refused (the hand stays empty).
 """
 
 from __future__ import annotations
 
+import itertools
 import math
 from typing import Any
 
-from shapely.geometry import Point
+import numpy as np
+from shapely.geometry import LineString, Point
 
 from homebot.embodied.robot import BodyRobot
 from homebot.manipulation.control import ArmControl
@@ -24,6 +27,8 @@ from homebot.robot import Detection, Pose
 __all__ = ["ArmedBodyRobot"]
 
 _STAND_OFF = 0.4  #: metres from a surface's edge where the robot stands to reach over it
+_STANDS_TRIED = 2  #: sides of the surface the robot steps to before it gives up
+_STAND_STEP = 0.05  #: metres between the spots along a side that are tried
 _BIN_CATEGORIES = ("bin", "trash", "trash can", "waste bin")
 
 
@@ -45,11 +50,16 @@ class ArmedBodyRobot(BodyRobot):
         if hand in self._holding:
             return
         result = self.arm.pick(detection.label, self.pose(), detection.position, detection.mass)
-        if result.outcome is PickOutcome.UNREACHABLE:
-            stand = self._stand_before(detection.label, detection.position)
-            if stand is not None and self.move_to(stand).reached:
-                result = self.arm.pick(detection.label, self.pose(), detection.position,
-                                       detection.mass)
+        # Out of reach from here: step to the sides of the surface nearest the object.
+        stands = iter(self._stands_before(detection.label, detection.position)
+                      if result.outcome is PickOutcome.UNREACHABLE else ())
+        for stand in itertools.islice(stands, _STANDS_TRIED):
+            if not self.move_to(stand).reached:
+                continue
+            result = self.arm.pick(detection.label, self.pose(), detection.position,
+                                   detection.mass)
+            if result.outcome is not PickOutcome.UNREACHABLE:
+                break
         self.events.record("robot.pick", object=detection.label, outcome=result.outcome.value,
                            detail=result.detail,
                            planning=round(result.planning_seconds, 4))
@@ -87,22 +97,35 @@ class ArmedBodyRobot(BodyRobot):
             self.arm.holding = None
         return given
 
-    def _stand_before(self, name: str, seen_at: tuple[float, float] | None) -> Pose | None:
-        """A pose at the edge of the object's surface nearest to it, facing it."""
+    def _stands_before(self, name: str, seen_at: tuple[float, float] | None) -> list[Pose]:
+        """Poses beside the object's surface, facing the object, nearest to it first.
+
+        At most one per side of the surface: the free spot just off the side nearest
+        the object (a side against a wall or other furniture may offer none).
+        """
         where = self.arm.locate(name)
         point = seen_at if seen_at is not None else (where[:2] if where else None)
         if point is None:
-            return None
-        found = [(p.footprint.distance(Point(point)), p) for p in self.world.placements.values()
-                 if p.footprint.covers(Point(point))]
+            return []
+        seen = Point(point)
+        found = [(p.footprint.distance(seen), p) for p in self.world.placements.values()
+                 if p.footprint.covers(seen)]
         if not found:
-            return None
-        footprint = min(found, key=lambda pair: pair[0])[1].footprint
-        ring = footprint.exterior
-        edge = ring.interpolate(ring.project(Point(point)))
-        dx, dy = edge.x - point[0], edge.y - point[1]
-        norm = math.hypot(dx, dy) or 1.0
-        x, y = edge.x + dx / norm * _STAND_OFF, edge.y + dy / norm * _STAND_OFF
-        if self.world.footprint_problem(x, y) is not None:
-            return None
-        return Pose(x, y, math.atan2(point[1] - y, point[0] - x))
+            return []
+        ring = min(found, key=lambda pair: pair[0])[1].footprint.exterior
+        turn = 1.0 if ring.is_ccw else -1.0  # the outward normal is right of a ccw ring
+        stands: list[tuple[float, Pose]] = []
+        for start, end in itertools.pairwise(ring.coords):
+            side = LineString((start, end))
+            nx, ny = turn * (end[1] - start[1]) / side.length, turn * (start[0] - end[0]) / \
+                side.length
+            spots = []
+            for along in np.append(np.arange(0.0, side.length, _STAND_STEP), side.length):
+                edge = side.interpolate(float(along))
+                x, y = edge.x + nx * _STAND_OFF, edge.y + ny * _STAND_OFF
+                if self.world.footprint_problem(x, y) is None:
+                    spots.append((math.dist((x, y), point), x, y))
+            if spots:
+                distance, x, y = min(spots)
+                stands.append((distance, Pose(x, y, math.atan2(point[1] - y, point[0] - x))))
+        return [pose for _, pose in sorted(stands, key=lambda pair: pair[0])]
