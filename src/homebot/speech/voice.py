@@ -36,6 +36,7 @@ __all__ = ["VOICES", "Voice", "VoiceSettings", "espeak"]
 _AUDIO_OUTPUT_SYNCHRONOUS = 2
 _CHARS_UTF8 = 1
 _RATE, _VOLUME, _PITCH = 1, 2, 3
+_NO_VOICE = 3  # a child's exit status: espeak-ng has no such voice
 _IPA = 0x02
 
 _CALLBACK = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.POINTER(ctypes.c_short), ctypes.c_int,
@@ -124,43 +125,50 @@ class Voice:
             raise SpeechError("there is nothing to say: give some text")
         encoded = text.encode("utf-8") + b"\0"
         with self._lock:
-            self._use(settings)
             if self.reproducible:
-                audio = self._synthesise_in_child(encoded)
+                audio = self._synthesise_in_child(encoded, settings)
             else:
-                audio = self._synthesise_here(encoded)
+                audio = self._synthesise_here(encoded, settings)
         return resample(audio, self.rate, SAMPLE_RATE)
 
-    def _synthesise_here(self, encoded: bytes) -> NDArray[np.int16]:
+    def _synthesise_here(self, encoded: bytes, settings: VoiceSettings) -> NDArray[np.int16]:
+        self._use(settings)
         self._chunks = []
         self._lib.espeak_Synth(encoded, len(encoded), 0, 0, 0, _CHARS_UTF8, None, None)
         self._lib.espeak_Synchronize()
         chunks, self._chunks = self._chunks, []
         return np.concatenate(chunks) if chunks else np.zeros(0, dtype=np.int16)
 
-    def _synthesise_in_child(self, encoded: bytes) -> NDArray[np.int16]:
+    def _synthesise_in_child(self, encoded: bytes, settings: VoiceSettings
+                             ) -> NDArray[np.int16]:
         """Synthesise in a forked child (see the module docstring) and read its samples
-        through a pipe; the child only calls espeak-ng and writes."""
+        through a pipe. The child chooses the voice, synthesises and writes: this process
+        leaves espeak-ng's state alone (choosing voices over and over without speaking
+        made a child crash after 83 utterances)."""
         read, write = os.pipe()
         pid = os.fork()
         if pid == 0:  # pragma: no cover - runs in the child, which exits at once
             status = 1
             try:
                 os.close(read)
-                data = self._synthesise_here(encoded).tobytes()
+                data = self._synthesise_here(encoded, settings).tobytes()
                 view = memoryview(data)
                 while view:
                     view = view[os.write(write, view):]
                 status = 0
+            except SpeechError:
+                status = _NO_VOICE
             finally:
                 os._exit(status)
         os.close(write)
         with os.fdopen(read, "rb") as handle:
             data = handle.read()
         _, status = os.waitpid(pid, 0)
+        if os.WIFEXITED(status) and os.WEXITSTATUS(status) == _NO_VOICE:
+            self._use(settings)  # raises the SpeechError naming the voice
         if status != 0:  # pragma: no cover - the child crashed
-            raise SpeechError("espeak-ng failed to synthesise; reinstall the speech extra: "
-                              "pip install --force-reinstall espeakng-loader")
+            raise SpeechError(f"espeak-ng failed to synthesise (status {status}); reinstall "
+                              "the speech extra: pip install --force-reinstall espeakng-loader")
         return np.frombuffer(data, dtype=np.int16).copy()
 
     def phonemes(self, word: str, settings: VoiceSettings = VoiceSettings()) -> str:
