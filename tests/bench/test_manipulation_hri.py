@@ -9,7 +9,11 @@ import pytest
 
 pytest.importorskip("mujoco")
 
-from homebot.bench.manipulation_hri import handover_episode, receive_episode
+from homebot.bench.manipulation_hri import (
+    carry_table_episode,
+    handover_episode,
+    receive_episode,
+)
 from homebot.cli import main
 from homebot.sim.hri import InteractionScene, SceneError
 
@@ -42,3 +46,36 @@ def test_a_bad_scene_is_an_error_that_names_the_file(tmp_path: Path) -> None:
     broken.write_text("<mujoco><worldbody><body><geom type='sphere'/></body></mujoco>")
     with pytest.raises(SceneError, match=r"broken\.xml: not a usable MJCF scene"):
         InteractionScene(broken)
+
+
+def test_the_bottle_rides_along_when_the_base_drives() -> None:
+    # The base moves with a velocity, not by jumps: friction carries what the hand holds.
+    import numpy as np
+
+    from homebot.bench.manipulation_hri import _holding_scene, apply
+    from homebot.manipulation.compliance import Compliance
+    from homebot.manipulation.interaction import Command
+
+    scene, controller = _holding_scene()
+    hold = Command(controller.target_position, controller.target_rotation, Compliance(),
+                   gripper_closed=True)
+    for _ in range(30):
+        apply(scene, controller, hold)
+        scene.step()
+    before = scene.to_base(scene.body_position("object")) - scene.to_base(scene.hand_world())
+    scene.drive_base(0.5, 0.2, 0.3)
+    for _ in range(100):
+        apply(scene, controller, hold)
+        scene.step()
+    x, y, theta = scene.base_pose()
+    assert x == pytest.approx(0.5, abs=0.01) and y == pytest.approx(0.2, abs=0.01)
+    assert theta == pytest.approx(0.3, abs=0.01)
+    after = scene.to_base(scene.body_position("object")) - scene.to_base(scene.hand_world())
+    assert float(np.linalg.norm(after - before)) < 0.01
+
+
+def test_the_table_is_carried_level_with_the_person() -> None:
+    result = carry_table_episode(7, 3)
+    assert not result.dropped and result.lowered
+    assert result.max_tilt_deg <= 3.0 and result.max_height > 0.1 and result.travelled > 1.0
+    assert result.success

@@ -71,16 +71,30 @@ def test_guided_by_hand_follows_the_hands_trail_not_the_shortcut() -> None:
 
 
 def test_carry_table_waits_lifts_levels_and_lowers() -> None:
-    carry = CarryTable(HAND, np.eye(3), length=1.2)
+    carry = CarryTable(HAND, np.eye(3), length=1.2, torso=0.1)
     dt = 0.01
     carry.update(dt, _shift(), 0.01)
     assert carry.phase is CarryPhase.WAITING
     command = carry.update(dt, _shift(), 0.05)
     assert carry.phase is CarryPhase.CARRYING and command.hand_position[2] > HAND[2]
     for _ in range(100):
-        carry.update(dt, _shift(), 0.05)
+        command = carry.update(dt, _shift(), 0.05)
     assert carry.target[2] > HAND[2] + 0.05
-    carry.update(dt, _shift(), -0.05)
+    # The torso carries the height change; the arm keeps its posture.
+    assert command.torso == pytest.approx(min(0.5, 0.1 + carry.target[2] - HAND[2]))
+    # A wobble below level while the person's end stands still is not lowering.
+    for _ in range(30):
+        carry.update(dt, _shift(), 0.0)
+    for _ in range(5):
+        carry.update(dt, _shift(), -0.03)
+    assert carry.phase is CarryPhase.CARRYING
+    for _ in range(30):
+        carry.update(dt, _shift(), -0.05)
+        if carry.phase is CarryPhase.LOWERING:
+            break
+    assert carry.phase is CarryPhase.LOWERING
+    for _ in range(1000):  # the robot's end comes down, the table levels
+        carry.update(dt, _shift(), -0.05 if carry.target[2] > HAND[2] + 0.02 else 0.0)
     assert carry.phase is CarryPhase.LOWERING
     carry.update(dt, _shift(z=0.03), 0.0)  # the floor holds the hand up
     assert carry.phase is CarryPhase.DONE

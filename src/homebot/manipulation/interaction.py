@@ -263,23 +263,34 @@ class CarryTable:
 
     The robot holds its end; it reads the table's pitch (positive: the person's end is
     higher). A pitch over ``lift_pitch`` starts the carry. While carrying, the hand's
-    height follows the person's end (``level_gain`` per second on the height difference
-    over ``length``, the distance between the two ends), x, y and yaw are compliant and
-    the base drives and turns to bring the hand back to its grasping pose. Once the
-    person's end goes down past ``-lift_pitch`` after the table was up, the robot stops
-    following and lowers (levelling, and at least ``settle_speed``) until the floor holds
-    its end up: the hand stays above its target.
+    height follows the person's end: the behaviour estimates the person's end's height
+    (its own hand's height plus ``length · sin(pitch)``) and vertical speed with an
+    alpha-beta filter over the noisy pitch, and moves the hand's target at that speed
+    (feedforward) plus ``level_gain`` per second on the remaining height difference. The
+    torso lift carries the height change (``torso``: its height at the grasp), so the
+    arm keeps its posture and its reach; x, y and yaw are compliant and the base drives
+    and turns to bring the hand back to its grasping pose. Once the person's end goes
+    down past ``-lift_pitch`` after the table was up, the robot lowers with them (still
+    levelling, and at least ``settle_speed``) until the floor holds its end up: the hand
+    stays above its target while the person's end is back near the floor. The person's
+    end going down (its estimated speed), with the table pitched down or their end below
+    half the height it was carried at (the robot may follow so closely that the table
+    never pitches), tells lowering from an overshoot of the robot's.
     """
 
     def __init__(self, hand_position: np.ndarray, hand_rotation: np.ndarray, *,
                  length: float, lift_pitch: float = 0.02, level_gain: float = 8.0,
-                 max_lift_speed: float = 0.6, turn_gain: float = 1.0) -> None:
+                 max_lift_speed: float = 0.6, turn_gain: float = 1.0,
+                 torso: float | None = None, torso_range: tuple[float, float] = (0.0, 0.5),
+                 alpha: float = 0.2, beta: float = 0.02) -> None:
         self.start = np.asarray(hand_position, dtype=float).copy()
         self.target = self.start.copy()
         self.rotation = np.asarray(hand_rotation, dtype=float)
         self.length, self.lift_pitch = length, lift_pitch
         self.level_gain, self.max_lift_speed = level_gain, max_lift_speed
         self.turn_gain = turn_gain
+        self.torso, self.torso_range = torso, torso_range
+        self.alpha, self.beta = alpha, beta
         self.settle_speed = 0.05  #: m/s the hand goes down at least while lowering
         self.follow = GuidedByHand(hand_position, hand_rotation, gain=8.0, speed=0.6,
                                    turn_gain=0.0)
@@ -293,18 +304,37 @@ class CarryTable:
             pitch=AxisCompliance(stiffness=30.0, damping=2.0, max_force=4.0, min_force=0.2,
                                  span=0.5, positive=True, negative=True))
         self.max_pitch = 0.0
+        self.other: tuple[float, float] | None = None  #: the person's end: height, speed
+        self.confirm = 0.1  #: seconds the person's end must go down to start lowering
+        self._down_for = 0.0
+
+    def _track(self, dt: float, hand_z: float, pitch: float) -> tuple[float, float]:
+        """The alpha-beta filter over the person's end's height (base frame)."""
+        seen = hand_z + self.length * math.sin(pitch)
+        if self.other is None:
+            self.other = (seen, 0.0)
+        height, speed = self.other
+        predicted = height + speed * dt
+        residual = seen - predicted
+        self.other = (predicted + self.alpha * residual, speed + self.beta * residual / dt)
+        return self.other
 
     def update(self, dt: float, shift: np.ndarray, pitch: float) -> Command:
         """``pitch``: the table's pitch as the robot perceives it (rad)."""
         base = Twist()
+        other_height, other_speed = self._track(dt, float(self.target[2] + shift[2]), pitch)
         if self.phase is CarryPhase.WAITING and pitch > self.lift_pitch:
             self.phase = CarryPhase.CARRYING
         if self.phase is CarryPhase.CARRYING:
             self.highest = max(self.highest, self.target[2] - self.start[2])
-            if self.highest > 0.05 and pitch < -self.lift_pitch:
+            halfway = other_height < self.start[2] + 0.5 * self.highest
+            going_down = self.highest > 0.05 and (pitch < -self.lift_pitch or halfway) and \
+                other_speed < -self.settle_speed
+            self._down_for = self._down_for + dt if going_down else 0.0
+            if self._down_for >= self.confirm:  # their end goes down, not a wobble
                 self.phase = CarryPhase.LOWERING
         if self.phase in (CarryPhase.CARRYING, CarryPhase.LOWERING):
-            rate = self.level_gain * self.length * math.sin(pitch)
+            rate = other_speed + self.level_gain * self.length * math.sin(pitch)
             if self.phase is CarryPhase.LOWERING:  # down, at least slowly, to the floor
                 rate = min(rate, -self.settle_speed)
             rate = max(-self.max_lift_speed, min(self.max_lift_speed, rate))
@@ -312,13 +342,19 @@ class CarryTable:
         if self.phase is CarryPhase.CARRYING:  # realign the hand: the base follows
             planar = self.follow.update(shift).base
             base = Twist(planar.vx, planar.vy, self.turn_gain * float(shift[5]))
-        if self.phase is CarryPhase.LOWERING and float(shift[2]) > 0.015:
-            # The hand is held above its target: the table stands on its legs.
+        if self.phase is CarryPhase.LOWERING and float(shift[2]) > 0.015 and \
+                other_height < self.start[2] + 0.05:
+            # The hand is held above its target, the person's end is down: the table
+            # stands on its legs.
             self.phase = CarryPhase.DONE
             self.target[2] = self.target[2] + float(shift[2])
         self.max_pitch = max(self.max_pitch, abs(pitch))
+        torso = None
+        if self.torso is not None:  # the torso carries the height change
+            low, high = self.torso_range
+            torso = min(high, max(low, self.torso + float(self.target[2] - self.start[2])))
         return Command(self.target.copy(), self.rotation, self.compliance, gripper_closed=True,
-                       base=base)
+                       base=base, torso=torso)
 
 
 class DoorOpening:

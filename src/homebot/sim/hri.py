@@ -4,7 +4,13 @@
 each ``<include>``-ing the robot's ``arm.xml``) and offers what the arm's drivers would
 offer a torque-controlled arm: joint state, the hand's pose and Jacobian in the base
 frame, joint torque commands, the gripper, the torso lift and the wrist force-torque
-sensor; the base is kinematic (a mocap body) and moves where it is told. The seven arm
+sensor; the base is kinematic and moves where it is told. In ``arm.xml`` the base is a
+mocap body, which MuJoCo moves by jumps and takes to stand still: a hand driven along
+by a moving base would seem at rest to what it holds, and friction would not carry a
+held table along (the fingers slid along its handle by as much as the base drove). So
+the scene gives the base three joints (x, y, yaw) and drives them: ``drive_base`` sets
+a velocity the base keeps, integrated every physics step, and contacts see the hand's
+true velocity. ``move_base`` puts it somewhere at rest. The seven arm
 joints run on their torque motors: the scene turns their position servos off (gain 0)
 in its copy of the model, so compliance (``homebot.manipulation.compliance``) is all
 that holds the hand. The person's forces (``homebot.sim.forces``) are added to
@@ -33,6 +39,28 @@ _FINGER_OPEN = 0.07
 
 #: A force that acts on the scene: called before each physics step with (scene, time).
 Pusher = Callable[["InteractionScene", float], None]
+
+
+_BASE_JOINTS = ("base_x", "base_y", "base_yaw")
+
+
+def _with_driven_base(mujoco: Any, spec: Any) -> Any:
+    """Compile ``spec`` with the mocap base turned into a body on three joints (x, y, yaw)
+    that the scene drives kinematically; heavy (armature), so what the arm does within
+    one physics step hardly moves it, and it never touches the floor it stands on."""
+    base = spec.body("base")
+    if base is None:
+        raise ValueError("no body named 'base' (the robot's arm.xml is not included)")
+    base.mocap = False
+    heavy = 1.0e4
+    base.add_joint(name="base_x", type=mujoco.mjtJoint.mjJNT_SLIDE, axis=[1, 0, 0],
+                   armature=heavy)
+    base.add_joint(name="base_y", type=mujoco.mjtJoint.mjJNT_SLIDE, axis=[0, 1, 0],
+                   armature=heavy)
+    base.add_joint(name="base_yaw", type=mujoco.mjtJoint.mjJNT_HINGE, axis=[0, 0, 1],
+                   armature=heavy)
+    spec.add_exclude(bodyname1="world", bodyname2="base")
+    return spec.compile()
 
 
 class SceneError(HomebotError):
@@ -72,7 +100,7 @@ class InteractionScene:
         path = Path(scene) if isinstance(scene, Path) or str(scene).endswith(".xml") else (
             scene_path(str(scene)))
         try:
-            self.model = mujoco.MjModel.from_xml_path(str(path))
+            self.model = _with_driven_base(mujoco, mujoco.MjSpec.from_file(str(path)))
         except ValueError as error:  # MuJoCo's message names the file, line and problem
             first = str(error).strip().splitlines()[0] if str(error).strip() else "unreadable"
             raise SceneError(f"{path}: not a usable MJCF scene ({first}); fix the file or "
@@ -95,7 +123,10 @@ class InteractionScene:
         self._lift = model.actuator("torso_lift").id
         self._lift_qpos = joint("torso_lift").qposadr[0]
         self._base = model.body("base").id
-        self._mocap = model.body_mocapid[self._base]
+        self._base_qpos = np.array([joint(n).qposadr[0] for n in _BASE_JOINTS])
+        self._base_dof = np.array([joint(n).dofadr[0] for n in _BASE_JOINTS])
+        self._base_pose = np.zeros(3)  #: x, y, yaw: where the base is driven to
+        self._base_velocity = np.zeros(3)  #: world frame: vx, vy, wz
         self._grasp = model.site("grasp").id
         self._force = model.sensor("wrist_force")
         self._torque_sensor = model.sensor("wrist_torque")
@@ -140,9 +171,8 @@ class InteractionScene:
 
     def base_pose(self) -> tuple[float, float, float]:
         """The base's pose on the floor (x, y, yaw)."""
-        pos = self.data.mocap_pos[self._mocap]
-        w, _, _, z = self.data.mocap_quat[self._mocap]
-        return float(pos[0]), float(pos[1]), 2.0 * math.atan2(float(z), float(w))
+        x, y, theta = self._base_pose
+        return float(x), float(y), float(theta)
 
     def _base_rotation(self) -> np.ndarray:
         theta = self.base_pose()[2]
@@ -205,21 +235,37 @@ class InteractionScene:
         self.data.ctrl[self._lift] = float(np.clip(height, low, high))
 
     def move_base(self, x: float, y: float, theta: float) -> None:
-        """Put the kinematic base at a floor pose (the arm and what it holds come along)."""
-        self.data.mocap_pos[self._mocap] = (x, y, 0.0)
-        self.data.mocap_quat[self._mocap] = (math.cos(theta / 2), 0.0, 0.0, math.sin(theta / 2))
+        """Put the kinematic base at a floor pose, at rest (the arm and what it holds come
+        along)."""
+        self._base_pose = np.array([x, y, theta], dtype=float)
+        self._base_velocity = np.zeros(3)
+        self._hold_base()
+        self._mj.mj_forward(self.model, self.data)
+
+    def drive_base(self, vx: float, vy: float, wz: float) -> None:
+        """Drive the base at a velocity (world frame: m/s, m/s, rad/s) from the next step on;
+        it keeps that velocity until told otherwise."""
+        self._base_velocity = np.array([vx, vy, wz], dtype=float)
+
+    def _hold_base(self) -> None:
+        self.data.qpos[self._base_qpos] = self._base_pose
+        self.data.qvel[self._base_dof] = self._base_velocity
 
     # ------------------------------------------------------------ time
 
     def step(self) -> None:
         """One control period of physics, the person's forces renewed every physics step."""
         mj, model, data = self._mj, self.model, self.data
+        dt = model.opt.timestep
         for _ in range(self.substeps):
             if self.pushers:
                 data.xfrc_applied[:] = 0.0
                 for push in self.pushers:
                     push(self, float(data.time))
+            self._hold_base()
             mj.mj_step(model, data)
+            self._base_pose = self._base_pose + self._base_velocity * dt
+        self._hold_base()
 
     # ------------------------------------------------------------ ground truth
 
