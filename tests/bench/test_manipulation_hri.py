@@ -10,7 +10,9 @@ import pytest
 pytest.importorskip("mujoco")
 
 from homebot.bench.manipulation_hri import (
+    DoorVariant,
     carry_table_episode,
+    door_episode,
     handover_episode,
     receive_episode,
 )
@@ -75,7 +77,22 @@ def test_the_bottle_rides_along_when_the_base_drives() -> None:
 
 
 def test_the_table_is_carried_level_with_the_person() -> None:
-    result = carry_table_episode(7, 3)
+    result = carry_table_episode(0, 19)  # walks 1.3 m away and 3 deg to the side
     assert not result.dropped and result.lowered
     assert result.max_tilt_deg <= 3.0 and result.max_height > 0.1 and result.travelled > 1.0
     assert result.success
+
+
+def test_the_door_scenario_opens_and_shuts_the_door(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["scenario", "open_door", "--seed", "3", "--json"]) == 0
+    summary = json.loads(capsys.readouterr().out)
+    assert summary["success"] and summary["opened_deg"] >= 60.0 and summary["closed_deg"] <= 2.0
+
+
+def test_a_door_hinged_on_the_other_side_with_a_wrong_hinge_estimate() -> None:
+    # Hinged right (the scene file's door is hinged left), stiff, and the robot believes
+    # the hinge 5 cm further along the door than it is: the door's circle prevails.
+    door = DoorVariant("right", 0.85, 2.5, 3.0, (0.02, -0.05), (0.005, -0.005, 0.0))
+    result = door_episode(0, variant=door)
+    assert not result.lost_handle and not result.bumped
+    assert result.opened_deg >= 60.0 and result.closed_deg <= 2.0 and result.success

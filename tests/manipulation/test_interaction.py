@@ -8,6 +8,8 @@ import pytest
 from homebot.manipulation.interaction import (
     CarryPhase,
     CarryTable,
+    DoorMotion,
+    DoorPhase,
     GuidedByHand,
     Handover,
     Receive,
@@ -98,6 +100,30 @@ def test_carry_table_waits_lifts_levels_and_lowers() -> None:
     assert carry.phase is CarryPhase.LOWERING
     carry.update(dt, _shift(z=0.03), 0.0)  # the floor holds the hand up
     assert carry.phase is CarryPhase.DONE
+
+
+@pytest.mark.parametrize("side", [1.0, -1.0])
+def test_door_motion_pulls_the_handle_round_the_hinge_towards_the_robot(side: float) -> None:
+    # The hinge 0.7 m to one side of the handle; the hand is at the handle, 0.7 m ahead.
+    hand = np.array([0.7, 0.0, 0.95])
+    hinge = (0.78, side * 0.7)
+    door = DoorMotion(hinge, (0.0, 0.0, 0.0), hand, np.eye(3))
+    command = door.update(0.01, (0.0, 0.0, 0.0), hand)
+    step = command.hand_position - hand
+    assert step[0] < 0.0 and abs(step[1]) < abs(step[0])  # towards the robot
+    assert command.base.vx < 0.0  # and the base backs away with it
+    # The door turns about its hinge: the handle faces round towards the hinge's side.
+    yaw = np.arctan2(command.hand_rotation[1, 0], command.hand_rotation[0, 0])
+    assert np.sign(yaw) == -side
+    # Come round 83 degrees, the door is open; pushed back to where the hand stops, shut.
+    shut = np.array([0.78, 0.0, 0.95])  # the handle in the door's plane: against the frame
+    turned = np.array([hinge[0] - 0.7, hinge[1], 0.95])
+    door.update(0.01, (0.0, 0.0, 0.0), turned)
+    assert door.phase is DoorPhase.OPEN and door.angle > 1.2
+    door.close()
+    for _ in range(40):
+        command = door.update(0.01, (0.0, 0.0, 0.0), shut)
+    assert door.phase is DoorPhase.CLOSED and command.base.vx == 0.0
 
 
 def test_the_pouring_motion_keeps_the_spout_over_the_pot_while_it_tips() -> None:

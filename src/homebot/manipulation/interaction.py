@@ -17,10 +17,9 @@ arm's displacement and the wrist.
 - ``CarryTable``: holds one end of a table, waits until the person lifts theirs
   (pitch 0.02 rad), then keeps the table level while following in the plane, and
   lowers when the person does.
-- ``DoorOpening``: holds a door handle compliant laterally and in yaw while the base
-  backs away, so the hand follows the handle's arc round the hinge. Not yet shown in
-  physics: in a first door scene the handle slid out of the fingers along their length
-  before the door moved (see the report of issue 18, part B).
+- ``DoorMotion``: holds a door's handle compliant in the plane and in yaw and moves it
+  round where it believes the hinge is, from where the hand actually is each tick, so
+  the door's true circle prevails; opens, then closes it against its frame.
 """
 
 from __future__ import annotations
@@ -38,7 +37,8 @@ __all__ = [
     "CarryPhase",
     "CarryTable",
     "Command",
-    "DoorOpening",
+    "DoorMotion",
+    "DoorPhase",
     "GuidedByHand",
     "Handover",
     "Receive",
@@ -357,30 +357,133 @@ class CarryTable:
                        base=base, torso=torso)
 
 
-class DoorOpening:
-    """Open a door by its handle (Cosero §4.2): compliant laterally and in yaw, the base
-    backs away, and the base corrects its heading and sideways drift so the hand stays
-    near its place; done when the hand has been carried ``pull`` metres back."""
+class DoorPhase(StrEnum):
+    """Where a ``DoorMotion`` is."""
 
-    def __init__(self, hand_position: np.ndarray, hand_rotation: np.ndarray, *,
-                 pull: float = 0.6, speed: float = 0.15, gain: float = 1.5) -> None:
-        self.target = np.asarray(hand_position, dtype=float)
+    OPENING = "opening"  #: pulling the handle round the hinge
+    OPEN = "open"  #: opened as far as asked
+    CLOSING = "closing"  #: pushing it back round the hinge
+    CLOSED = "closed"  #: against its frame: the hand cannot push it further
+
+
+class DoorMotion:
+    """Open a door by its handle and close it again, under compliance (Cosero §4.2).
+
+    The robot holds the handle and knows roughly where the hinge is (``hinge``: a point
+    in the odometry frame, from its door model and what it saw; it may be centimetres
+    off). Every tick it takes the hand's actual position, measures how far round the
+    estimated hinge it has come (the opening angle) and sets the hand's target on the
+    circle through the hand, ``speed`` further round (at most ``lead`` metres ahead of
+    the hand), with the hand's yaw turned by the same angle. The true handle moves on
+    a circle the robot does not know exactly: the hand is compliant in the plane and in
+    yaw, so where the estimate is wrong the door's hinge, not the arm, sets the path;
+    and since the target is re-set from the hand's actual radius every tick, the error
+    never accumulates. The base drives (and turns) to keep the target at the hand's
+    place in front of it. It opens until the estimated angle reaches ``goal`` (rad),
+    then, once ``close`` is called, pushes the door back round the hinge until the hand
+    stalls near angle 0: the door is against its frame.
+    """
+
+    def __init__(self, hinge: tuple[float, float], pose: tuple[float, float, float],
+                 hand_position: np.ndarray, hand_rotation: np.ndarray, *,
+                 goal: float = 1.2, speed: float = 0.15, lead: float = 0.06,
+                 base_gain: float = 2.0, base_speed: float = 0.3,
+                 turn_gain: float = 1.0) -> None:
+        self.hinge = np.asarray(hinge, dtype=float)
+        self.home = np.asarray(hand_position, dtype=float).copy()  #: base frame
         self.rotation = np.asarray(hand_rotation, dtype=float)
-        self.pull, self.speed, self.gain = pull, speed, gain
+        self.goal, self.speed, self.lead = goal, speed, lead
+        self.base_gain, self.base_speed, self.turn_gain = base_gain, base_speed, turn_gain
+        start = _to_odom(pose, self.home)[:2] - self.hinge
+        self.radius = float(np.linalg.norm(start))
+        self.start_bearing = math.atan2(float(start[1]), float(start[0]))
+        # Which way round opens: the way that first brings the handle towards the robot.
+        heading = np.array([math.cos(pose[2]), math.sin(pose[2])])
+        ccw = np.array([-start[1], start[0]]) / self.radius
+        self.turn = -1.0 if float(np.dot(ccw, heading)) > 0 else 1.0
         both = {"positive": True, "negative": True}
-        lateral = _soft(0.25, 2.0, 40.0, damping=30.0)
+        planar = _soft(0.15, 3.0, 40.0, damping=30.0)
         self.compliance = Compliance().with_axes(
-            y=AxisCompliance(**{**lateral.__dict__, **both}),
-            yaw=AxisCompliance(stiffness=30.0, damping=2.0, max_force=5.0, min_force=0.1,
-                               span=0.8, positive=True, negative=True))
-        self.travelled = 0.0
-        self.done = False
+            x=AxisCompliance(**{**planar.__dict__, **both}),
+            y=AxisCompliance(**{**planar.__dict__, **both}),
+            yaw=AxisCompliance(stiffness=20.0, damping=1.5, max_force=4.0, min_force=0.2,
+                               span=0.6, **both))
+        self.phase = DoorPhase.OPENING
+        self.commanded = 0.0  #: the target's angle round the hinge (rad, opening positive)
+        self.angle = 0.0  #: the hand's angle round the estimated hinge
+        self._stalled = 0.0
+        self._last = 0.0
+        self.yaw0 = pose[2]  #: the base's heading when it took the handle
 
-    def update(self, dt: float, shift: np.ndarray) -> Command:
-        base = Twist()
-        if not self.done:
-            self.travelled += self.speed * dt
-            self.done = self.travelled >= self.pull
-            base = Twist(-self.speed, self.gain * float(shift[1]), self.gain * float(shift[5]))
-        return Command(self.target, self.rotation, self.compliance, gripper_closed=True,
-                       base=base)
+    def close(self) -> None:
+        """Start closing the door (after it is open)."""
+        self.phase = DoorPhase.CLOSING
+
+    def update(self, dt: float, pose: tuple[float, float, float],
+               hand_position: np.ndarray) -> Command:
+        """``pose``: the base's odometry (x, y, yaw); ``hand_position``: base frame."""
+        hand = _to_odom(pose, np.asarray(hand_position, dtype=float))
+        offset = hand[:2] - self.hinge
+        radius = float(np.linalg.norm(offset))
+        bearing = math.atan2(float(offset[1]), float(offset[0]))
+        self.angle = self.turn * _wrap(bearing - self.start_bearing)
+        step = self.speed / max(self.radius, 0.2) * dt
+        ahead = self.lead / max(radius, 0.2)
+        if self.phase is DoorPhase.OPENING:
+            self.commanded = min(self.commanded + step, self.angle + ahead, self.goal)
+            if self.angle >= self.goal - 0.02:
+                self.phase = DoorPhase.OPEN
+        elif self.phase is DoorPhase.CLOSING:
+            self.commanded = max(self.commanded - step, self.angle - ahead, -0.05)
+            moving = abs(self.angle - self._last) / dt > 0.02
+            self._stalled = 0.0 if moving or self.angle > 0.15 else self._stalled + dt
+            if self._stalled >= 0.3:
+                self.phase = DoorPhase.CLOSED
+        self._last = self.angle
+        if self.phase in (DoorPhase.OPEN, DoorPhase.CLOSED):
+            self.commanded = self.angle if self.phase is DoorPhase.CLOSED else self.commanded
+        turned = self.start_bearing + self.turn * self.commanded
+        target = np.array([self.hinge[0] + radius * math.cos(turned),
+                           self.hinge[1] + radius * math.sin(turned), float(hand[2])])
+        target[2] = float(_to_odom(pose, self.home)[2])
+        yaw = self.turn * self.commanded  #: the handle has turned with the door
+        # The base brings the target to the hand's place before it and faces the handle.
+        place = _to_odom(pose, self.home)
+        error = target[:2] - place[:2]
+        c, s = math.cos(pose[2]), math.sin(pose[2])
+        local = np.array([c * error[0] + s * error[1], -s * error[0] + c * error[1]])
+        local = self.base_gain * local
+        norm = float(np.linalg.norm(local))
+        if norm > self.base_speed:
+            local *= self.base_speed / norm
+        heading_error = _wrap(yaw - pose[2] + self.yaw0)
+        base = Twist(float(local[0]), float(local[1]), self.turn_gain * heading_error)
+        if self.phase is DoorPhase.CLOSED:
+            base = Twist()
+        target_base = _to_base(pose, target)
+        relative_yaw = _wrap(yaw + self.yaw0 - pose[2])
+        rotation = _yaw_matrix(relative_yaw) @ self.rotation
+        return Command(target_base, rotation, self.compliance, gripper_closed=True, base=base)
+
+
+def _wrap(angle: float) -> float:
+    return (angle + math.pi) % (2.0 * math.pi) - math.pi
+
+
+def _yaw_matrix(yaw: float) -> np.ndarray:
+    c, s = math.cos(yaw), math.sin(yaw)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+
+
+def _to_odom(pose: tuple[float, float, float], point: np.ndarray) -> np.ndarray:
+    """A base-frame point in the odometry frame."""
+    moved: np.ndarray = _yaw_matrix(pose[2]) @ np.asarray(point, dtype=float) + np.array(
+        [pose[0], pose[1], 0.0])
+    return moved
+
+
+def _to_base(pose: tuple[float, float, float], point: np.ndarray) -> np.ndarray:
+    """An odometry-frame point in the base frame."""
+    local: np.ndarray = _yaw_matrix(pose[2]).T @ (np.asarray(point, dtype=float) -
+                                                  np.array([pose[0], pose[1], 0.0]))
+    return local

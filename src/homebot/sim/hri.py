@@ -92,15 +92,20 @@ class InteractionScene:
     Args:
         scene: a shipped scene's name or an MJCF file's path.
         control_rate: control ticks per simulated second (torques hold between ticks).
+        edit: changes the scene's ``mujoco.MjSpec`` before it is compiled (a variant).
     """
 
-    def __init__(self, scene: str | Path, *, control_rate: float = 100.0) -> None:
+    def __init__(self, scene: str | Path, *, control_rate: float = 100.0,
+                 edit: Callable[[Any], None] | None = None) -> None:
         mujoco = _mujoco()
         self._mj = mujoco
         path = Path(scene) if isinstance(scene, Path) or str(scene).endswith(".xml") else (
             scene_path(str(scene)))
         try:
-            self.model = _with_driven_base(mujoco, mujoco.MjSpec.from_file(str(path)))
+            spec = mujoco.MjSpec.from_file(str(path))
+            if edit is not None:  # a variant of the scene (a door's side, width, friction)
+                edit(spec)
+            self.model = _with_driven_base(mujoco, spec)
         except ValueError as error:  # MuJoCo's message names the file, line and problem
             first = str(error).strip().splitlines()[0] if str(error).strip() else "unreadable"
             raise SceneError(f"{path}: not a usable MJCF scene ({first}); fix the file or "
