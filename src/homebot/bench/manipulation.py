@@ -5,7 +5,9 @@ Every pick is judged by the simulator's truth, never by the robot's own sensing:
 - **grasping**: ``--scenes`` seeded scenes, each a table (height, size drawn) in front of
   the robot with 1-6 objects of the catalogue's categories (every shape: box, cylinder,
   sphere; dimensions and mass varied ±15 %). The robot picks one of them, chosen at random:
-  grasp selection from the catalogue shape at its true pose (no perception yet), RRT-Connect
+  grasp selection on the point cluster the head camera's table-top pipeline found for it,
+  the other clusters as obstacles (``--objects truth``: the catalogue shapes at their true
+  poses instead; truth also stands in for what no cluster stands for), RRT-Connect
   to the pre-grasp, then physics: move in, close, lift, retract. A pick is verified when the
   object is off the table by 5 cm and both fingers touch it after the retract. Planning time
   is CPU time (``time.process_time``) of grasp selection + RRT; run under ``taskset -c 0``
@@ -27,7 +29,7 @@ import math
 import statistics
 import tempfile
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -54,6 +56,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--seed", type=seed, default=0, help="the first scene's seed")
     parser.add_argument("--only", choices=["all", "grasping", "bad-input", "hri"],
                         default="all", help="run one section only")
+    parser.add_argument("--objects", choices=["perceived", "truth"], default="perceived",
+                        help="plan grasps on the head camera's point clusters (truth only "
+                             "where perception has none), or on the true shapes and poses")
 
 
 @dataclass(frozen=True)
@@ -105,8 +110,81 @@ def generate_scene(rng: np.random.Generator) -> Scene:
     return Scene(table, objects, target)
 
 
-def run_pick(scene: Scene, rng: np.random.Generator, payload: float = 1.5) -> dict[str, Any]:
-    """Pick ``scene.target``; the outcome as the robot sensed it and as the truth has it."""
+_PANS = (-0.35, 0.0, 0.35)  #: radians: the head's views across the table
+_SAME_CLUSTER = 0.08  #: metres from where the robot was told the target stands
+_PERCEPTION_STREAM = 1802
+
+
+@dataclass(frozen=True)
+class SeenObjects:
+    """What the head camera's table-top pipeline made of a scene: the target's cluster (None:
+    no cluster near where the target was said to be) and the other clusters, each as the
+    grasp planner's ``ObjectGeometry`` from its points (principal axes, extents, height)."""
+
+    target: Any  # ObjectGeometry | None
+    others: list[Any]  # ObjectGeometry
+    unseen: list[str]  #: objects no cluster stands for (occluded, out of view, merged)
+
+
+def perceive(scene: Scene, rng: np.random.Generator) -> SeenObjects:
+    """Look at ``scene`` with the head camera in three views (``homebot.sim.camera``) and
+    segment each (``homebot.perception.tabletop``): the clusters of points above the table.
+
+    The robot is told which object to pick by where it stands (as a detection would say,
+    to within a few centimetres): the target is the largest cluster within 8 cm of that
+    point. A cluster seen in two views is kept from the view that saw most of it. Which
+    objects no cluster stands for is counted from the truth, for the figures only.
+    """
+    from homebot.manipulation.grasps import ObjectGeometry
+    from homebot.perception.tabletop import segment_tabletop
+    from homebot.robot import HeadState
+    from homebot.sim.camera import CAMERA_HEIGHT, CameraSimulator, SceneGeometry, Solid
+    from homebot.world import Shape
+
+    table = scene.table
+    (cx, cy), (depth, width) = table.center, table.size
+    geometry = SceneGeometry(np.zeros((0, 4)), np.array(
+        [[cx - depth / 2, cy - width / 2, cx + depth / 2, cy + width / 2, table.height]]))
+    camera = CameraSimulator(geometry, rng)
+    solids = [Solid(Shape(o.shape), o.extents,
+                    tuple(int(255 * c) for c in o.rgba[:3]),  # type: ignore[arg-type]
+                    o.position[0], o.position[1], o.base, o.yaw) for o in scene.objects]
+    tilt = math.atan2(CAMERA_HEIGHT - table.height, cx)
+    clusters: list[tuple[np.ndarray, tuple[float, float]]] = []
+    for pan in _PANS:
+        frame = camera.render(0.0, (0.0, 0.0, 0.0), HeadState(pan, tilt), solids)
+        for segment in segment_tabletop(frame, rng, expected_height=table.height).segments:
+            x, y, _ = segment.position()
+            same = [k for k, (_, at) in enumerate(clusters) if math.dist(at, (x, y)) < 0.05]
+            if not same:
+                clusters.append((segment.points, (x, y)))
+            elif len(segment.points) > len(clusters[same[0]][0]):
+                clusters[same[0]] = (segment.points, (x, y))
+    target = next(o for o in scene.objects if o.name == scene.target)
+    near = [k for k, (_, at) in enumerate(clusters)
+            if math.dist(at, target.position) < _SAME_CLUSTER]
+    chosen = max(near, key=lambda k: len(clusters[k][0])) if near else None
+    # Axes and extents from the points; the centre is perception's own estimate (the middle
+    # of the top face, or a fitted sphere's centre: the camera sees a ball's near side only).
+    geometries = [replace(ObjectGeometry.from_points(
+        scene.target if k == chosen else f"cluster {k}", points, table.height),
+        center=np.array(at, dtype=float)) for k, (points, at) in enumerate(clusters)]
+    unseen = [o.name for o in scene.objects
+              if not any(math.dist(at, o.position) < _SAME_CLUSTER for _, at in clusters)]
+    return SeenObjects(None if chosen is None else geometries[chosen],
+                       [g for k, g in enumerate(geometries) if k != chosen], unseen)
+
+
+def run_pick(scene: Scene, rng: np.random.Generator, payload: float = 1.5, *,
+             perceived: bool = False, seed: int = 0) -> dict[str, Any]:
+    """Pick ``scene.target``; the outcome as the robot sensed it and as the truth has it.
+
+    ``perceived``: the grasp is planned on the target's point cluster and the other
+    objects are the clusters the head camera found (``perceive``, its noise drawn from
+    ``seed``); truth stands in only for what perception has nothing for (the target
+    without a cluster near it, objects no cluster stands for). Otherwise every object is
+    its catalogue shape at its true pose.
+    """
     from homebot.manipulation.grasps import ObjectGeometry
     from homebot.manipulation.pick import PickPlan, current_configuration, execute_pick, plan_pick
     from homebot.manipulation.scene import Obstacle, PlanningScene
@@ -119,12 +197,31 @@ def run_pick(scene: Scene, rng: np.random.Generator, payload: float = 1.5) -> di
     table = scene.table
     obstacles = [Obstacle("table", "box", (*table.size, table.height),
                           (*table.center, table.height / 2))]
-    obstacles += [Obstacle(o.name, o.shape, o.extents, (*o.position, o.base + o.extents[2] / 2),
-                           o.yaw) for o in scene.objects]
-    planning = PlanningScene(sim.model_path, (0.0, 0.0, 0.0), obstacles)
     target = next(o for o in scene.objects if o.name == scene.target)
-    geometry = ObjectGeometry.from_shape(target.name, target.shape, target.extents,
-                                         target.position, target.yaw, target.base)
+    truth_for = list(scene.objects)
+    geometry = None
+    seen_note: dict[str, Any] = {}
+    if perceived:
+        seen = perceive(scene, np.random.default_rng([seed, _PERCEPTION_STREAM]))
+        geometry = seen.target
+        truth_for = [o for o in scene.objects if o.name in seen.unseen and o.name != target.name]
+        if geometry is None:  # no cluster for the target: its true shape is its obstacle
+            truth_for.append(target)
+        seen_all = seen.others if geometry is None else [geometry, *seen.others]
+        obstacles += [Obstacle(g.name, "box", (*g.extents, g.height),
+                               (*g.center, g.base + g.height / 2),
+                               math.atan2(float(g.axes[0][1]), float(g.axes[0][0])))
+                      for g in seen_all]
+        seen_note = {"target_seen": geometry is not None,
+                     "others_from_truth": len([o for o in truth_for if o is not target])}
+    # The target is among the obstacles too: the approach must not sweep through it (the
+    # grasp's own contact with it is allowed by name).
+    obstacles += [Obstacle(o.name, o.shape, o.extents, (*o.position, o.base + o.extents[2] / 2),
+                           o.yaw) for o in truth_for]
+    planning = PlanningScene(sim.model_path, (0.0, 0.0, 0.0), obstacles)
+    if geometry is None:  # no cluster for it (or not asked to perceive): its true shape
+        geometry = ObjectGeometry.from_shape(target.name, target.shape, target.extents,
+                                             target.position, target.yaw, target.base)
     start = sim.time
     plan = plan_pick(planning, geometry, current_configuration(driver), rng, mass=target.mass,
                      payload=payload)
@@ -138,14 +235,15 @@ def run_pick(scene: Scene, rng: np.random.Generator, payload: float = 1.5) -> di
     return {"outcome": result.outcome.value, "held": truth, "grasp": kind,
             "shape": target.shape, "planning": result.planning_seconds,
             "simulated": sim.time - start, "wall": time.perf_counter() - wall,
-            "cpu": time.process_time() - cpu}
+            "cpu": time.process_time() - cpu, **seen_note}
 
 
-def _grasping(scenes: int, first: int) -> dict[str, Any]:
+def _grasping(scenes: int, first: int, objects: str = "perceived") -> dict[str, Any]:
     runs = []
     for index in range(scenes):
         rng = np.random.default_rng(first + index)
-        runs.append(run_pick(generate_scene(rng), rng))
+        runs.append(run_pick(generate_scene(rng), rng, perceived=objects == "perceived",
+                             seed=first + index))
     held = [r for r in runs if r["held"]]
     sensed_right = sum((r["outcome"] == "held") == r["held"] for r in runs)
     planned = [r["planning"] for r in runs]
@@ -155,8 +253,15 @@ def _grasping(scenes: int, first: int) -> dict[str, Any]:
     outcomes: dict[str, int] = {}
     for r in runs:
         outcomes[r["outcome"]] = outcomes.get(r["outcome"], 0) + 1
+    perception: dict[str, Any] = {"objects": objects}
+    if objects == "perceived":
+        perception["target without a cluster (truth stood in)"] = sum(
+            1 for r in runs if not r.get("target_seen", True))
+        perception["other objects without a cluster (truth stood in)"] = sum(
+            r.get("others_from_truth", 0) for r in runs)
     return {
         "scenes": scenes,
+        **perception,
         "verified picks %": round(100.0 * len(held) / scenes, 1),
         "verified by shape": by_shape,
         "outcomes": outcomes,
@@ -226,7 +331,7 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
     began = time.perf_counter()
     figures: dict[str, Any] = {}
     if args.only in ("all", "grasping"):
-        figures["grasping"] = _grasping(args.scenes, args.seed)
+        figures["grasping"] = _grasping(args.scenes, args.seed, args.objects)
     if args.only in ("all", "bad-input"):
         figures["bad input"] = _bad_input()
     if args.only in ("all", "hri"):
