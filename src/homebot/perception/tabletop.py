@@ -13,6 +13,7 @@ Small pure functions in Open3D's style (numpy in, numpy out, no hidden state):
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -40,6 +41,10 @@ _MAX_TILT = 0.1  #: radians between a support plane's normal and the vertical
 _ABOVE = (0.012, 0.6)  #: metres above the plane where object points are
 _EDGE_MARGIN = 0.01  #: metres inside the plane's outline an object point must lie
 _CLUSTER_DISTANCE = 0.016  #: metres between neighbouring points of one object
+_CENTRE_BAND = 0.004  #: metres below the top whose points centre an object (see ``position``)
+_SPHERE_MISFIT = 0.004  #: metres (rms) within which points lie on a sphere
+_SPHERE_REST = 0.3  #: a resting sphere's centre is its radius above the plane, within this share
+_SPHERE_LARGEST = 0.2  #: metres: no ball on a table is bigger
 _MIN_POINTS = 12  #: smaller groups are noise
 _VOXEL = 0.006  #: metres: object points are thinned to one per voxel before clustering
 _ROWS_JOINED = 1.4  #: a point joins neighbours this many row spacings away ...
@@ -78,22 +83,28 @@ class Segment:
     colours: np.ndarray
     heights: np.ndarray  #: above the support plane
 
-    def top(self) -> np.ndarray:
-        """The points of its top face (within a centimetre of its highest)."""
+    def top(self, band: float = 0.01) -> np.ndarray:
+        """The points of its top face (within ``band`` metres of its highest)."""
         peak = float(np.percentile(self.heights, 98))
-        band = min(0.01, 0.2 * peak)
+        band = min(band, 0.2 * peak)
         top: np.ndarray = self.points[self.heights >= peak - band]
         return top
 
     def position(self) -> tuple[float, float, float]:
         """Where it stands (base frame): under the centre of its top face, on the plane.
 
-        The centre is the middle of the top face's spread along the line of sight and
+        The centre is the middle of the top's spread along the line of sight and
         across it (2nd to 98th percentile), not the mean of its points: seen at a
         grazing angle, the near rim of a top face has more points than the far one.
+        The top here is only the points within a few millimetres of the highest. A ball
+        (a fruit) has no top face, and the camera sees its near side only: when the
+        points lie on a sphere resting on the plane, its centre is the fitted sphere's.
         """
-        top = self.top()[:, :2]
         bottom = self.points[:, 2] - self.heights
+        ball = _resting_sphere(self.points, float(np.mean(bottom)))
+        if ball is not None:
+            return (ball[0], ball[1], float(np.mean(bottom)))
+        top = self.top(_CENTRE_BAND)[:, :2]
         middle = top.mean(axis=0)
         sight = middle / (float(np.linalg.norm(middle)) or 1.0)
         frame = np.array([sight, (-sight[1], sight[0])])  # along, across the line of sight
@@ -109,6 +120,25 @@ class Tabletop:
 
     plane: Plane | None
     segments: tuple[Segment, ...]
+
+
+def _resting_sphere(points: np.ndarray, plane: float) -> tuple[float, float] | None:
+    """The centre (x, y) of the sphere the points lie on, if they do and it rests at height
+    ``plane``; None otherwise. An algebraic least-squares fit (linear in the centre)."""
+    if len(points) < 4 * _MIN_POINTS:
+        return None
+    system = np.column_stack((2 * points, np.ones(len(points))))
+    solution, *_ = np.linalg.lstsq(system, np.einsum("ij,ij->i", points, points), rcond=None)
+    centre = solution[:3]
+    squared = float(solution[3] + centre @ centre)
+    if squared <= 0:
+        return None
+    radius = math.sqrt(squared)
+    misfit = float(np.sqrt(np.mean((np.linalg.norm(points - centre, axis=1) - radius) ** 2)))
+    resting = abs(centre[2] - plane - radius) <= _SPHERE_REST * radius
+    if misfit > _SPHERE_MISFIT or not resting or radius > _SPHERE_LARGEST:
+        return None
+    return (float(centre[0]), float(centre[1]))
 
 
 def segment_plane(points: np.ndarray, distance: float, iterations: int,
