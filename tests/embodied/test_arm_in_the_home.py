@@ -91,3 +91,28 @@ def test_out_of_reach_the_robot_steps_beside_the_nearest_free_side_of_the_surfac
     assert all(world.footprint_problem(stand.x, stand.y) is None for stand in stands)
     assert [math.dist((s.x, s.y), (9.3, 9.75)) for s in stands] == sorted(
         math.dist((s.x, s.y), (9.3, 9.75)) for s in stands)
+
+
+def test_the_arms_scene_puts_objects_where_perception_saw_them() -> None:
+    from homebot.embodied.hands import ArmedBodyRobot
+    from homebot.navigation import Navigator
+    from homebot.scenarios.embodied import embodied_robot
+
+    world = World.load("apartment")
+    sim = Simulation(world, seed=1)
+    robot = embodied_robot(sim, Navigator(world))
+    assert isinstance(robot, ArmedBodyRobot)
+    truth = _locate(sim, robot.body)  # type: ignore[arg-type]
+    unseen = robot.arm.locate("crisps")
+    assert unseen == truth("crisps")  # not seen yet: the wiring's locate stands in
+    stand = Pose(*world.placements["coffee table"].approach)
+    robot.body.teleport(stand)
+    robot.localisation.initialise(stand, spread=0.01, angle_spread=0.01)  # type: ignore[attr-defined]
+    detections = robot.perceive_objects("coffee table")
+    assert detections
+    for detection in detections:
+        assert detection.position is not None
+        where = robot.arm.locate(detection.label)
+        assert where is not None and where[:2] == detection.position
+        assert where[3] == surface_height(world.placements["coffee table"].model)
+    assert robot.seen and all(p == "coffee table" for p, _ in robot.seen.values())

@@ -5,7 +5,11 @@ the gripper and lifts; whether the object is then in the hand is what the grippe
 wrist sense, and what the simulator's physics made of the grasp, never a die. When no
 grasp is feasible from where the robot stands, it steps beside the surface where it is
 nearest the object (not against a wall or other furniture) and tries again, twice at most.
-A release puts the object on a free spot of the placement (or drops it into a bin). The
+A release puts the object on a free spot of the placement (or drops it into a bin). The arm
+plans among the objects where the robot's camera last saw them (``perceive_objects``; a
+picked object leaves that memory, a placed one is where it was put); the wiring's
+``locate`` (the simulator's truth) stands in only for objects it has not seen and for box
+headings. The
 robot has one arm: the world's second hand name is kept for the skills, but a grasp with the
 gripper full is refused (the hand stays empty).
 """
@@ -23,6 +27,7 @@ from homebot.embodied.robot import BodyRobot
 from homebot.manipulation.control import ArmControl
 from homebot.manipulation.pick import PickOutcome
 from homebot.robot import Detection, Pose
+from homebot.world import surface_height
 
 __all__ = ["ArmedBodyRobot"]
 
@@ -45,6 +50,32 @@ class ArmedBodyRobot(BodyRobot):
         super().__init__(*args, **kwargs)
         self.arm = arm
         self._holding: dict[str, Detection] = {}
+        #: where perception last saw each object: (placement, map position)
+        self.seen: dict[str, tuple[str, tuple[float, float]]] = {}
+        self._given_locate = arm.locate
+        arm.locate = self._locate
+
+    def _locate(self, name: str) -> tuple[float, float, float, float] | None:
+        """Where the arm's planning scene puts ``name``: where perception last saw it (on
+        the surface it was seen on, at the map's height for it); the wiring's ``locate``
+        (the simulator's truth, until perception reports poses) only for what perception
+        has not seen, and for a box's heading, which perception does not estimate yet."""
+        given = self._given_locate(name)
+        remembered = self.seen.get(name)
+        if remembered is None or remembered[0] not in self.world.placements:
+            return given
+        placement, (x, y) = remembered
+        heading = given[2] if given is not None else 0.0
+        return (x, y, heading, surface_height(self.world.placements[placement].model))
+
+    def perceive_objects(self, placement: str) -> list[Detection]:
+        detections = super().perceive_objects(placement)
+        for name in [n for n, (where, _) in self.seen.items() if where == placement]:
+            del self.seen[name]  # not there any more, or seen anew below
+        for detection in detections:
+            if detection.position is not None:
+                self.seen[detection.label] = (placement, detection.position)
+        return detections
 
     def grasp(self, detection: Detection, hand: str) -> None:
         if hand in self._holding:
@@ -65,6 +96,7 @@ class ArmedBodyRobot(BodyRobot):
                            planning=round(result.planning_seconds, 4))
         if result:
             self._holding[hand] = detection
+            self.seen.pop(detection.label, None)  # in the hand now, not on the surface
 
     def held(self, hand: str) -> Detection | None:
         detection = self._holding.get(hand)
@@ -81,7 +113,10 @@ class ArmedBodyRobot(BodyRobot):
         done = False
         if known is not None:
             category = known.model.category.lower()
+            held = self.arm.holding.name if self.arm.holding is not None else None
             outcome = self.arm.place(placement, self.pose(), drop=category in _BIN_CATEGORIES)
+            if held is not None and outcome.done and outcome.spot is not None:
+                self.seen[held] = (placement, outcome.spot)  # where it was put
             self.events.record("robot.place", placement=placement, done=outcome.done,
                                detail=outcome.detail)
             done = outcome.done
