@@ -2,7 +2,8 @@
 
 espeak-ng speaks commands that ``homebot.language.generator`` writes for the apartment and
 for the RoboCup@Home template world (``--robocup``), cycling through four voices and speeds
-(``homebot.speech.VOICES``), each with 0.5 s of quiet before and after. Recognition
+(``homebot.speech.VOICES``; ``--voices held-out``: two other voices and speeds that no
+setting was tuned on), each with 0.5 s of quiet before and after. Recognition
 (``Recognizer.hear``: VAD, grammar and trigram decoders, reconciliation) hears each clip
 clean, with noise at ``--snr`` dB, and in babble: ``--babble-talkers`` other espeak-ng
 voices (each a different voice, pitch and stream of chatter, none of it a command) talking
@@ -93,6 +94,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--worlds", choices=("both", "apartment", "robocup"), default="both",
                         help="which worlds' commands to speak (default both; one each lets two "
                              "processes share the work)")
+    parser.add_argument("--voices", choices=("bench", "held-out"), default="bench",
+                        help="the four voices the recogniser was developed with (default), "
+                             "or two held-out voices no setting was tuned on")
     parser.add_argument("--seed", type=seed, default=0)
 
 
@@ -144,14 +148,14 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
         for condition in _conditions(args)}
     figures = {
         "benchmark": "speech",
-        "voices": [voice.label() for voice in _voices()],
+        "voices": [voice.label() for voice in _voices(args.voices)],
         "noise": f"{args.noise} at {args.snr} dB SNR",
         "babble": (f"{args.babble_talkers} talkers at {args.babble_snr} dB SNR"
                    if args.babble_talkers else None),
         "worlds": results,
         "settings": {"count": args.count, "rejection": args.rejection, "snr": args.snr,
                      "babble_snr": args.babble_snr, "babble_talkers": args.babble_talkers,
-                     "seed": args.seed, "worlds": args.worlds},
+                     "seed": args.seed, "worlds": args.worlds, "voice_set": args.voices},
         "command_accuracy": overall,
         "rejection": rejection,
         "speed": {
@@ -169,10 +173,10 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
     return figures
 
 
-def _voices() -> tuple[Any, ...]:
-    from homebot.speech.voice import VOICES
+def _voices(which: str = "bench") -> tuple[Any, ...]:
+    from homebot.speech.voice import HELD_OUT_VOICES, VOICES
 
-    return VOICES
+    return HELD_OUT_VOICES if which == "held-out" else VOICES
 
 
 def _conditions(args: argparse.Namespace) -> tuple[str, ...]:
@@ -220,7 +224,7 @@ def _commands(recognizer: Any, world: Any, args: argparse.Namespace
     training = {words_of(text) for text, _ in generate_commands(world, _TRAINING, 0)}
     commands = generate_commands(world, args.count, args.seed + 1)
     rng = np.random.default_rng(args.seed)
-    voices = _voices()
+    voices = _voices(args.voices)
     babblers = [espeak().synthesise(text, voices[index % len(voices)])
                 for index, (text, _) in enumerate(generate_commands(world, 6, args.seed + 2))]
     talkers = _chatter(args.babble_talkers, args.seed + 5)
@@ -297,7 +301,7 @@ def _rejection(recognizer: Any, world: Any, args: argparse.Namespace) -> dict[st
 
     vocabulary = Vocabulary.from_world(world)
     rng = np.random.default_rng(args.seed + 3)
-    voices = _voices()
+    voices = _voices(args.voices)
     babblers = [espeak().synthesise(text, voices[index % len(voices)])
                 for index, (text, _) in enumerate(generate_commands(world, 6, args.seed + 4))]
     kinds = ("white noise", "pink noise", "babble", "tones", "off-topic", "off-topic")

@@ -31,7 +31,7 @@ from numpy.typing import NDArray
 from homebot.errors import SpeechError
 from homebot.speech.audio import SAMPLE_RATE, resample
 
-__all__ = ["VOICES", "Voice", "VoiceSettings", "espeak"]
+__all__ = ["HELD_OUT_VOICES", "VOICES", "Voice", "VoiceSettings", "espeak"]
 
 _AUDIO_OUTPUT_SYNCHRONOUS = 2
 _CHARS_UTF8 = 1
@@ -64,6 +64,12 @@ VOICES: tuple[VoiceSettings, ...] = (
     VoiceSettings("en-us+klatt4", 140, 60),
     VoiceSettings("en+klatt2", 115, 45),
     VoiceSettings("en-us+klatt3", 150, 40),
+)
+# Voices no setting was tuned on (``homebot bench speech --voices held-out``): two other
+# Klatt timbres, one faster and one slower than any of ``VOICES``.
+HELD_OUT_VOICES: tuple[VoiceSettings, ...] = (
+    VoiceSettings("en+klatt5", 165, 50),
+    VoiceSettings("en-us+klatt6", 110, 50),
 )
 
 
