@@ -112,6 +112,7 @@ def generate_scene(rng: np.random.Generator) -> Scene:
 
 _PANS = (-0.35, 0.0, 0.35)  #: radians: the head's views across the table
 _SAME_CLUSTER = 0.08  #: metres from where the robot was told the target stands
+_FUSE = 0.012  #: metres: two views' clusters this close are one object (objects stand 3 cm apart)
 _PERCEPTION_STREAM = 1802
 
 
@@ -129,14 +130,17 @@ class SeenObjects:
 def perceive(scene: Scene, rng: np.random.Generator) -> SeenObjects:
     """Look at ``scene`` with the head camera in three views (``homebot.sim.camera``) and
     segment each (``homebot.perception.tabletop``): the clusters of points above the table.
+    The views overlap, and the robot stands still between them: clusters from different
+    views whose points come within ``_FUSE`` of each other are one object seen twice
+    (perhaps cut by a picture's edge in one), and their points are joined.
 
     The robot is told which object to pick by where it stands (as a detection would say,
     to within a few centimetres): the target is the largest cluster within 8 cm of that
-    point. A cluster seen in two views is kept from the view that saw most of it. Which
+    point. Which
     objects no cluster stands for is counted from the truth, for the figures only.
     """
     from homebot.manipulation.grasps import ObjectGeometry
-    from homebot.perception.tabletop import segment_tabletop
+    from homebot.perception.tabletop import Segment, segment_tabletop
     from homebot.robot import HeadState
     from homebot.sim.camera import CAMERA_HEIGHT, CameraSimulator, SceneGeometry, Solid
     from homebot.world import Shape
@@ -150,16 +154,17 @@ def perceive(scene: Scene, rng: np.random.Generator) -> SeenObjects:
                     tuple(int(255 * c) for c in o.rgba[:3]),  # type: ignore[arg-type]
                     o.position[0], o.position[1], o.base, o.yaw) for o in scene.objects]
     tilt = math.atan2(CAMERA_HEIGHT - table.height, cx)
-    clusters: list[tuple[np.ndarray, tuple[float, float]]] = []
+    segments: list[Segment] = []
     for pan in _PANS:
         frame = camera.render(0.0, (0.0, 0.0, 0.0), HeadState(pan, tilt), solids)
-        for segment in segment_tabletop(frame, rng, expected_height=table.height).segments:
-            x, y, _ = segment.position()
-            same = [k for k, (_, at) in enumerate(clusters) if math.dist(at, (x, y)) < 0.05]
-            if not same:
-                clusters.append((segment.points, (x, y)))
-            elif len(segment.points) > len(clusters[same[0]][0]):
-                clusters[same[0]] = (segment.points, (x, y))
+        segments += segment_tabletop(frame, rng, expected_height=table.height).segments
+    clusters: list[tuple[np.ndarray, tuple[float, float]]] = []
+    for group in _fused(segments):
+        merged = Segment(np.vstack([segments[k].points for k in group]),
+                         np.vstack([segments[k].colours for k in group]),
+                         np.concatenate([segments[k].heights for k in group]))
+        x, y, _ = merged.position()
+        clusters.append((merged.points, (x, y)))
     target = next(o for o in scene.objects if o.name == scene.target)
     near = [k for k, (_, at) in enumerate(clusters)
             if math.dist(at, target.position) < _SAME_CLUSTER]
@@ -173,6 +178,30 @@ def perceive(scene: Scene, rng: np.random.Generator) -> SeenObjects:
               if not any(math.dist(at, o.position) < _SAME_CLUSTER for _, at in clusters)]
     return SeenObjects(None if chosen is None else geometries[chosen],
                        [g for k, g in enumerate(geometries) if k != chosen], unseen)
+
+
+def _fused(segments: list[Any]) -> list[list[int]]:
+    """Groups of segments (indices) whose points come within ``_FUSE`` in the plane."""
+    from scipy.spatial import cKDTree
+
+    trees = [cKDTree(segment.points[:, :2]) for segment in segments]
+    parent = list(range(len(segments)))
+
+    def root(k: int) -> int:
+        while parent[k] != k:
+            parent[k] = parent[parent[k]]
+            k = parent[k]
+        return k
+
+    for a in range(len(segments)):
+        for b in range(a + 1, len(segments)):
+            if root(a) != root(b) and trees[a].sparse_distance_matrix(
+                    trees[b], _FUSE, output_type="ndarray").size:
+                parent[root(b)] = root(a)
+    groups: dict[int, list[int]] = {}
+    for k in range(len(segments)):
+        groups.setdefault(root(k), []).append(k)
+    return list(groups.values())
 
 
 def run_pick(scene: Scene, rng: np.random.Generator, payload: float = 1.5, *,
