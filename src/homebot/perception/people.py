@@ -8,13 +8,18 @@ are thinner; walls and bodies are wider.
 Tracking: one constant-velocity Kalman filter per person. Each sweep, legs are
 assigned to tracks with the Hungarian method (``scipy.optimize.linear_sum_
 assignment``), every track offering two slots (both legs of a person may be
-seen, as Cosero allows several leg detections per hypothesis), within a gating
-distance that grows with the track's uncertainty. A track is corrected with the
-mean of its legs. Legs no track takes are paired (two legs of a person are at
-most 45 cm apart) and start tentative tracks; a track is confirmed after
-``confirm`` sweeps with legs, a tentative one dies at its first miss, a confirmed
-one after ``coast`` seconds unseen (a person hidden behind another is predicted
-through). Of two confirmed tracks that keep within 25 cm, the younger goes.
+seen, as Cosero allows several leg detections per hypothesis; single legs are
+candidates of their own). A leg's cost for a track is its negative log
+likelihood under the track's predicted covariance (Mahalanobis distance plus the
+log-determinant, so an uncertain track pays for its spread), gated at the 99 %
+chi-square bound. A track is corrected with the mean of its legs. Legs no track
+takes are paired (two legs of a person are at most 45 cm apart) and start
+tentative tracks; a track is confirmed after ``confirm`` sweeps with legs, a
+tentative one dies at its first miss, a confirmed one after ``coast`` seconds
+unseen (a person hidden behind another is predicted through). A track confirmed
+where an unseen one (ended lately, or still coasting) could have walked to takes
+that one's identity: people come back from behind others. Of two confirmed
+tracks that keep within 25 cm, the younger goes.
 
 Posture and clothes colour come from what a camera would give for a track (a
 vertical height profile and a torso colour patch), not from the truth; both are
@@ -167,10 +172,10 @@ def pair_legs(legs: np.ndarray, reach: float = _PAIR) -> list[np.ndarray]:
 class TrackerParameters:
     """How the tracker predicts, gates, starts and ends tracks."""
 
-    acceleration: float = 1.5  #: m/s², the white-noise acceleration of walking people
+    acceleration: float = 2.0  #: m/s², the white-noise acceleration of walking people
     leg_noise: float = 0.12  #: m, a person's centre from the mean of both legs
     one_leg_noise: float = 0.22  #: m, from one leg
-    gate: float = 0.45  #: m, a leg this far from a track's prediction (plus its spread)
+    gate: float = 0.45  #: m: a returning person this far from where they were heading
     confirm: int = 3  #: sweeps with legs before a track is reported
     tentative: float = 0.35  #: s an unconfirmed track survives unseen
     coast: float = 0.6  #: s a confirmed track survives unseen where the laser sees past it
@@ -179,6 +184,12 @@ class TrackerParameters:
     remember: float = 3.0  #: s an ended track's identity waits for its person to come back
     duplicate: float = 0.25  #: m; two confirmed tracks this close for long are one person
     max_speed: float = 2.0  #: m/s; faster velocity estimates are clipped
+    gate_chi2: float = 9.21  #: squared Mahalanobis distance of a leg from a track (99 %)
+    gate_max: float = 1.5  #: m: and never further than this
+    tentative_cost: float = 0.5  #: added to an unconfirmed track's cost (log-likelihood units)
+    second_leg_cost: float = 0.5  #: added to a track's second leg's cost
+    reidentify_after: float = 0.3  #: s unseen before a coasting track's identity may move
+    reidentify_speed: float = 1.5  #: m/s: how fast an unseen person's reach grows
 
 
 @dataclass
@@ -193,6 +204,7 @@ class Track:
     hits: int = 1
     confirmed: bool = False
     close_since: float | None = field(default=None, repr=False)
+    last_seen: np.ndarray | None = field(default=None, repr=False)  #: state when last seen
 
     @property
     def position(self) -> tuple[float, float]:
@@ -216,6 +228,7 @@ class PeopleTracker:
         self.stamp: float | None = None
         self._next_id = 1
         self._lost: list[Track] = []  #: confirmed tracks ended lately, who may come back
+        self._retired: list[Track] = []  #: coasting tracks whose identity moved this sweep
 
     def confirmed(self) -> list[Track]:
         """The tracks reported as people."""
@@ -246,10 +259,15 @@ class PeopleTracker:
             noise = p.leg_noise if len(indices) == 2 else p.one_leg_noise
             self._correct(track, legs[indices].mean(axis=0), noise)
             track.seen = stamp
+            track.last_seen = track.state.copy()
             track.hits += 1
             if track.hits >= p.confirm and not track.confirmed:
                 track.confirmed = True
                 self._revive(stamp, track)
+        if self._retired:
+            self.tracks = [track for track in self.tracks
+                           if all(track is not gone for gone in self._retired)]
+            self._retired = []
         self._end_tracks(stamp, scan, pose)
         free = np.array([i for i in range(len(legs)) if i not in taken], dtype=int)
         for group in pair_legs(legs[free]):
@@ -289,16 +307,23 @@ class PeopleTracker:
         assigned: list[list[int]] = [[] for _ in tracks]
         if not tracks or not len(legs):
             return assigned
+        p = self.parameters
         centres = np.array([track.state[:2] for track in tracks])
-        spread = np.sqrt(np.array([track.covariance[0, 0] + track.covariance[1, 1]
-                                   for track in tracks]))
-        gate = self.parameters.gate + np.minimum(spread, 0.6)
-        distance = np.linalg.norm(legs[:, None, :] - centres[None, :, :], axis=2)
+        offsets = legs[:, None, :] - centres[None, :, :]  # (legs, tracks, 2)
+        # the innovation's covariance for one leg: the track's spread and a leg's offset
+        spreads = np.array([track.covariance[:2, :2] for track in tracks]) + \
+            p.one_leg_noise ** 2 * np.eye(2)[None, :, :]
+        inverse = np.linalg.inv(spreads)
+        mahalanobis = np.einsum("ltj,tjk,ltk->lt", offsets, inverse, offsets)
+        distance = np.linalg.norm(offsets, axis=2)
+        within = (mahalanobis <= p.gate_chi2) & (distance <= p.gate_max)
+        # the negative log likelihood: an uncertain track pays for its spread
+        likelihood = mahalanobis + np.log(np.linalg.det(spreads))[None, :]
         # Two slots per track; the second costs a little more, so a lone leg near two
         # tracks goes to the one that has none yet. Confirmed tracks are preferred.
-        penalty = np.array([0.0 if track.confirmed else 0.05 for track in tracks])
-        cost = np.hstack((distance + penalty, distance + penalty + 0.05))
-        within = np.hstack((distance <= gate, distance <= gate))
+        penalty = np.array([0.0 if track.confirmed else p.tentative_cost for track in tracks])
+        cost = np.hstack((likelihood + penalty, likelihood + penalty + p.second_leg_cost))
+        within = np.hstack((within, within))
         cost = np.where(within, cost, _UNASSIGNED)
         rows, columns = linear_sum_assignment(cost)
         for leg, slot in zip(rows, columns, strict=True):
@@ -334,19 +359,28 @@ class PeopleTracker:
         self._lost = [track for track in self._lost if stamp - track.seen <= p.remember]
 
     def _revive(self, stamp: float, track: Track) -> None:
-        """A new track confirmed where a lost one would have walked to since it was last
-        seen takes the lost one's identity (a person back from behind someone)."""
+        """A new track confirmed where an unseen one would have walked to since it was
+        last seen takes the unseen one's identity (a person back from behind someone):
+        an ended track, or a confirmed one still coasting (its prediction may have
+        stalled while the hidden person walked on), which then ends."""
+        p = self.parameters
         best, best_gap = None, math.inf
-        for lost in self._lost:
+        coasting = [other for other in self.tracks if other.confirmed and other is not track
+                    and stamp - other.seen > p.reidentify_after
+                    and all(other is not gone for gone in self._retired)]
+        for lost in [*self._lost, *coasting]:
             age = stamp - lost.seen
             walked = min(age, 1.0)
-            expected = (lost.state[0] + lost.state[2] * walked,
-                        lost.state[1] + lost.state[3] * walked)
+            last = lost.last_seen if lost.last_seen is not None else lost.state
+            expected = (last[0] + last[2] * walked, last[1] + last[3] * walked)
             gap = math.dist(expected, track.position)
-            if gap <= self.parameters.gate + 0.5 * age and gap < best_gap:
+            if gap <= p.gate + p.reidentify_speed * age and gap < best_gap:
                 best, best_gap = lost, gap
         if best is not None:
-            self._lost.remove(best)
+            if best in self._lost:
+                self._lost.remove(best)
+            else:
+                self._retired.append(best)  # ends after this sweep's corrections
             track.id = best.id
             track.born = best.born
 
