@@ -33,6 +33,7 @@ from homebot.navigation.localisation import MonteCarloLocalisation
 from homebot.navigation.localmap import LocalController
 from homebot.navigation.navigate import StopReason
 from homebot.navigation.recovery import RecoveringNavigation, scan_on_map
+from homebot.perception.faces import Acquaintances
 from homebot.robot import (
     Blocker,
     Body,
@@ -57,6 +58,8 @@ _GOAL_TOLERANCE = 0.15  #: metres: a leg ends this close to its end point
 _HEADING_TOLERANCE = 0.2  #: radians: the final turn ends this close to the goal's heading
 _PARTICLES_SHOWN = 500
 _IN_THE_WAY = 0.8  #: metres from the robot's way within which a person stands in it
+_INTRODUCTION_VIEWS = 20  #: face views enrolled while a person says their name (2 s at 10 Hz)
+_RECOGNITION_VIEWS = 10  #: face views whose majority names the person in front
 
 
 class Companions(Protocol):
@@ -108,6 +111,11 @@ class BodyRobot(Robot):
         #: over their arm keypoints); follow and guide stop when the person they walk
         #: with does. None: nobody's gestures are seen.
         self.stop_shown: Callable[[str], bool] | None = None
+        #: the people met by name ("my name is ...") and the head camera's close-ups of
+        #: the face in front, so many views a call (``introduce``, ``face_in_front``).
+        #: None: faces unseen.
+        self.acquaintances: Acquaintances | None = None
+        self.face_images: Callable[[int], list[np.ndarray]] | None = None
         self._walking_with: str | None = None
         self.navigation = RecoveringNavigation(body, navigator, controller, self._localise,
                                                on_replan=self._record_replan)
@@ -348,6 +356,27 @@ class BodyRobot(Robot):
 
     def ask(self, person: str, question: str) -> str | None:
         return self.percepts.ask(person, question)
+
+    # ------------------------------------------------------------ faces
+
+    def introduce(self, utterance: str) -> str | None:
+        """Hear ``utterance`` from the person in front: when it gives their name ("my name
+        is Maria"), their face is enrolled from the head camera's views under it, to be
+        recognised afterwards (``face_in_front``). The name enrolled, or None (no name
+        given, nobody in front, or no face seen)."""
+        if self.acquaintances is None or self.face_images is None:
+            return None
+        name = self.acquaintances.introduce(utterance, self.face_images(_INTRODUCTION_VIEWS))
+        if name is not None:
+            self.events.record("robot.met", person=name)
+        return name
+
+    def face_in_front(self) -> str | None:
+        """The name of the person in front, recognised by face among the people met;
+        None for nobody in front, a stranger, or no faces seen."""
+        if self.acquaintances is None or self.face_images is None:
+            return None
+        return self.acquaintances.recognise(self.face_images(_RECOGNITION_VIEWS))
 
     def request(self, person: str, request: HelpRequest, target: str) -> bool:
         return self.percepts.request(person, request, target)

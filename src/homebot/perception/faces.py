@@ -24,19 +24,21 @@ level does not matter.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+import re
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
 from homebot.errors import HomebotError
 
-__all__ = ["FaceDetector", "FaceError", "FaceMemory", "FaceWindow", "HaarFeatures",
-           "integral_image"]
+__all__ = ["Acquaintances", "FaceDetector", "FaceError", "FaceMemory", "FaceWindow",
+           "HaarFeatures", "integral_image", "introduced_name"]
 
 Window = tuple[int, int, int]  #: x, y, side in pixels
 _TELLING = 200  #: features the forest rates highest, for the distance to a person's views
 _NEAREST = 3  #: enrolled views a face is compared with
+_HELD_OUT = 0.9  #: quantile of a person's held-out enrolment distances: their reach
 
 
 class FaceError(HomebotError):
@@ -286,7 +288,7 @@ class FaceMemory:
         seed: the bank's layout and the forest's randomness.
     """
 
-    def __init__(self, detector: FaceDetector, threshold: float = 1.1, trees: int = 100,
+    def __init__(self, detector: FaceDetector, threshold: float = 1.0, trees: int = 100,
                  features: int = 2000, seed: int = 0) -> None:
         self.detector = detector
         self.threshold = threshold
@@ -363,13 +365,12 @@ class FaceMemory:
         self._telling = (telling, centre, scale)
         self._standard = (data[:, telling] - centre) / scale
         self._typical = np.ones(len(self._names))
+        images = np.concatenate([np.full(len(block), number) for number, block in
+                                 enumerate(b for name in self._names
+                                           for b in self._samples[name])])
         for index in range(len(self._names)):
-            own = self._standard[labels == index]
-            gaps = np.linalg.norm(own[:, None, :] - own[None, :, :], axis=2)
-            # leave out each image's own jittered copies (the same enrolment image)
-            gaps[gaps < 1e-6] = np.inf
-            self._typical[index] = float(np.median(np.sort(gaps, axis=1)[:, _NEAREST:
-                                                                         2 * _NEAREST]))
+            self._typical[index] = _held_out_spacing(self._standard[labels == index],
+                                                     images[labels == index])
 
     def identify(self, image: np.ndarray, window: Window | None = None
                  ) -> tuple[str | None, float]:
@@ -388,6 +389,108 @@ class FaceMemory:
                               (vector[telling] - centre) / scale, axis=1)
         far = float(np.sort(gaps)[:_NEAREST].mean()) / self._typical[best]
         return (self._names[best], far) if far <= self.threshold else (None, far)
+
+
+    def identify_views(self, images: Sequence[np.ndarray]) -> str | None:
+        """Whose face several views of one person show: the name most of the views in
+        which a face is found agree on (a stranger's views mostly come out unknown);
+        None when no name has a majority of those views."""
+        names = [self.identify(image)[0] for image in images]
+        seen = [name for name in names if name is not None]
+        found = sum(1 for image, name in zip(images, names, strict=True)
+                    if name is not None or self.describe(image) is not None)
+        if not seen:
+            return None
+        best = max(sorted(set(seen)), key=seen.count)
+        return best if 2 * seen.count(best) > found else None
+
+
+_INTRODUCTION = re.compile(
+    r"\b(?:my name is|my name's|i am called|call me|i'm|i am|this is)\s+"
+    r"([a-z][a-z'-]*(?:\s+[a-z][a-z'-]*)?)", re.IGNORECASE)
+_NOT_NAMES = frozenset({"a", "an", "the", "here", "back", "fine", "hungry", "thirsty",
+                        "tired", "not", "very", "so", "ok", "okay", "done", "ready", "sorry",
+                        "looking", "going", "home", "glad", "happy", "good", "well", "please",
+                        "thanks", "and", "i", "from"})
+
+
+def introduced_name(utterance: str) -> str | None:
+    """The name a person gives for themselves in ``utterance`` ("my name is Maria",
+    "I'm Adel", "call me Sam"), capitalised; None when the sentence introduces nobody
+    ("I'm thirsty"). A second word is kept only after "my name is" / "call me"
+    ("my name is Anna Maria")."""
+    match = _INTRODUCTION.search(utterance.strip().rstrip(".!?"))
+    if match is None:
+        return None
+    words = match.group(1).split()
+    if words[0].lower() in _NOT_NAMES:
+        return None
+    lead = match.group(0)[: match.start(1) - match.start(0)].strip().lower()
+    if lead not in ("my name is", "call me") or words[-1].lower() in _NOT_NAMES:
+        words = words[:1]
+    return " ".join(word.capitalize() for word in words)
+
+
+class Acquaintances:
+    """The people the robot has met by name: a person says "my name is ..." in front of
+    the robot, the head camera's views of their face are enrolled under that name
+    (CAESAR §2.4's online enrolment), and later views of them are recognised.
+
+    Args:
+        memory: makes the face memory on first use (training a detector takes a while:
+            a robot nobody introduces themselves to never trains one).
+    """
+
+    def __init__(self, memory: Callable[[], FaceMemory]) -> None:
+        self._make = memory
+        self._memory: FaceMemory | None = None
+
+    @property
+    def memory(self) -> FaceMemory:
+        if self._memory is None:
+            self._memory = self._make()
+        return self._memory
+
+    @property
+    def people(self) -> list[str]:
+        """The names of the people met."""
+        return [] if self._memory is None else self._memory.people
+
+    def introduce(self, utterance: str, images: Sequence[np.ndarray]) -> str | None:
+        """Enrol the face in ``images`` under the name ``utterance`` gives; the name, or
+        None when the sentence gives none or no face is seen in the images."""
+        name = introduced_name(utterance)
+        if name is None or not images:
+            return None
+        try:
+            self.memory.enrol(name, images)
+        except FaceError:
+            return None
+        return name
+
+    def recognise(self, images: Sequence[np.ndarray]) -> str | None:
+        """Who, of the people met, the views show (None: nobody met, or a stranger)."""
+        if self._memory is None or not self._memory.people or not images:
+            return None
+        return self._memory.identify_views(images)
+
+
+def _held_out_spacing(views: np.ndarray, images: np.ndarray) -> float:
+    """How far a new view of a person may lie from their enrolled views: each enrolment
+    image in turn is held out, its distance to the nearest ``_NEAREST`` views of the
+    person's other images taken, and the ``_HELD_OUT`` quantile of these returned
+    (cross-validation on the enrolment images alone: no stranger's face is needed).
+    With one image only, the spread of its own jittered copies stands in."""
+    scores = []
+    for image in np.unique(images):
+        probe, others = views[images == image][0], views[images != image]
+        if len(others):
+            scores.append(float(np.sort(np.linalg.norm(others - probe, axis=1))
+                                [:_NEAREST].mean()))
+    if scores:
+        return float(np.quantile(scores, _HELD_OUT))
+    gaps = np.linalg.norm(views[:, None, :] - views[None, :, :], axis=2)
+    return float(np.median(gaps[gaps > 1e-6])) if np.any(gaps > 1e-6) else 1.0
 
 
 @dataclass(frozen=True)

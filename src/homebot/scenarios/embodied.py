@@ -70,8 +70,10 @@ def embodied_robot(simulation: Simulation, navigator: Navigator, *,
     from homebot.embodied import BodyRobot, TableLook
     from homebot.navigation.local_planner import MotionSearchPlanner
     from homebot.navigation.localisation import MclParameters, MonteCarloLocalisation
-    from homebot.scenarios.perceiving import perception_for
+    from homebot.perception.faces import Acquaintances
+    from homebot.scenarios.perceiving import face_memory, perception_for
     from homebot.sim.body import SimBody
+    from homebot.sim.faces import FaceCamera
 
     world = simulation.world
     body = SimBody(simulation, walkers=walkers)
@@ -85,15 +87,21 @@ def embodied_robot(simulation: Simulation, navigator: Navigator, *,
     percepts = SimRobot(simulation)
     looking = TableLook(body, world, perception_for(world, simulation.seed),
                         _SimulatedObjects(simulation))
+    robot: BodyRobot
     if importlib.util.find_spec("mujoco") is None:  # no physics: grasps stay symbolic
-        return BodyRobot(body, world, navigator, localisation, MotionSearchPlanner(), percepts,
-                         percepts, simulation.events, looking=looking)
-    from homebot.embodied.hands import ArmedBodyRobot
-    from homebot.manipulation.control import ArmControl
+        robot = BodyRobot(body, world, navigator, localisation, MotionSearchPlanner(),
+                          percepts, percepts, simulation.events, looking=looking)
+    else:
+        from homebot.embodied.hands import ArmedBodyRobot
+        from homebot.manipulation.control import ArmControl
 
-    arm = ArmControl(body, world, _TrueObjectPoses(simulation, body), seed=simulation.seed)
-    return ArmedBodyRobot(body, world, navigator, localisation, MotionSearchPlanner(),
-                          percepts, percepts, simulation.events, looking=looking, arm=arm)
+        arm = ArmControl(body, world, _TrueObjectPoses(simulation, body), seed=simulation.seed)
+        robot = ArmedBodyRobot(body, world, navigator, localisation, MotionSearchPlanner(),
+                               percepts, percepts, simulation.events, looking=looking, arm=arm)
+    # faces: "my name is ..." enrols the head camera's views of the person in front
+    robot.acquaintances = Acquaintances(face_memory)
+    robot.face_images = FaceCamera(body)
+    return robot
 
 
 class _TrueObjectPoses:

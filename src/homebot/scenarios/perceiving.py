@@ -15,16 +15,19 @@ from collections.abc import Iterator, Mapping
 
 import numpy as np
 
+from homebot.perception.faces import FaceDetector, FaceMemory
 from homebot.perception.recognition import (
     LabelledFrame,
     Recogniser,
     TabletopPerception,
     training_examples,
 )
+from homebot.sim.faces import background_patch, face_identity, face_view
 from homebot.sim.tabletop import tabletop_scene
 from homebot.world import CatalogueEntry, World, object_catalogue
 
-__all__ = ["labelled_frames", "perception_for", "trained_recogniser"]
+__all__ = ["face_memory", "labelled_frames", "perception_for", "trained_face_detector",
+           "trained_recogniser"]
 
 _VIEWS_PER_OBJECT = 12  #: training views of each catalogue object (about)
 _OBJECTS_PER_SCENE = (4, 9)  #: training scenes hold 4 to 8 objects
@@ -59,3 +62,22 @@ def perception_for(world: World, seed: int = 0) -> TabletopPerception:
     """The table-top pipeline for ``world``'s catalogue (trained once per catalogue)."""
     recogniser = trained_recogniser(object_catalogue(world))
     return TabletopPerception(recogniser, np.random.default_rng([seed, 1516]))
+
+
+@functools.lru_cache(maxsize=4)
+def trained_face_detector(seed: int = 0, strangers: int = 30, views: int = 300,
+                          faceless: int = 200) -> FaceDetector:
+    """A face cascade trained on ``views`` rendered views of ``strangers`` (nobody of the
+    home) and ``faceless`` clutter images (remembered: training takes tens of seconds)."""
+    rng = np.random.default_rng([seed, 1517])
+    people = [face_identity(f"stranger{i}", seed + 1) for i in range(strangers)]
+    rendered = [face_view(people[i % strangers], rng) for i in range(views)]
+    detector = FaceDetector(seed=seed)
+    detector.train([image for image, _ in rendered], [window for _, window in rendered],
+                   [background_patch(rng) for _ in range(faceless)])
+    return detector
+
+
+def face_memory(seed: int = 0) -> FaceMemory:
+    """An empty face memory over the trained detector, for people to be enrolled in."""
+    return FaceMemory(trained_face_detector(seed), seed=seed)

@@ -14,10 +14,14 @@ from __future__ import annotations
 import math
 import zlib
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
 
-__all__ = ["FaceIdentity", "background_patch", "face_identity", "face_view"]
+if TYPE_CHECKING:
+    from homebot.sim.body import SimBody
+
+__all__ = ["FaceCamera", "FaceIdentity", "background_patch", "face_identity", "face_view"]
 
 IMAGE = 80  #: pixels: the side of a view
 FACE_SIZE = (30, 46)  #: pixels: a face's side in a view
@@ -113,3 +117,47 @@ def face_view(identity: FaceIdentity, rng: np.random.Generator, *, yaw: float = 
     side_light = rng.uniform(-light, light) * (np.arange(IMAGE) / IMAGE - 0.5)
     image = image * gain + side_light[None, :] + rng.normal(0.0, noise, image.shape)
     return np.clip(image * 255, 0, 255).astype(np.uint8), (x, y, size)
+
+
+class FaceCamera:
+    """The head camera's close-ups of the face of the person in front of a ``SimBody``.
+
+    The person nearest the camera's axis, within ``reach`` metres and ``half_angle``
+    radians of where the head points, is the one seen; each call renders ``views`` grey
+    views of their face (``face_view``: pose, light and noise vary), as a head camera's
+    crops of a person facing it give them over a second or two. Their face is
+    ``face_identity(name, face_seed)``: the same person, the same face, whatever the
+    run. Deterministic by the simulation's seed and the body's clock.
+    """
+
+    def __init__(self, body: SimBody, *, reach: float = 2.5, half_angle: float = 0.5,
+                 face_seed: int = 0) -> None:
+        self.body = body
+        self.reach = reach
+        self.half_angle = half_angle
+        self.face_seed = face_seed
+        self._looks = 0  #: each look renders new views, even at the same moment
+
+    def facing(self) -> str | None:
+        """Who stands in front of the camera (the truth: for rendering only)."""
+        pose = self.body.true_pose()
+        axis = pose.theta + self.body.head().pan
+        best, best_angle = None, math.inf
+        for name, state in sorted(self.body.sim.people.items()):
+            dx, dy = state.position[0] - pose.x, state.position[1] - pose.y
+            angle = abs(math.remainder(math.atan2(dy, dx) - axis, math.tau))
+            if math.hypot(dx, dy) <= self.reach and angle <= self.half_angle and \
+                    angle < best_angle:
+                best, best_angle = name, angle
+        return best
+
+    def __call__(self, views: int = 6) -> list[np.ndarray]:
+        """``views`` face images of the person in front; none when nobody is."""
+        name = self.facing()
+        if name is None:
+            return []
+        identity = face_identity(name, self.face_seed)
+        self._looks += 1
+        rng = np.random.default_rng([self.body.sim.seed, zlib.crc32(name.encode()),
+                                     round(self.body.now() * 1000), self._looks])
+        return [face_view(identity, rng)[0] for _ in range(views)]
