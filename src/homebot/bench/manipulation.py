@@ -40,7 +40,8 @@ from rich.table import Table
 from homebot.bench.arguments import count, seed
 from homebot.errors import HomebotError
 
-__all__ = ["Scene", "add_arguments", "generate_scene", "run", "run_pick"]
+__all__ = ["Scene", "SeenObjects", "add_arguments", "generate_scene", "perceive", "run",
+           "run_pick"]
 
 _ROBOT_RADIUS, _CLEARANCE = 0.25, 0.12  #: where the robot stands before a table's edge
 _LIFTED = 0.05  #: metres off the table for a verified pick

@@ -1,13 +1,13 @@
-"""Physical human-robot interaction in MuJoCo: handover, receiving, guiding, carrying a table.
+"""Physical interaction in MuJoCo: handover, receiving, guiding, carrying a table, a door.
 
 Not a benchmark of its own: ``homebot bench manipulation`` calls ``handover_figures``,
-``guided_figures`` and ``carry_table_figures``, and the scenarios ``handover``,
-``receive``, ``guided_by_hand`` and ``carry_table`` run one episode each. Every episode
-runs the robot's behaviour (``homebot.manipulation.interaction``) on the compliance
-controller in an ``InteractionScene``; the person is a seeded force profile or a
-gripping hand (``homebot.sim.forces``). Success is judged on the physics' ground truth:
+``guided_figures``, ``carry_table_figures`` and ``door_figures``, and the scenarios
+``handover``, ``receive``, ``guided_by_hand``, ``carry_table`` and ``open_door`` run one
+episode each. Every episode runs the robot's behaviour
+(``homebot.manipulation.interaction``) on the compliance controller in an
+``InteractionScene``; the person is a seeded force profile or a gripping hand (``homebot.sim.forces``). Success is judged on the physics' ground truth:
 when the bottle truly left the fingers, where the robot's base truly went, how level
-the table truly was.
+the table truly was, how far the door's hinge truly turned.
 """
 
 from __future__ import annotations
@@ -37,8 +37,16 @@ from homebot.sim.hri import InteractionScene
 
 __all__ = [
     "HANDOVER_THRESHOLD",
+    "CarryProfile",
+    "DoorResult",
+    "DoorVariant",
+    "carry_profile",
     "carry_table_episode",
     "carry_table_figures",
+    "door_episode",
+    "door_figures",
+    "door_scene",
+    "door_variant",
     "guided_episode",
     "guided_figures",
     "handover_episode",
