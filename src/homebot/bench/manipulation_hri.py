@@ -5,9 +5,10 @@ Not a benchmark of its own: ``homebot bench manipulation`` calls ``handover_figu
 ``handover``, ``receive``, ``guided_by_hand``, ``carry_table`` and ``open_door`` run one
 episode each. Every episode runs the robot's behaviour
 (``homebot.manipulation.interaction``) on the compliance controller in an
-``InteractionScene``; the person is a seeded force profile or a gripping hand (``homebot.sim.forces``). Success is judged on the physics' ground truth:
-when the bottle truly left the fingers, where the robot's base truly went, how level
-the table truly was, how far the door's hinge truly turned.
+``InteractionScene``; the person is a seeded force profile or a gripping hand
+(``homebot.sim.forces``). Success is judged on the physics' ground truth: when the
+bottle truly left the fingers, where the robot's base truly went, how level the table
+truly was, how far the door's hinge truly turned.
 """
 
 from __future__ import annotations
