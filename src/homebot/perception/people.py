@@ -178,8 +178,8 @@ class TrackerParameters:
     gate: float = 0.45  #: m: a returning person this far from where they were heading
     confirm: int = 3  #: sweeps with legs before a track is reported
     tentative: float = 0.35  #: s an unconfirmed track survives unseen
-    coast: float = 0.6  #: s a confirmed track survives unseen where the laser sees past it
-    hidden: float = 3.0  #: s it survives unseen in the shadow of something nearer
+    coast: float = 1.0  #: s a confirmed track survives unseen where the laser sees past it
+    hidden: float = 5.0  #: s it survives unseen in the shadow of something nearer
     unseen_slowing: float = 0.7  #: s: an unseen track's velocity decays with this time constant
     remember: float = 3.0  #: s an ended track's identity waits for its person to come back
     duplicate: float = 0.25  #: m; two confirmed tracks this close for long are one person
