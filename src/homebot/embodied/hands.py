@@ -25,7 +25,7 @@ from shapely.geometry import LineString, Point
 
 from homebot.embodied.robot import BodyRobot
 from homebot.manipulation.control import ArmControl
-from homebot.manipulation.pick import PickOutcome
+from homebot.manipulation.pick import PickOutcome, PickResult
 from homebot.robot import Detection, Pose
 from homebot.world import surface_height
 
@@ -33,6 +33,7 @@ __all__ = ["ArmedBodyRobot"]
 
 _STAND_OFF = 0.4  #: metres from a surface's edge where the robot stands to reach over it
 _STANDS_TRIED = 2  #: sides of the surface the robot steps to before it gives up
+_COMFORTABLE_REACH = 0.95  #: metres from the base's centre to an object the arm grasps well
 _STAND_STEP = 0.05  #: metres between the spots along a side that are tried
 _BIN_CATEGORIES = ("bin", "trash", "trash can", "waste bin")
 
@@ -80,13 +81,22 @@ class ArmedBodyRobot(BodyRobot):
     def grasp(self, detection: Detection, hand: str) -> None:
         if hand in self._holding:
             return
-        result = self.arm.pick(detection.label, self.pose(), detection.position, detection.mass)
-        # Out of reach from here: step to the sides of the surface nearest the object.
+        here = self.pose()
+        far = detection.position is not None and math.dist(
+            (here.x, here.y), detection.position) > _COMFORTABLE_REACH
+        # At the edge of its reach the arm grasps at full stretch, and a grasp off by a
+        # centimetre slips: the robot first steps nearer. Out of reach from here, too, it
+        # steps to the sides of the surface nearest the object.
+        result = PickResult(PickOutcome.UNREACHABLE, detail="too far to grasp well") if far \
+            else self.arm.pick(detection.label, here, detection.position, detection.mass)
         stands = iter(self._stands_before(detection.label, detection.position)
                       if result.outcome is PickOutcome.UNREACHABLE else ())
+        if far:  # from here, too, if no step brings it nearer
+            stands = itertools.chain(stands, (here,))
         for stand in itertools.islice(stands, _STANDS_TRIED):
             if not self.move_to(stand).reached:
                 continue
+            detection = self._look_again(detection)
             result = self.arm.pick(detection.label, self.pose(), detection.position,
                                    detection.mass)
             if result.outcome is not PickOutcome.UNREACHABLE:
@@ -97,6 +107,20 @@ class ArmedBodyRobot(BodyRobot):
         if result:
             self._holding[hand] = detection
             self.seen.pop(detection.label, None)  # in the hand now, not on the surface
+
+    def _look_again(self, detection: Detection) -> Detection:
+        """The object as seen from where the robot now stands (the step moved the pose
+        estimate's error: what was seen from before is off by that much): the detection of
+        the same object nearest where it was seen; the old one if it is not seen now."""
+        seen = self.seen.get(detection.label)
+        if seen is None or detection.position is None:
+            return detection
+        before = detection.position
+        again = [d for d in self.perceive_objects(seen[0])
+                 if d.label == detection.label and d.position is not None]
+        if not again:
+            return detection
+        return min(again, key=lambda d: math.dist(before, d.position or before))
 
     def held(self, hand: str) -> Detection | None:
         detection = self._holding.get(hand)

@@ -30,7 +30,7 @@ _HALF_FIELD = 0.36
 _HALF_HEIGHT = 0.25  #: radians: the same for the vertical field of view
 _TRUNCATED_REACH = 0.15  #: metres: an estimate cut by the picture's edge this near a whole one
 
-_REACH = 0.6  #: metres from the approach pose within which the robot sees the surface
+_REACH = 1.0  #: metres from the surface's edge within which the robot sees the surface
 _ON_SURFACE = 0.03  #: metres outside the footprint an estimate may lie (its own error)
 _SAME_OBJECT = 0.05  #: metres between estimates from two views of one object
 _VIEW_SECONDS = 0.7  #: the head turns and the camera settles
@@ -67,7 +67,7 @@ class TableLook:
     def look(self, placement: str, pose: Pose) -> list[Detection]:
         """The objects seen on ``placement`` from ``pose`` (the robot's estimate)."""
         where = self.world.placements.get(placement)
-        if where is None or math.dist(pose.xy(), where.approach[:2]) > _REACH:
+        if where is None or where.footprint.distance(Point(pose.xy())) > _REACH:
             return []
         self.objects.looked_at(placement)
         height = surface_height(where.model)
