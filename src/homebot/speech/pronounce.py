@@ -62,18 +62,21 @@ def _read_cmudict(words: set[str]) -> dict[str, list[str]]:
 
 
 def build_dictionary(words: Iterable[str], speak: object | None = None, *,
-                     espeak_variants: bool = False) -> Mapping[str, list[str]]:
+                     espeak_variants: bool | Iterable[str] = False
+                     ) -> Mapping[str, list[str]]:
     """Every word with its pronunciations (several where CMUdict has variants).
 
     Words CMUdict lacks are pronounced by espeak-ng (``speak`` is a ``Voice``; the shared
     one when None); with ``espeak_variants`` every word also gets espeak-ng's pronunciation
-    as a variant. Raises ``SpeechError`` for a word nobody can pronounce.
+    as a variant (given words, only those). Raises ``SpeechError`` for a word nobody can pronounce.
     """
     wanted = {word for word in words if word}
     known = _read_cmudict(wanted)
     missing = sorted(wanted - set(known))
-    if espeak_variants:
+    if espeak_variants is True:
         missing = sorted(wanted)
+    elif espeak_variants:
+        missing = sorted(set(missing) | (wanted & set(espeak_variants)))
     if missing:
         from homebot.speech.voice import Voice, espeak
 
