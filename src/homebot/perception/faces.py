@@ -15,10 +15,15 @@ level does not matter.
 - **Identification** (``FaceMemory``): a random forest on a larger bank of Haar
   features of the face window votes for an identity. ``enrol(name, images)`` adds
   a person online (the forest is grown again on everything enrolled: tens of
-  milliseconds). Strangers are rejected by distance: a face further from the
-  voted person's enrolled views than ``threshold`` times their usual spacing (in
-  the forest's most telling features) is nobody known. The forest's own vote
-  share and leaf proximity separated strangers worse on our faces.
+  milliseconds). The identification features are divided by the contrast of the
+  window's middle (its corners show the background). Strangers are rejected by
+  distance: a face further from the voted person's enrolled views than
+  ``threshold`` times their reach (in the forest's most telling features) is
+  nobody known; a person's reach is learnt from their enrolment images alone,
+  each held out in turn (``_held_out_spacing``). The forest's own vote share and
+  leaf proximity, and a per-person spread model, separated strangers worse.
+- **Online enrolment** (``Acquaintances``, ``introduced_name``): "my name is ..."
+  said in front of the robot enrols the views of the face in front under that name.
 """
 
 from __future__ import annotations
@@ -95,10 +100,11 @@ class HaarFeatures:
         self._starts = np.flatnonzero(np.r_[True, np.diff(owners) != 0])
 
     def compute(self, integrals: tuple[np.ndarray, np.ndarray], windows: np.ndarray,
-                only: np.ndarray | None = None) -> np.ndarray:
+                only: np.ndarray | None = None, core: float = 0.0) -> np.ndarray:
         """The features of each window (k, 3: x, y, side) of the image whose
         ``integral_image`` is given, as a (k, count) array; with ``only`` (feature
-        indices), just those, as (k, len(only))."""
+        indices), just those, as (k, len(only)); ``core``: the share of the window's side
+        left out at each edge for the contrast the features are divided by."""
         integral, squares = integrals
         windows = np.asarray(windows, dtype=np.float64).reshape(-1, 3)
         box, weight, starts = self._box, self._weight, self._starts
@@ -117,9 +123,11 @@ class HaarFeatures:
         areas = (x1 - x0) * (y1 - y0)
         values = sums / areas * weight[None, :]
         features = np.add.reduceat(values, starts, axis=1)
-        # normalise by the window's contrast: light level and gain drop out
-        a, b = windows[:, :2].astype(np.intp).T
-        s = windows[:, 2].astype(np.intp)
+        # normalise by the window's contrast (with ``core``, of its middle only, as much
+        # of the window as a face fills): light level and gain drop out
+        margin = np.rint(windows[:, 2] * core).astype(np.intp)
+        a, b = (windows[:, :2].astype(np.intp) + margin[:, None]).T
+        s = windows[:, 2].astype(np.intp) - 2 * margin
         total = integral[b + s, a + s] - integral[b, a + s] - integral[b + s, a] + integral[b, a]
         total2 = squares[b + s, a + s] - squares[b, a + s] - squares[b + s, a] + squares[b, a]
         mean = total / (s * s)
@@ -286,11 +294,14 @@ class FaceMemory:
         trees: the forest's size.
         features: the identification bank's size.
         seed: the bank's layout and the forest's randomness.
+        core: the share of the face window's side left out at each edge for the contrast
+            the features are divided by (the window's corners show the background).
     """
 
     def __init__(self, detector: FaceDetector, threshold: float = 1.0, trees: int = 100,
-                 features: int = 2000, seed: int = 0) -> None:
+                 features: int = 2000, seed: int = 0, core: float = 0.2) -> None:
         self.detector = detector
+        self.core = core
         self.threshold = threshold
         self.trees = trees
         # inside the face's oval: the window's corners show the background
@@ -318,7 +329,8 @@ class FaceMemory:
             if not found:
                 return None
             window = found[0].window()
-        vector: np.ndarray = self.bank.compute(integral_image(image), np.asarray([window]))[0]
+        vector: np.ndarray = self.bank.compute(integral_image(image), np.asarray([window]),
+                                               core=self.core)[0]
         return vector
 
     def enrol(self, name: str, images: Sequence[np.ndarray]) -> int:
@@ -336,7 +348,8 @@ class FaceMemory:
                           (-1, -1, 2), (1, 1, -2)]
                 windows = [w for w in ((x + a, y + b, side + c) for a, b, c in shifts)
                            if _fits(w, image.shape)]
-                described.append(self.bank.compute(integral_image(image), np.asarray(windows)))
+                described.append(self.bank.compute(integral_image(image), np.asarray(windows),
+                                                   core=self.core))
         if not described:
             raise FaceError(f"no face found in the {len(images)} image(s) of {name}; "
                             "enrol with images in which the face is seen from the front")
