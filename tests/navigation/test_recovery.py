@@ -141,6 +141,18 @@ def test_asked_to_step_aside_the_person_clears_the_way_and_the_robot_gets_there(
     assert simulation.collisions == []
 
 
+def test_someone_who_just_stopped_in_a_doorway_steps_aside_when_asked_by_the_door(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    # Not put there to block the door (a passer-by), yet asked about it by name.
+    simulation, _, navigation = _bathroom_doorway_blocked(apartment, apartment_navigator)
+    assert simulation.people["Maria"].blocking_door is None
+    assert not navigation.drive(_AT_THE_SINK)
+    assert SimRobot(simulation).request("Maria", HelpRequest.STEP_ASIDE, "bathroom door")
+    assert math.dist(simulation.people["Maria"].position, _INSIDE_BATHROOM) >= 0.8
+    assert navigation.drive(_AT_THE_SINK)
+    assert simulation.collisions == []
+
+
 def test_a_target_off_the_map_is_a_navigation_error(
         apartment: World, apartment_navigator: Navigator) -> None:
     simulation, body = _sim(apartment, apartment_navigator)

@@ -282,7 +282,9 @@ class SimRobot(Robot):
             room = sim.world.room_polygons[state.room].centroid
             sim.move_person(person, (room.x, room.y))
             return True
-        if request is HelpRequest.STEP_ASIDE and not target:
+        if request is HelpRequest.STEP_ASIDE:
+            # Anyone else in the way (a passer-by who stopped in a doorway, too) steps
+            # off the robot's way where there is room.
             spot = sim.spot_aside(state.position)
             if spot is None:
                 return False
