@@ -83,3 +83,19 @@ def test_objects_at_the_near_edge_are_seen_from_an_imprecise_approach(closer: fl
     robot.localisation.initialise(pose, spread=0.01, angle_spread=0.01)
     seen = robot.perceive_objects("table")
     assert sorted(d.label for d in seen) == ["apple", "cereal", "cola", "lemon"]
+
+
+def test_the_table_is_seen_from_its_far_side_too() -> None:
+    # Stepping round a table to reach an object, the robot looks again from there.
+    world = World.from_yaml_text(WORLD)
+    simulation = Simulation(world, seed=1)
+    robot = embodied_robot(simulation, Navigator(world))
+    assert isinstance(robot, BodyRobot)
+    pose = Pose(3.0, 2.75, -math.pi / 2)
+    simulation.robot_pose = (pose.x, pose.y, pose.theta)
+    robot.localisation.initialise(pose, spread=0.01, angle_spread=0.01)
+    seen = robot.perceive_objects("table")
+    assert sorted(d.label for d in seen) == ["apple", "cereal", "cola"]
+    for detection in seen:
+        assert detection.position is not None
+        assert math.dist(detection.position, simulation.object_position[detection.label]) < 0.03
