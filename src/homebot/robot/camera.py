@@ -60,7 +60,14 @@ class RgbdFrame:
         rays = _rays(self.intrinsics)[::step, ::step][valid]
         optical = rays * depth[valid][:, None].astype(np.float64)
         rotation, translation = self.camera_pose[:3, :3], self.camera_pose[:3, 3]
-        return optical @ rotation.T + translation, self.rgb[::step, ::step][valid]
+        # Written out per axis: ``optical @ rotation.T`` on (n, 3) is ~10x slower (BLAS on a
+        # 3-wide matrix), and a frame has ~70k points.
+        x, y, z = optical[:, 0], optical[:, 1], optical[:, 2]
+        base = np.empty_like(optical)
+        for axis in range(3):
+            base[:, axis] = (x * rotation[axis, 0] + y * rotation[axis, 1]
+                             + z * rotation[axis, 2] + translation[axis])
+        return base, self.rgb[::step, ::step][valid]
 
 
 @functools.lru_cache(maxsize=8)
