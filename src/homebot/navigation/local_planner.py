@@ -25,6 +25,7 @@ point is the goal, the speed is capped so the robot can stop on it.
 
 from __future__ import annotations
 
+import functools
 import heapq
 import math
 from collections.abc import Sequence
@@ -201,6 +202,34 @@ def _towards(now: Twist, target: Twist, limits: VelocityLimits, drive: DriveKind
     return limits.clip(step, drive)
 
 
+@functools.lru_cache(maxsize=16)
+def _lattice(dv: float, dw: float, omni: bool, first: bool) -> np.ndarray:
+    """Velocity changes one motion may make, as (n, 3) rows of (dvx, dvy, dwz).
+
+    The same every cycle for one robot: built once (read-only).
+    """
+    angular = dw * np.asarray(_FIRST_ANGULAR if first else _DEEP_ANGULAR)
+    if omni:
+        linear = dv * np.asarray(_OMNI_FIRST if first else _OMNI_DEEP)
+        turns = angular if first else angular[::2]
+        grid = np.meshgrid(linear, linear, turns, indexing="ij")
+        lattice = np.column_stack([axis.ravel() for axis in grid])
+    else:
+        linear = dv * np.asarray(_FIRST_LINEAR if first else _DEEP_LINEAR)
+        forward, turn = np.meshgrid(linear, angular, indexing="ij")
+        lattice = np.column_stack((forward.ravel(), np.zeros(forward.size), turn.ravel()))
+    lattice.setflags(write=False)
+    return lattice
+
+
+@functools.lru_cache(maxsize=4)
+def _fractions(substeps: int) -> np.ndarray:
+    """(substeps, 1, 1): how far through its motion each substep's middle lies."""
+    fraction = ((np.arange(1, substeps + 1) - 0.5) / substeps)[:, None, None]
+    fraction.setflags(write=False)
+    return fraction
+
+
 class _Search:
     """One cycle's A* over motion sequences; node states live in preallocated arrays."""
 
@@ -230,8 +259,11 @@ class _Search:
         self.inside = start_clearance < static
         self.start_clearance = start_clearance
         self.static = static if not self.inside else start_clearance - 0.005
-        self.first_lattice = self._lattice(True)
-        self.deep_lattice = self._lattice(False)
+        dv = limits.linear_acceleration * planner.step
+        dw = limits.angular_acceleration * planner.step
+        self.first_lattice = _lattice(dv, dw, self.omni, True)
+        self.deep_lattice = _lattice(dv, dw, self.omni, False)
+        self.fraction = _fractions(planner.substeps)
         capacity = 1 + len(self.first_lattice) + (planner.max_expansions + planner.batch) * \
             len(self.deep_lattice)
         # Columns: x, y, theta, vx, vy, wz, remaining path length.
@@ -240,20 +272,6 @@ class _Search:
         self.depth = np.zeros(capacity, dtype=np.intp)
         self.cost = np.zeros(capacity)
         self.size = 0
-
-    def _lattice(self, first: bool) -> np.ndarray:
-        """Velocity changes one motion may make, as (n, 3) rows of (dvx, dvy, dwz)."""
-        dv = self.limits.linear_acceleration * self.p.step
-        dw = self.limits.angular_acceleration * self.p.step
-        angular = dw * np.asarray(_FIRST_ANGULAR if first else _DEEP_ANGULAR)
-        if self.omni:
-            linear = dv * np.asarray(_OMNI_FIRST if first else _OMNI_DEEP)
-            turns = angular if first else angular[::2]
-            grid = np.meshgrid(linear, linear, turns, indexing="ij")
-            return np.column_stack([axis.ravel() for axis in grid])
-        linear = dv * np.asarray(_FIRST_LINEAR if first else _DEEP_LINEAR)
-        forward, turn = np.meshgrid(linear, angular, indexing="ij")
-        return np.column_stack((forward.ravel(), np.zeros(forward.size), turn.ravel()))
 
     # ---------------------------------------------------------------- the search
 
@@ -324,8 +342,7 @@ class _Search:
         now = start[:, 3:6]
         change = targets - now
         # Velocity in the middle of each substep, changing at a constant rate: (k, n, 3).
-        fraction = ((np.arange(1, k + 1) - 0.5) / k)[:, None, None]
-        velocity = now + fraction * change
+        velocity = now + self.fraction * change
         turn = velocity[:, :, 2] * dt
         th_all = start[:, 2] + np.cumsum(turn, axis=0)
         middle = th_all - turn / 2
@@ -334,7 +351,8 @@ class _Search:
         x_all = start[:, 0] + np.cumsum((vx * cos - vy * sin) * dt, axis=0)
         y_all = start[:, 1] + np.cumsum((vx * sin + vy * cos) * dt, axis=0)
         clearance = self.grid.clearance_at(x_all, y_all)
-        ok = np.all(clearance >= self.static + p.speed_margin * np.hypot(vx, vy), axis=0)
+        speed = np.hypot(vx, vy) if self.omni else np.abs(vx)  # equal: vy is 0 then
+        ok = np.all(clearance >= self.static + p.speed_margin * speed, axis=0)
         if self.inside:
             ok &= clearance[-1] >= self.start_clearance
         x, y, th = x_all[-1], y_all[-1], th_all[-1]
