@@ -304,13 +304,18 @@ class _Search:
                 if node == 0:
                     break  # the root expands alone, with the finer first lattice
             children, scores = self._expand(np.asarray(parents, dtype=np.intp))
-            depths = self.depth[children].tolist()
-            for child, score, depth in zip(children.tolist(), scores.tolist(), depths,
-                                           strict=True):
-                heapq.heappush(frontier, (score, child))
-                key = (-depth, score, child)
-                if best is None or key < best:
-                    best = key
+            if not len(children):
+                continue
+            push = heapq.heappush
+            for item in zip(scores.tolist(), children.tolist(), strict=True):
+                push(frontier, item)
+            # The deepest, then cheapest, then first child (children are in node order).
+            depths = self.depth[children]
+            deepest = np.flatnonzero(depths == depths.max())
+            pick = deepest[np.argmin(scores[deepest])]
+            key = (-int(depths[pick]), float(scores[pick]), int(children[pick]))
+            if best is None or key < best:
+                best = key
         if best is None:
             return None, expansions, 0
         return self._command(best[2]), expansions, -best[0]
