@@ -99,3 +99,23 @@ def test_a_door_ahead_that_someone_stands_in_is_what_stops_the_robot(
     assert report.blocker in (Blocker.PERSON, Blocker.DOOR_CLOSED)
     assert report.person in (None, "Maria")  # named when the robot sees who it is
     assert run.simulation.collisions == []
+
+
+def test_the_robot_comes_up_to_someone_far_off_before_asking_them_to_step_aside(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    from homebot.embodied import BodyRobot
+    from homebot.robot import HelpRequest
+
+    run = _run(apartment, apartment_navigator)
+    robot, simulation = run.robot, run.simulation
+    assert isinstance(robot, BodyRobot)
+    start = Pose(11.0, 1.0, math.pi)
+    assert apartment.footprint_problem(start.x, start.y) is None
+    simulation.robot_pose = (start.x, start.y, start.theta)
+    robot.localisation.initialise(start, spread=0.01, angle_spread=0.01)
+    simulation.move_person("Maria", (7.8, 2.9))  # across the kitchen: too far to be heard
+    assert math.dist(simulation.robot_pose[:2], (7.8, 2.9)) > 3.0
+    assert robot.request("Maria", HelpRequest.STEP_ASIDE, "")
+    assert math.dist(simulation.robot_pose[:2], (7.8, 2.9)) < 2.0
+    assert math.dist(simulation.people["Maria"].position, (7.8, 2.9)) >= 0.8
+    assert simulation.collisions == []

@@ -58,6 +58,7 @@ _GOAL_TOLERANCE = 0.15  #: metres: a leg ends this close to its end point
 _HEADING_TOLERANCE = 0.2  #: radians: the final turn ends this close to the goal's heading
 _PARTICLES_SHOWN = 500
 _IN_THE_WAY = 0.8  #: metres from the robot's way within which a person stands in it
+_ASKING_DISTANCE = 1.2  #: metres from a person where the robot stops to ask them something
 _INTRODUCTION_VIEWS = 20  #: face views enrolled while a person says their name (2 s at 10 Hz)
 _RECOGNITION_VIEWS = 10  #: face views whose majority names the person in front
 
@@ -379,7 +380,25 @@ class BodyRobot(Robot):
         return self.acquaintances.recognise(self.face_images(_RECOGNITION_VIEWS))
 
     def request(self, person: str, request: HelpRequest, target: str) -> bool:
+        if request is HelpRequest.STEP_ASIDE:
+            self._come_near(person)
         return self.percepts.request(person, request, target)
+
+    def _come_near(self, person: str) -> None:
+        """Come up to ``person`` before asking them to let the robot by, as far as the way
+        allows: stopped by someone in a doorway across the room, the robot would otherwise
+        ask from where they cannot hear it."""
+        seen = [p for p in self.percepts.perceive_people() if p.name == person]
+        here = self.pose()
+        if not seen or math.dist(seen[0].position, here.xy()) <= _ASKING_DISTANCE + 0.3:
+            return
+        plan = self.navigator.plan(here.xy(), seen[0].position)
+        if plan is None or len(plan.waypoints) < 2:
+            return
+        way = LineString(plan.waypoints)
+        spot = way.interpolate(max(way.length - _ASKING_DISTANCE, 0.0))
+        self.move_to(Pose(spot.x, spot.y, math.atan2(seen[0].position[1] - spot.y,
+                                                     seen[0].position[0] - spot.x)))
 
 
 def _distance_to_path(point: tuple[float, float],
