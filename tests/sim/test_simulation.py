@@ -2,6 +2,10 @@
 
 from __future__ import annotations
 
+import math
+
+from shapely.geometry import Point as ShapelyPoint
+
 from homebot.navigation import Navigator
 from homebot.robot import Blocker, Pose
 from homebot.sim import ScriptedResponder, SimRobot, Simulation
@@ -132,3 +136,19 @@ def test_a_person_asked_aside_steps_off_the_robots_way(apartment: World,
             (spot[1] - robot[1]) * math.cos(heading)
         assert abs(across) >= 0.9 or along < 0 or along > 1.2 + 2.5
         assert math.dist(spot, robot) >= 1.0
+
+
+def test_objects_put_on_a_surface_stand_apart_on_it(apartment: World) -> None:
+    # Moved by people (disturbances, walkers), not stacked on its centre: the camera would
+    # see two objects in one place as one.
+    simulation = Simulation(apartment, seed=1)
+    table = apartment.placements["side table"]
+    for name in ("banana", "soap", "cola"):
+        simulation.put_object(name, "side table")
+    spots = [simulation.position_on(name, "side table") for name in simulation.objects_on(
+        "side table")]
+    assert len(spots) >= 4  # the candle was there already
+    for spot in spots:
+        assert table.footprint.covers(ShapelyPoint(spot))
+    gaps = [math.dist(a, b) for i, a in enumerate(spots) for b in spots[i + 1:]]
+    assert min(gaps) > 0.12

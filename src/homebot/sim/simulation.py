@@ -36,6 +36,8 @@ _ASIDE_DIRECTIONS = 16
 _CLEAR_OF_ROBOT = 1.0  #: metres from the robot's centre a person stepping aside keeps
 _ALONG_THE_WAY = 2.5  #: metres past the person that the robot's way is taken to go on
 _CLEAR_OF_THE_WAY = 0.9  #: metres a person stepping aside keeps from that way
+_EDGE_KEPT = 0.08  #: metres from a surface's edge that an object put on it stands at least
+_SPOTS_ACROSS = 8  #: spots tried along each side of a surface when an object is put on it
 
 
 @dataclass
@@ -158,8 +160,31 @@ class Simulation:
         if not choices:
             return
         destination = self.random.choice(choices)
-        self.object_location[name] = destination
+        self.put_object(name, destination)
         self.events.record("sim.disturbance", what=what, object=name, to=destination)
+
+    def put_object(self, name: str, placement: str) -> None:
+        """Someone puts ``name`` on ``placement``: on the free spot of its surface farthest
+        from what already stands there (people do not stack things on each other)."""
+        self.object_location[name] = placement
+        where = self.world.placements.get(placement)
+        if where is None:
+            return
+        others = [self.position_on(other, placement) for other in self.objects_on(placement)
+                  if other != name]
+        low_x, low_y, high_x, high_y = where.footprint.bounds
+        margin = min(_EDGE_KEPT, (high_x - low_x) / 4, (high_y - low_y) / 4)
+        spots = [(low_x + margin + (high_x - low_x - 2 * margin) * i / _SPOTS_ACROSS,
+                  low_y + margin + (high_y - low_y - 2 * margin) * j / _SPOTS_ACROSS)
+                 for i in range(_SPOTS_ACROSS + 1) for j in range(_SPOTS_ACROSS + 1)]
+        spots = [spot for spot in spots if where.footprint.covers(ShapelyPoint(spot))]
+        if not spots:
+            return
+        centre = where.model.center
+        # Farthest from the others; of equally free spots, the one nearest the middle.
+        self.object_position[name] = max(spots, key=lambda spot: (
+            round(min((math.dist(spot, other) for other in others), default=1.0), 2),
+            -math.dist(spot, centre)))
 
     def place_person_in_doorway(self, door: str, name: str | None = None) -> str:
         """Put someone (a visitor unless named) in a doorway; returns their name."""

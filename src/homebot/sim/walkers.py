@@ -167,7 +167,7 @@ class PeopleWalking:
         walker.leaves_at = sim.clock.now() + self.rng.uniform(*_DWELL)
         walker.at_place = walker.destination
         if walker.carrying is not None and walker.destination is not None:
-            sim.object_location[walker.carrying] = walker.destination
+            sim.put_object(walker.carrying, walker.destination)
             sim.events.record("sim.disturbance", what="object_moved", object=walker.carrying,
                               to=walker.destination, person=walker.name)
             walker.carrying = None
