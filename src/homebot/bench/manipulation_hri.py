@@ -473,15 +473,7 @@ def carry_table_episode(seed: int, index: int = 0) -> CarryResult:
     scene.set_arm(q, torso=0.0, gripper=0.07)
     hand = scene.hand_world()
     scene.place_body("table", [hand[0] + _HANDLE_OFFSET, hand[1], -_LEG_GAP])
-    scene.grip(True)
-    start = reading(scene)
-    controller = ComplianceController(Compliance(), start.hand_position, start.hand_rotation,
-                                      rest=q)
-    for _ in range(30):  # the fingers close on the edge
-        apply(scene, controller, Command(start.hand_position, start.hand_rotation,
-                                         Compliance(), gripper_closed=True))
-        scene.step()
-    start = reading(scene)
+    controller, start = _close_fingers(scene, q, steps=30)  # on the table's edge
     behaviour = CarryTable(start.hand_position, start.hand_rotation,
                            length=_TABLE_LENGTH + _HANDLE_OFFSET - _TABLE_LENGTH / 2,
                            torso=scene.torso_height())
@@ -795,15 +787,7 @@ def door_episode(seed: int, index: int = 0, *, variant: DoorVariant | None = Non
                   gripper=_OPEN)
     q = reach(scene, seen, np.eye(3), np.array([0.0, 1.2, 0.0, -1.9, 0.0, 0.7, 0.0]))
     scene.set_arm(q, torso=_DOOR_TORSO, gripper=_OPEN)
-    scene.grip(True)
-    start = reading(scene)
-    controller = ComplianceController(Compliance(), start.hand_position, start.hand_rotation,
-                                      rest=q)
-    for _ in range(40):  # the fingers close on the bar
-        apply(scene, controller, Command(start.hand_position, start.hand_rotation,
-                                         Compliance(), gripper_closed=True))
-        scene.step()
-    start = reading(scene)
+    controller, start = _close_fingers(scene, q, steps=40)  # on the door's bar
     hinge = np.asarray(door.hinge) + np.asarray(door.hinge_error)
     behaviour = DoorMotion((float(hinge[0]), float(hinge[1])), scene.base_pose(),
                            start.hand_position, start.hand_rotation)
@@ -885,3 +869,18 @@ def door_figures(seed: int, trials: int = 20) -> dict[str, Any]:
 def _median(values: list[float | None]) -> float | None:
     known = [v for v in values if v is not None]
     return round(statistics.median(known), 2) if known else None
+
+
+def _close_fingers(scene: InteractionScene, rest: np.ndarray,
+                   steps: int) -> tuple[ComplianceController, ArmReading]:
+    """Close the gripper where the hand is, holding it there compliantly for ``steps``
+    control periods; the controller and the reading once the fingers are closed."""
+    scene.grip(True)
+    start = reading(scene)
+    controller = ComplianceController(Compliance(), start.hand_position, start.hand_rotation,
+                                      rest=rest)
+    for _ in range(steps):
+        apply(scene, controller, Command(start.hand_position, start.hand_rotation,
+                                         Compliance(), gripper_closed=True))
+        scene.step()
+    return controller, reading(scene)
