@@ -2,16 +2,17 @@
 
 A grasp plans a grasp and an arm motion (``homebot.manipulation``), moves the arm, closes
 the gripper and lifts; whether the object is then in the hand is what the gripper and the
-wrist sense, and what the simulator's physics made of the grasp, never a die. When no
-grasp is feasible from where the robot stands, it steps beside the surface where it is
-nearest the object (not against a wall or other furniture) and tries again, twice at most.
-A release puts the object on a free spot of the placement (or drops it into a bin). The arm
-plans among the objects where the robot's camera last saw them (``perceive_objects``; a
-picked object leaves that memory, a placed one is where it was put); the wiring's
-``locate`` (the simulator's truth) stands in only for objects it has not seen and for box
-headings. The
-robot has one arm: the world's second hand name is kept for the skills, but a grasp with the
-gripper full is refused (the hand stays empty).
+wrist sense, and what the simulator's physics made of the grasp, never a die. An object
+more than 0.95 m away, or out of reach from where the robot stands, is reached after a step
+beside the surface where it is nearest the object (not against a wall or other furniture;
+two sides at most), and after a step the robot looks again: the step moved its pose
+estimate's error under what it saw. A release puts the object on a free spot of the
+placement (or drops it into a bin). The arm plans among the objects where the robot's
+camera last saw them (``perceive_objects``; a picked object leaves that memory, a placed
+one is where it was put); the wiring's ``locate`` (the simulator's truth) stands in only
+for objects it has not seen and for box headings. The robot has one arm: the world's
+second hand name is kept for the skills, but a grasp with the gripper full is refused (the
+hand stays empty).
 """
 
 from __future__ import annotations
