@@ -49,6 +49,19 @@ def test_pick_aborts_when_the_hand_is_empty(apartment: World,
     assert run.context.beliefs.free_hand() == "left"
 
 
+def test_pick_says_why_when_the_arm_did_not_even_try(
+        apartment: World, apartment_navigator: Navigator,
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    run = SimulatedRun.create(apartment, navigator=apartment_navigator, retries={"pick": 0})
+    reason = "I cannot reach the cola from where I can stand"
+    monkeypatch.setattr(run.robot, "grasp", lambda detection, hand: reason)
+    outcome = skill_named("pick").run(run.context, {"object": "cola"})
+    assert outcome.status is Status.ABORTED and outcome.error is ErrorCode.NOT_GRASPED
+    assert outcome.message == reason  # not "closed my hand", nor "slipped"
+    assert run.context.beliefs.free_hand() == "left"
+    assert run.simulation.object_location["cola"] == "fridge"
+
+
 def test_pick_then_place_moves_the_object(run: SimulatedRun) -> None:
     assert _do(run, "pick", object="cola")
     assert run.context.beliefs.holding["left"] == "cola"

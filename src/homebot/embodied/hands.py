@@ -36,6 +36,12 @@ _STAND_OFF = 0.4  #: metres from a surface's edge where the robot stands to reac
 _STANDS_TRIED = 2  #: sides of the surface the robot steps to before it gives up
 _COMFORTABLE_REACH = 0.95  #: metres from the base's centre to an object the arm grasps well
 _STAND_STEP = 0.05  #: metres between the spots along a side that are tried
+#: why the arm did not even close the hand, as the robot says it
+_NOT_TRIED = {
+    PickOutcome.UNREACHABLE: "I cannot reach the {} from where I can stand",
+    PickOutcome.NO_PATH: "my arm finds no free way to the {}",
+    PickOutcome.TOO_HEAVY: "the {} is too heavy for my arm",
+}
 _BIN_CATEGORIES = ("bin", "trash", "trash can", "waste bin")
 
 
@@ -79,9 +85,9 @@ class ArmedBodyRobot(BodyRobot):
                 self.seen[detection.label] = (placement, detection.position)
         return detections
 
-    def grasp(self, detection: Detection, hand: str) -> None:
+    def grasp(self, detection: Detection, hand: str) -> str | None:
         if hand in self._holding:
-            return
+            return None
         here = self.pose()
         far = detection.position is not None and math.dist(
             (here.x, here.y), detection.position) > _COMFORTABLE_REACH
@@ -108,6 +114,7 @@ class ArmedBodyRobot(BodyRobot):
         if result:
             self._holding[hand] = detection
             self.seen.pop(detection.label, None)  # in the hand now, not on the surface
+        return _NOT_TRIED.get(result.outcome, "").format(detection.label) or None
 
     def _look_again(self, detection: Detection) -> Detection:
         """The object as seen from where the robot now stands (the step moved the pose

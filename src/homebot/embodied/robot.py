@@ -308,8 +308,8 @@ class BodyRobot(Robot):
     def perceive_people(self) -> list[PersonPercept]:
         return self.percepts.perceive_people()
 
-    def grasp(self, detection: Detection, hand: str) -> None:
-        self.percepts.grasp(detection, hand)
+    def grasp(self, detection: Detection, hand: str) -> str | None:
+        return self.percepts.grasp(detection, hand)
 
     def held(self, hand: str) -> Detection | None:
         return self.percepts.held(hand)

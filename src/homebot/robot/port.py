@@ -126,8 +126,11 @@ class Robot(ABC):
         """People seen in the room the robot is in."""
 
     @abstractmethod
-    def grasp(self, detection: Detection, hand: str) -> None:
-        """Close ``hand`` on the detected object (the hand sensor tells if it worked)."""
+    def grasp(self, detection: Detection, hand: str) -> str | None:
+        """Close ``hand`` on the detected object (the hand sensor tells if it worked).
+
+        A robot that does not even try (out of its arm's reach, too heavy for it) says
+        why, in words the robot can say; None when the hand closed."""
 
     @abstractmethod
     def held(self, hand: str) -> Detection | None:

@@ -53,7 +53,9 @@ class Pick(Skill):
         if not targets:
             return Outcome.failed(ErrorCode.NOT_FOUND, f"the {wanted} {be(wanted)} not "
                                   f"{place_in(context.world, placement)}", placement=placement)
-        context.robot.grasp(targets[0], hand)
+        problem = context.robot.grasp(targets[0], hand)
+        if problem:  # the hand did not even close: nothing to sense
+            return Outcome.aborted(ErrorCode.NOT_GRASPED, problem, placement=placement)
         return Outcome.finished(f"closed my {hand} hand on the {targets[0].label}", hand=hand,
                                 object=targets[0].label, placement=placement)
 
