@@ -11,6 +11,7 @@ names its network interface and leaves multicast discovery on.
 
 from __future__ import annotations
 
+import atexit
 import os
 import time
 from collections.abc import Callable
@@ -269,6 +270,17 @@ class ServiceClient:
 
 # cyclonedds allows one configured Domain per id in a process; nodes of one process share it.
 _DOMAINS: dict[int, tuple[TransportSettings, Domain]] = {}
+
+
+@atexit.register
+def _leave_domains() -> None:
+    """Delete the process's DDS domains (and with them every participant, reader and
+    writer) while the interpreter still runs: left to the garbage collector at
+    interpreter teardown, a deletion could wait for ever on DDS's own threads, and the
+    process never exited (one run of the transport tests in three)."""
+    for _, domain in _DOMAINS.values():
+        domain.__del__()  # cyclonedds deletes an entity (and its children) only here
+    _DOMAINS.clear()
 
 
 def _domain(settings: TransportSettings) -> Domain:
