@@ -16,7 +16,7 @@ from homebot.perception.faces import (
     HaarFeatures,
     integral_image,
 )
-from homebot.sim.faces import background_patch, face_identity, face_view
+from homebot.sim.faces import face_identity, face_view
 
 
 def test_the_integral_image_sums_any_rectangle_in_four_look_ups() -> None:
@@ -36,17 +36,6 @@ def test_haar_features_ignore_the_light_level() -> None:
     assert np.allclose(bright, darker, atol=0.15)
     some = bank.compute(integral_image(image), np.asarray([window]), only=np.array([3, 7]))
     assert np.allclose(some, bright[:, [3, 7]])
-
-
-@pytest.fixture(scope="module")
-def detector() -> FaceDetector:
-    rng = np.random.default_rng(5)
-    strangers = [face_identity(f"stranger{i}", 9) for i in range(12)]
-    views = [face_view(strangers[i % 12], rng) for i in range(80)]
-    found = FaceDetector(features=200, stumps=(8, 40))
-    found.train([image for image, _ in views], [window for _, window in views],
-                [background_patch(rng) for _ in range(60)])
-    return found
 
 
 def test_the_cascade_finds_a_new_face(detector: FaceDetector) -> None:

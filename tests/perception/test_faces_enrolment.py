@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from homebot.perception.faces import Acquaintances, FaceDetector, FaceMemory, introduced_name
-from homebot.sim.faces import background_patch, face_identity, face_view
+from homebot.sim.faces import face_identity, face_view
 
 
 @pytest.mark.parametrize(("utterance", "name"), [
@@ -17,17 +17,6 @@ from homebot.sim.faces import background_patch, face_identity, face_view
     ("bring me a coke", None), ("I'm looking for the kitchen", None)])
 def test_the_name_a_person_gives(utterance: str, name: str | None) -> None:
     assert introduced_name(utterance) == name
-
-
-@pytest.fixture(scope="module")
-def detector() -> FaceDetector:
-    rng = np.random.default_rng(5)
-    strangers = [face_identity(f"stranger{i}", 9) for i in range(12)]
-    views = [face_view(strangers[i % 12], rng) for i in range(80)]
-    found = FaceDetector(features=200, stumps=(8, 40))
-    found.train([image for image, _ in views], [window for _, window in views],
-                [background_patch(rng) for _ in range(60)])
-    return found
 
 
 def test_acquaintances_enrol_on_an_introduction_only(detector: FaceDetector) -> None:
