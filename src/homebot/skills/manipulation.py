@@ -6,7 +6,7 @@ import math
 from collections.abc import Mapping
 from typing import Any
 
-from homebot.skills.motion import drive
+from homebot.skills.motion import drive, drive_to_target
 from homebot.skills.perception import go_and_look, matches_object
 from homebot.skills.places import person_name, resolve_target
 from homebot.skills.skill import ErrorCode, Outcome, Skill, SkillContext, Status, speak
@@ -224,8 +224,4 @@ def _come_to(context: SkillContext, person: str) -> Outcome | None:
     position = context.beliefs.person_at.get(person)
     if position is None or math.dist(context.robot.pose().xy(), position) <= 1.5:
         return None
-    goal = resolve_target(context, person)
-    moved = drive(context, goal) if goal else None
-    if moved is not None and moved.status is not Status.FINISHED:
-        return moved
-    return None
+    return drive_to_target(context, person)

@@ -17,7 +17,7 @@ from homebot.skills.places import (
 from homebot.skills.skill import ErrorCode, Outcome, Skill, SkillContext, Status, speak
 from homebot.skills.wording import arrived, the
 
-__all__ = ["Follow", "Guide", "Navigate", "OpenDoor", "drive"]
+__all__ = ["Follow", "Guide", "Navigate", "OpenDoor", "drive", "drive_to_target"]
 
 
 def drive(context: SkillContext, goal: Pose, escort: str | None = None) -> Outcome:
@@ -35,6 +35,16 @@ def drive(context: SkillContext, goal: Pose, escort: str | None = None) -> Outco
         context.events.record("motion.through_closed_doors", doors=sorted(closed))
         report = context.robot.move_to(goal, frozenset(), escort)
     return _motion_outcome(context, report)
+
+
+def drive_to_target(context: SkillContext, target: str) -> Outcome | None:
+    """Drive to the named ``target`` (a place or person); the motion's outcome when it
+    did not get there, else None (also when the target has no pose to drive to)."""
+    goal = resolve_target(context, target)
+    moved = drive(context, goal) if goal else None
+    if moved is not None and moved.status is not Status.FINISHED:
+        return moved
+    return None
 
 
 def _motion_outcome(context: SkillContext, report: MoveReport) -> Outcome:

@@ -7,7 +7,7 @@ from collections.abc import Mapping, Sequence
 from typing import Any
 
 from homebot.robot import Detection, PersonPercept, Pose
-from homebot.skills.motion import drive
+from homebot.skills.motion import drive, drive_to_target
 from homebot.skills.places import OPERATOR, near, resolve_target, sees_person_nearby
 from homebot.skills.skill import ErrorCode, Outcome, Skill, SkillContext, Status, time_left
 from homebot.skills.wording import (
@@ -73,11 +73,7 @@ def go_into_room(context: SkillContext, room: str, target: str) -> Outcome | Non
     """Drive to ``target`` unless already in ``room``; a blocked way is returned, else None."""
     if context.world.room_at(*context.robot.pose().xy()) == room:
         return None
-    goal = resolve_target(context, target)
-    moved = drive(context, goal) if goal else None
-    if moved is not None and moved.status is not Status.FINISHED:
-        return moved
-    return None
+    return drive_to_target(context, target)
 
 
 def candidate_placements(context: SkillContext, wanted: str, room: str | None = None,
