@@ -23,18 +23,30 @@ wall-clock per ``plan`` call on whatever core this runs on (``taskset -c 0``).
 The pose the controllers steer by is ``--pose``: the truth (default, fast),
 odometry anchored at each goal's start (it drifts during the goal), or Monte
 Carlo localisation started near the truth at each goal (as the robot does).
+
+**One goal alone**: ``--only-goal K`` (or ``--from K``) measures goal K (0-based, as
+``missed goals`` lists them) in its own situation: the robot, the people and their
+seeded schedules as the whole run left them. The goals before are driven unmeasured,
+or, with ``--snapshots DIR`` (written by an earlier run with the same options and code),
+the situation is read back from there. ``--trace FILE`` writes each measured goal as
+a JSON line: the true pose, velocity and people at every control period, and every
+stage-1 plan (None: the robot waited).
 """
 
 from __future__ import annotations
 
 import argparse
+import gzip
 import itertools
+import json
 import math
+import pickle
 import random
 import statistics
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -42,7 +54,7 @@ from rich.console import Console
 from scipy import ndimage
 
 from homebot.bench.arguments import count, seed
-from homebot.errors import NavigationError
+from homebot.errors import BenchmarkError, NavigationError
 from homebot.navigation import Navigator, astar
 from homebot.navigation.astar import cached_jump_tables, forget_jump_tables, libtcod_astar
 from homebot.navigation.dwa import DynamicWindowPlanner
@@ -86,6 +98,19 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--walkers", type=count("--walkers", 0, 20), default=3,
                         help="people walking about")
     parser.add_argument("--seed", type=seed, default=1, help="seeds goals, people and sensors")
+    parser.add_argument("--from", dest="first", type=count("--from", 0, 4999), default=0,
+                        help="drive from this goal on (0-based, as 'per goal' lists them); the "
+                             "goals before it are driven unmeasured to reach its situation "
+                             "(robot, people, schedules), or read from --snapshots")
+    parser.add_argument("--only-goal", type=count("--only-goal", 0, 4999), default=None,
+                        help="drive this one goal alone (0-based), in its situation as --from")
+    parser.add_argument("--snapshots", type=Path, default=None,
+                        help="a folder: the situation at each goal's start is kept there "
+                             "(goal-NNNN-PLANNER.pickle.gz), and read back by --from/--only-goal "
+                             "instead of driving the goals before (same code, seed, walkers)")
+    parser.add_argument("--trace", type=Path, default=None,
+                        help="write what happened in each measured goal (JSON lines: the "
+                             "robot's true pose, people, stops, replans) to this file")
 
 
 def _median_ms(samples: list[float]) -> float:
@@ -248,7 +273,7 @@ def _driving(args: argparse.Namespace) -> dict[str, Any]:
     figures["walkers"] = args.walkers
     if len(outcomes) == 2:
         stage2, dwa = outcomes["stage2"], outcomes["dwa"]
-        both = [i for i in range(len(targets)) if stage2.reached[i] and dwa.reached[i]]
+        both = [i for i in range(len(stage2.reached)) if stage2.reached[i] and dwa.reached[i]]
         if both:
             time_stage2 = statistics.fmean(stage2.durations[i] for i in both)
             time_dwa = statistics.fmean(dwa.durations[i] for i in both)
@@ -276,6 +301,7 @@ class _Outcome:
     replans: int = 0
     waits: int = 0
     pose_errors: list[float] = field(default_factory=list)
+    first_goal: int = 0  #: the index of the first measured goal
 
     def summary(self) -> dict[str, Any]:
         goals = len(self.reached)
@@ -285,8 +311,11 @@ class _Outcome:
             "reached share": round(sum(self.reached) / goals, 4) if goals else 0.0,
             "collisions": len(self.collisions),
             "collided with": sorted({str(c["with"]) for c in self.collisions}),
+            "missed goals (0-based)": [self.first_goal + i for i, r in enumerate(self.reached)
+                                       if not r],
             "stop reasons": dict(sorted(self.reasons.items())),
-            "mean time per goal, s": round(statistics.fmean(self.durations), 2),
+            "mean time per goal, s": round(statistics.fmean(self.durations), 2)
+            if self.durations else 0.0,
             "mean |angular acceleration|, rad/s2": round(statistics.fmean(self.angular), 4)
             if self.angular else 0.0,
             "mean |linear acceleration|, m/s2": round(statistics.fmean(self.linear), 4)
@@ -300,22 +329,38 @@ class _Outcome:
             "cycle p95 ms": round(1000 * float(np.percentile(self.cycles, 95)), 3)
             if self.cycles else None,
             "wall seconds": round(self.wall_seconds, 1),
-            "per goal": {"reached": [int(r) for r in self.reached],
+            "per goal": {"first": self.first_goal,
+                         "reached": [int(r) for r in self.reached],
                          "seconds": [round(d, 2) for d in self.durations]},
         }
 
 
 def _drive(name: str, world: World, navigator: Navigator, targets: list[Pose],
            args: argparse.Namespace) -> _Outcome:
-    """Drive to every target in turn with one controller; everything judged by the truth."""
+    """Drive to every target in turn with one controller; everything judged by the truth.
+
+    Only the goals from ``--from`` (or the one of ``--only-goal``) are measured; the
+    ones before are driven unmeasured to reach the measured ones' situation, or that
+    situation is read from ``--snapshots``.
+    """
     began = time.perf_counter()
-    sim = Simulation(world, seed=args.seed, navigator=navigator)
-    body = SimBody(sim, walkers=args.walkers)
-    controller = _Timed(_PLANNERS[name]())
-    outcome = _Outcome()
+    first, last = _span(args, len(targets))
+    situation = _load_situation(args, name, first, world, navigator)
+    if situation is None:
+        sim = Simulation(world, seed=args.seed, navigator=navigator)
+        situation = _Situation(sim, SimBody(sim, walkers=args.walkers), _PLANNERS[name](),
+                               None, 0)
+    sim, body, previous = situation.sim, situation.body, situation.previous
+    controller = _Timed(situation.controller)
+    outcome, unmeasured = _Outcome(), _Outcome()
+    trace = _Trace(args.trace, name) if args.trace is not None else None
     velocities: list[tuple[float, Twist]] = []
-    previous: Pose | None = None
-    for target in targets:
+    for index in range(situation.goal, last):
+        target = targets[index]
+        if args.snapshots is not None:
+            _save_situation(args, name, world, navigator,
+                            _Situation(sim, body, controller.controller, previous, index))
+        measured = outcome if index >= first else unmeasured
         # The last goal was missed: start where it should have, once nobody stands there
         # (carrying the robot onto someone's feet is no collision of its own; with someone
         # standing there for good, it goes on from where it stopped).
@@ -324,45 +369,201 @@ def _drive(name: str, world: World, navigator: Navigator, targets: list[Pose],
             body.teleport(previous)
         truth = Pose(*sim.robot_pose)
         velocities.clear()
-        source = _pose_source(args.pose, sim, body, navigator, truth, args.seed,
-                              len(outcome.reached))
+        source = _pose_source(args.pose, sim, body, navigator, truth, args.seed, index)
+        recording = trace is not None and index >= first
+        if recording:
+            assert trace is not None
+            trace.begin(index, target, sim, body)
 
-        def localise(source: Callable[[], Pose] = source) -> Pose:
+        def localise(source: Callable[[], Pose] = source, recording: bool = recording) -> Pose:
             # Once per control period: the navigation may ask again within one.
             if not velocities or velocities[-1][0] < body.now():
                 velocities.append((body.now(), body.odometry().twist))
+                if recording:
+                    assert trace is not None
+                    trace.tick(sim, body)
             return source()
 
         navigation = RecoveringNavigation(body, navigator, controller, localise, _POLICY)
+        if recording:
+            assert trace is not None
+            trace.watch(navigation, body)
         collisions = len(sim.collisions)
+        previous = target
         try:
             attempt = navigation.drive(target, tolerance=_TOLERANCE,
                                        heading_tolerance=_HEADING_TOLERANCE)
         except NavigationError:
-            outcome.reached.append(False)
-            outcome.durations.append(0.0)
-            outcome.reasons["no path"] = outcome.reasons.get("no path", 0) + 1
-            previous = target
+            measured.reached.append(False)
+            measured.durations.append(0.0)
+            measured.reasons["no path"] = measured.reasons.get("no path", 0) + 1
             continue
         reached = math.dist(sim.robot_pose[:2], target.xy()) <= _REACHED
-        outcome.reached.append(reached)
-        outcome.durations.append(attempt.duration)
+        measured.reached.append(reached)
+        measured.durations.append(attempt.duration)
         reason = str(attempt.reason) if reached else f"{attempt.reason} (missed)"
-        outcome.reasons[reason] = outcome.reasons.get(reason, 0) + 1
-        outcome.replans += attempt.replans
-        outcome.waits += attempt.waits
-        outcome.collisions.extend(sim.collisions[collisions:])
-        outcome.travelled += attempt.travelled
+        measured.reasons[reason] = measured.reasons.get(reason, 0) + 1
+        measured.replans += attempt.replans
+        measured.waits += attempt.waits
+        measured.collisions.extend(sim.collisions[collisions:])
+        measured.travelled += attempt.travelled
         for (_, before), (_, after) in itertools.pairwise(velocities):
-            outcome.angular.append(abs(after.wz - before.wz) / body.tick_period)
-            outcome.linear.append(math.hypot(after.vx - before.vx, after.vy - before.vy) /
-                                  body.tick_period)
+            measured.angular.append(abs(after.wz - before.wz) / body.tick_period)
+            measured.linear.append(math.hypot(after.vx - before.vx, after.vy - before.vy) /
+                                   body.tick_period)
         if args.pose == "mcl":
-            outcome.pose_errors.append(math.dist(source().xy(), sim.robot_pose[:2]))
-        previous = target
+            measured.pose_errors.append(math.dist(source().xy(), sim.robot_pose[:2]))
+        if recording:
+            assert trace is not None
+            trace.end(sim, reached, reason, attempt.duration, sim.collisions[collisions:])
+    outcome.first_goal = first
     outcome.cycles = controller.seconds
     outcome.wall_seconds = time.perf_counter() - began
     return outcome
+
+
+def _span(args: argparse.Namespace, goals: int) -> tuple[int, int]:
+    """The measured goals, ``range(first, last)``, from ``--from`` and ``--only-goal``."""
+    only = getattr(args, "only_goal", None)
+    first = only if only is not None else getattr(args, "first", 0)
+    if first >= goals:
+        option = "--only-goal" if only is not None else "--from"
+        raise BenchmarkError(f"{option} {first}: there are only {goals} goals (0 to "
+                             f"{goals - 1}); give a smaller one or more --goals")
+    return first, first + 1 if only is not None else goals
+
+
+@dataclass
+class _Situation:
+    """Everything a goal starts from: the simulation, the body, the controller, the
+    goal before (where a missed one restarts the robot) and the goal's index."""
+
+    sim: Simulation
+    body: SimBody
+    controller: LocalController
+    previous: Pose | None
+    goal: int
+
+
+def _snapshot_path(args: argparse.Namespace, name: str, goal: int) -> Path:
+    assert args.snapshots is not None
+    return Path(args.snapshots) / f"goal-{goal:04d}-{name}.pickle.gz"
+
+
+def _snapshot_key(args: argparse.Namespace, name: str) -> tuple[object, ...]:
+    return (name, args.seed, args.walkers, args.pose, args.goals)
+
+
+class _Pickler(pickle.Pickler):
+    """Keeps the world and the navigator out of a snapshot (they are loaded again)."""
+
+    def __init__(self, file: Any, shared: dict[int, str]) -> None:
+        super().__init__(file, protocol=pickle.HIGHEST_PROTOCOL)
+        self.shared = shared
+
+    def persistent_id(self, obj: Any) -> str | None:
+        return self.shared.get(id(obj))
+
+
+class _Unpickler(pickle.Unpickler):
+    def __init__(self, file: Any, shared: dict[str, object]) -> None:
+        super().__init__(file)
+        self.shared = shared
+
+    def persistent_load(self, pid: Any) -> object:
+        return self.shared[str(pid)]
+
+
+def _save_situation(args: argparse.Namespace, name: str, world: World, navigator: Navigator,
+                    situation: _Situation) -> None:
+    path = _snapshot_path(args, name, situation.goal)
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        with gzip.open(path, "wb", compresslevel=1) as handle:
+            pickler = _Pickler(handle, {id(world): "world", id(navigator): "navigator"})
+            pickler.dump((_snapshot_key(args, name), situation))
+    except OSError as error:
+        raise BenchmarkError(f"--snapshots {args.snapshots}: cannot write {path.name} "
+                             f"({error.strerror or error}); give a folder you can write") \
+            from None
+
+
+def _load_situation(args: argparse.Namespace, name: str, goal: int, world: World,
+                    navigator: Navigator) -> _Situation | None:
+    """The situation at ``goal``'s start kept in ``--snapshots``, or None (drive there)."""
+    if goal == 0 or args.snapshots is None:
+        return None
+    path = _snapshot_path(args, name, goal)
+    if not path.is_file():
+        return None
+    with gzip.open(path, "rb") as handle:
+        try:
+            key, situation = _Unpickler(handle, {"world": world, "navigator": navigator}).load()
+        except (pickle.UnpicklingError, EOFError, OSError, AttributeError, ImportError, TypeError):
+            raise BenchmarkError(f"--snapshots: {path} was kept by other code; delete it or "
+                                 "give an empty folder") from None
+    if key != _snapshot_key(args, name):
+        raise BenchmarkError(f"--snapshots: {path} was kept with other options "
+                             f"(planner, seed, walkers, pose, goals: {key}); give the same "
+                             "options or an empty folder")
+    assert isinstance(situation, _Situation)
+    return situation
+
+
+class _Trace:
+    """What happened in each measured goal, as one JSON line per goal."""
+
+    def __init__(self, path: Path, planner: str) -> None:
+        self.path, self.planner = path, planner
+        self.record: dict[str, Any] = {}
+        try:
+            path.write_text("")
+        except OSError as error:
+            raise BenchmarkError(f"--trace {path}: cannot be written "
+                                 f"({error.strerror or error}); give a file you can write") \
+                from None
+
+    def begin(self, goal: int, target: Pose, sim: Simulation, body: SimBody) -> None:
+        self.record = {"planner": self.planner, "goal": goal, "target": _rounded(target),
+                       "start": _rounded(Pose(*sim.robot_pose)), "began": round(body.now(), 2),
+                       "ticks": [], "plans": []}
+
+    def tick(self, sim: Simulation, body: SimBody) -> None:
+        twist = body.odometry().twist
+        people = {name: [round(v, 2) for v in state.position]
+                  for name, state in sorted(sim.people.items())}
+        self.record["ticks"].append({
+            "t": round(body.now(), 2), "pose": _rounded(Pose(*sim.robot_pose)),
+            "v": [round(twist.vx, 2), round(twist.vy, 2), round(twist.wz, 2)],
+            "people": people})
+
+    def watch(self, navigation: RecoveringNavigation, body: SimBody) -> None:
+        """Record every stage-1 path the navigation plans (and when none was found)."""
+        plan_wide = navigation.plan_wide
+
+        def traced(here: Pose, target: Pose, avoid_doors: frozenset[str],
+                   obstacles: np.ndarray) -> tuple[tuple[float, float], ...] | None:
+            path = plan_wide(here, target, avoid_doors, obstacles)
+            self.record["plans"].append({
+                "t": round(body.now(), 2), "from": _rounded(here),
+                "obstacles": len(obstacles),
+                "path": None if path is None else [[round(x, 2), round(y, 2)]
+                                                   for x, y in path]})
+            return path
+
+        navigation.plan_wide = traced  # type: ignore[method-assign]
+
+    def end(self, sim: Simulation, reached: bool, reason: str, duration: float,
+            collisions: list[dict[str, object]]) -> None:
+        self.record.update(reached=reached, reason=reason, duration=round(duration, 2),
+                           end=_rounded(Pose(*sim.robot_pose)),
+                           collisions=[str(c.get("with")) for c in collisions])
+        with self.path.open("a") as handle:
+            handle.write(json.dumps(self.record) + "\n")
+
+
+def _rounded(pose: Pose) -> list[float]:
+    return [round(pose.x, 3), round(pose.y, 3), round(pose.theta, 3)]
 
 
 def _wait_until_clear(body: SimBody, spot: Pose) -> bool:
