@@ -77,6 +77,27 @@ def test_stage2_drives_an_omnidirectional_base_round_an_obstacle() -> None:
     assert body.collisions == 0
 
 
+@pytest.mark.parametrize("drive", [DriveKind.DIFFERENTIAL, DriveKind.OMNIDIRECTIONAL])
+def test_stage2_compiled_search_is_its_plain_python(drive: DriveKind,
+                                                    monkeypatch: pytest.MonkeyPatch) -> None:
+    # One implementation: the numba kernel's own Python function gives the same commands.
+    pytest.importorskip("numba")
+    from homebot.navigation import motion_search
+
+    body = FakeBody(Pose(0.0, 0.0, 0.3), [(1.2, 0.1, 0.25), *wall(1.0, 0.8, 3.0, 0.8)],
+                    drive=drive)
+    path = [(0.0, 0.0), (3.0, 0.0)]
+    planner = MotionSearchPlanner()
+    for velocity in (Twist(), Twist(0.4, 0.0, -0.3), Twist(0.1, 0.0, 0.8)):
+        args = (body.pose, velocity, body.scan(), path, body.limits, body.drive, body.radius)
+        compiled = planner.plan(*args)
+        with monkeypatch.context() as patch:
+            patch.setattr(motion_search, "search", motion_search.search.py_func)
+            plain = planner.plan(*args)
+        assert plain == compiled
+        assert planner.last is not None and planner.last.expansions > 1
+
+
 def test_local_grid_marks_returns_and_their_clearance() -> None:
     body = FakeBody(Pose(0.0, 0.0, 0.0), [(1.3, 0.0, 0.4)])
     grid = LocalGrid.from_scan(body.scan())

@@ -18,7 +18,6 @@ from dataclasses import dataclass
 from typing import Protocol
 
 import numpy as np
-import tcod.path
 from scipy import ndimage
 
 from homebot.errors import NavigationError
@@ -128,7 +127,7 @@ class LocalGrid:
 
     def clearance_at(self, x: np.ndarray, y: np.ndarray) -> np.ndarray:
         """Clearance at robot-frame points (``outside`` beyond the grid)."""
-        padded = self._padded
+        padded = self.padded
         last = self.cells + 1
         scale = 1.0 / self.resolution
         columns = np.minimum(np.maximum((x + self.half_size) * scale + 1, 0), last).astype(np.intp)
@@ -137,7 +136,7 @@ class LocalGrid:
         return values
 
     @functools.cached_property
-    def _padded(self) -> np.ndarray:
+    def padded(self) -> np.ndarray:
         """The clearance with a one-cell border of ``outside`` (nothing known there)."""
         padded: np.ndarray = np.pad(self.clearance, 1, constant_values=self.outside)
         return padded
@@ -183,11 +182,9 @@ class LocalGrid:
             fastest = slow.reshape(cells // pool, pool, cells // pool, pool).min(axis=(1, 3))
             cost = np.where(free, np.round(np.minimum(fastest, 50.0) * 10), 0).astype(np.int32)
         unit = 100 if slowness is None else 1000  # raw distance per cell at top speed
-        graph = tcod.path.SimpleGraph(cost=cost, cardinal=100, diagonal=141)
-        finder = tcod.path.Pathfinder(graph)
-        finder.add_root(root)
-        finder.resolve()
-        raw = finder.distance
+        from homebot.navigation import motion_search  # numba: only once a controller plans
+
+        raw = motion_search.sweep(cost, root[0], root[1], 100, 141)
         reached = raw != np.iinfo(raw.dtype).max
         coarse = np.where(reached, raw * (resolution / unit), np.inf)
         if not reached.all():

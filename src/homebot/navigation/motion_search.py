@@ -1,0 +1,395 @@
+"""Stage 2's search by time as one compiled kernel (numba), see ``local_planner``.
+
+``search`` is the whole of one cycle's A* over motion sequences: the rollout of
+each motion in substeps, the collision check against the local grid's
+clearance (grown by the speed), the heuristic (time to go) and the open list
+(a binary heap on arrays). It is written as plain Python over scalars and
+arrays, so that without numba (the ``embodied`` extra) it still runs, only
+slower, and tests can run the very same code as ``search.py_func``.
+
+``numba`` is imported here only: this module is imported when stage 2 first
+plans, so the symbolic fidelity never pays for it. ``cache=True`` keeps the
+compiled kernel on disk (``__pycache__``), so a second process does not compile
+it again.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any, TypeVar, cast
+
+import numpy as np
+
+__all__ = ["downhill_at", "search"]
+
+_F = TypeVar("_F", bound=Callable[..., Any])
+
+
+def _compiled(function: _F) -> _F:
+    """``function`` compiled by numba (cached on disk) when numba is there, else as it is."""
+    try:
+        from numba import njit
+    except ImportError:  # pragma: no cover - the embodied extra brings numba
+        return function
+    return cast(_F, njit(cache=True, nogil=True)(function))
+
+
+# ------------------------------------------------------------------ helpers
+
+
+@_compiled
+def _sign(value: float) -> float:
+    if value > 0.0:
+        return 1.0
+    if value < 0.0:
+        return -1.0
+    return 0.0
+
+
+@_compiled
+def _ramp_time(distance: float, speed: float, top: float, acceleration: float) -> float:
+    """Least time to cover ``distance`` from ``speed`` (may be negative) within ``top``."""
+    speed = min(speed, top)
+    ramp_distance = (top * top - _sign(speed) * speed * speed) / (2.0 * acceleration)
+    if distance <= ramp_distance:
+        return (-speed + math.sqrt(max(speed * speed + 2.0 * acceleration * distance, 0.0))) / \
+            acceleration
+    return (top - speed) / acceleration + (distance - ramp_distance) / top
+
+
+@_compiled
+def _rest_to_rest(angle: float, top: float, acceleration: float) -> float:
+    """Least time to turn by ``angle`` from rest to rest."""
+    if angle <= top * top / acceleration:
+        return 2.0 * math.sqrt(max(angle, 0.0) / acceleration)
+    return top / acceleration + angle / top
+
+
+@_compiled
+def _turn_time(angle: float, rate: float, top: float, acceleration: float) -> float:
+    """Least time to turn by ``angle`` (≥ 0) and stop there, turning at ``rate`` towards it now.
+
+    Bang-bang: speed up (to ``top`` at most), slow down; when the turn already
+    under way cannot stop in time, stop past the heading and come back.
+    """
+    if rate < 0.0:
+        away = -rate
+        return away / acceleration + _rest_to_rest(angle + away * away / (2.0 * acceleration),
+                                                   top, acceleration)
+    toward = rate
+    stopping = toward * toward / (2.0 * acceleration)
+    if stopping > angle:
+        return toward / acceleration + _rest_to_rest(stopping - angle, top, acceleration)
+    peak = math.sqrt(acceleration * angle + toward * toward / 2.0)
+    if peak <= top:
+        return (2.0 * peak - toward) / acceleration
+    return (top - toward) / acceleration + top / acceleration + \
+        (angle - (top * top - toward * toward) / (2.0 * acceleration) -
+         top * top / (2.0 * acceleration)) / top
+
+
+@_compiled
+def downhill_at(distances: np.ndarray, row: int, column: int, pool: int) -> float:
+    """The way down the distance field at a cell (radians, robot frame; atan2(−∂y, −∂x)).
+
+    The field is constant within each ``pool``-wide cell: the slope is taken
+    between those coarse cells (central differences, one-sided at the edges).
+    """
+    rows = (distances.shape[0] + pool - 1) // pool
+    columns = (distances.shape[1] + pool - 1) // pool
+    i = min(row // pool, rows - 1)
+    j = min(column // pool, columns - 1)
+
+    if rows < 2:
+        d_row = 0.0
+    elif i == 0:
+        d_row = _coarse(distances, 1, j, pool) - _coarse(distances, 0, j, pool)
+    elif i == rows - 1:
+        d_row = _coarse(distances, i, j, pool) - _coarse(distances, i - 1, j, pool)
+    else:
+        d_row = (_coarse(distances, i + 1, j, pool) - _coarse(distances, i - 1, j, pool)) / 2.0
+    if columns < 2:
+        d_column = 0.0
+    elif j == 0:
+        d_column = _coarse(distances, i, 1, pool) - _coarse(distances, i, 0, pool)
+    elif j == columns - 1:
+        d_column = _coarse(distances, i, j, pool) - _coarse(distances, i, j - 1, pool)
+    else:
+        d_column = (_coarse(distances, i, j + 1, pool) -
+                    _coarse(distances, i, j - 1, pool)) / 2.0
+    return math.atan2(-d_row, -d_column)
+
+
+@_compiled
+def _coarse(distances: np.ndarray, row: int, column: int, pool: int) -> float:
+    """The field in coarse cell (row, column); unreachable counts as 1000 m."""
+    value: float = distances[row * pool, column * pool]
+    return value if math.isfinite(value) else 1e3
+
+
+# ------------------------------------------------------------------ the open list
+
+
+@_compiled
+def _before(score_a: float, node_a: int, score_b: float, node_b: int) -> bool:
+    return score_a < score_b or (score_a == score_b and node_a < node_b)
+
+
+@_compiled
+def _push(scores: np.ndarray, nodes: np.ndarray, size: int, score: float, node: int) -> int:
+    """Push (score, node) on the heap of ``size`` entries; the new size."""
+    i = size
+    while i > 0:
+        parent = (i - 1) // 2
+        if not _before(score, node, scores[parent], nodes[parent]):
+            break
+        scores[i] = scores[parent]
+        nodes[i] = nodes[parent]
+        i = parent
+    scores[i] = score
+    nodes[i] = node
+    return size + 1
+
+
+@_compiled
+def _pop(scores: np.ndarray, nodes: np.ndarray, size: int) -> int:
+    """Remove the heap's first entry (read it from ``scores[0], nodes[0]`` before); new size."""
+    size -= 1
+    score, node = scores[size], nodes[size]
+    i = 0
+    while True:
+        child = 2 * i + 1
+        if child >= size:
+            break
+        if child + 1 < size and _before(scores[child + 1], nodes[child + 1], scores[child],
+                                        nodes[child]):
+            child += 1
+        if not _before(scores[child], nodes[child], score, node):
+            break
+        scores[i] = scores[child]
+        nodes[i] = nodes[child]
+        i = child
+    if size > 0:
+        scores[i] = score
+        nodes[i] = node
+    return size
+
+
+# ------------------------------------------------------------------ the search
+
+
+@_compiled
+def search(padded: np.ndarray, half_size: float, resolution: float, distances: np.ndarray,
+           pool: int, target_x: float, target_y: float, final: bool,
+           vx0: float, vy0: float, wz0: float, omni: bool, spin: float,
+           first_lattice: np.ndarray, deep_lattice: np.ndarray,
+           static: float, inside: bool, start_clearance: float,
+           linear: float, angular: float, linear_acceleration: float,
+           angular_acceleration: float,
+           step: float, depth_limit: int, max_expansions: int, batch: int, substeps: int,
+           goal_tolerance: float, greed: float, speed_margin: float, turn_cost: float,
+           ) -> tuple[int, float, float, float, int, int]:
+    """One cycle's best-first search over motion sequences.
+
+    Pops up to ``batch`` nodes per expansion (the root alone, with the finer
+    first lattice). A node whose sequence is ``depth_limit`` motions long, or
+    ends within ``goal_tolerance`` of the target, is final: the first one popped
+    wins. Without one within the budget, the deepest, then cheapest, node seen
+    wins. A motion changes the velocity at a constant rate over its ``step`` and
+    is admissible when the robot keeps ``static`` plus ``speed_margin`` × speed
+    of clearance (``padded``: the local grid's clearance with a one-cell
+    border) at the middle of each of its ``substeps``; the cost is time, plus
+    ``turn_cost`` per rad/s of change in turn rate.
+
+    Returns:
+        (found, vx, vy, wz, expansions, depth): ``found`` is 0 when no motion is
+        admissible, else 1 and the first motion's velocity of the winning sequence.
+    """
+    cells = padded.shape[0] - 2
+    scale = 1.0 / resolution
+    n_first = first_lattice.shape[0]
+    n_deep = deep_lattice.shape[0]
+    capacity = 1 + n_first + (max_expansions + batch) * n_deep
+    # Per node: x, y, theta, vx, vy, wz, remaining path length; its first node, depth, cost.
+    state = np.zeros((capacity, 7))
+    first = np.zeros(capacity, dtype=np.int64)
+    depth = np.zeros(capacity, dtype=np.int64)
+    cost = np.zeros(capacity)
+    heap_scores = np.zeros(capacity)
+    heap_nodes = np.zeros(capacity, dtype=np.int64)
+    parents = np.zeros(batch, dtype=np.int64)
+    xs = np.zeros(substeps)
+    ys = np.zeros(substeps)
+    state[0, 3] = vx0
+    state[0, 4] = vy0 if omni else 0.0
+    state[0, 5] = wz0
+    state[0, 6] = np.inf
+    size = 1
+    heap = _push(heap_scores, heap_nodes, 0, 0.0, 0)
+    best_node = -1
+    best_depth = 0
+    best_score = 0.0
+    expansions = 0
+    dt = step / substeps
+    while heap > 0 and expansions < max_expansions:
+        count = 0
+        while heap > 0 and count < batch and expansions < max_expansions:
+            score, node = heap_scores[0], heap_nodes[0]
+            heap = _pop(heap_scores, heap_nodes, heap)
+            if node != 0 and (depth[node] >= depth_limit or state[node, 6] <= goal_tolerance):
+                if count == 0:
+                    f = first[node]
+                    return 1, state[f, 3], state[f, 4], state[f, 5], expansions, depth[node]
+                heap = _push(heap_scores, heap_nodes, heap, score, node)  # after this batch
+                break
+            parents[count] = node
+            count += 1
+            expansions += 1
+            if node == 0:
+                break  # the root expands alone, with the finer first lattice
+        root = parents[0] == 0
+        lattice = first_lattice if root else deep_lattice
+        for p in range(count):
+            parent = parents[p]
+            sx, sy, sth = state[parent, 0], state[parent, 1], state[parent, 2]
+            now_x, now_y, now_w = state[parent, 3], state[parent, 4], state[parent, 5]
+            for m in range(lattice.shape[0]):
+                end_x = now_x + lattice[m, 0]
+                end_y = now_y + lattice[m, 1]
+                end_w = min(max(now_w + lattice[m, 2], -angular), angular)
+                if omni:
+                    # Hardly backwards: the laser sees ahead and to the sides.
+                    end_x = min(max(end_x, -0.1), linear)
+                    if math.hypot(end_x, end_y) > linear + 1e-9:
+                        continue
+                else:
+                    end_x = min(max(end_x, 0.0), linear)
+                change_x, change_y, change_w = end_x - now_x, end_y - now_y, end_w - now_w
+                # Roll the motion out: the velocity in the middle of each substep.
+                turned = 0.0
+                moved_x = 0.0
+                moved_y = 0.0
+                ok = True
+                last_clearance = 0.0
+                th = sth
+                for k in range(substeps):
+                    fraction = (k + 0.5) / substeps
+                    vx = now_x + fraction * change_x
+                    vy = now_y + fraction * change_y
+                    turn = (now_w + fraction * change_w) * dt
+                    turned += turn
+                    th = sth + turned
+                    middle = th - turn / 2.0
+                    cos, sin = math.cos(middle), math.sin(middle)
+                    moved_x += (vx * cos - vy * sin) * dt
+                    moved_y += (vx * sin + vy * cos) * dt
+                    xs[k] = sx + moved_x
+                    ys[k] = sy + moved_y
+                    column = int(min(max((xs[k] + half_size) * scale + 1.0, 0.0), cells + 1.0))
+                    row = int(min(max((ys[k] + half_size) * scale + 1.0, 0.0), cells + 1.0))
+                    last_clearance = padded[row, column]
+                    speed = math.hypot(vx, vy) if omni else abs(vx)
+                    if last_clearance < static + speed_margin * speed:
+                        ok = False
+                        break
+                if not ok:
+                    continue
+                if inside and last_clearance < start_clearance:
+                    continue
+                x, y = xs[substeps - 1], ys[substeps - 1]
+                column = int(min(max((x + half_size) * scale, 0.0), cells - 1.0))
+                row = int(min(max((y + half_size) * scale, 0.0), cells - 1.0))
+                # The field is coarse; the straight distance is a bound that is exact near
+                # the target.
+                remaining = max(distances[row, column], math.hypot(x - target_x, y - target_y))
+                # At the goal, able to stop on it: v² ≤ 2·a·(distance left).
+                if final and math.hypot(end_x, end_y) > math.sqrt(
+                        2.0 * linear_acceleration * max(remaining - 0.02, 0.0)) + 0.05:
+                    continue
+                # The time left: cover the distance from this speed, after turning where
+                # needed (a differential base must face the way down the distance field,
+                # and its speed counts only along that way).
+                if omni:
+                    to_go = _ramp_time(remaining, math.hypot(end_x, end_y), linear,
+                                       linear_acceleration)
+                else:
+                    error = (downhill_at(distances, row, column, pool) - th + math.pi) % \
+                        (2.0 * math.pi) - math.pi
+                    if spin != 0.0 and abs(error) > 2.5 and error * spin < 0.0:
+                        # The way lies behind: either turn will do, so keep turning the way
+                        # it turns now (otherwise the choice flips and the robot dithers).
+                        error += spin * 2.0 * math.pi
+                    if remaining <= 0.15:
+                        error = 0.0
+                    along = max(end_x * math.cos(error), 0.0)
+                    travel = _ramp_time(remaining, along, linear, linear_acceleration)
+                    # Facing more than 45° off the way, a differential base turns on the
+                    # spot (more or less) before it gets anywhere: that adds to the travel.
+                    turning = _turn_time(max(abs(error) - math.pi / 4.0, 0.0),
+                                         end_w * _sign(error), angular, angular_acceleration)
+                    to_go = travel + turning
+                child = size
+                size += 1
+                state[child, 0] = x
+                state[child, 1] = y
+                state[child, 2] = th
+                state[child, 3] = end_x
+                state[child, 4] = end_y
+                state[child, 5] = end_w
+                state[child, 6] = remaining
+                first[child] = child if root else first[parent]
+                depth[child] = depth[parent] + 1
+                # Time is the cost, plus a little for every change of turn rate.
+                cost[child] = cost[parent] + step + turn_cost * abs(change_w)
+                score = cost[child] + greed * to_go
+                heap = _push(heap_scores, heap_nodes, heap, score, child)
+                # The deepest, then cheapest, then first node seen.
+                if best_node < 0 or depth[child] > best_depth or \
+                        (depth[child] == best_depth and score < best_score):
+                    best_node, best_depth, best_score = child, depth[child], score
+    if best_node < 0:
+        return 0, 0.0, 0.0, 0.0, expansions, 0
+    f = first[best_node]
+    return 1, state[f, 3], state[f, 4], state[f, 5], expansions, best_depth
+
+
+# ------------------------------------------------------------------ the search by length
+
+
+@_compiled
+def sweep(cost: np.ndarray, root_row: int, root_column: int, cardinal: int,
+          diagonal: int) -> np.ndarray:
+    """Dijkstra out from one cell over an 8-connected grid: every cell's least path cost.
+
+    Entering a cell costs ``cardinal`` (straight) or ``diagonal`` times its
+    ``cost``; a cell of cost 0 is blocked. Cells not reached hold the dtype's
+    largest value (as libtcod's pathfinder, which this replaces, does).
+    """
+    rows, columns = cost.shape
+    unreached = np.iinfo(np.int64).max
+    distance = np.full((rows, columns), unreached, dtype=np.int64)
+    capacity = 8 * rows * columns + 1
+    heap_scores = np.zeros(capacity)
+    heap_nodes = np.zeros(capacity, dtype=np.int64)
+    distance[root_row, root_column] = 0
+    heap = _push(heap_scores, heap_nodes, 0, 0.0, root_row * columns + root_column)
+    while heap > 0:
+        score, node = heap_scores[0], heap_nodes[0]
+        heap = _pop(heap_scores, heap_nodes, heap)
+        row, column = node // columns, node % columns
+        here = distance[row, column]
+        if score > here:
+            continue  # a stale entry: a shorter way here was found meanwhile
+        for d_row in range(-1, 2):
+            for d_column in range(-1, 2):
+                r, c = row + d_row, column + d_column
+                if (d_row == 0 and d_column == 0) or r < 0 or r >= rows or c < 0 or \
+                        c >= columns or cost[r, c] == 0:
+                    continue
+                step = cardinal if d_row == 0 or d_column == 0 else diagonal
+                there = here + step * cost[r, c]
+                if there < distance[r, c]:
+                    distance[r, c] = there
+                    heap = _push(heap_scores, heap_nodes, heap, float(there), r * columns + c)
+    return distance
