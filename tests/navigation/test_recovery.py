@@ -153,6 +153,42 @@ def test_someone_who_just_stopped_in_a_doorway_steps_aside_when_asked_by_the_doo
     assert simulation.collisions == []
 
 
+def test_with_someone_standing_on_the_target_the_robot_comes_as_near_as_it_can_and_waits(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    simulation, body = _sim(apartment, apartment_navigator)
+    body.teleport(Pose(10.0, 5.0, math.pi))  # in the corridor, facing west
+    # She stays, between the robot and the target; her legs 0.3 m from it.
+    simulation.move_person("Maria", (8.0, 5.0))
+    target = Pose(7.7, 5.0, math.pi)
+    navigation = RecoveringNavigation(body, apartment_navigator, MotionSearchPlanner(),
+                                      lambda: _truth(simulation),
+                                      RecoveryPolicy(patience=6.0, wait_budget=10.0))
+    attempt = navigation.drive(target)
+    assert not attempt.reached and attempt.reason is not StopReason.REACHED
+    assert attempt.waits >= 1
+    assert math.dist(simulation.robot_pose[:2], target.xy()) < 0.3
+    assert simulation.collisions == []
+
+
+def test_waiting_in_a_doorway_for_someone_the_robot_steps_out_of_their_way(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    simulation, body = _sim(apartment, apartment_navigator)
+    door = apartment.doors["office door"].position
+    body.teleport(Pose(door[0], door[1], -math.pi / 2))  # in the office door, facing south
+    simulation.move_person("Maria", (door[0], door[1] - 0.75))  # just outside, waiting
+    navigation = RecoveringNavigation(body, apartment_navigator, MotionSearchPlanner(),
+                                      lambda: _truth(simulation))
+    body.tick()
+    seen = navigation.memory.observe(body.now(), _truth(simulation), body.scan())
+    assert navigation.make_way(_truth(simulation), seen, frozenset()) > 0.3
+    here = simulation.robot_pose[:2]
+    assert math.dist(here, door) >= 0.9
+    assert math.dist(here, simulation.people["Maria"].position) > 1.0
+    assert simulation.collisions == []
+    # Nobody near: nothing to make way for.
+    assert navigation.make_way(_truth(simulation), np.zeros((0, 2)), frozenset()) == 0.0
+
+
 def test_a_target_off_the_map_is_a_navigation_error(
         apartment: World, apartment_navigator: Navigator) -> None:
     simulation, body = _sim(apartment, apartment_navigator)
@@ -162,7 +198,7 @@ def test_a_target_off_the_map_is_a_navigation_error(
         navigation.drive(Pose(-50.0, -50.0, 0.0))
 
 
-@pytest.mark.parametrize("field", ["stuck_after", "patience", "wait"])
+@pytest.mark.parametrize("field", ["stuck_after", "patience", "wait", "make_way_after"])
 def test_a_policy_with_a_non_positive_time_is_refused(field: str) -> None:
     with pytest.raises(NavigationError, match=field):
         RecoveryPolicy(**{field: 0.0})

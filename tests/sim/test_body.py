@@ -126,6 +126,23 @@ def test_people_walk_on_seeded_schedules(apartment: World,
     assert apartment.model.operator not in moved  # the operator walks last
 
 
+def test_someone_the_robot_came_up_to_can_still_step_away_from_it(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    body = _body(apartment, apartment_navigator, walkers=["John"])
+    body.teleport(Pose(1.0, 5.0, 0.0))  # in the corridor, facing east
+    body.sim.move_person("John", (1.5, 5.0))  # within the robot's radius + personal space
+    john = body.people.walkers[0]
+    john.path = [(4.0, 5.0)]  # his way leads east, away from the robot
+    body.tick(20)
+    assert body.sim.people["John"].position[0] > 1.8
+    # Towards the robot, nobody steps nearer than that.
+    john.path = [(0.0, 5.0)]
+    john.waiting_since = -math.inf  # past his patience: he would go round at once
+    body.sim.move_person("John", (1.5, 5.0))
+    body.tick(20)
+    assert math.dist(body.sim.people["John"].position, (1.0, 5.0)) >= 0.5 - 1e-9
+
+
 def test_bad_body_settings_are_errors(apartment: World, apartment_navigator: Navigator) -> None:
     with pytest.raises(BodyError, match="20 Hz"):
         _body(apartment, apartment_navigator, tick_rate=5.0)

@@ -99,7 +99,7 @@ class Navigator:
     def plan_around(self, start: tuple[float, float], goal: tuple[float, float],
                     closed_doors: frozenset[str], obstacles: np.ndarray,
                     clearance: float, static_clearance: float | None = None,
-                    ) -> tuple[tuple[float, float], ...] | None:
+                    near_goal: float = 0.0) -> tuple[tuple[float, float], ...] | None:
         """Waypoints of a path keeping ``clearance`` from ``obstacles`` ((n, 2) map points).
 
         CAESAR's dynamic obstacle extension: what the laser sees that the static map
@@ -107,6 +107,9 @@ class Navigator:
         One search over the whole grid, uncached, since the obstacles change.
         ``static_clearance`` (default: the robot's radius) is kept from walls and
         furniture: a local planner that keeps a safety margin needs the same here.
+        When ``obstacles`` cover the goal itself (someone stands on it), the path ends
+        at the free cell nearest to it if that lies within ``near_goal`` metres (as near
+        as the robot can come), else there is none.
         """
         grid = self.grid
         mask = self._mask(closed_doors).copy()
@@ -124,13 +127,17 @@ class Navigator:
             return None
         columns = grid.shape[1]
         goal_index = goal_cell[0] * columns + goal_cell[1]
-        if mask[goal_index]:
-            return None  # something stands on the goal itself
+        end = goal
+        if mask[goal_index]:  # something stands on the goal itself
+            near = grid.nearest_free(mask, *goal_cell) if near_goal > 0 else None
+            if near is None or math.dist(grid.center_of(*near), goal) > near_goal:
+                return None
+            goal_index, end = near[0] * columns + near[1], grid.center_of(*near)
         cells_path = astar(mask, grid.shape, start_cell[0] * columns + start_cell[1], goal_index)
         if cells_path is None:
             return None
         points = [grid.center_of(*divmod(cell, columns)) for cell in cells_path]
-        return (start, *_simplify(points)[1:-1], goal)
+        return (start, *_simplify(points)[1:-1], end)
 
     def _cells_within(self, points: np.ndarray, radius: float) -> np.ndarray:
         """Flat indices of the cells within ``radius`` of any of ``points`` ((n, 2), metres)."""

@@ -40,6 +40,17 @@ _FACE_AHEAD = 0.5  #: metres along the path to the point a spin recovery turns t
 _FACED = 0.3  #: radians: a spin recovery stops this close to facing that point
 _DETOUR_BUDGETS = 3.0  #: a goal's whole time, detours included, in first budgets
 _AT_THE_MAP = 0.075  #: metres: a return this near a wall or furniture cell is that obstacle
+# Making way (stepping aside for people who wait for the robot to pass):
+_CROWDED = 1.5  #: metres: someone this near the waiting robot may be waiting for it in turn
+_DOORWAY = 1.0  #: metres from a door's centre: no spot to step aside to
+_MAKE_WAY_REACH = (0.6, 1.0, 1.4, 1.8)  #: metres from the robot, the spots tried
+_MAKE_WAY_DIRECTIONS = 16
+_MAKE_WAY_ROOM = 0.2  #: metres more than stage 1's margin round people, kept at the spot
+_MAKE_WAY_FAR = 1.5  #: metres from people beyond which a spot is no better
+_MAKE_WAY_PER_METRE = 0.3  #: a spot's score lost per metre of reach
+_MAKE_WAY_TRIES = 6  #: best spots tried for a way there
+_MAKE_WAY_DETOUR = 2.5  #: a way to a spot at most this many times its straight distance
+_MAKE_WAY_TOLERANCE = 0.2  #: metres: near enough to the spot
 
 
 @dataclass(frozen=True)
@@ -57,6 +68,8 @@ class RecoveryPolicy:
         wait: seconds to stand still when no way round exists.
         patience: seconds of waiting in a row, with no way round, before giving up as
             blocked (someone who stays in the way has to be asked to move).
+        make_way_after: seconds of waiting, with someone near, before the robot steps
+            out of their way (they may be waiting for it), and again after as long.
     """
 
     stuck_after: float = 3.0
@@ -70,10 +83,11 @@ class RecoveryPolicy:
     unexplained: float = 0.15
     wait: float = 3.0
     patience: float = 20.0
+    make_way_after: float = 6.0
 
     def __post_init__(self) -> None:
         for name in ("stuck_after", "seconds_per_metre", "obstacle_memory", "unexplained",
-                     "wait", "patience"):
+                     "wait", "patience", "make_way_after"):
             value = getattr(self, name)
             if not (math.isfinite(value) and value > 0):
                 raise NavigationError(f"the recovery policy's {name} must be a positive "
@@ -256,6 +270,8 @@ class RecoveringNavigation:
         travelled, replans, waits = 0.0, 0, 0
         reason = StopReason.TIMEOUT
         waiting_since: float | None = None
+        made_way_at = -math.inf
+        obstacles = np.zeros((0, 2))
         while body.now() < deadline:
             if path is None:
                 if waiting_since is None:
@@ -264,22 +280,37 @@ class RecoveringNavigation:
                     reason = StopReason.BLOCKED
                     break
                 waits += 1
+                if body.now() - max(waiting_since, made_way_at) >= policy.make_way_after:
+                    made_way_at = body.now()
+                    travelled += self.make_way(self.localise(), obstacles, avoid_doors)
+                # Watch the way while waiting: the laser clears what it sees has gone.
+                way = self.plan_wide(self.localise(), target, avoid_doors, np.zeros((0, 2)))
+                if way is not None:
+                    self._face(way)
                 self._wait(policy.wait)
             else:
                 waiting_since = None
                 budget = max(deadline - body.now(), body.tick_period)
-                goal = NavigationGoal(target, path, tolerance, heading_tolerance, timeout=budget)
+                # Someone standing on the target: as near as the robot can come to it.
+                aim = target if path[-1] == target.xy() else Pose(*path[-1], target.theta)
+                goal = NavigationGoal(aim, path, tolerance, heading_tolerance, timeout=budget)
                 action = NavigateToPose(goal, body, self.controller, self.localise,
                                         stuck_after=policy.stuck_after)
                 result = _run(action, int(budget / body.tick_period) + _STOP_TICKS, stop)
                 travelled += result.travelled
                 reason = result.reason or StopReason.TIMEOUT
-                if result.reached or reason is not StopReason.BLOCKED:
+                if result.reached and aim is not target:
+                    reason = StopReason.BLOCKED  # there: wait for the target to clear
+                elif result.reached or reason is not StopReason.BLOCKED:
                     break
-                self._face(path)
+                else:
+                    self._face(path)
             pose = self.localise()
             obstacles = self.memory.observe(body.now(), pose, body.scan())
             path = self.plan_wide(pose, target, avoid_doors, obstacles)
+            if path is not None and path[-1] != target.xy() and \
+                    math.dist(pose.xy(), path[-1]) <= tolerance:
+                path = None  # as near to an occupied target as it comes: wait there
             if path is not None:
                 needed = body.now() + polyline_length(path) * policy.seconds_per_metre
                 deadline = min(last_call, max(deadline, needed + policy.stuck_after))
@@ -301,15 +332,67 @@ class RecoveringNavigation:
         """
         radius, policy = self.body.radius, self.policy
         around, wide = radius + policy.obstacle_margin, radius + policy.static_margin
+        # Someone standing on the target itself: the path ends as near to it as there is
+        # room (the robot waits there for them to step off).
+        near = around
         path = self.navigator.plan_around(here.xy(), target.xy(), avoid_doors, obstacles,
-                                          around, wide)
+                                          around, wide, near_goal=near)
         if path is not None:
             return path
         if len(obstacles) and self.navigator.plan_around(
                 here.xy(), target.xy(), avoid_doors, np.zeros((0, 2)), around, wide):
             return None
         return self.navigator.plan_around(here.xy(), target.xy(), avoid_doors, obstacles,
-                                          around)
+                                          around, near_goal=near)
+
+    def make_way(self, here: Pose, obstacles: np.ndarray, avoid_doors: frozenset[str]) -> float:
+        """Step out of the way of people standing round the robot (metres driven).
+
+        Waiting in a doorway or a narrow passage for someone who waits for the robot in
+        turn (they cannot pass it either) waits for ever: as people do, and as Nav2's
+        back-up recovery does, the robot steps aside, out of doorways and away from
+        whoever stands near, to a free spot it can reach round them, and waits there
+        for the way to clear. Nothing to step away from, or nowhere to go: 0.
+        """
+        body, policy, navigator = self.body, self.policy, self.navigator
+        if not len(obstacles):
+            return 0.0
+        distance = np.hypot(obstacles[:, 0] - here.x, obstacles[:, 1] - here.y)
+        if float(distance.min()) > _CROWDED:
+            return 0.0
+        around, wide = body.radius + policy.obstacle_margin, body.radius + policy.static_margin
+        grid, clearance = navigator.grid, navigator.clearance()
+        doors = [door.position for door in navigator.world.doors.values()]
+        spots: list[tuple[float, tuple[float, float]]] = []
+        for reach in _MAKE_WAY_REACH:
+            for turn in range(_MAKE_WAY_DIRECTIONS):
+                angle = math.tau * turn / _MAKE_WAY_DIRECTIONS
+                spot = (here.x + reach * math.cos(angle), here.y + reach * math.sin(angle))
+                row, column = grid.cell_of(*spot)
+                if not (0 <= row < grid.shape[0] and 0 <= column < grid.shape[1]) \
+                        or navigator.world.room_at(*spot) is None \
+                        or clearance[row, column] < wide \
+                        or any(math.dist(spot, door) < _DOORWAY for door in doors):
+                    continue
+                away = float(np.min(np.hypot(obstacles[:, 0] - spot[0],
+                                             obstacles[:, 1] - spot[1])))
+                if away < around + _MAKE_WAY_ROOM:
+                    continue
+                spots.append((min(away, _MAKE_WAY_FAR) - _MAKE_WAY_PER_METRE * reach, spot))
+        for _, spot in sorted(spots, reverse=True)[:_MAKE_WAY_TRIES]:
+            path = navigator.plan_around(here.xy(), spot, avoid_doors, obstacles, around, wide)
+            if path is None or polyline_length(path) > _MAKE_WAY_DETOUR * math.dist(
+                    here.xy(), spot):
+                continue
+            self._face(path)
+            length = polyline_length(path)
+            budget = length * policy.seconds_per_metre + policy.stuck_after
+            goal = NavigationGoal(Pose(*spot, here.theta), path, _MAKE_WAY_TOLERANCE, None,
+                                  timeout=budget)
+            action = NavigateToPose(goal, body, self.controller, self.localise,
+                                    stuck_after=policy.stuck_after)
+            return action.run(int(budget / body.tick_period) + _STOP_TICKS).travelled
+        return 0.0
 
     def _face(self, path: tuple[tuple[float, float], ...]) -> None:
         """Turn on the spot to face along ``path`` (Nav2's spin recovery): a local

@@ -135,7 +135,9 @@ class PeopleWalking:
             position = (here[0] + step * math.cos(heading), here[1] + step * math.sin(heading))
         else:
             position = target
-        if math.dist(position, robot) < keep_away:
+        # Nobody steps nearer than ``keep_away`` to the robot; someone already that near
+        # (the robot came up to them) may still step away from it.
+        if math.dist(position, robot) < min(keep_away, math.dist(here, robot)):
             return
         if position == target:
             walker.path.pop(0)
