@@ -35,6 +35,25 @@ def test_the_laser_measures_the_distance_to_a_wall(apartment: World,
         math.isinf(body.scan().ranges[straight_ahead])
 
 
+def test_the_compiled_laser_is_its_plain_python(apartment: World,
+                                               apartment_navigator: Navigator,
+                                               monkeypatch: pytest.MonkeyPatch) -> None:
+    # One implementation: the numba ray march's own Python function casts the same ranges.
+    pytest.importorskip("numba")
+    from homebot.sim import laser
+
+    body = _body(apartment, apartment_navigator, laser=QUIET_LASER)
+    for pose in (Pose(1.0, 5.0, 0.3), Pose(2.0, 1.5, -2.0)):
+        body.teleport(pose)
+        compiled = body.scan().ranges
+        with monkeypatch.context() as patch:
+            patch.setattr(laser, "_march_beams", laser._march_beams.py_func)
+            body.teleport(pose)  # not the scan of this tick again: a new sweep
+            plain = body.scan().ranges
+        np.testing.assert_array_equal(plain, compiled)
+        assert np.isfinite(compiled).sum() > len(compiled) // 2
+
+
 def test_people_are_seen_by_their_legs(apartment: World, apartment_navigator: Navigator) -> None:
     body = _body(apartment, apartment_navigator, laser=QUIET_LASER)
     body.teleport(Pose(1.0, 5.0, 0.0))

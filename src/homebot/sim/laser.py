@@ -1,9 +1,9 @@
 """The simulated 2-D laser: rays cast against the true geometry and people's legs, plus noise.
 
-Every beam samples the 2 cm raster once a cell along its length in one
-OpenCV remap (a compiled gather; a Python loop per beam would be ~10x slower),
-the first solid sample is refined by bisection, and legs are intersected
-exactly as circles.
+Every beam samples the 2 cm raster once a cell along its length until its
+first solid sample (a numba kernel, ``_march_beams``: each beam stops at its
+hit instead of sampling its whole range), which is refined by bisection; legs
+are intersected exactly as circles.
 Noise is Gaussian; a share of beams returns a spurious short range instead of
 the truth, as feet, reflections and clutter do to real lasers.
 """
@@ -11,9 +11,9 @@ the truth, as feet, reflections and clutter do to real lasers.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
+from typing import Any, TypeVar, cast
 
-import cv2
 import numpy as np
 
 from homebot.robot import LaserScan, Pose
@@ -25,6 +25,58 @@ __all__ = ["LEG_RADIUS", "LaserSimulator"]
 LEG_RADIUS = 0.06  #: metres
 _RANGE_MIN = 0.05
 _BISECTIONS = 4
+
+
+_F = TypeVar("_F", bound=Callable[..., Any])
+
+
+def _compiled(function: _F) -> _F:
+    """``function`` compiled by numba (cached on disk) when numba is there, else as it is."""
+    try:
+        from numba import njit
+    except ImportError:  # pragma: no cover - the embodied extra brings numba
+        return function
+    return cast(_F, njit(cache=True, nogil=True)(function))
+
+
+@_compiled
+def _march_beams(solid: np.ndarray, column0: np.float32, row0: np.float32, cos: np.ndarray,
+                 sin: np.ndarray, steps: np.ndarray, directions: np.ndarray, origin_x: float,
+                 origin_y: float, raster_x: float, raster_y: float, cell: float,
+                 range_max: float, bisections: int) -> np.ndarray:
+    """Per beam, the range to its first solid sample (inf: none within ``range_max``).
+
+    Samples lie ``steps`` cells along each beam from (``column0``, ``row0``),
+    computed in float32 and rounded to the nearest cell; outside the raster
+    counts as solid (the home ends there). The hit is then refined by bisecting
+    between the last free sample and the first solid one.
+    """
+    rows, columns = solid.shape
+    hits = np.full(len(cos), np.inf)
+    for beam in range(len(cos)):
+        far = -1.0
+        for step in steps:
+            column = np.rint(cos[beam] * step + column0)
+            row = np.rint(sin[beam] * step + row0)
+            if not (0 <= column < columns and 0 <= row < rows) or \
+                    solid[int(row), int(column)] == 1:
+                far = float(step * np.float32(cell))
+                break
+        if far < 0.0:
+            continue
+        near = max(far - cell, 0.0)
+        dx, dy = directions[beam, 0], directions[beam, 1]
+        for _ in range(bisections):
+            middle = (near + far) / 2
+            c = min(max(int((origin_x + dx * middle - raster_x) / cell), 0), columns - 1)
+            r = min(max(int((origin_y + dy * middle - raster_y) / cell), 0), rows - 1)
+            if solid[r, c] == 1:
+                far = middle
+            else:
+                near = middle
+        if far <= range_max:
+            hits[beam] = far
+    return hits
 
 
 class LaserSimulator:
@@ -48,9 +100,6 @@ class LaserSimulator:
         self._beam_angles = self.angle_min + self.angle_increment * np.arange(model.beams)
         # Distances along a beam at which the raster is sampled, in cells.
         self._steps = np.arange(1, int(model.range_max / TRUTH_RESOLUTION) + 2, dtype=np.float32)
-        # The sample coordinates of one sweep, reused: (beams, samples) in raster cells.
-        self._columns = np.empty((model.beams, len(self._steps)), dtype=np.float32)
-        self._rows = np.empty_like(self._columns)
 
     def scan(self, stamp: float, robot: tuple[float, float, float],
              shut_doors: frozenset[str], legs: Sequence[tuple[float, float]]) -> LaserScan:
@@ -75,40 +124,13 @@ class LaserSimulator:
         raster = self.geometry.raster
         column0 = np.float32((origin[0] - raster.origin[0]) / TRUTH_RESOLUTION - 0.5)
         row0 = np.float32((origin[1] - raster.origin[1]) / TRUTH_RESOLUTION - 0.5)
-        steps = self._steps
-        columns, rows = self._columns, self._rows
         cos, sin = directions.astype(np.float32).T
-        np.multiply(cos[:, None], steps[None, :], out=columns)
-        np.multiply(sin[:, None], steps[None, :], out=rows)
-        columns += column0
-        rows += row0
-        # Outside the raster counts as solid: the home ends there.
-        samples = cv2.remap(solid, columns, rows, cv2.INTER_NEAREST,
-                            borderMode=cv2.BORDER_CONSTANT, borderValue=1)
-        first = samples.argmax(axis=1)
-        found = samples[np.arange(len(first)), first] == 1
-        hit = np.full(len(directions), np.inf)
-        far = steps[first[found]] * TRUTH_RESOLUTION
-        hit[found] = self._refine(origin, directions[found], far.astype(float), solid)
-        hit[hit > self.model.range_max] = np.inf
-        return hit
-
-    def _refine(self, origin: tuple[float, float], directions: np.ndarray, far: np.ndarray,
-                solid: np.ndarray) -> np.ndarray:
-        """Bisect between the last free sample and the first solid one."""
-        raster = self.geometry.raster
-        near = np.maximum(far - TRUTH_RESOLUTION, 0.0)
-        for _ in range(_BISECTIONS):
-            middle = (near + far) / 2
-            points = origin + directions * middle[:, None]
-            column = np.clip(((points[:, 0] - raster.origin[0]) / TRUTH_RESOLUTION).astype(int),
-                             0, raster.shape[1] - 1)
-            row = np.clip(((points[:, 1] - raster.origin[1]) / TRUTH_RESOLUTION).astype(int),
-                          0, raster.shape[0] - 1)
-            inside = solid[row, column] == 1
-            far = np.where(inside, middle, far)
-            near = np.where(inside, near, middle)
-        return far
+        hits: np.ndarray = _march_beams(
+            solid, column0, row0, np.ascontiguousarray(cos), np.ascontiguousarray(sin),
+            self._steps, np.ascontiguousarray(directions), origin[0], origin[1],
+            raster.origin[0], raster.origin[1], TRUTH_RESOLUTION, self.model.range_max,
+            _BISECTIONS)
+        return hits
 
     def _add_noise(self, ranges: np.ndarray) -> np.ndarray:
         model = self.model
