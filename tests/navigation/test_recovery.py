@@ -71,6 +71,27 @@ def test_a_remembered_obstacle_is_forgotten_once_the_laser_sees_past_it(
                                remembered[:, 1] - _CORRIDOR[1]) < 0.3)
 
 
+def test_a_cleared_memory_keeps_only_what_the_laser_sees_again(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    simulation, body = _sim(apartment, apartment_navigator)
+    body.teleport(_WEST_OF_IT)
+    simulation.move_person("Maria", _CORRIDOR)
+    body.tick()
+    memory = ObstacleMemory(apartment_navigator, 0.15, 45.0)
+    assert len(memory.observe(body.now(), _truth(simulation), body.scan()))
+    # She walks off while the robot looks away: the memory alone would keep her there.
+    simulation.move_person("Maria", (10.6, 3.0))
+    body.teleport(Pose(_WEST_OF_IT.x, _WEST_OF_IT.y, math.pi))
+    body.tick()
+    remembered = memory.observe(body.now(), _truth(simulation), body.scan())
+    assert np.any(np.hypot(remembered[:, 0] - _CORRIDOR[0], remembered[:, 1] - _CORRIDOR[1])
+                  < 0.3)
+    memory.clear()
+    remembered = memory.observe(body.now(), _truth(simulation), body.scan())
+    assert not np.any(np.hypot(remembered[:, 0] - _CORRIDOR[0],
+                               remembered[:, 1] - _CORRIDOR[1]) < 0.3)
+
+
 def test_a_person_in_the_way_is_driven_round_when_there_is_another_way(
         apartment: World, apartment_navigator: Navigator) -> None:
     simulation, body = _sim(apartment, apartment_navigator)

@@ -171,6 +171,10 @@ class ObstacleMemory:
         self._seen.append((now, self.unexpected(pose, scan)))
         return np.concatenate([points for _, points in self._seen])
 
+    def clear(self) -> None:
+        """Forget everything remembered."""
+        self._seen = []
+
     def _still_there(self, points: np.ndarray, pose: Pose, scan: LaserScan) -> np.ndarray:
         if not len(points):
             return points
@@ -283,6 +287,10 @@ class RecoveringNavigation:
                 if body.now() - max(waiting_since, made_way_at) >= policy.make_way_after:
                     made_way_at = body.now()
                     travelled += self.make_way(self.localise(), obstacles, avoid_doors)
+                    # Nav2's clear-costmap recovery: what the laser cannot see from here
+                    # (round a door's jamb, behind the robot) is no longer trusted; what
+                    # still stands in view is seen again at once.
+                    self.memory.clear()
                 # Watch the way while waiting: the laser clears what it sees has gone.
                 way = self.plan_wide(self.localise(), target, avoid_doors, np.zeros((0, 2)))
                 if way is not None:
