@@ -205,6 +205,29 @@ def test_the_likelihood_field_measures_to_the_surface_and_ray_casts() -> None:
     assert ranges[2] == math.inf  # nothing that way within range
 
 
+def test_the_compiled_beam_kernels_are_their_plain_python(
+        apartment: World, apartment_navigator: Navigator, grid: OccupancyGrid,
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    # One implementation: the numba kernels' own Python functions give the same figures.
+    pytest.importorskip("numba")
+    from homebot.navigation import beams
+
+    _, body = _body(apartment, apartment_navigator, 3)
+    mcl = MonteCarloLocalisation(grid, np.random.default_rng(0))
+    mcl.initialise(body.true_pose(), spread=0.3, angle_spread=0.3)
+    scan = body.scan()
+    x, y, _ = body.sim.robot_pose
+    angles = np.linspace(-math.pi, math.pi, 50)
+    compiled = (mcl.log_likelihoods(scan), mcl.field.raycast(x, y, angles, 8.0))
+    with monkeypatch.context() as patch:
+        patch.setattr(beams, "log_likelihoods", beams.log_likelihoods.py_func)
+        patch.setattr(beams, "raycast", beams.raycast.py_func)
+        plain = (mcl.log_likelihoods(scan), mcl.field.raycast(x, y, angles, 8.0))
+    np.testing.assert_array_equal(plain[0], compiled[0])
+    np.testing.assert_array_equal(plain[1], compiled[1])
+    assert np.isfinite(compiled[1]).all() and compiled[0].std() > 0
+
+
 @pytest.mark.parametrize(("drive", "moved", "expected"), [
     (DriveKind.DIFFERENTIAL, Pose(0.1, 0.0, 0.2), Pose(6.0, 2.1, math.pi / 2 + 0.2)),
     (DriveKind.DIFFERENTIAL, Pose(-0.1, 0.0, 0.0), Pose(6.0, 1.9, math.pi / 2)),  # reversing

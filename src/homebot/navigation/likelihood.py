@@ -74,21 +74,16 @@ class LikelihoodField:
     def raycast(self, x: float, y: float, angles: np.ndarray, range_max: float) -> np.ndarray:
         """Ranges from (x, y) along ``angles`` to the first solid cell (inf beyond ``range_max``).
 
-        Every ray is sampled at once, a fine cell apart (walls and furniture are
-        several cells thick, so none is stepped over); points off the map are free.
+        Every ray is sampled a fine cell apart up to its first solid cell (walls and
+        furniture are several cells thick, so none is stepped over); points off the map
+        are free.
         """
+        from homebot.navigation import beams  # numba: only once the filter weighs a scan
+
         cells = np.arange(1, int(range_max / self.resolution) + 1, dtype=np.float32)
         steps = cells * self.resolution
-        columns = np.multiply.outer(np.cos(angles).astype(np.float32), cells)
-        columns += np.float32((x - self.origin[0]) / self.resolution)
-        rows = np.multiply.outer(np.sin(angles).astype(np.float32), cells)
-        rows += np.float32((y - self.origin[1]) / self.resolution)
-        inside = (columns >= 0) & (columns < self.shape[1]) & (rows >= 0) & (rows < self.shape[0])
-        flat = rows.astype(np.int32)
-        flat *= self.shape[1]
-        flat += columns.astype(np.int32)
-        flat[~inside] = 0
-        solid = self.solid.ravel()[flat] & inside
-        first = solid.argmax(axis=1)
-        hit: np.ndarray = np.where(solid[np.arange(len(angles)), first], steps[first], np.inf)
-        return hit
+        hits: np.ndarray = beams.raycast(
+            self.solid, np.float32((x - self.origin[0]) / self.resolution),
+            np.float32((y - self.origin[1]) / self.resolution),
+            np.cos(angles).astype(np.float32), np.sin(angles).astype(np.float32), cells, steps)
+        return hits

@@ -392,29 +392,18 @@ class MonteCarloLocalisation:
         points = _points(scan, self._beams(scan) if beams is None else beams)
         if len(points) == 0:
             return np.zeros(len(particles))
+        from homebot.navigation import beams as kernels  # numba: only once it weighs a scan
+
         table = self._table(scan.range_max)
         field = self.field
         scale = 1.0 / field.resolution
-        bx = (points[:, 0] * scale).astype(np.float32)
-        by = (points[:, 1] * scale).astype(np.float32)
-        px = ((particles[:, 0] - field.origin[0]) * scale).astype(np.float32)
-        py = ((particles[:, 1] - field.origin[1]) * scale).astype(np.float32)
-        c = np.cos(particles[:, 2]).astype(np.float32)
-        s = np.sin(particles[:, 2]).astype(np.float32)
-        ex = np.multiply.outer(c, bx)
-        ex -= np.multiply.outer(s, by)
-        ex += px[:, None]
-        ey = np.multiply.outer(s, bx)
-        ey += np.multiply.outer(c, by)
-        ey += py[:, None]
-        rows, columns = field.shape
-        np.clip(ex, 0, columns - 1, out=ex)
-        np.clip(ey, 0, rows - 1, out=ey)
-        index = ey.astype(np.int32)
-        index *= columns
-        index += ex.astype(np.int32)
-        values = table.take(index)
-        total: np.ndarray = values.sum(axis=1, dtype=np.float64)
+        total: np.ndarray = kernels.log_likelihoods(
+            table, (points[:, 0] * scale).astype(np.float32),
+            (points[:, 1] * scale).astype(np.float32),
+            ((particles[:, 0] - field.origin[0]) * scale).astype(np.float32),
+            ((particles[:, 1] - field.origin[1]) * scale).astype(np.float32),
+            np.cos(particles[:, 2]).astype(np.float32), np.sin(particles[:, 2]).astype(np.float32),
+            field.shape[0], field.shape[1])
         return total
 
     def _correct(self, scan: LaserScan, predicted: Pose) -> None:
