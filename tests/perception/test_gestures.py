@@ -10,6 +10,7 @@ import pytest
 from homebot.perception.gestures import (
     Surface,
     classify_gesture,
+    person_gesture,
     pointed_object,
     pointed_target,
     pointing_ray,
@@ -31,6 +32,23 @@ def test_each_gesture_is_told_apart(gesture: str) -> None:
     for _ in range(10):
         frames = gesture_keypoints(gesture, (0.0, 0.0), ROBOT, rng, target=(0.0, 3.0, 0.75))
         assert classify_gesture(frames, ROBOT) == gesture
+
+
+@pytest.mark.parametrize(("gesture", "side", "named"), [
+    ("raising", "left", "raising_left_arm"), ("raising", "right", "raising_right_arm"),
+    ("pointing", "left", "pointing_left"), ("pointing", "right", "pointing_right")])
+def test_left_and_right_are_the_persons_own(gesture: str, side: str, named: str) -> None:
+    rng = np.random.default_rng(5)
+    for _ in range(10):
+        person = tuple(rng.uniform(-3.0, 3.0, 2))
+        facing = math.atan2(ROBOT[1] - person[1], ROBOT[0] - person[0])
+        # facing the robot, a person's left is counter-clockwise of the line to it
+        turn = math.pi / 2 if side == "left" else -math.pi / 2
+        target = (person[0] + 2 * math.cos(facing + turn),
+                  person[1] + 2 * math.sin(facing + turn), 0.75)
+        frames = gesture_keypoints(gesture, person, ROBOT, rng, target=target, side=side,
+                                   height=float(rng.uniform(1.55, 1.95)))
+        assert person_gesture(frames, ROBOT) == named
 
 
 @pytest.mark.parametrize("target", sorted(SURFACES))

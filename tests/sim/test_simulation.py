@@ -66,6 +66,19 @@ def test_a_person_in_a_doorway_blocks_until_asked(apartment: World,
     assert robot.move_to(Pose(*apartment.placements["desk"].approach)).reached
 
 
+def test_a_request_to_nobody_by_name_is_heard_by_whoever_stands_in_the_door(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    from homebot.robot import HelpRequest
+
+    simulation = Simulation(apartment, seed=1, navigator=apartment_navigator)
+    visitor = simulation.place_person_in_doorway("office door")
+    robot = SimRobot(simulation)
+    assert not robot.move_to(Pose(*apartment.placements["desk"].approach)).reached
+    assert robot.request("", HelpRequest.STEP_ASIDE, "office door")
+    assert simulation.people[visitor].blocking_door is None
+    assert robot.move_to(Pose(*apartment.placements["desk"].approach)).reached
+
+
 def test_grasp_needs_reach_and_can_slip(apartment: World, apartment_navigator: Navigator) -> None:
     slippery = DisturbanceModel(grasp_slip=1.0)
     simulation = Simulation(apartment, seed=1, disturbances=slippery,

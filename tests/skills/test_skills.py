@@ -197,3 +197,17 @@ def test_a_person_is_a_name_or_a_description_for_every_skill(run: SimulatedRun) 
     assert _do(run, "count", person="Maria", room="kitchen").data["count"] == 1
     assert _do(run, "answer_question", person={"name": "Maria"}).status is not None
     assert _do(run, "greet", person={"name": "Maria"}).status is Status.VERIFIED
+
+
+@pytest.mark.parametrize(("wanted", "worn", "fits"), [
+    ("red", ("red sweater",), True), ("red sweater", ("red sweater",), True),
+    ("red sweater", ("red top",), True),  # the camera sees a red upper body, not the cut
+    ("red trousers", ("red top",), False), ("black jeans", ("blue top", "black trousers"), True),
+    ("blue sweater", ("red top", "blue trousers"), False), ("red", ("blue top",), False)])
+def test_clothes_described_by_colour_fit_what_the_camera_sees(
+        wanted: str, worn: tuple[str, ...], fits: bool) -> None:
+    from homebot.robot import PersonPercept
+    from homebot.skills.perception import matches_person
+
+    seen = PersonPercept(None, "standing", "none", worn, (0.0, 0.0), "kitchen")
+    assert matches_person(seen, {"clothes": wanted}) is fits

@@ -1,6 +1,7 @@
 """The embodied robot: the Robot port over a Body, through localisation and navigation."""
 
 from homebot.embodied.looking import ObjectWorld, TableLook
+from homebot.embodied.people_look import PeopleLook
 from homebot.embodied.robot import BodyRobot, Companions
 
-__all__ = ["BodyRobot", "Companions", "ObjectWorld", "TableLook"]
+__all__ = ["BodyRobot", "Companions", "ObjectWorld", "PeopleLook", "TableLook"]

@@ -26,6 +26,7 @@ from shapely.geometry import LineString
 from shapely.geometry import Point as ShapelyPoint
 
 from homebot.embodied.looking import TableLook
+from homebot.embodied.people_look import PeopleLook
 from homebot.errors import NavigationError, SpeechError
 from homebot.events import EventLog
 from homebot.navigation import Navigator
@@ -117,6 +118,9 @@ class BodyRobot(Robot):
         #: None: faces unseen.
         self.acquaintances: Acquaintances | None = None
         self.face_images: Callable[[int], list[np.ndarray]] | None = None
+        #: sees people with the laser and the head camera (None: ``percepts`` answers,
+        #: symbolically)
+        self.people_look: PeopleLook | None = None
         self._walking_with: str | None = None
         self.navigation = RecoveringNavigation(body, navigator, controller, self._localise,
                                                on_replan=self._record_replan)
@@ -133,6 +137,10 @@ class BodyRobot(Robot):
 
     def pose(self) -> Pose:
         return self.localisation.estimate()
+
+    def localise(self) -> Pose:
+        """Feed the filter the latest odometry and scan; the estimate."""
+        return self._localise()
 
     def _localise(self) -> Pose:
         """Feed the filter the latest odometry and scan; the estimate."""
@@ -203,9 +211,9 @@ class BodyRobot(Robot):
             return MoveReport(False, self.pose(), attempt.travelled, Blocker.STOPPED, None,
                               companion)
         person = self._person_in_the_way(target, avoid_doors)
-        blocker = Blocker.PERSON if person else Blocker.OBSTRUCTED
-        self.events.record("robot.stuck", person=person)
-        return MoveReport(False, self.pose(), attempt.travelled, blocker, None, person)
+        blocker = Blocker.PERSON if person is not None else Blocker.OBSTRUCTED
+        self.events.record("robot.stuck", person=person or None)
+        return MoveReport(False, self.pose(), attempt.travelled, blocker, None, person or None)
 
     def _record_replan(self, found: bool) -> None:
         self.events.record("robot.replan", found=found)
@@ -223,7 +231,7 @@ class BodyRobot(Robot):
         reach = min(_DOORWAY, model.width / 2 - _JAMB)
         if self._laser_returns_near(model.position, reach) == 0:
             return None
-        return (Blocker.PERSON, self._person_near(model.position, 0.8))
+        return (Blocker.PERSON, self._person_near(model.position, 0.8) or None)
 
     def _door_ahead_blocked(self, legs: list[_Leg]
                             ) -> tuple[str, Blocker, str | None] | None:
@@ -246,21 +254,23 @@ class BodyRobot(Robot):
 
     def _person_in_the_way(self, target: Pose, avoid_doors: frozenset[str]) -> str | None:
         """Who stands on the way the robot would take if nobody were there (or, with no
-        such way, nearest the robot), so that they can be asked to let it by."""
+        such way, nearest the robot), so that they can be asked to let it by: their
+        name, "" for someone the robot cannot name, None for nobody."""
         here = self.pose()
         path = self.navigation.plan_wide(here, target, avoid_doors, np.zeros((0, 2)))
         if path is None:
             return self._person_near(here.xy(), 1.5)
         seen = [(_distance_to_path(p.position, path), p.name)
-                for p in self.percepts.perceive_people() if p.name]
-        blocking = sorted((gap, name) for gap, name in seen if gap <= _IN_THE_WAY)
+                for p in self.perceive_people()]
+        blocking = sorted((gap, name or "") for gap, name in seen if gap <= _IN_THE_WAY)
         return blocking[0][1] if blocking else None
 
     def _person_near(self, point: tuple[float, float], reach: float) -> str | None:
-        seen = [p for p in self.percepts.perceive_people()
-                if p.name and math.dist(p.position, point) <= reach]
+        """The name of the person seen nearest ``point`` within ``reach``; "" when the
+        robot cannot name them, None for nobody."""
+        seen = [p for p in self.perceive_people() if math.dist(p.position, point) <= reach]
         seen.sort(key=lambda p: math.dist(p.position, point))
-        return seen[0].name if seen else None
+        return (seen[0].name or "") if seen else None
 
     def _scan_on_map(self) -> np.ndarray:
         """The latest scan's returns on the map, placed by the pose estimate."""
@@ -278,7 +288,7 @@ class BodyRobot(Robot):
                            points=np.round(particles, 3).tolist())
 
     def follow(self, person: str, goal: Pose | None) -> MoveReport:
-        seen = [p for p in self.percepts.perceive_people() if p.name == person]
+        seen = [p for p in self.perceive_people() if p.name == person]
         if not seen or math.dist(seen[0].position, self.pose().xy()) > 2.0:
             return MoveReport(False, self.pose(), 0.0, Blocker.NO_PATH)
         destination = goal.xy() if goal else seen[0].position
@@ -306,6 +316,8 @@ class BodyRobot(Robot):
         return self.percepts.perceive_objects(placement)
 
     def perceive_people(self) -> list[PersonPercept]:
+        if self.people_look is not None:
+            return self.people_look.look()
         return self.percepts.perceive_people()
 
     def grasp(self, detection: Detection, hand: str) -> str | None:
@@ -381,15 +393,21 @@ class BodyRobot(Robot):
 
     def request(self, person: str, request: HelpRequest, target: str) -> bool:
         if request is HelpRequest.STEP_ASIDE:
-            self._come_near(person)
+            self._come_near(person, target)
         return self.percepts.request(person, request, target)
 
-    def _come_near(self, person: str) -> None:
-        """Come up to ``person`` before asking them to let the robot by, as far as the way
-        allows: stopped by someone in a doorway across the room, the robot would otherwise
-        ask from where they cannot hear it."""
-        seen = [p for p in self.percepts.perceive_people() if p.name == person]
+    def _come_near(self, person: str, door: str) -> None:
+        """Come up to ``person`` (unnamed, or not known by face from here: whoever the
+        robot cannot name and sees nearest the ``door``, or itself) before asking them to
+        let the robot by, as far as the way allows: stopped by someone in a doorway across
+        the room, the robot would otherwise ask from where they cannot hear it."""
         here = self.pose()
+        where = self.world.doors[door].position if door in self.world.doors else here.xy()
+        people = self.perceive_people()
+        # someone too far to know by face may be the one meant
+        named = [p for p in people if person and p.name == person]
+        seen = sorted(named or [p for p in people if p.name is None],
+                      key=lambda p: math.dist(p.position, where))
         if not seen or math.dist(seen[0].position, here.xy()) <= _ASKING_DISTANCE + 0.3:
             return
         plan = self.navigator.plan(here.xy(), seen[0].position)

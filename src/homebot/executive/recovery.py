@@ -35,11 +35,14 @@ def _door_closed(context: SkillContext, skill: str, args: Mapping[str, Any],
     opened = run("open_door", {"door": door})
     if opened:
         return True
-    for person in context.robot.perceive_people():
-        if person.name is None:
-            continue
-        speak(context, f"{person.name}, could you please open the {door} for me?")
-        if context.robot.request(person.name, HelpRequest.OPEN_DOOR, door):
+    seen = context.robot.perceive_people()
+    # people the robot cannot name are asked once, without a name: whoever is nearest hears
+    asked = [person.name for person in seen if person.name] + (
+        [""] if any(person.name is None for person in seen) else [])
+    for name in asked:
+        speak(context, f"{name}, could you please open the {door} for me?" if name else
+              f"Excuse me, could you please open the {door} for me?")
+        if context.robot.request(name, HelpRequest.OPEN_DOOR, door):
             context.beliefs.door_open(door)
             speak(context, "Thank you!")
             return True
@@ -55,13 +58,17 @@ def _path_blocked(context: SkillContext, skill: str, args: Mapping[str, Any],
     and what stood there (a passer-by, a chair pushed back) may be gone, or a way round
     open; the executive's limit on recoveries ends the trying."""
     person, door = outcome.data.get("person"), str(outcome.data.get("door", ""))
-    if person:
-        speak(context, f"Excuse me, {person}, could you please let me through?")
-        if context.robot.request(str(person), HelpRequest.STEP_ASIDE, door):
+    someone = bool(person or outcome.data.get("someone"))
+    if someone:
+        # a person the robot cannot name (a visitor, or a face too far to see) is
+        # asked all the same, without a name
+        speak(context, f"Excuse me{f', {person}' if person else ''}, could you please "
+                       "let me through?")
+        if context.robot.request(str(person or ""), HelpRequest.STEP_ASIDE, door):
             speak(context, "Thank you!")
             return True
     if not door:
-        return not person
+        return not someone
     context.beliefs.door_closed(door)
     return _has_other_way(context, skill, args)
 

@@ -13,6 +13,11 @@ segmentation gives them.
 - **waving**: the hand, raised above the shoulder, swings from side to side: its
   sideways position over the window spreads and crosses its mean several times.
 - **stop**: a raised open hand held out towards the robot, still.
+- **raising**: the hand held still well above the head, the arm near vertical.
+
+``person_gesture`` names what a person does as the world's people are described:
+``raising_left_arm``, ``pointing_right`` and so on, left and right being the
+person's own, who faces the robot.
 """
 
 from __future__ import annotations
@@ -25,13 +30,21 @@ import numpy as np
 
 from homebot.space.deixis import Pointing
 
-__all__ = ["Surface", "classify_gesture", "pointed_object", "pointed_target", "pointing_ray"]
+__all__ = [
+    "Surface",
+    "classify_gesture",
+    "person_gesture",
+    "pointed_object",
+    "pointed_target",
+    "pointing_ray",
+]
 
 _STRETCHED = 0.45  #: metres from shoulder to hand: an extended arm
 _STILL = 0.06  #: metres: the hand's spread when held still
 _WAVE_SPREAD = 0.05  #: metres: the raised hand's sideways spread when waving
 _WAVE_CROSSINGS = 3
 _TOWARDS = math.radians(35.0)  #: the arm within this of the line to the robot reaches to it
+_ABOVE_HEAD = 0.12  #: metres the hand of a raised arm is above the head
 
 
 @dataclass(frozen=True, slots=True)
@@ -72,7 +85,28 @@ def classify_gesture(frames: np.ndarray, robot: tuple[float, float]) -> str:
     lifted = flat > 0.5 * reach  # the arm is held out, not hanging (over 30° from down)
     if reach >= _STRETCHED and lifted and not (towards and raised):
         return "pointing"
+    if not lifted and hand[2] > head[2] + _ABOVE_HEAD:
+        return "raising"
     return "none"
+
+
+def person_gesture(frames: np.ndarray, robot: tuple[float, float]) -> str:
+    """What the person does, in the words the world's people are described with:
+    ``waving``, ``raising_left_arm``/``raising_right_arm``, ``pointing_left``/
+    ``pointing_right``, ``stop`` or ``none``. Left and right are the person's own: they
+    face the robot, so their right hand is on the robot's left."""
+    gesture = classify_gesture(frames, robot)
+    if gesture not in ("raising", "pointing"):
+        return gesture
+    frames = np.asarray(frames, dtype=float)
+    head, shoulder, hand = (frames[:, index].mean(axis=0) for index in (0, 1, 3))
+    facing = np.array([robot[0] - head[0], robot[1] - head[1]])
+    their_right = np.array([facing[1], -facing[0]])
+    if gesture == "raising":
+        side = "right" if float((shoulder - head)[:2] @ their_right) > 0 else "left"
+        return f"raising_{side}_arm"
+    side = "right" if float((hand - head)[:2] @ their_right) > 0 else "left"
+    return f"pointing_{side}"
 
 
 def pointing_ray(frames: np.ndarray) -> Pointing:

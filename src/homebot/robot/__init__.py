@@ -20,7 +20,7 @@ from homebot.robot.body import (
     VelocityLimits,
     Wrench,
 )
-from homebot.robot.camera import CameraIntrinsics, RgbdFrame
+from homebot.robot.camera import CameraIntrinsics, PersonView, RgbdFrame
 from homebot.robot.port import (
     Blocker,
     Detection,
@@ -53,6 +53,7 @@ __all__ = [
     "Odometry",
     "PartMissing",
     "PersonPercept",
+    "PersonView",
     "Pose",
     "RgbdFrame",
     "Robot",

@@ -23,7 +23,7 @@ from pathlib import Path
 import numpy as np
 
 from homebot.errors import HomebotError
-from homebot.robot.camera import RgbdFrame
+from homebot.robot.camera import PersonView, RgbdFrame
 from homebot.robot.port import Pose
 
 __all__ = [
@@ -315,6 +315,12 @@ class Body(ABC):
     def camera(self) -> RgbdFrame:
         """The head's RGB-D camera image, taken now with the head where it points."""
         raise PartMissing("RGB-D camera")
+
+    def person_view(self, spot: tuple[float, float]) -> PersonView | None:
+        """The head camera's body segmentation of the person standing at ``spot`` (x, y in
+        the base frame, as the laser's legs place them), with the head turned to them;
+        None when nobody stands there or they are out of the camera's sight."""
+        raise PartMissing("body tracker")
 
     def arm(self) -> Arm:
         """The arm's joint interface."""

@@ -169,7 +169,9 @@ class Robot(ABC):
     @abstractmethod
     def request(self, person: str, request: HelpRequest, target: str) -> bool:
         """Ask a nearby person for help: open the ``target`` door, or step aside from it
-        (``target`` empty: step out of the robot's way wherever they stand)."""
+        (``target`` empty: step out of the robot's way wherever they stand). ``person``
+        empty: the robot does not know their name and asks whoever stands nearest (in
+        the ``target`` door, if one is given)."""
 
     @abstractmethod
     def follow(self, person: str, goal: Pose | None) -> MoveReport:

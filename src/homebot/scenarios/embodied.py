@@ -67,11 +67,11 @@ def embodied_robot(simulation: Simulation, navigator: Navigator, *,
         known_start: the robot is told where it starts (else it localises globally).
     """
     require_embodied()
-    from homebot.embodied import BodyRobot, TableLook
+    from homebot.embodied import BodyRobot, PeopleLook, TableLook
     from homebot.navigation.local_planner import MotionSearchPlanner
     from homebot.navigation.localisation import MclParameters, MonteCarloLocalisation
     from homebot.perception.faces import Acquaintances
-    from homebot.scenarios.perceiving import face_memory, perception_for
+    from homebot.scenarios.perceiving import household_faces, perception_for
     from homebot.sim.body import SimBody
     from homebot.sim.faces import FaceCamera
 
@@ -98,9 +98,13 @@ def embodied_robot(simulation: Simulation, navigator: Navigator, *,
         arm = ArmControl(body, world, _TrueObjectPoses(simulation, body), seed=simulation.seed)
         robot = ArmedBodyRobot(body, world, navigator, localisation, MotionSearchPlanner(),
                                percepts, percepts, simulation.events, looking=looking, arm=arm)
-    # faces: "my name is ..." enrols the head camera's views of the person in front
-    robot.acquaintances = Acquaintances(face_memory)
+    # faces: the household is known by face; "my name is ..." enrols the head camera's
+    # views of someone new in front
+    robot.acquaintances = Acquaintances(lambda: household_faces(world, simulation.seed))
     robot.face_images = FaceCamera(body)
+    robot.people_look = PeopleLook(body, world, navigator.grid, robot.localise,
+                                   acquaintances=robot.acquaintances,
+                                   face_images=robot.face_images)
     return robot
 
 

@@ -26,9 +26,10 @@ from homebot.sim.faces import background_patch, face_identity, face_view
 from homebot.sim.tabletop import tabletop_scene
 from homebot.world import CatalogueEntry, World, object_catalogue
 
-__all__ = ["face_memory", "labelled_frames", "perception_for", "trained_face_detector",
-           "trained_recogniser"]
+__all__ = ["face_memory", "household_faces", "labelled_frames", "perception_for",
+           "trained_face_detector", "trained_recogniser"]
 
+_ENROLMENT_VIEWS = 20  #: face views of each member of the household the robot was taught
 _VIEWS_PER_OBJECT = 12  #: training views of each catalogue object (about)
 _OBJECTS_PER_SCENE = (4, 9)  #: training scenes hold 4 to 8 objects
 
@@ -81,3 +82,17 @@ def trained_face_detector(seed: int = 0, strangers: int = 30, views: int = 300,
 def face_memory(seed: int = 0) -> FaceMemory:
     """An empty face memory over the trained detector, for people to be enrolled in."""
     return FaceMemory(trained_face_detector(seed), seed=seed)
+
+
+def household_faces(world: World, seed: int = 0) -> FaceMemory:
+    """A face memory that knows the people of ``world``'s file by face, as a robot
+    taught its household before its first day: each person's ``_ENROLMENT_VIEWS`` views,
+    rendered as the head camera would take them (``sim.faces``). Visitors who come
+    later are strangers until they say their name."""
+    memory = face_memory(seed)
+    rng = np.random.default_rng([seed, 1518])
+    for person in world.model.people:
+        identity = face_identity(person.name, 0)
+        memory.enrol(person.name, [face_view(identity, rng)[0]
+                                   for _ in range(_ENROLMENT_VIEWS)])
+    return memory

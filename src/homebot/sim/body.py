@@ -28,6 +28,7 @@ from homebot.robot import (
     Microphone,
     Odometry,
     PartMissing,
+    PersonView,
     Pose,
     RgbdFrame,
     Speaker,
@@ -36,6 +37,7 @@ from homebot.robot import (
     Wrench,
 )
 from homebot.sim.audio import AudioScene, SimMicrophone, SimSpeaker
+from homebot.sim.body_tracker import BodyTracker, person_solids
 from homebot.sim.camera import CameraSimulator, SceneGeometry, Solid, object_yaw
 from homebot.sim.components import ComponentSimulation
 from homebot.sim.geometry import TrueGeometry
@@ -120,6 +122,7 @@ class SimBody(Body):
         self._catalogue = object_catalogue(world)
         self.camera_simulator = CameraSimulator(
             SceneGeometry.of(world), np.random.default_rng([simulation.seed, _CAMERA_STREAM]))
+        self._body_tracker = BodyTracker(self)
         self._travelled_since_point = 0.0
         self._trajectory: list[tuple[float, float]] = [self._rounded_position()]
         #: the simulation's sounds: what the speaker plays and the microphone hears
@@ -188,10 +191,15 @@ class SimBody(Body):
                                max(_TILT_LIMITS[0], min(_TILT_LIMITS[1], tilt)))
 
     def camera(self) -> RgbdFrame:
-        """The head camera's frame of the true home: furniture, walls and the objects on
-        their surfaces (``homebot.sim.camera``)."""
+        """The head camera's frame of the true home: furniture, walls, the objects on
+        their surfaces and the people (``homebot.sim.camera``, ``sim.body_tracker``)."""
         return self.camera_simulator.render(self.now(), self.sim.robot_pose, self._head,
                                             self._solids())
+
+    def person_view(self, spot: tuple[float, float]) -> PersonView | None:
+        """The skeleton tracker's view of the person standing at ``spot``
+        (``homebot.sim.body_tracker``)."""
+        return self._body_tracker(spot)
 
     def arm(self) -> Arm:
         """The arm (MuJoCo physics where the robot stands)."""
@@ -219,6 +227,13 @@ class SimBody(Body):
             x, y = sim.position_on(name, placement.name)
             solids.append(Solid(entry.shape, entry.extent, entry.rgb, x, y,
                                 surface_height(placement.model), object_yaw(name, sim.seed)))
+        headings = {walker.name: walker.heading for walker in self.people.walkers}
+        for name, state in sorted(sim.people.items()):
+            # someone standing still faces the middle of their room
+            middle = sim.world.room_polygons[state.room].centroid
+            heading = headings.get(name, math.atan2(middle.y - state.position[1],
+                                                    middle.x - state.position[0]))
+            solids.extend(person_solids(sim.world, name, state.model, state.position, heading))
         return solids
 
     def speaker(self) -> Speaker:

@@ -5,8 +5,8 @@ elbow and hand of the gesturing arm (Cosero §7.1.3 finds the same four). The
 person stands at a place facing the robot and points at a target (the eye-hand
 line aims at it, with a few degrees of aiming error), waves (the raised hand
 swings from side to side), shows stop (a raised open hand held out towards the
-robot), or stands with the arm hanging. Every point carries Gaussian noise.
-Deterministic by seed.
+robot), raises the arm straight up, or stands with the arm hanging. Every point
+carries Gaussian noise. Deterministic by seed.
 """
 
 from __future__ import annotations
@@ -17,7 +17,8 @@ import numpy as np
 
 __all__ = ["GESTURES", "gesture_keypoints"]
 
-GESTURES = ("pointing", "waving", "stop", "none")
+GESTURES = ("pointing", "waving", "stop", "raising", "none")
+_HEIGHT = 1.75  #: metres: the person the proportions below are for
 _HEAD = 1.62  #: metres
 _SHOULDER = (0.19, 1.42)  #: sideways from the head's axis, height
 _UPPER, _FORE = 0.30, 0.32  #: arm segment lengths, metres
@@ -26,21 +27,29 @@ _UPPER, _FORE = 0.30, 0.32  #: arm segment lengths, metres
 def gesture_keypoints(gesture: str, person: tuple[float, float], robot: tuple[float, float],
                       rng: np.random.Generator, *, target: tuple[float, float, float] | None = None,
                       seconds: float = 1.5, rate: float = 15.0, noise: float = 0.02,
-                      aim: float = 0.03) -> np.ndarray:
+                      aim: float = 0.03, side: str | None = None,
+                      height: float = 1.75) -> np.ndarray:
     """Keypoints (frames, 4, 3): head, shoulder, elbow, hand, over ``seconds``.
 
     ``target`` is where a pointing gesture aims (map frame); ``aim`` the standard
     deviation of the aiming error in radians, ``noise`` the keypoints' in metres.
+    ``side`` is the arm, the person's ``left`` or ``right`` (None: either, at random);
+    ``height`` the person's, which places their head and shoulders.
     """
     if gesture not in GESTURES:
         raise ValueError(f"unknown gesture {gesture!r}; one of {', '.join(GESTURES)}")
     facing = math.atan2(robot[1] - person[1], robot[0] - person[0])
     forward = np.array([math.cos(facing), math.sin(facing), 0.0])
     right = np.array([math.sin(facing), -math.cos(facing), 0.0])
-    side = 1.0 if rng.random() < 0.5 else -1.0  # right or left arm
-    head = np.array([person[0], person[1], _HEAD])
-    shoulder = head + side * _SHOULDER[0] * right
-    shoulder[2] = _SHOULDER[1]
+    chosen = side if side is not None else ("right" if rng.random() < 0.5 else "left")
+    if chosen not in ("left", "right"):
+        raise ValueError(f"unknown side {side!r}; left or right")
+    # facing the robot, the person's right hand is on the robot's left ("right" vector)
+    side_sign = 1.0 if chosen == "right" else -1.0
+    scale = height / _HEIGHT
+    head = np.array([person[0], person[1], _HEAD * scale])
+    shoulder = head + side_sign * _SHOULDER[0] * right
+    shoulder[2] = _SHOULDER[1] * scale
     frames = round(seconds * rate)
     times = np.arange(frames) / rate
     hands = np.empty((frames, 3))
@@ -59,10 +68,13 @@ def gesture_keypoints(gesture: str, person: tuple[float, float], robot: tuple[fl
         hand = shoulder + 0.45 * forward + np.array([0.0, 0.0, 0.25])
         hands[:] = hand
         elbows[:] = shoulder + 0.22 * forward + np.array([0.0, 0.0, 0.05])
+    elif gesture == "raising":
+        elbows[:] = shoulder + np.array([0.0, 0.0, _UPPER]) + 0.04 * side_sign * right
+        hands[:] = elbows + np.array([0.0, 0.0, _FORE]) + 0.02 * forward
     elif gesture == "waving":
         beat = rng.uniform(1.5, 2.5)  # waves a second
         swing = 0.15 * np.sin(2 * math.pi * beat * times + rng.uniform(0, 2 * math.pi))
-        elbow = shoulder + 0.12 * forward + side * 0.18 * right - np.array([0.0, 0.0, 0.12])
+        elbow = shoulder + 0.12 * forward + side_sign * 0.18 * right - np.array([0.0, 0.0, 0.12])
         elbows[:] = elbow
         hands[:] = elbow + np.array([0.0, 0.0, 0.28]) + swing[:, None] * right[None, :]
     else:

@@ -270,9 +270,20 @@ class SimRobot(Robot):
             return None
         return sim.responder(state.model, question)
 
+    def _addressed(self, door: str) -> str:
+        """Who hears a request made to nobody by name: whoever stands nearest ``door``
+        (or, with no door, the robot); "" for nobody."""
+        sim = self.sim
+        model = sim.world.doors.get(door)
+        where = model.position if model is not None else sim.robot_pose[:2]
+        near = sorted((math.dist(state.position, where), name)
+                      for name, state in sim.people.items())
+        return near[0][1] if near else ""
+
     def request(self, person: str, request: HelpRequest, target: str) -> bool:
         sim = self.sim
         sim.clock.advance(ActionDurations.LISTEN)
+        person = person or self._addressed(target)
         state = sim.person_state(person)
         if state is None or sim.distance_to(state.position) > _REACH_PERSON + 1.0:
             return False

@@ -60,10 +60,11 @@ def _motion_outcome(context: SkillContext, report: MoveReport) -> Outcome:
     if report.blocker is Blocker.PERSON and report.door:
         return Outcome.failed(ErrorCode.PATH_BLOCKED,
                               f"{report.person or 'someone'} is standing in the {report.door}",
-                              door=report.door, person=report.person)
-    if report.blocker is Blocker.PERSON and report.person:
-        return Outcome.failed(ErrorCode.PATH_BLOCKED, f"{report.person} is standing in my way",
-                              person=report.person)
+                              door=report.door, person=report.person, someone=True)
+    if report.blocker is Blocker.PERSON:
+        return Outcome.failed(ErrorCode.PATH_BLOCKED,
+                              f"{report.person or 'someone'} is standing in my way",
+                              person=report.person, someone=True)
     if report.blocker is Blocker.OBSTRUCTED:
         return Outcome.failed(ErrorCode.PATH_BLOCKED, "something I cannot get past is in my way")
     return Outcome.failed(ErrorCode.NO_PATH, "there is no way there with the doors I know of")

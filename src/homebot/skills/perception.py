@@ -3,12 +3,18 @@
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
 from typing import Any
 
 from homebot.robot import Detection, PersonPercept, Pose
 from homebot.skills.motion import drive, drive_to_target
-from homebot.skills.places import OPERATOR, near, resolve_target, sees_person_nearby
+from homebot.skills.places import (
+    OPERATOR,
+    near,
+    pose_near_point,
+    resolve_target,
+    sees_person_nearby,
+)
 from homebot.skills.skill import ErrorCode, Outcome, Skill, SkillContext, Status, time_left
 from homebot.skills.wording import (
     a,
@@ -302,9 +308,26 @@ def matches_person(percept: PersonPercept, description: Mapping[str, Any]) -> bo
             return False
         if key == "gesture" and not percept.gesture.startswith(wanted):
             return False
-        if key == "clothes" and not any(wanted in item.lower() for item in percept.clothes):
+        if key == "clothes" and not any(_wears(wanted, item.lower()) for item in percept.clothes):
             return False
     return True
+
+
+_WORN_ON_THE_LEGS = ("trousers", "jeans", "skirt", "pants", "shorts", "leggings")
+
+
+def _wears(wanted: str, item: str) -> bool:
+    """Whether a worn ``item`` fits a description of clothes: "red" fits "red sweater";
+    a camera's "red top" fits "red sweater" too (it sees the colour on the upper body,
+    not the cut), but not "red trousers"."""
+    if wanted in item:
+        return True
+    words = item.split()
+    if len(words) < 2 or words[-1] not in ("top", "trousers"):
+        return False
+    legs = any(word in _WORN_ON_THE_LEGS for word in wanted.split())
+    return (words[-1] == "trousers") == legs and all(word in wanted.split()
+                                                     for word in words[:-1])
 
 
 class FindPerson(Skill):
@@ -337,7 +360,7 @@ class FindPerson(Skill):
                                  str(where) if where and len(rooms) == 1 else room)
             if moved is not None:
                 return moved
-            for seen in context.robot.perceive_people():
+            for seen in _people_met(context, description):
                 if seen.name and matches_person(seen, description):
                     context.beliefs.saw_person(seen.name, seen.position)
                     moved = drive(context, resolve_target(context, seen.name) or
@@ -363,6 +386,28 @@ class FindPerson(Skill):
             context.bindings["person"] = person
             return Outcome.verified(f"I am with {person}", person=person)
         return Outcome.aborted(ErrorCode.NOT_FOUND, f"{person} is no longer here")
+
+
+_SAME_PERSON = 1.0  #: metres a person seen again may have moved and still be the one gone to
+_NAMELESS_VISITED = 3  #: nameless people the robot goes up to, per room, to see their faces
+
+
+def _people_met(context: SkillContext, description: Mapping[str, Any]
+                ) -> Iterator[PersonPercept]:
+    """The people seen in the room; then, for each seen without a name (too far to see
+    their face) who may fit the description, nearest first, the people seen after going
+    up to them. A robot knows people by their faces, and sees a face only from near."""
+    first = context.robot.perceive_people()
+    yield from first
+    unnamed = {key: value for key, value in description.items() if key != "name"}
+    nameless = [seen for seen in first if seen.name is None and
+                matches_person(seen, unnamed)]
+    for seen in nameless[:_NAMELESS_VISITED]:
+        moved = drive(context, pose_near_point(context, seen.position))
+        if moved.status is not Status.FINISHED:
+            continue
+        yield from (again for again in context.robot.perceive_people()
+                    if math.dist(again.position, seen.position) <= _SAME_PERSON)
 
 
 def _describe(description: Mapping[str, Any]) -> str:
