@@ -6,7 +6,12 @@ wait recoveries) and what CAESAR calls the dynamic obstacle extension: when the
 robot makes no headway for ``stuck_after`` seconds, stage 1 plans again round
 what the laser sees that the static map lacks (a person, a chair moved), with
 what it saw lately remembered for a while; when there is no way round, the
-robot waits for the way to clear. It gives up when the time budget is spent.
+robot waits for the way to clear, facing its way so that the laser sees who
+left. Waiting with someone near (in a doorway they wait to pass through too),
+it steps out of their way (``make_way``: out of doorways, round them) and
+forgets what it no longer sees (Nav2's clear-costmap recovery). Someone standing
+on the target itself: it comes as near as there is room and waits there. It
+gives up when the time budget is spent.
 
 Stage 1 by length alone squeezes through gaps that the local planner, keeping
 its safety margin, can only crawl through, so a path with a margin from walls
