@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -96,6 +97,21 @@ def test_stage2_compiled_search_is_its_plain_python(drive: DriveKind,
             plain = planner.plan(*args)
         assert plain == compiled
         assert planner.last is not None and planner.last.expansions > 1
+
+
+def test_stage2_turns_steadily() -> None:
+    # Round two posts, under a wall: the turn rate changes far less in all (Σ|Δω|) than
+    # with neither the cost on changing it nor the hysteresis between cycles.
+    path = [(0.0, 0.0), (2.0, 0.6), (5.0, 0.0)]
+    obstacles = [(1.5, 0.3, 0.2), (2.8, -0.4, 0.2), *wall(0.0, 1.2, 5.0, 1.2)]
+    changes = []
+    for planner in (MotionSearchPlanner(), MotionSearchPlanner(turn_cost=0.1, hold_cost=0.0)):
+        body = FakeBody(Pose(0.0, 0.0, 0.0), obstacles)
+        assert _drive(body, planner, path)
+        assert body.collisions == 0
+        turns = [command.wz for command in body.commands]
+        changes.append(sum(abs(b - a) for a, b in itertools.pairwise(turns)))
+    assert changes[0] < 0.8 * changes[1]
 
 
 def test_local_grid_marks_returns_and_their_clearance() -> None:

@@ -16,8 +16,16 @@ in two steps, as CAESAR does:
    path's direction, whichever is longer. A motion is admissible only if the
    robot stays clear of every grown obstacle all along it.
 
-The first command of the best sequence, moved towards from the current
-velocity within one period's acceleration, is the command. Since a faster
+Smooth turning: a sequence also pays, in seconds, for every change of turn
+rate along it (``turn_cost``), and its first motion for straying from the turn
+rate the cycle before steered for (``hold_cost``, hysteresis; that rate is
+also one of the first motions tried). Without these the 20 Hz replanning
+flipped between nearly equal plans and the turn rate dithered. Not on the
+final approach to the goal, where the goal is to be hit.
+
+The search runs as one compiled kernel (``motion_search.search``). The first
+command of the best sequence, moved towards from the current velocity within
+one period's acceleration, is the command. Since a faster
 motion needs more clearance, the robot slows down near obstacles (Cosero's
 collision-aware velocity limits, §4.1) and in doorways. When the lookahead
 point is the goal, the speed is capped so the robot can stop on it.
@@ -84,6 +92,8 @@ class MotionSearchPlanner:
         turn_cost: seconds added per rad/s of change in turn rate, so that of two
             equally fast sequences the steadier one wins.
         leg_margin: extra clearance kept from pairs of legs (a person is wider than them).
+        hold_cost: seconds added per rad/s the first motion's turn rate differs from the one
+            the cycle before chose (hysteresis: no flip-flopping between near-equal plans).
     """
 
     period: float = 0.05
@@ -98,10 +108,12 @@ class MotionSearchPlanner:
     goal_tolerance: float = 0.05
     greed: float = 4.0
     batch: int = 4
-    turn_cost: float = 0.1
+    turn_cost: float = 0.3
     leg_margin: float = 0.12
     substeps: int = 3
+    hold_cost: float = 1.5
     last: PlannerCycle | None = field(default=None, init=False)
+    _held: tuple[float, float] = field(default=(-math.inf, math.nan), init=False, repr=False)
 
     def __post_init__(self) -> None:
         for value, what in ((self.period, "period"), (self.step, "step"),
@@ -114,8 +126,9 @@ class MotionSearchPlanner:
         if min(self.depth, self.max_expansions, self.substeps, self.batch) < 1:
             raise LocalPlannerError("depth, max_expansions, substeps and batch must be at "
                                     "least 1")
-        if min(self.safety, self.speed_margin, self.turn_cost) < 0:
-            raise LocalPlannerError("safety, speed_margin and turn_cost cannot be negative")
+        if min(self.safety, self.speed_margin, self.turn_cost, self.hold_cost) < 0:
+            raise LocalPlannerError("safety, speed_margin, turn_cost and hold_cost cannot be "
+                                    "negative")
 
     def plan(self, pose: Pose, velocity: Twist, scan: LaserScan,
              path: Sequence[tuple[float, float]], limits: VelocityLimits, drive: DriveKind,
@@ -134,7 +147,7 @@ class MotionSearchPlanner:
         distances = grid.distance_field(target, grown, pool=_POOL, slowness=slowness)
         omni = drive is DriveKind.OMNIDIRECTIONAL
         command, expansions, depth = self._search(grid, distances, target, final, limits, omni,
-                                                  radius, velocity)
+                                                  radius, velocity, scan.stamp)
         self.last = PlannerCycle(expansions, depth, command is None, target)
         if command is None:
             return _towards(velocity, _brake(grid, distances, limits, omni), limits, drive,
@@ -149,7 +162,7 @@ class MotionSearchPlanner:
 
     def _search(self, grid: LocalGrid, distances: np.ndarray, target: tuple[float, float],
                 final: bool, limits: VelocityLimits, omni: bool, radius: float,
-                velocity: Twist) -> tuple[Twist | None, int, int]:
+                velocity: Twist, stamp: float) -> tuple[Twist | None, int, int]:
         """The search by time (the compiled kernel): the first command, expansions, depth."""
         from homebot.navigation import motion_search  # numba: only once stage 2 plans
 
@@ -163,15 +176,29 @@ class MotionSearchPlanner:
             static = start_clearance - 0.005
         dv = limits.linear_acceleration * self.step
         dw = limits.angular_acceleration * self.step
+        # The turn rate the last cycle steered for, if it was the cycle just before; not on
+        # the final approach, where the goal must be hit, not a steady turn kept (kept, it
+        # can circle the goal for ever).
+        recent = 0 < stamp - self._held[0] <= 1.5 * self.period
+        held = self._held[1] if recent and not final else math.nan
+        first = _lattice(dv, dw, omni, True)
+        if math.isfinite(held) and abs(held - velocity.wz) <= dw:
+            # Also the turn rate steered for before, with each speed change: keeping a plan
+            # is then possible without dithering round it on the lattice's coarse steps.
+            linear = np.unique(first[:, :2], axis=0)
+            first = np.vstack((first, np.column_stack(
+                (linear, np.full(len(linear), held - velocity.wz)))))
         found, vx, vy, wz, expansions, depth = motion_search.search(
             grid.padded, grid.half_size, grid.resolution, distances, _POOL,
             target[0], target[1], final, velocity.vx, velocity.vy, velocity.wz, omni,
-            _spin(velocity), _lattice(dv, dw, omni, True), _lattice(dv, dw, omni, False),
+            _spin(velocity), first, _lattice(dv, dw, omni, False),
             static, inside, start_clearance, limits.linear, limits.angular,
             limits.linear_acceleration, limits.angular_acceleration,
             self.step, self.depth, self.max_expansions, self.batch, self.substeps,
-            self.goal_tolerance, self.greed, self.speed_margin, self.turn_cost)
+            self.goal_tolerance, self.greed, self.speed_margin, self.turn_cost,
+            held, self.hold_cost)
         command = Twist(float(vx), float(vy), float(wz)) if found else None
+        self._held = (stamp, float(wz) if found else math.nan)
         return command, int(expansions), int(depth)
 
 

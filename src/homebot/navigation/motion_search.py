@@ -4,35 +4,21 @@
 each motion in substeps, the collision check against the local grid's
 clearance (grown by the speed), the heuristic (time to go) and the open list
 (a binary heap on arrays). It is written as plain Python over scalars and
-arrays, so that without numba (the ``embodied`` extra) it still runs, only
-slower, and tests can run the very same code as ``search.py_func``.
-
-``numba`` is imported here only: this module is imported when stage 2 first
-plans, so the symbolic fidelity never pays for it. ``cache=True`` keeps the
-compiled kernel on disk (``__pycache__``), so a second process does not compile
-it again.
+arrays (see ``homebot.navigation.compiled``), so tests can run the very same
+code as ``search.py_func``. ``sweep`` is the search by length before it: one
+Dijkstra over the local grid. This module is imported when a local controller
+first plans.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
-from typing import Any, TypeVar, cast
 
 import numpy as np
 
-__all__ = ["downhill_at", "search"]
+from homebot.navigation.compiled import compiled as _compiled
 
-_F = TypeVar("_F", bound=Callable[..., Any])
-
-
-def _compiled(function: _F) -> _F:
-    """``function`` compiled by numba (cached on disk) when numba is there, else as it is."""
-    try:
-        from numba import njit
-    except ImportError:  # pragma: no cover - the embodied extra brings numba
-        return function
-    return cast(_F, njit(cache=True, nogil=True)(function))
+__all__ = ["downhill_at", "search", "sweep"]
 
 
 # ------------------------------------------------------------------ helpers
@@ -189,6 +175,7 @@ def search(padded: np.ndarray, half_size: float, resolution: float, distances: n
            angular_acceleration: float,
            step: float, depth_limit: int, max_expansions: int, batch: int, substeps: int,
            goal_tolerance: float, greed: float, speed_margin: float, turn_cost: float,
+           held_w: float, hold_cost: float,
            ) -> tuple[int, float, float, float, int, int]:
     """One cycle's best-first search over motion sequences.
 
@@ -200,7 +187,10 @@ def search(padded: np.ndarray, half_size: float, resolution: float, distances: n
     is admissible when the robot keeps ``static`` plus ``speed_margin`` × speed
     of clearance (``padded``: the local grid's clearance with a one-cell
     border) at the middle of each of its ``substeps``; the cost is time, plus
-    ``turn_cost`` per rad/s of change in turn rate.
+    ``turn_cost`` per rad/s of change in turn rate, and for the first motion
+    ``hold_cost`` per rad/s its turn rate differs from ``held_w``, the one the
+    last cycle chose (NaN: none), so that the plan does not flip from cycle to
+    cycle between two nearly as good ones.
 
     Returns:
         (found, vx, vy, wz, expansions, depth): ``found`` is 0 when no motion is
@@ -314,13 +304,18 @@ def search(padded: np.ndarray, half_size: float, resolution: float, distances: n
                     to_go = _ramp_time(remaining, math.hypot(end_x, end_y), linear,
                                        linear_acceleration)
                 else:
-                    error = (downhill_at(distances, row, column, pool) - th + math.pi) % \
-                        (2.0 * math.pi) - math.pi
+                    if remaining > 0.15:
+                        way = downhill_at(distances, row, column, pool)
+                    else:
+                        # So near, the coarse field's slope says nothing: the way is the
+                        # straight line to the target (beside the robot, it must turn).
+                        way = math.atan2(target_y - y, target_x - x)
+                    error = (way - th + math.pi) % (2.0 * math.pi) - math.pi
                     if spin != 0.0 and abs(error) > 2.5 and error * spin < 0.0:
                         # The way lies behind: either turn will do, so keep turning the way
                         # it turns now (otherwise the choice flips and the robot dithers).
                         error += spin * 2.0 * math.pi
-                    if remaining <= 0.15:
+                    if math.hypot(target_x - x, target_y - y) <= goal_tolerance:
                         error = 0.0
                     along = max(end_x * math.cos(error), 0.0)
                     travel = _ramp_time(remaining, along, linear, linear_acceleration)
@@ -342,6 +337,8 @@ def search(padded: np.ndarray, half_size: float, resolution: float, distances: n
                 depth[child] = depth[parent] + 1
                 # Time is the cost, plus a little for every change of turn rate.
                 cost[child] = cost[parent] + step + turn_cost * abs(change_w)
+                if root and math.isfinite(held_w):
+                    cost[child] += hold_cost * abs(end_w - held_w)
                 score = cost[child] + greed * to_go
                 heap = _push(heap_scores, heap_nodes, heap, score, child)
                 # The deepest, then cheapest, then first node seen.
