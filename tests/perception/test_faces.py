@@ -14,6 +14,7 @@ from homebot.perception.faces import (
     FaceError,
     FaceMemory,
     HaarFeatures,
+    _overlap,
     integral_image,
 )
 from homebot.sim.faces import face_identity, face_view
@@ -47,6 +48,24 @@ def test_the_cascade_finds_a_new_face(detector: FaceDetector) -> None:
         hits += bool(found) and abs(found[0].x - x) <= side // 3 and \
             abs(found[0].y - y) <= side // 3
     assert hits >= 8
+
+
+def test_the_refiner_moves_the_window_onto_the_face(detector: FaceDetector) -> None:
+    rng = np.random.default_rng(8)
+    views = [face_view(face_identity(f"other{index}"), rng) for index in range(20)]
+    overlaps = {}
+    refine = detector.refine
+    try:
+        for passes in (0, refine):
+            detector.refine = passes
+            overlaps[passes] = [_overlap(found[0].window(), window) if found else 0.0
+                                for image, window in views
+                                for found in [detector.detect(image)]]
+    finally:
+        detector.refine = refine
+    assert refine > 0
+    assert np.mean(overlaps[refine]) > np.mean(overlaps[0]) + 0.02
+    assert np.median(overlaps[refine]) > 0.8
 
 
 def test_enrolled_people_are_told_apart(detector: FaceDetector) -> None:

@@ -12,8 +12,14 @@ level does not matter.
   would be the first choice, but the OpenCV in use (5.x) no longer has
   ``CascadeClassifier`` nor ships the cascade files, so the cascade is trained
   here, on example faces and faceless images the caller gives.
+- **Alignment**: the best-scoring window is often a few pixels off the face
+  (median overlap 0.82 with the true one); a regression forest on the cascade's
+  features, trained on shifted and resized windows of the training faces, moves
+  it onto the face (twice). Identifying with the true windows would find 98 % of
+  a seed's faces against 94 % with the raw ones.
 - **Identification** (``FaceMemory``): a random forest on a larger bank of Haar
-  features of the face window votes for an identity. ``enrol(name, images)`` adds
+  features of the face window votes for an identity; each enrolled view is also
+  learnt mirrored. ``enrol(name, images)`` adds
   a person online (the forest is grown again on everything enrolled: tens of
   milliseconds). The identification features are divided by the contrast of the
   window's middle (its corners show the background). Strangers are rejected by
@@ -195,13 +201,15 @@ class FaceDetector:
 
     def __init__(self, sizes: Sequence[int] = (30, 35, 40, 46), stride: float = 0.1,
                  features: int = 400, stumps: tuple[int, int] = (12, 120),
-                 seed: int = 0) -> None:
+                 seed: int = 0, refine: int = 2) -> None:
         self.sizes = tuple(sizes)
         self.stumps = stumps
         self.stride = stride
         self.bank = HaarFeatures(features, seed)
         self.seed = seed
+        self.refine = refine
         self._stages: list[_Stage] = []
+        self._refiner: _Forest | None = None
 
     def train(self, images: Sequence[np.ndarray], faces: Sequence[Window],
               faceless: Sequence[np.ndarray]) -> None:
@@ -226,6 +234,7 @@ class FaceDetector:
             windows = self._windows(image.shape)
             pick = rng.choice(len(windows), size=min(20, len(windows)), replace=False)
             negatives.append(self.bank.compute(integral_image(image), windows[pick]))
+        self._train_refiner(images, faces)
         pos, neg = np.vstack(positives), np.vstack(negatives)
         data = np.vstack((pos, neg))
         labels = np.r_[np.ones(len(pos)), np.zeros(len(neg))]
@@ -245,6 +254,51 @@ class FaceDetector:
             neg = neg[passed] if passed.any() else neg[:1]
             data = np.vstack((pos, neg))
             labels = np.r_[np.ones(len(pos)), np.zeros(len(neg))]
+
+    def _train_refiner(self, images: Sequence[np.ndarray], faces: Sequence[Window]) -> None:
+        """Learn where the face is from a window near it: windows shifted by up to 5
+        pixels and resized by up to 6 around each example face, and the shift and
+        resizing (as shares of the window's side) that bring each back onto the face;
+        a regression forest (extremely randomised trees) on the bank's features."""
+        if self.refine <= 0:
+            self._refiner = None
+            return
+        from sklearn.ensemble import ExtraTreesRegressor
+
+        rng = np.random.default_rng([self.seed, 11])
+        data: list[np.ndarray] = []
+        targets: list[tuple[float, float, float]] = []
+        for image, (x, y, side) in zip(images, faces, strict=True):
+            moves = np.column_stack((rng.integers(-5, 6, (12, 2)), rng.integers(-6, 7, 12)))
+            windows = [w for w in ((x + a, y + b, side + c) for a, b, c in moves)
+                       if _fits(w, image.shape)]
+            if not windows:
+                continue
+            data.append(self.bank.compute(integral_image(image), np.asarray(windows)))
+            targets.extend(((x - wx) / ws, (y - wy) / ws, (side - ws) / ws)
+                           for wx, wy, ws in windows)
+        if not data:
+            self._refiner = None
+            return
+        forest = ExtraTreesRegressor(n_estimators=60, min_samples_leaf=3, max_features=0.3,
+                                     random_state=self.seed, n_jobs=1)
+        forest.fit(np.vstack(data), np.asarray(targets))
+        self._refiner = _Forest.of(forest, 3, regression=True)
+
+    def _aligned(self, integrals: tuple[np.ndarray, np.ndarray], window: Window,
+                 shape: tuple[int, ...]) -> Window:
+        """``window`` moved onto the face by the refiner, ``refine`` times over."""
+        if self._refiner is None:
+            return window
+        for _ in range(self.refine):
+            x, y, side = window
+            vector = self.bank.compute(integrals, np.asarray([window]))[0]
+            dx, dy, ds = self._refiner.shares(self._refiner.leaves(vector))
+            moved = (round(x + dx * side), round(y + dy * side), round(side * (1.0 + ds)))
+            if not _fits(moved, shape) or moved == window:
+                break
+            window = moved
+        return window
 
     @property
     def trained(self) -> bool:
@@ -281,7 +335,12 @@ class FaceDetector:
             x, y, side = (int(v) for v in windows[alive[index]])
             if all(_overlap((x, y, side), f.window()) < 0.3 for f in found):
                 found.append(FaceWindow(x, y, side, float(score[index])))
-        return found
+        # the best window of a face is often a few pixels off it: the refiner aligns it
+        aligned = []
+        for face in found:
+            x, y, side = self._aligned(integrals, face.window(), image.shape)
+            aligned.append(FaceWindow(x, y, side, face.score))
+        return aligned
 
 
 class FaceMemory:
@@ -296,12 +355,16 @@ class FaceMemory:
         seed: the bank's layout and the forest's randomness.
         core: the share of the face window's side left out at each edge for the contrast
             the features are divided by (the window's corners show the background).
+        mirror: enrol each view's mirror image too (the face turned the other way, the
+            light from the other side).
     """
 
     def __init__(self, detector: FaceDetector, threshold: float = 1.0, trees: int = 100,
-                 features: int = 2000, seed: int = 0, core: float = 0.2) -> None:
+                 features: int = 2000, seed: int = 0, core: float = 0.2,
+                 mirror: bool = True) -> None:
         self.detector = detector
         self.core = core
+        self.mirror = mirror
         self.threshold = threshold
         self.trees = trees
         # inside the face's oval: the window's corners show the background
@@ -348,8 +411,15 @@ class FaceMemory:
                           (-1, -1, 2), (1, 1, -2)]
                 windows = [w for w in ((x + a, y + b, side + c) for a, b, c in shifts)
                            if _fits(w, image.shape)]
-                described.append(self.bank.compute(integral_image(image), np.asarray(windows),
-                                                   core=self.core))
+                views = [self.bank.compute(integral_image(image), np.asarray(windows),
+                                           core=self.core)]
+                if self.mirror:
+                    # a face seen in a mirror is the same face turned the other way
+                    width = image.shape[1]
+                    flipped = [(width - wx - ws, wy, ws) for wx, wy, ws in windows]
+                    views.append(self.bank.compute(integral_image(image[:, ::-1]),
+                                                   np.asarray(flipped), core=self.core))
+                described.append(np.vstack(views))
         if not described:
             raise FaceError(f"no face found in the {len(images)} image(s) of {name}; "
                             "enrol with images in which the face is seen from the front")
@@ -519,7 +589,9 @@ class _Forest:
     depth: int
 
     @classmethod
-    def of(cls, forest: object, classes: int) -> _Forest:
+    def of(cls, forest: object, classes: int, regression: bool = False) -> _Forest:
+        """The arrays of a fitted scikit-learn forest: a classifier's ``classes`` shares
+        at each node, or (``regression``) a regressor's ``classes`` outputs."""
         trees = [estimator.tree_ for estimator in forest.estimators_]  # type: ignore[attr-defined]
         nodes = max(tree.node_count for tree in trees)
         shape = (len(trees), nodes)
@@ -534,6 +606,9 @@ class _Forest:
             threshold[index, :n] = tree.threshold
             left[index, :n] = tree.children_left
             right[index, :n] = tree.children_right
+            if regression:
+                value[index, :n, :] = tree.value[:, :, 0]
+                continue
             counts = tree.value[:, 0, :]
             value[index, :n, :counts.shape[1]] = counts / np.maximum(
                 counts.sum(axis=1, keepdims=True), 1e-12)
@@ -552,7 +627,7 @@ class _Forest:
         return node
 
     def shares(self, leaves: np.ndarray) -> np.ndarray:
-        """Each identity's share of the trees' votes."""
+        """Each identity's share of the trees' votes (a regressor's: the mean outputs)."""
         shares: np.ndarray = self.value[np.arange(len(leaves)), leaves].mean(axis=0)
         return shares
 
