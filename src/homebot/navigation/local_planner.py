@@ -142,9 +142,8 @@ class MotionSearchPlanner:
         # Collision-aware speed limits (Cosero): the faster, the more clearance a motion
         # needs, so a cell with little clearance can only be crossed slowly. The field is
         # then the least time to the target (in metres at top speed) along the local path.
-        allowed = (grid.clearance - grown) / max(self.speed_margin, 1e-6)
-        slowness = limits.linear / np.clip(allowed, 0.05, limits.linear)
-        distances = grid.distance_field(target, grown, pool=_POOL, slowness=slowness)
+        distances = grid.distance_field(target, grown, pool=_POOL,
+                                        speed=(self.speed_margin, limits.linear))
         omni = drive is DriveKind.OMNIDIRECTIONAL
         command, expansions, depth = self._search(grid, distances, target, final, limits, omni,
                                                   radius, velocity, scan.stamp)

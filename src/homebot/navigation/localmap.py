@@ -146,7 +146,7 @@ class LocalGrid:
                 (row + 0.5) * self.resolution - self.half_size)
 
     def distance_field(self, target: tuple[float, float], grown: float,
-                       pool: int = 2, slowness: np.ndarray | None = None) -> np.ndarray:
+                       pool: int = 2, speed: tuple[float, float] | None = None) -> np.ndarray:
         """Path length (metres) from every cell to ``target`` among cells clearer than ``grown``.
 
         CAESAR's first local search (by length), done as one Dijkstra sweep out
@@ -155,48 +155,29 @@ class LocalGrid:
         (a coarse cell is clear when any of its cells is), which is plenty for a
         heuristic. A target inside grown obstacles moves to the nearest clear
         cell; cells that are not clear get the field of their nearest clear cell
-        plus the way to it (so the robot can leave them). With ``slowness`` (per
-        cell, ≥ 1: how many times slower than top speed the robot may cross it)
-        a step costs its length times the slowness of the cell it enters, so the
-        field is in metres at top speed: time × top speed.
+        plus the way to it (so the robot can leave them). With ``speed`` =
+        (speed margin, top speed), Cosero's collision-aware speed limit: a cell
+        whose clearance beyond ``grown`` is c may be crossed at c / margin at
+        most (and at 0.05 m/s at least), a step costs its length times how many
+        times slower than top speed that is, and the field is in metres at top
+        speed: time × top speed. Compiled (``motion_search.coarse_field``).
         """
-        cells = self.cells - self.cells % pool
-        clear = self.clearance[:cells, :cells] >= grown
-        free: np.ndarray = np.any(clear.reshape(cells // pool, pool, cells // pool, pool),
-                                  axis=(1, 3))
-        resolution = self.resolution * pool
-        if not free.any():
-            return np.full(self.clearance.shape, np.inf)
-        column = int(min(max((target[0] + self.half_size) / resolution, 0), free.shape[1] - 1))
-        row = int(min(max((target[1] + self.half_size) / resolution, 0), free.shape[0] - 1))
-        root = (row, column)
-        if not free[root]:
-            candidates = np.argwhere(free)
-            nearest = np.argmin(np.hypot(candidates[:, 0] - root[0], candidates[:, 1] - root[1]))
-            root = (int(candidates[nearest, 0]), int(candidates[nearest, 1]))
-        if slowness is None:
-            cost = free.astype(np.int32)
-        else:
-            # A coarse cell is as slow as its fastest clear cell (a bound, not a guess).
-            slow = np.where(clear, slowness[:cells, :cells], np.inf)
-            fastest = slow.reshape(cells // pool, pool, cells // pool, pool).min(axis=(1, 3))
-            cost = np.where(free, np.round(np.minimum(fastest, 50.0) * 10), 0).astype(np.int32)
-        unit = 100 if slowness is None else 1000  # raw distance per cell at top speed
         from homebot.navigation import motion_search  # numba: only once a controller plans
 
-        raw = motion_search.sweep(cost, root[0], root[1], 100, 141)
-        reached = raw != np.iinfo(raw.dtype).max
-        coarse = np.where(reached, raw * (resolution / unit), np.inf)
-        if not reached.all():
+        resolution = self.resolution * pool
+        margin, top = speed if speed is not None else (1.0, 0.0)
+        coarse, everywhere = motion_search.coarse_field(
+            self.clearance, grown, pool, (target[0] + self.half_size) / resolution,
+            (target[1] + self.half_size) / resolution, max(margin, 1e-6), top, resolution)
+        if not everywhere:
+            reached = np.isfinite(coarse)
+            if not reached.any():
+                return np.full(self.clearance.shape, np.inf)
             gap, (near_rows, near_columns) = ndimage.distance_transform_edt(
                 ~reached, return_indices=True)
-            coarse = np.where(reached, coarse,
-                              coarse[near_rows, near_columns] + gap * resolution)
-        field = np.repeat(np.repeat(coarse, pool, axis=0), pool, axis=1)
-        if cells < self.cells:
-            field = np.pad(field, ((0, self.cells - cells), (0, self.cells - cells)), mode="edge")
-        result: np.ndarray = field
-        return result
+            coarse = np.where(reached, coarse, coarse[near_rows, near_columns] + gap * resolution)
+        field: np.ndarray = motion_search.expand(coarse, pool, self.cells)
+        return field
 
 
 def _returns(scan: LaserScan) -> tuple[np.ndarray, np.ndarray]:

@@ -390,3 +390,78 @@ def sweep(cost: np.ndarray, root_row: int, root_column: int, cardinal: int,
                     distance[r, c] = there
                     heap = _push(heap_scores, heap_nodes, heap, float(there), r * columns + c)
     return distance
+
+
+@_compiled
+def coarse_field(clearance: np.ndarray, grown: float, pool: int, target_column: float,
+                 target_row: float, speed_margin: float, top: float,
+                 resolution: float) -> tuple[np.ndarray, bool]:
+    """The search by length on cells ``pool`` times coarser (see ``LocalGrid.distance_field``).
+
+    A coarse cell is free when any of its cells has ``grown`` clearance. With a
+    ``top`` speed (> 0), entering a coarse cell costs its length times the
+    slowness of its fastest clear cell: ``top`` over the speed its clearance
+    allows (clearance beyond ``grown``, per ``speed_margin``, between 0.05 and
+    ``top``). The target (coarse cell coordinates) moves to the nearest free cell.
+
+    Returns:
+        (metres from each coarse cell, inf where not reached; whether all were
+        reached). No free cell at all: every cell inf.
+    """
+    cells = clearance.shape[0] - clearance.shape[0] % pool
+    n = cells // pool
+    free = np.zeros((n, n), dtype=np.bool_)
+    cost = np.zeros((n, n), dtype=np.int32)
+    any_free = False
+    for i in range(n):
+        for j in range(n):
+            fastest = np.inf
+            for a in range(pool):
+                for b in range(pool):
+                    value = clearance[i * pool + a, j * pool + b]
+                    if value >= grown:
+                        free[i, j] = True
+                        if top > 0.0:
+                            allowed = min(max((value - grown) / speed_margin, 0.05), top)
+                            fastest = min(fastest, top / allowed)
+            if free[i, j]:
+                any_free = True
+                cost[i, j] = np.int32(np.rint(min(fastest, 50.0) * 10)) if top > 0.0 else 1
+    coarse = np.full((n, n), np.inf)
+    if not any_free:
+        return coarse, False
+    column = int(min(max(target_column, 0.0), n - 1.0))
+    row = int(min(max(target_row, 0.0), n - 1.0))
+    if not free[row, column]:
+        best, near_row, near_column = -1, row, column
+        for i in range(n):
+            for j in range(n):
+                gap = (i - row) ** 2 + (j - column) ** 2
+                if free[i, j] and (best < 0 or gap < best):
+                    best, near_row, near_column = gap, i, j
+        row, column = near_row, near_column
+    unit = 1000 if top > 0.0 else 100  # raw distance per cell at top speed
+    raw = sweep(cost, row, column, 100, 141)
+    unreached = np.iinfo(np.int64).max
+    everywhere = True
+    scale = resolution / unit
+    for i in range(n):
+        for j in range(n):
+            if raw[i, j] != unreached:
+                coarse[i, j] = raw[i, j] * scale
+            else:
+                everywhere = False
+    return coarse, everywhere
+
+
+@_compiled
+def expand(coarse: np.ndarray, pool: int, cells: int) -> np.ndarray:
+    """``coarse`` back on the fine grid of ``cells``: each value ``pool`` × ``pool`` times,
+    the last row and column repeated where ``cells`` is not a multiple of ``pool``."""
+    n = coarse.shape[0]
+    field = np.empty((cells, cells))
+    for r in range(cells):
+        i = min(r // pool, n - 1)
+        for c in range(cells):
+            field[r, c] = coarse[i, min(c // pool, n - 1)]
+    return field
