@@ -220,21 +220,15 @@ def _clearance(points: np.ndarray, cells: int, half: float, resolution: float) -
     """Per cell, the distance from its centre to the return kept in the nearest occupied cell."""
     if not len(points):
         return np.full((cells, cells), 10.0)
-    occupied = np.zeros((cells, cells), dtype=bool)
-    kept = np.zeros((cells, cells, 2))
-    columns = np.floor((points[:, 0] + half) / resolution).astype(np.intp)
-    rows = np.floor((points[:, 1] + half) / resolution).astype(np.intp)
-    inside = (columns >= 0) & (columns < cells) & (rows >= 0) & (rows < cells)
-    if not inside.any():
+    from homebot.navigation import motion_search  # numba: only once a controller plans
+
+    occupied, kept = motion_search.rasterise(points, cells, half, resolution)
+    if not occupied.any():
         return np.full((cells, cells), 10.0)
-    occupied[rows[inside], columns[inside]] = True
-    kept[rows[inside], columns[inside]] = points[inside]
     near_rows, near_columns = ndimage.distance_transform_edt(
         ~occupied, return_distances=False, return_indices=True)
-    centres = (np.arange(cells) + 0.5) * resolution - half
-    nearest = kept[near_rows, near_columns]
-    clearance: np.ndarray = np.hypot(nearest[:, :, 0] - centres[None, :],
-                                     nearest[:, :, 1] - centres[:, None])
+    clearance: np.ndarray = motion_search.distances_to_kept(kept, near_rows, near_columns,
+                                                            half, resolution)
     return clearance
 
 

@@ -465,3 +465,39 @@ def expand(coarse: np.ndarray, pool: int, cells: int) -> np.ndarray:
         for c in range(cells):
             field[r, c] = coarse[i, min(c // pool, n - 1)]
     return field
+
+
+# ------------------------------------------------------------------ the local grid
+
+
+@_compiled
+def rasterise(points: np.ndarray, cells: int, half: float,
+              resolution: float) -> tuple[np.ndarray, np.ndarray]:
+    """The cells (``cells`` × ``cells``, from −``half``) the points fall in, and per cell the
+    last point that fell in it."""
+    occupied = np.zeros((cells, cells), dtype=np.bool_)
+    kept = np.zeros((cells, cells, 2))
+    for k in range(points.shape[0]):
+        column = int(np.floor((points[k, 0] + half) / resolution))
+        row = int(np.floor((points[k, 1] + half) / resolution))
+        if 0 <= column < cells and 0 <= row < cells:
+            occupied[row, column] = True
+            kept[row, column, 0] = points[k, 0]
+            kept[row, column, 1] = points[k, 1]
+    return occupied, kept
+
+
+@_compiled
+def distances_to_kept(kept: np.ndarray, near_rows: np.ndarray, near_columns: np.ndarray,
+                      half: float, resolution: float) -> np.ndarray:
+    """Per cell, the distance from its centre to the point kept in its nearest occupied cell
+    (``near_rows``, ``near_columns``: the distance transform's indices)."""
+    cells = kept.shape[0]
+    clearance = np.empty((cells, cells))
+    for row in range(cells):
+        y = (row + 0.5) * resolution - half
+        for column in range(cells):
+            x = (column + 0.5) * resolution - half
+            r, c = near_rows[row, column], near_columns[row, column]
+            clearance[row, column] = np.hypot(kept[r, c, 0] - x, kept[r, c, 1] - y)
+    return clearance
