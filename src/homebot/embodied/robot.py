@@ -9,9 +9,11 @@ looks whether it is open and whether someone stands in it, and reports a shut
 or blocked door so the executive's door protocol can act.
 
 Objects on placements are seen with the head camera through the table-top
-pipeline (``looking``). The rest of perception, manipulation and conversation
-stay symbolic until their modules replace them: those calls go to ``percepts``,
-another Robot implementation over the same world.
+pipeline (``looking``); people with the laser, the head camera and faces
+(``people_look``); whether a door is open by whether the laser's beams pass
+through the doorway (``doors``). What the hands and the voice do without a
+module of their own yet (a symbolic door handle, answers, handing over) goes to
+``percepts``, another Robot implementation over the same world.
 """
 
 from __future__ import annotations
@@ -25,6 +27,7 @@ import numpy as np
 from shapely.geometry import LineString
 from shapely.geometry import Point as ShapelyPoint
 
+from homebot.embodied.doors import door_seen_open
 from homebot.embodied.looking import TableLook
 from homebot.embodied.people_look import PeopleLook
 from homebot.errors import NavigationError, SpeechError
@@ -223,7 +226,7 @@ class BodyRobot(Robot):
         """Is ``door`` shut, or does someone (or something) stand in it? None: the way
         through is clear. Standing before it, a door the robot cannot tell is open counts
         as shut; ``from_afar`` it may not tell, and only what stands in it counts."""
-        state = self.percepts.door_is_open(door)
+        state = self.door_is_open(door)
         if state is False or (state is None and not from_afar):
             return (Blocker.DOOR_CLOSED, None)
         model = self.world.doors[door]
@@ -339,7 +342,15 @@ class BodyRobot(Robot):
         return self.percepts.open_door(door)
 
     def door_is_open(self, door: str) -> bool | None:
-        return self.percepts.door_is_open(door)
+        model = self.world.doors.get(door)
+        here = self.pose()
+        if model is None or math.dist(here.xy(), model.position) > _SEES_THE_DOOR:
+            return None
+        x, y, _ = self.world.point_before_door(door, model.rooms[0], 1.0)
+        normal = (x - model.position[0], y - model.position[1])
+        self.body.tick()  # a fresh sweep: the door may have moved since the last one
+        return door_seen_open(self.body.scan(), self.pose(), model.position, normal,
+                              model.width)
 
     def say(self, text: str) -> None:
         """Speak ``text`` through the body's speaker (espeak-ng, the ``speech`` extra): the
