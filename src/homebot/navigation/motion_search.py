@@ -5,9 +5,11 @@ each motion in substeps, the collision check against the local grid's
 clearance (grown by the speed), the heuristic (time to go) and the open list
 (a binary heap on arrays). It is written as plain Python over scalars and
 arrays (see ``homebot.navigation.compiled``), so tests can run the very same
-code as ``search.py_func``. ``sweep`` is the search by length before it: one
-Dijkstra over the local grid. This module is imported when a local controller
-first plans.
+code as ``search.py_func``. ``coarse_field`` (with ``sweep``, one Dijkstra) is
+the search by length before it, ``expand`` puts its result back on the local
+grid, and ``rasterise`` and ``distances_to_kept`` build that grid's clearance
+from a scan around scipy's distance transform. This module is imported when a
+local controller first plans.
 """
 
 from __future__ import annotations
