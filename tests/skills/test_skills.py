@@ -33,6 +33,20 @@ def test_navigate_verifies_the_pose(run: SimulatedRun) -> None:
     assert run.world.room_at(*run.robot.pose().xy()) == "kitchen"
 
 
+def test_the_middle_of_a_room_is_free_floor_even_where_its_centroid_is_under_a_table(
+        run: SimulatedRun) -> None:
+    from homebot.skills.places import resolve_target
+
+    table = run.world.placements["kitchen table"].footprint
+    centroid = run.world.room_polygons["kitchen"].centroid
+    assert table.contains(centroid)  # the apartment's kitchen table stands mid-kitchen
+    for room in run.world.rooms:
+        goal = resolve_target(run.context, room)
+        assert goal is not None and run.world.room_at(*goal.xy()) == room
+        grid = run.context.navigator.grid
+        assert not grid.blocked[grid.cell_of(*goal.xy())]
+
+
 def test_unknown_target_fails(run: SimulatedRun) -> None:
     outcome = _do(run, "navigate", to="garage")
     assert outcome.status is Status.FAILED and outcome.error is ErrorCode.UNKNOWN_TARGET

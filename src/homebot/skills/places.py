@@ -6,6 +6,8 @@ import math
 from collections.abc import Mapping
 from typing import Any
 
+from scipy import ndimage
+
 from homebot.robot import Pose
 from homebot.skills.skill import SkillContext
 
@@ -16,6 +18,7 @@ __all__ = [
     "point_goal",
     "pose_near_point",
     "resolve_target",
+    "room_centre",
     "sees_person_nearby",
     "target_label",
 ]
@@ -26,6 +29,8 @@ OPERATOR = "operator"  #: how a task names the person who gave the command
 _PERSON_DISTANCE = 0.9
 # The farthest from a person the robot stands to talk or hand over (within arm's and voice's reach).
 _PERSON_REACH_LIMIT = 1.8
+# How much free floor the robot keeps round itself in the middle of a room, metres.
+_ROOM_MARGIN = 0.15
 
 
 def person_name(context: SkillContext, name: str | Mapping[str, Any] | None) -> str | None:
@@ -43,6 +48,21 @@ def person_name(context: SkillContext, name: str | Mapping[str, Any] | None) -> 
         operator = context.world.model.operator
         return operator
     return name if name in context.beliefs.person_at else None
+
+
+def room_centre(context: SkillContext, room: str) -> tuple[float, float]:
+    """Where the robot stands to be in the middle of ``room``: the free floor nearest its
+    centroid, with a margin round the furniture (a kitchen's centroid may lie under
+    its table)."""
+    centre = context.world.room_polygons[room].centroid
+    grid = context.navigator.grid
+    margin = math.ceil(_ROOM_MARGIN / grid.resolution)
+    crowded = ndimage.binary_dilation(grid.blocked, iterations=margin) if margin else grid.blocked
+    cell = grid.nearest_free(crowded.ravel(), *grid.cell_of(centre.x, centre.y))
+    if cell is None:
+        return (centre.x, centre.y)
+    point = grid.center_of(*cell)
+    return point if context.world.room_at(*point) == room else (centre.x, centre.y)
 
 
 def pose_near_point(context: SkillContext, point: tuple[float, float],
@@ -120,8 +140,7 @@ def resolve_target(context: SkillContext, target: Any) -> Pose | None:
         x, y, theta = world.placements[target].approach
         return Pose(x, y, theta)
     if target in world.rooms:
-        centre = world.room_polygons[target].centroid
-        return Pose(centre.x, centre.y, 0.0)
+        return Pose(*room_centre(context, target), 0.0)
     name = person_name(context, target)
     if name is not None and name in context.beliefs.person_at:
         return pose_near_point(context, context.beliefs.person_at[name])
