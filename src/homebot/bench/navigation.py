@@ -542,11 +542,12 @@ class _Trace:
         plan_wide = navigation.plan_wide
 
         def traced(here: Pose, target: Pose, avoid_doors: frozenset[str],
-                   obstacles: np.ndarray) -> tuple[tuple[float, float], ...] | None:
-            path = plan_wide(here, target, avoid_doors, obstacles)
+                   obstacles: np.ndarray, squeeze: bool = False,
+                   ) -> tuple[tuple[float, float], ...] | None:
+            path = plan_wide(here, target, avoid_doors, obstacles, squeeze)
             self.record["plans"].append({
                 "t": round(body.now(), 2), "from": _rounded(here),
-                "obstacles": len(obstacles),
+                "obstacles": len(obstacles), "squeeze": squeeze,
                 "path": None if path is None else [[round(x, 2), round(y, 2)]
                                                    for x, y in path]})
             return path

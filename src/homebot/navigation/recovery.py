@@ -320,7 +320,10 @@ class RecoveringNavigation:
                     self._face(path)
             pose = self.localise()
             obstacles = self.memory.observe(body.now(), pose, body.scan())
-            path = self.plan_wide(pose, target, avoid_doors, obstacles)
+            # Waited a while for the wide way (people staying in it): a narrower way will do.
+            squeeze = waiting_since is not None and \
+                body.now() - waiting_since >= policy.make_way_after
+            path = self.plan_wide(pose, target, avoid_doors, obstacles, squeeze)
             if path is not None and path[-1] != target.xy() and \
                     math.dist(pose.xy(), path[-1]) <= tolerance:
                 path = None  # as near to an occupied target as it comes: wait there
@@ -336,12 +339,14 @@ class RecoveringNavigation:
                                  round(body.now() - started, 3), replans, waits)
 
     def plan_wide(self, here: Pose, target: Pose, avoid_doors: frozenset[str],
-                  obstacles: np.ndarray) -> tuple[tuple[float, float], ...] | None:
+                  obstacles: np.ndarray, squeeze: bool = False,
+                  ) -> tuple[tuple[float, float], ...] | None:
         """Stage 1 round ``obstacles``, with a margin from walls and furniture.
 
         Through gaps narrower than the margin only when the static map itself has no
         wider way: when it has one and ``obstacles`` stand in it, None (wait, or ask),
-        rather than squeezing through a gap the local planner can only crawl through.
+        rather than squeezing through a gap the local planner can only crawl through;
+        unless ``squeeze`` (the robot has waited for the wide way a while already).
         """
         radius, policy = self.body.radius, self.policy
         around, wide = radius + policy.obstacle_margin, radius + policy.static_margin
@@ -352,7 +357,7 @@ class RecoveringNavigation:
                                           around, wide, near_goal=near)
         if path is not None:
             return path
-        if len(obstacles) and self.navigator.plan_around(
+        if len(obstacles) and not squeeze and self.navigator.plan_around(
                 here.xy(), target.xy(), avoid_doors, np.zeros((0, 2)), around, wide):
             return None
         return self.navigator.plan_around(here.xy(), target.xy(), avoid_doors, obstacles,
