@@ -54,6 +54,7 @@ _DEEP_ANGULAR = (-1.0, -0.4, 0.0, 0.4, 1.0)
 _OMNI_FIRST = (-1.0, -0.5, 0.0, 0.5, 1.0)
 _OMNI_DEEP = (-1.0, 0.0, 1.0)
 _POOL = 2  #: the distance field's cells are this many grid cells wide
+_FINAL_TURN_COST = 0.1  #: seconds per rad/s of turn-rate change on the final approach
 
 
 @dataclass(frozen=True, slots=True)
@@ -195,7 +196,7 @@ class MotionSearchPlanner:
             limits.linear_acceleration, limits.angular_acceleration,
             self.step, self.depth, self.max_expansions, self.batch, self.substeps,
             self.goal_tolerance, self.greed, self.speed_margin, self.turn_cost,
-            held, self.hold_cost)
+            held, self.hold_cost, _FINAL_TURN_COST)
         command = Twist(float(vx), float(vy), float(wz)) if found else None
         self._held = (stamp, float(wz) if found else math.nan)
         return command, int(expansions), int(depth)

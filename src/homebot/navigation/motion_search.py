@@ -177,7 +177,7 @@ def search(padded: np.ndarray, half_size: float, resolution: float, distances: n
            angular_acceleration: float,
            step: float, depth_limit: int, max_expansions: int, batch: int, substeps: int,
            goal_tolerance: float, greed: float, speed_margin: float, turn_cost: float,
-           held_w: float, hold_cost: float,
+           held_w: float, hold_cost: float, final_turn_cost: float,
            ) -> tuple[int, float, float, float, int, int]:
     """One cycle's best-first search over motion sequences.
 
@@ -317,7 +317,10 @@ def search(padded: np.ndarray, half_size: float, resolution: float, distances: n
                         # The way lies behind: either turn will do, so keep turning the way
                         # it turns now (otherwise the choice flips and the robot dithers).
                         error += spin * 2.0 * math.pi
-                    if math.hypot(target_x - x, target_y - y) <= goal_tolerance:
+                    if math.hypot(target_x - x, target_y - y) <= goal_tolerance or \
+                            (final and remaining <= 0.15 and abs(error) < math.pi / 2):
+                        # On the goal, or ahead of the robot close by at the end: no turn
+                        # on the spot (beside it, though, the robot would circle it).
                         error = 0.0
                     along = max(end_x * math.cos(error), 0.0)
                     travel = _ramp_time(remaining, along, linear, linear_acceleration)
@@ -338,7 +341,8 @@ def search(padded: np.ndarray, half_size: float, resolution: float, distances: n
                 first[child] = child if root else first[parent]
                 depth[child] = depth[parent] + 1
                 # Time is the cost, plus a little for every change of turn rate.
-                cost[child] = cost[parent] + step + turn_cost * abs(change_w)
+                cost[child] = cost[parent] + step + \
+                    (final_turn_cost if final else turn_cost) * abs(change_w)
                 if root and math.isfinite(held_w):
                     cost[child] += hold_cost * abs(end_w - held_w)
                 score = cost[child] + greed * to_go
