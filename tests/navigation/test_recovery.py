@@ -213,6 +213,24 @@ def test_waiting_in_a_doorway_for_someone_the_robot_steps_out_of_their_way(
     assert navigation.make_way(_truth(simulation), np.zeros((0, 2)), frozenset()) == 0.0
 
 
+def test_after_waiting_for_the_wide_way_the_robot_may_take_a_narrow_one(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    # Living room: the wide way round the coffee table's east side, or the gap between
+    # the couch and the table (0.4 m from both, narrower than 0.25 + 0.2 here).
+    simulation, body = _sim(apartment, apartment_navigator)
+    navigation = RecoveringNavigation(body, apartment_navigator, MotionSearchPlanner(),
+                                      lambda: _truth(simulation),
+                                      RecoveryPolicy(static_margin=0.2))
+    here, there = Pose(1.325, 3.3, 0.0), Pose(1.325, 0.9, 0.0)
+    nobody = np.zeros((0, 2))
+    wide = navigation.plan_wide(here, there, frozenset(), nobody)
+    assert wide is not None and max(x for x, _ in wide) > 2.5  # round the table
+    people = np.array([(x, 2.0) for x in np.arange(2.5, 4.45, 0.05)])  # across the east side
+    assert navigation.plan_wide(here, there, frozenset(), people) is None  # wait for them
+    narrow = navigation.plan_wide(here, there, frozenset(), people, squeeze=True)
+    assert narrow is not None and max(x for x, _ in narrow) < 1.5  # between couch and table
+
+
 def test_a_target_off_the_map_is_a_navigation_error(
         apartment: World, apartment_navigator: Navigator) -> None:
     simulation, body = _sim(apartment, apartment_navigator)
