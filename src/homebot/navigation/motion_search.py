@@ -192,7 +192,9 @@ def search(padded: np.ndarray, half_size: float, resolution: float, distances: n
     ``turn_cost`` per rad/s of change in turn rate, and for the first motion
     ``hold_cost`` per rad/s its turn rate differs from ``held_w``, the one the
     last cycle chose (NaN: none), so that the plan does not flip from cycle to
-    cycle between two nearly as good ones.
+    cycle between two nearly as good ones. On the ``final`` approach the turn
+    rate's changes cost ``final_turn_cost`` instead, and there is no hysteresis
+    (the caller passes NaN).
 
     Returns:
         (found, vx, vy, wz, expansions, depth): ``found`` is 0 when no motion is
