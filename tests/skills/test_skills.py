@@ -84,6 +84,23 @@ def test_pick_then_place_moves_the_object(run: SimulatedRun) -> None:
     assert run.simulation.object_location["cola"] == "kitchen table"
 
 
+def test_give_looks_first_and_a_person_gone_elsewhere_is_searched_for(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    from homebot.task import Step, Task
+
+    run = SimulatedRun.create(apartment, navigator=apartment_navigator)
+    assert _do(run, "pick", object="cola")
+    assert _do(run, "navigate", to="Maria")
+    run.simulation.move_person("Maria", (9.0, 7.0))  # she leaves for the office, unseen
+    outcome = _do(run, "give", person="Maria")
+    assert outcome.status is Status.FAILED and outcome.error is ErrorCode.NOT_FOUND
+    assert run.simulation.hands["left"] == "cola"  # nothing was handed to nobody
+    # the executive searches for her and hands it over where she is now
+    report = run.run(Task((Step("give", {"person": "Maria"}),)))
+    assert report.success
+    assert run.simulation.object_location["cola"] == "person:Maria"
+
+
 def test_place_with_empty_hands_fails(run: SimulatedRun) -> None:
     outcome = _do(run, "place", placement="kitchen table")
     assert outcome.error is ErrorCode.NOT_HOLDING

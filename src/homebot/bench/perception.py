@@ -13,6 +13,9 @@ estimates; wall clock and the thread's CPU time; run under ``taskset -c 0``). Th
 time target is judged on the CPU time: on a shared core the wall clock also counts
 the time spent waiting for it.
 
+**Look** (``homebot.bench.perception_look``): people as the embodied robot's look at a
+room reports them (laser, head camera, faces, skeleton tracker), against the truth.
+
 **People, faces, pointing** come from ``homebot.perception.people``, ``faces``
 and ``gestures``, and tags from ``lateration``, with the figure functions in
 ``homebot.bench.perception_people`` (``people_figures``, ``face_figures``,
@@ -58,8 +61,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "joins objects closer than 1.6 cm)")
     parser.add_argument("--partial-views", action="store_true",
                         help="objects may stand partly outside the picture")
+    parser.add_argument("--looks", type=count("--looks", 1, 10_000), default=40,
+                        help="looks at people by the embodied robot (the 'look' part)")
     parser.add_argument("--only", choices=["all", "objects", "people", "faces", "pointing",
-                                           "lateration"],
+                                           "lateration", "look"],
                         default="all", help="run one part only")
 
 
@@ -74,6 +79,7 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
         "faces": lambda: _other("faces", "face_figures", args.seed),
         "pointing": lambda: _other("gestures", "pointing_figures", args.seed),
         "lateration": lambda: _other("lateration", "lateration_figures", args.seed),
+        "look": lambda: _look(World.load(args.world), args.looks, args.seed),
     }
     for name, part in parts.items():
         if args.only in ("all", name):
@@ -98,6 +104,13 @@ def _other(module: str, function: str, *arguments: int) -> dict[str, Any]:
         return {"status": "not built"}
     result: dict[str, Any] = make(*arguments)
     return result
+
+
+def _look(world: World, looks: int, look_seed: int) -> dict[str, Any]:
+    """The embodied robot's looks at people (``homebot.bench.perception_look``)."""
+    from homebot.bench.perception_look import look_figures  # the embodied extra: OpenCV
+
+    return look_figures(world, looks, look_seed)
 
 
 def object_figures(world: World, scenes: int, scene_seed: int, *, gap: float = 0.03,

@@ -49,8 +49,13 @@ from homebot.world import PlacementKind, World, surface_height
 __all__ = ["PeopleLook"]
 
 _WATCH = 1.0  #: seconds of sweeps the robot watches for legs
-_PANS = (0.0, 1.0, 2.0, -1.0, -2.0, 2.6, -2.6)  #: head pans of the camera's sweep
-_TILT = 0.2  #: radians down: the camera sees a seated or lying body close by
+_STOPPING = 1.0  #: seconds the base may take to come to rest before it looks
+_PANS = (0.0, 1.0, 2.0, 2.6, -2.6, -2.0, -1.0)  #: head pans of the camera's sweep
+#: radians down: level, for heads and trunks; low, for legs, laps and the floor near by
+_TILTS = (0.0, 0.5)
+_VIEWS = tuple((pan, tilt) for tilt in _TILTS for pan in (_PANS if tilt == _TILTS[0]
+                                                           else reversed(_PANS)))
+_TRUNK_DEPTH = 0.15  #: metres from a trunk's seen surface back to its middle
 _POINT_STEP = 2  #: every second row and column of the depth image
 _HEAD_TURN = 0.3  #: seconds the head takes to turn to a person and settle
 _FACE_RANGE = 2.5  #: metres within which the head camera's close-up shows a face
@@ -127,11 +132,16 @@ class PeopleLook:
 
     def look(self) -> list[PersonPercept]:
         """The people in the robot's room, as its sensors show them (nearest first)."""
+        self._come_to_rest()
         pose = self.localise()
         tracked, bodies = self._watch(pose)
         spots: list[tuple[tuple[float, float], _Body | None]] = []
         for body in bodies:
-            spots.append((body.position, body))
+            # the camera sees the near side of a body: its middle lies farther on
+            x, y = body.position
+            away = math.atan2(y - pose.y, x - pose.x)
+            spots.append(((x + _TRUNK_DEPTH * math.cos(away), y + _TRUNK_DEPTH * math.sin(away)),
+                          body))
         for spot in tracked:
             near = [index for index, (where, _) in enumerate(spots)
                     if math.dist(where, spot) <= _SAME_PERSON]
@@ -147,25 +157,33 @@ class PeopleLook:
         self.body.point_head(0.0, 0.0)
         return percepts
 
+    def _come_to_rest(self) -> None:
+        """Stop the base: sweeps placed by one pose must be taken from that pose."""
+        body = self.body
+        body.command_velocity(Twist())
+        for _ in range(round(_STOPPING / body.tick_period)):
+            if body.odometry().twist.is_zero():
+                return
+            body.tick()
+
     def _watch(self, pose: Pose) -> tuple[list[tuple[float, float]], list[_Body]]:
         """Where the laser tracked people over ``_WATCH`` seconds of sweeps, and the bodies
         the camera saw as the head panned round meanwhile."""
         body = self.body
-        body.command_velocity(Twist())
         tracker = PeopleTracker()
-        ticks = max(len(_PANS), round(_WATCH / body.tick_period))
-        every = ticks // len(_PANS)
+        ticks = max(len(_VIEWS), round(_WATCH / body.tick_period))
+        every = ticks // len(_VIEWS)
         points: list[np.ndarray] = []
         colours: list[np.ndarray] = []
         edges: list[np.ndarray] = []
         for tick in range(ticks):
-            if tick % every == 0 and tick // every < len(_PANS):
-                body.point_head(_PANS[tick // every], _TILT)
+            if tick % every == 0 and tick // every < len(_VIEWS):
+                body.point_head(*_VIEWS[tick // every])
             body.tick()
             scan = body.scan()
             legs = detect_legs(scan, pose)
             tracker.update(body.now(), legs[self._away_from_the_map(legs)], scan, pose)
-            if tick % every == every - 1 and tick // every < len(_PANS):
+            if tick % every == every - 1 and tick // every < len(_VIEWS):
                 seen = self._camera_points(pose)
                 if seen is not None:
                     points.append(seen[0])

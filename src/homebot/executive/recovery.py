@@ -126,7 +126,12 @@ def _slipped(context: SkillContext, skill: str, args: Mapping[str, Any],
 
 def _person_not_found(context: SkillContext, skill: str, args: Mapping[str, Any],
                       outcome: Outcome, run: StepRunner) -> bool | Outcome:
-    """Look for the person in the other rooms."""
+    """Look for the person in the other rooms; a person to hand something to, or take
+    it from, who is not where they were seen, is searched for and the step tried again."""
+    if skill in ("give", "receive") and outcome.data.get("person"):
+        person = str(outcome.data["person"])
+        speak(context, f"I cannot see {person} here. I will look for them.")
+        return bool(run("find_person", {"person": {"name": person}}))
     if skill != "find_person":
         return False
     speak(context, "I cannot see them here. I will look in the other rooms.")

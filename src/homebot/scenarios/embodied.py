@@ -28,6 +28,7 @@ __all__ = [
 
 # Seed stream of the robot's own filter, apart from the simulation's and the body's.
 _LOCALISATION_STREAM = 303
+_FACE_HALF_ANGLE = 0.25  #: radians off the head's axis within which a face is the one looked at
 _HAND_REACH = 0.08  #: metres from an object's centre within which a grasp closes on it
 
 
@@ -101,7 +102,8 @@ def embodied_robot(simulation: Simulation, navigator: Navigator, *,
     # faces: the household is known by face; "my name is ..." enrols the head camera's
     # views of someone new in front
     robot.acquaintances = Acquaintances(lambda: household_faces(world, simulation.seed))
-    robot.face_images = FaceCamera(body)
+    # the head turns to each person seen: the close-up is of whoever is on its axis
+    robot.face_images = FaceCamera(body, half_angle=_FACE_HALF_ANGLE)
     robot.people_look = PeopleLook(body, world, navigator.grid, robot.localise,
                                    acquaintances=robot.acquaintances,
                                    face_images=robot.face_images)

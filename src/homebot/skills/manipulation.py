@@ -14,6 +14,9 @@ from homebot.skills.wording import be, here_is, place_in
 
 __all__ = ["Give", "Pick", "Place", "Receive"]
 
+_ARM_LENGTH = 1.5  #: metres within which the robot hands things to a person
+_LOOKS = 2  #: looks for a person before the robot says it cannot see them
+
 
 class Pick(Skill):
     """Grasp an object from where the robot believes it is.
@@ -219,9 +222,28 @@ class Receive(Skill):
 
 
 def _come_to(context: SkillContext, person: str) -> Outcome | None:
-    """Drive up to ``person`` when they are believed more than arm's length away; the
-    motion's outcome if it did not get there, else None."""
+    """Look where ``person`` is, and drive up to them when they are more than arm's length
+    away; the motion's outcome if it did not get there, ``not_found`` if they are not
+    where the robot ends up, else None. The look comes first: where they were last seen
+    may be stale (asked to let the robot by, they stepped aside)."""
+    seen = _look_for(context, person)
     position = context.beliefs.person_at.get(person)
-    if position is None or math.dist(context.robot.pose().xy(), position) <= 1.5:
-        return None
-    return drive_to_target(context, person)
+    if position is not None and math.dist(context.robot.pose().xy(), position) > _ARM_LENGTH:
+        moved = drive_to_target(context, person)
+        if moved is not None:
+            return moved
+        seen = _look_for(context, person)
+    if not seen:
+        return Outcome.failed(ErrorCode.NOT_FOUND, f"I cannot see {person}", person=person)
+    return None
+
+
+def _look_for(context: SkillContext, person: str) -> bool:
+    """Look round, twice if need be (a look can miss someone): is ``person`` seen? Where
+    they are seen is believed."""
+    for _ in range(_LOOKS):
+        for seen in context.robot.perceive_people():
+            if seen.name == person:
+                context.beliefs.saw_person(person, seen.position)
+                return True
+    return False

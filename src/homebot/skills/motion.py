@@ -19,6 +19,8 @@ from homebot.skills.wording import arrived, the
 
 __all__ = ["Follow", "Guide", "Navigate", "OpenDoor", "drive", "drive_to_target"]
 
+_WITHIN_REACH = 1.5  #: metres: near enough to hand a person something
+
 
 def drive(context: SkillContext, goal: Pose, escort: str | None = None) -> Outcome:
     """Drive to ``goal``, around doors believed shut when there is a way round.
@@ -88,6 +90,12 @@ class Navigate(Skill):
             return Outcome.failed(ErrorCode.UNKNOWN_TARGET,
                                   f"I do not know where {target_label(args['to'])} is")
         outcome = drive(context, goal)
+        person = person_name(context, args["to"]) if isinstance(args["to"], str) else None
+        if outcome.error is ErrorCode.PATH_BLOCKED and person is not None and \
+                outcome.data.get("person") == person and \
+                sees_person_nearby(context, person, _WITHIN_REACH):
+            # the one in the way is the one the robot came to: it is with them
+            return Outcome.finished(f"I am with {person}", goal=context.robot.pose())
         if outcome.status is not Status.FINISHED:
             return outcome
         return Outcome.finished(outcome.message, goal=goal)
