@@ -101,7 +101,7 @@ def embodied_robot(simulation: Simulation, navigator: Navigator, *,
                                percepts, percepts, simulation.events, looking=looking, arm=arm)
     # faces: the household is known by face; "my name is ..." enrols the head camera's
     # views of someone new in front
-    robot.acquaintances = Acquaintances(lambda: household_faces(world, simulation.seed))
+    robot.acquaintances = Acquaintances(lambda: household_faces(world))
     # the head turns to each person seen: the close-up is of whoever is on its axis
     robot.face_images = FaceCamera(body, half_angle=_FACE_HALF_ANGLE)
     robot.people_look = PeopleLook(body, world, navigator.grid, robot.localise,

@@ -9,6 +9,7 @@ runs of one benchmark train once.
 
 from __future__ import annotations
 
+import copy
 import functools
 import math
 from collections.abc import Iterator, Mapping
@@ -84,15 +85,22 @@ def face_memory(seed: int = 0) -> FaceMemory:
     return FaceMemory(trained_face_detector(seed), seed=seed)
 
 
-def household_faces(world: World, seed: int = 0) -> FaceMemory:
+def household_faces(world: World) -> FaceMemory:
     """A face memory that knows the people of ``world``'s file by face, as a robot
     taught its household before its first day: each person's ``_ENROLMENT_VIEWS`` views,
     rendered as the head camera would take them (``sim.faces``). Visitors who come
-    later are strangers until they say their name."""
-    memory = face_memory(seed)
-    rng = np.random.default_rng([seed, 1518])
-    for person in world.model.people:
-        identity = face_identity(person.name, 0)
-        memory.enrol(person.name, [face_view(identity, rng)[0]
-                                   for _ in range(_ENROLMENT_VIEWS)])
+    later are strangers until they say their name. The robot's software is the same
+    whatever the run's seed, so the taught memory is built once per household and
+    process, and each robot gets its own copy to enrol newcomers in."""
+    names = tuple(person.name for person in world.model.people)
+    return copy.deepcopy(_taught(names))
+
+
+@functools.lru_cache(maxsize=4)
+def _taught(names: tuple[str, ...]) -> FaceMemory:
+    memory = face_memory()
+    rng = np.random.default_rng([0, 1518])
+    for name in names:
+        identity = face_identity(name, 0)
+        memory.enrol(name, [face_view(identity, rng)[0] for _ in range(_ENROLMENT_VIEWS)])
     return memory
