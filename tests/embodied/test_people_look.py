@@ -98,3 +98,18 @@ def test_find_person_goes_up_to_someone_too_far_to_recognise(
     assert report.success
     assert math.dist(run.simulation.robot_pose[:2], (11.3, 8.9)) < 2.0
     assert run.simulation.collisions == []
+
+
+def test_each_robot_enrols_newcomers_in_its_own_copy_of_the_household(apartment: World) -> None:
+    import numpy as np
+
+    from homebot.scenarios.perceiving import household_faces
+    from homebot.sim.faces import face_identity, face_view
+
+    first, second = household_faces(apartment), household_faces(apartment)
+    household = sorted(person.name for person in apartment.model.people)
+    assert sorted(first.people) == household
+    rng = np.random.default_rng(3)
+    first.enrol("Zoe", [face_view(face_identity("Zoe"), rng)[0] for _ in range(8)])
+    assert "Zoe" in first.people
+    assert sorted(second.people) == household == sorted(household_faces(apartment).people)

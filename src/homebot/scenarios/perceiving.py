@@ -11,11 +11,17 @@ from __future__ import annotations
 
 import copy
 import functools
+import hashlib
 import math
+import os
+import pickle
 from collections.abc import Iterator, Mapping
+from pathlib import Path
 
 import numpy as np
 
+import homebot.perception.faces as faces_module
+import homebot.sim.faces as sim_faces_module
 from homebot.perception.faces import FaceDetector, FaceMemory
 from homebot.perception.recognition import (
     LabelledFrame,
@@ -98,9 +104,31 @@ def household_faces(world: World) -> FaceMemory:
 
 @functools.lru_cache(maxsize=4)
 def _taught(names: tuple[str, ...]) -> FaceMemory:
+    """The taught memory, from the disk cache when this code made it before (training
+    the detector and enrolling a household take tens of seconds of CPU)."""
+    key = hashlib.sha256(repr((names, _ENROLMENT_VIEWS)).encode())
+    for module in (faces_module, sim_faces_module):
+        key.update(Path(str(module.__file__)).read_bytes())  # new code, new memory
+    cached = _cache_directory() / f"household-{key.hexdigest()[:20]}.pickle"
+    try:
+        loaded = pickle.loads(cached.read_bytes())
+        if isinstance(loaded, FaceMemory):
+            return loaded
+    except (OSError, pickle.UnpicklingError, EOFError, AttributeError):
+        pass
     memory = face_memory()
     rng = np.random.default_rng([0, 1518])
     for name in names:
         identity = face_identity(name, 0)
         memory.enrol(name, [face_view(identity, rng)[0] for _ in range(_ENROLMENT_VIEWS)])
+    try:
+        cached.parent.mkdir(parents=True, exist_ok=True)
+        cached.write_bytes(pickle.dumps(memory))
+    except OSError:
+        pass  # a read-only home: train again next time
     return memory
+
+
+def _cache_directory() -> Path:
+    """Where trained models are kept: ``$HOMEBOT_CACHE``, else ``~/.cache/homebot``."""
+    return Path(os.environ.get("HOMEBOT_CACHE") or Path.home() / ".cache" / "homebot")
