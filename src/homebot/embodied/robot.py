@@ -62,6 +62,7 @@ _GOAL_TOLERANCE = 0.15  #: metres: a leg ends this close to its end point
 _HEADING_TOLERANCE = 0.2  #: radians: the final turn ends this close to the goal's heading
 _PARTICLES_SHOWN = 500
 _IN_THE_WAY = 0.8  #: metres from the robot's way within which a person stands in it
+_FOLLOWING_REACH = 2.0  #: metres within which the person to follow must stand
 _ASKING_DISTANCE = 1.2  #: metres from a person where the robot stops to ask them something
 _INTRODUCTION_VIEWS = 20  #: face views enrolled while a person says their name (2 s at 10 Hz)
 _RECOGNITION_VIEWS = 10  #: face views whose majority names the person in front
@@ -275,6 +276,22 @@ class BodyRobot(Robot):
         seen.sort(key=lambda p: math.dist(p.position, point))
         return (seen[0].name or "") if seen else None
 
+    def _seen_near(self, person: str, reach: float) -> list[PersonPercept]:
+        """``person`` as a look shows them; when they are not named but someone nameless
+        stands within ``reach`` (behind the robot, their face out of the head's turn), the
+        robot turns to the nearest of them and looks again."""
+        people = self.perceive_people()
+        named = [p for p in people if p.name == person]
+        here = self.pose()
+        nameless = sorted((p for p in people if p.name is None and
+                           math.dist(p.position, here.xy()) <= reach),
+                          key=lambda p: math.dist(p.position, here.xy()))
+        if named or not nameless:
+            return named
+        target = nameless[0].position
+        self.move_to(Pose(here.x, here.y, math.atan2(target[1] - here.y, target[0] - here.x)))
+        return [p for p in self.perceive_people() if p.name == person]
+
     def _scan_on_map(self) -> np.ndarray:
         """The latest scan's returns on the map, placed by the pose estimate."""
         return scan_on_map(self.pose(), self.body.scan())
@@ -291,8 +308,8 @@ class BodyRobot(Robot):
                            points=np.round(particles, 3).tolist())
 
     def follow(self, person: str, goal: Pose | None) -> MoveReport:
-        seen = [p for p in self.perceive_people() if p.name == person]
-        if not seen or math.dist(seen[0].position, self.pose().xy()) > 2.0:
+        seen = self._seen_near(person, _FOLLOWING_REACH)
+        if not seen or math.dist(seen[0].position, self.pose().xy()) > _FOLLOWING_REACH:
             return MoveReport(False, self.pose(), 0.0, Blocker.NO_PATH)
         destination = goal.xy() if goal else seen[0].position
         plan = self.navigator.plan(self.pose().xy(), destination)
