@@ -76,6 +76,9 @@ def _serve_body(args: argparse.Namespace, node: Node, world: World) -> int:
     simulation = Simulation(world, seed=args.seed,
                             disturbances=disturbed(args.disturb) if args.disturb else None)
     body = SimBody(simulation, walkers=max(0, min(args.walkers, 50)))
+    # The first sweep compiles the laser's kernel (seconds on a fresh install): do it
+    # before the drivers appear on the network, not in a client's first tick.
+    body.scan()
     server = BodyServer(node, body, truth=body.true_pose)
     print(f"homebot sim serve --body: {world.name}, seed {args.seed}, ROS 2 domain "
           f"{args.domain_id} on {args.interface}", flush=True)

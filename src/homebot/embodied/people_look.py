@@ -151,7 +151,7 @@ class PeopleLook:
                 spots.append((spot, None))
         room = self.world.room_at(*pose.xy())
         seen = sorted((_seen_from(pose, where, body) for where, body in spots
-                       if self.world.room_at(*where) == room),
+                       if self._in_room(where, room)),
                       key=lambda person: person.distance)
         percepts = [self._percept(person, room or "") for person in seen]
         self.body.point_head(0.0, 0.0)
@@ -165,6 +165,13 @@ class PeopleLook:
             if body.odometry().twist.is_zero():
                 return
             body.tick()
+
+    def _in_room(self, where: tuple[float, float], room: str | None) -> bool:
+        """Whether someone at ``where`` is in ``room``, or stands in one of its doorways."""
+        if self.world.room_at(*where) == room:
+            return True
+        return any(room in door.rooms and math.dist(where, door.position) <= door.width / 2
+                   for door in self.world.doors.values())
 
     def _watch(self, pose: Pose) -> tuple[list[tuple[float, float]], list[_Body]]:
         """Where the laser tracked people over ``_WATCH`` seconds of sweeps, and the bodies

@@ -366,8 +366,11 @@ class BodyRobot(Robot):
         x, y, _ = self.world.point_before_door(door, model.rooms[0], 1.0)
         normal = (x - model.position[0], y - model.position[1])
         self.body.tick()  # a fresh sweep: the door may have moved since the last one
-        return door_seen_open(self.body.scan(), self.pose(), model.position, normal,
+        seen = door_seen_open(self.body.scan(), self.pose(), model.position, normal,
                               model.width)
+        if seen is False and self._person_near(model.position, model.width / 2) is not None:
+            return True  # the laser cannot tell a leaf from someone filling the doorway
+        return seen
 
     def say(self, text: str) -> None:
         """Speak ``text`` through the body's speaker (espeak-ng, the ``speech`` extra): the
