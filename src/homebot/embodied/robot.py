@@ -126,7 +126,7 @@ class BodyRobot(Robot):
         #: symbolically)
         self.people_look: PeopleLook | None = None
         self._walking_with: str | None = None
-        self.navigation = RecoveringNavigation(body, navigator, controller, self._localise,
+        self.navigation = RecoveringNavigation(body, navigator, controller, self.localise,
                                                on_replan=self._record_replan)
         self.localisation.update(body.odometry(), body.scan())
 
@@ -143,10 +143,6 @@ class BodyRobot(Robot):
         return self.localisation.estimate()
 
     def localise(self) -> Pose:
-        """Feed the filter the latest odometry and scan; the estimate."""
-        return self._localise()
-
-    def _localise(self) -> Pose:
         """Feed the filter the latest odometry and scan; the estimate."""
         return self.localisation.update(self.body.odometry(), self.body.scan())
 

@@ -26,6 +26,7 @@ from homebot.sim.camera import Solid
 from homebot.sim.keypoints import gesture_keypoints
 from homebot.world import (
     COLOUR_PALETTE,
+    LEG_GARMENTS,
     Gesture,
     PersonModel,
     PlacementKind,
@@ -44,7 +45,6 @@ _SPOT = 0.6  #: metres from the spot looked at within which a person is the one 
 _RANGE = 6.0  #: metres: the depth camera's reach
 _HALF_VIEW = math.radians(29.0)  #: half the camera's horizontal field of view
 _POINTING_REACH = 2.0  #: metres to the side a pointing person points, at table height
-_BOTTOMS = ("trousers", "jeans", "skirt", "pants", "shorts", "leggings")
 _UNKNOWN_CLOTH = (128, 128, 128)
 _LEGS_RGB = (60, 60, 75)  #: trousers of no stated colour: dark
 _SKIN_RGB = (225, 185, 150)
@@ -65,7 +65,7 @@ def clothes_rgb(clothes: list[str], *, bottom: bool) -> tuple[int, int, int] | N
     colour is a middle grey; None when nothing is worn there."""
     for item in clothes:
         words = item.lower().split()
-        if not words or (words[-1] in _BOTTOMS) != bottom:
+        if not words or (words[-1] in LEG_GARMENTS) != bottom:
             continue
         colours = [COLOUR_PALETTE[word] for word in words if word in COLOUR_PALETTE]
         return colours[0] if colours else _UNKNOWN_CLOTH

@@ -8,13 +8,12 @@ from typing import Any
 
 from homebot.skills.motion import drive, drive_to_target
 from homebot.skills.perception import go_and_look, matches_object
-from homebot.skills.places import person_name, resolve_target
+from homebot.skills.places import HANDING_REACH, person_name, resolve_target
 from homebot.skills.skill import ErrorCode, Outcome, Skill, SkillContext, Status, speak
 from homebot.skills.wording import be, here_is, place_in
 
 __all__ = ["Give", "Pick", "Place", "Receive"]
 
-_ARM_LENGTH = 1.5  #: metres within which the robot hands things to a person
 _LOOKS = 2  #: looks for a person before the robot says it cannot see them
 
 
@@ -228,7 +227,7 @@ def _come_to(context: SkillContext, person: str) -> Outcome | None:
     may be stale (asked to let the robot by, they stepped aside)."""
     seen = _look_for(context, person)
     position = context.beliefs.person_at.get(person)
-    if position is not None and math.dist(context.robot.pose().xy(), position) > _ARM_LENGTH:
+    if position is not None and math.dist(context.robot.pose().xy(), position) > HANDING_REACH:
         moved = drive_to_target(context, person)
         if moved is not None:
             return moved

@@ -7,6 +7,7 @@ from typing import Any
 
 from homebot.robot import Blocker, MoveReport, Pose
 from homebot.skills.places import (
+    HANDING_REACH,
     OPERATOR,
     near,
     person_name,
@@ -18,8 +19,6 @@ from homebot.skills.skill import ErrorCode, Outcome, Skill, SkillContext, Status
 from homebot.skills.wording import arrived, the
 
 __all__ = ["Follow", "Guide", "Navigate", "OpenDoor", "drive", "drive_to_target"]
-
-_WITHIN_REACH = 1.5  #: metres: near enough to hand a person something
 
 
 def drive(context: SkillContext, goal: Pose, escort: str | None = None) -> Outcome:
@@ -93,7 +92,7 @@ class Navigate(Skill):
         person = person_name(context, args["to"]) if isinstance(args["to"], str) else None
         if outcome.error is ErrorCode.PATH_BLOCKED and person is not None and \
                 outcome.data.get("person") == person and \
-                sees_person_nearby(context, person, _WITHIN_REACH):
+                sees_person_nearby(context, person, HANDING_REACH):
             # the one in the way is the one the robot came to: it is with them
             return Outcome.finished(f"I am with {person}", goal=context.robot.pose())
         if outcome.status is not Status.FINISHED:

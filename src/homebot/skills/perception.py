@@ -30,6 +30,7 @@ from homebot.skills.wording import (
 )
 from homebot.space.referring import Scene, modifiers_from, resolve
 from homebot.text import fold
+from homebot.world import LEG_GARMENTS
 
 __all__ = [
     "Count",
@@ -313,9 +314,6 @@ def matches_person(percept: PersonPercept, description: Mapping[str, Any]) -> bo
     return True
 
 
-_WORN_ON_THE_LEGS = ("trousers", "jeans", "skirt", "pants", "shorts", "leggings")
-
-
 def _wears(wanted: str, item: str) -> bool:
     """Whether a worn ``item`` fits a description of clothes: "red" fits "red sweater";
     a camera's "red top" fits "red sweater" too (it sees the colour on the upper body,
@@ -325,7 +323,7 @@ def _wears(wanted: str, item: str) -> bool:
     words = item.split()
     if len(words) < 2 or words[-1] not in ("top", "trousers"):
         return False
-    legs = any(word in _WORN_ON_THE_LEGS for word in wanted.split())
+    legs = any(word in LEG_GARMENTS for word in wanted.split())
     return (words[-1] == "trousers") == legs and all(word in wanted.split()
                                                      for word in words[:-1])
 

@@ -12,6 +12,7 @@ from homebot.robot import Pose
 from homebot.skills.skill import SkillContext
 
 __all__ = [
+    "HANDING_REACH",
     "OPERATOR",
     "near",
     "person_name",
@@ -25,6 +26,8 @@ __all__ = [
 
 OPERATOR = "operator"  #: how a task names the person who gave the command
 
+#: metres within which the robot hands a person something (arm's length and a step)
+HANDING_REACH = 1.5
 # How far from a person the robot stops to talk or hand over, in metres.
 _PERSON_DISTANCE = 0.9
 # The farthest from a person the robot stands to talk or hand over (within arm's and voice's reach).

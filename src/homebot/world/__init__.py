@@ -11,6 +11,7 @@ from homebot.world.catalogue import (
 )
 from homebot.world.model import (
     COLOUR_PALETTE,
+    LEG_GARMENTS,
     Colour,
     DisturbanceModel,
     DoorModel,
@@ -35,6 +36,7 @@ __all__ = [
     "CATEGORY_DEFAULTS",
     "COLOUR_PALETTE",
     "FRONT_HEADINGS",
+    "LEG_GARMENTS",
     "CatalogueEntry",
     "CategoryDefaults",
     "Colour",

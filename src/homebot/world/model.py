@@ -45,6 +45,10 @@ Probability = Annotated[float, Field(ge=0.0, le=1.0)]
 Name = Annotated[str, Field(min_length=1, pattern=r"^\p{L}[\p{L}\p{M}\p{N}_ '\-]*$")]
 
 
+#: the garments of a person's clothes ("black trousers") worn on the legs; anything else
+#: a person wears ("red sweater") is worn above them
+LEG_GARMENTS = ("trousers", "jeans", "skirt", "pants", "shorts", "leggings")
+
 #: the colour names a world file may use, with their RGB values (0-255)
 COLOUR_PALETTE: dict[str, tuple[int, int, int]] = {
     "red": (200, 30, 30), "green": (40, 160, 60), "blue": (40, 70, 200),
