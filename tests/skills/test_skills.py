@@ -2,12 +2,16 @@
 
 from __future__ import annotations
 
+import math
+
 import pytest
 
 from homebot.errors import TaskError
 from homebot.navigation import Navigator
+from homebot.robot import PersonPercept
 from homebot.scenarios import SimulatedRun
 from homebot.skills import SKILLS, ErrorCode, Status, check_step, skill_named
+from homebot.skills.places import HANDING_REACH
 from homebot.task import Step
 from homebot.world import DisturbanceModel, DoorState, World
 
@@ -99,6 +103,31 @@ def test_give_looks_first_and_a_person_gone_elsewhere_is_searched_for(
     report = run.run(Task((Step("give", {"person": "Maria"}),)))
     assert report.success
     assert run.simulation.object_location["cola"] == "person:Maria"
+
+
+def test_give_drives_again_to_a_person_seen_farther_off_after_the_first_approach(
+        apartment: World, apartment_navigator: Navigator,
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    run = SimulatedRun.create(apartment, navigator=apartment_navigator, retries={"give": 0})
+    assert _do(run, "pick", object="cola")
+    elsewhere = (11.0, 3.0)  # across the kitchen from where Maria stands
+    assert apartment.footprint_problem(*elsewhere) is None
+    looks = 0
+    perceive = run.robot.perceive_people
+
+    def walking_off() -> list[PersonPercept]:
+        nonlocal looks
+        looks += 1
+        seen = perceive()
+        if looks == 1:  # seen from afar; she then walks off while the robot comes
+            run.simulation.move_person("Maria", elsewhere)
+        return seen
+
+    monkeypatch.setattr(run.robot, "perceive_people", walking_off)
+    outcome = _do(run, "give", person="Maria")
+    assert outcome.status is Status.VERIFIED, outcome.message
+    assert run.simulation.object_location["cola"] == "person:Maria"
+    assert math.dist(run.robot.pose().xy(), elsewhere) <= HANDING_REACH
 
 
 def test_place_with_empty_hands_fails(run: SimulatedRun) -> None:

@@ -15,6 +15,7 @@ from homebot.skills.wording import be, here_is, place_in
 __all__ = ["Give", "Pick", "Place", "Receive"]
 
 _LOOKS = 2  #: looks for a person before the robot says it cannot see them
+_APPROACHES = 2  #: drives up to a person to hand to, or take from, before giving up
 
 
 class Pick(Skill):
@@ -224,15 +225,21 @@ def _come_to(context: SkillContext, person: str) -> Outcome | None:
     """Look where ``person`` is, and drive up to them when they are more than arm's length
     away; the motion's outcome if it did not get there, ``not_found`` if they are not
     where the robot ends up, else None. The look comes first: where they were last seen
-    may be stale (asked to let the robot by, they stepped aside)."""
+    may be stale (asked to let the robot by, they stepped aside). Seen again from nearer,
+    they may be elsewhere (a look from afar can take someone else for them): the robot
+    drives once more, and fails ``not_found`` if they are still out of arm's length."""
     seen = _look_for(context, person)
-    position = context.beliefs.person_at.get(person)
-    if position is not None and math.dist(context.robot.pose().xy(), position) > HANDING_REACH:
+    for _ in range(_APPROACHES):
+        position = context.beliefs.person_at.get(person)
+        if position is None or math.dist(context.robot.pose().xy(), position) <= HANDING_REACH:
+            break
         moved = drive_to_target(context, person)
         if moved is not None:
             return moved
         seen = _look_for(context, person)
-    if not seen:
+    position = context.beliefs.person_at.get(person)
+    if not seen or (position is not None and
+                    math.dist(context.robot.pose().xy(), position) > HANDING_REACH):
         return Outcome.failed(ErrorCode.NOT_FOUND, f"I cannot see {person}", person=person)
     return None
 
