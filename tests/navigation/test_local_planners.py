@@ -101,9 +101,10 @@ def test_stage2_compiled_search_is_its_plain_python(drive: DriveKind,
 
 def test_stage2_turns_steadily() -> None:
     # Round two posts, under a wall: the turn rate changes far less in all (Σ|Δω|) than
-    # with neither the cost on changing it nor the hysteresis between cycles.
+    # with neither the cost on changing it nor the hysteresis between cycles. (Between the
+    # first post and the wall there is 0.75 m, room for the robot and its margins.)
     path = [(0.0, 0.0), (2.0, 0.6), (5.0, 0.0)]
-    obstacles = [(1.5, 0.3, 0.2), (2.8, -0.4, 0.2), *wall(0.0, 1.2, 5.0, 1.2)]
+    obstacles = [(1.5, 0.3, 0.2), (2.8, -0.4, 0.2), *wall(0.0, 1.3, 5.0, 1.3)]
     changes = []
     for planner in (MotionSearchPlanner(), MotionSearchPlanner(turn_cost=0.1, hold_cost=0.0)):
         body = FakeBody(Pose(0.0, 0.0, 0.0), obstacles)
@@ -130,6 +131,54 @@ def test_legs_are_kept_further_away_than_walls() -> None:
         np.zeros(1), np.zeros(1))[0]) for body in (legs, post)]
     assert at_robot[1] == pytest.approx(0.94, abs=0.04)
     assert at_robot[0] < at_robot[1] - 0.08
+
+
+def test_a_leg_half_hidden_behind_the_other_is_a_leg_too() -> None:
+    # Seen from the side in front of a wall (a doorway's jamb): the far leg shows only
+    # beside the near one. Both count the leg margin nearer, the wall does not.
+    body = FakeBody(Pose(0.0, 0.0, 0.0), [(0.6, 0.0, 0.06), (0.75, -0.12, 0.06),
+                                         *wall(1.1, -1.0, 1.1, 1.0)])
+    grid = LocalGrid.from_scan(body.scan(), leg_margin=0.12)
+    near_legs = np.hypot(grid.returns[:, 0] - 0.68, grid.returns[:, 1] + 0.06) < 0.2
+    assert near_legs.sum() > 5
+    assert np.all(grid.returns[near_legs, 2] == 0.12)
+    assert np.all(grid.returns[~near_legs, 2] == 0.0)
+    assert grid.exact_clearance(0.0, 0.0) == pytest.approx(0.54 - 0.12, abs=0.005)
+
+
+def test_exact_clearance_is_the_distance_to_the_nearest_return() -> None:
+    # The bucketed look-up in the search is exact below its bound, wherever in a cell.
+    pytest.importorskip("numba")
+    from homebot.navigation import motion_search
+
+    body = FakeBody(Pose(0.0, 0.0, 0.4), [(0.8, 0.3, 0.2), (0.5, -0.55, 0.06),
+                                         (0.6, -0.75, 0.06), *wall(-1.0, 1.2, 2.0, 1.2)])
+    grid = LocalGrid.from_scan(body.scan(), leg_margin=0.12)
+    rng = np.random.default_rng(3)
+    for x, y in rng.uniform(-1.5, 1.5, (300, 2)):
+        exact = grid.exact_clearance(x, y)
+        for bound in (0.2, 0.45, 3.0):
+            near = motion_search.clearance_near(grid.returns, grid.starts, grid.per_side,
+                                                grid.bucket, grid.half_size, x, y, bound,
+                                                grid.leg_margin)
+            assert near == pytest.approx(min(exact, bound))
+        # A cell's clearance overstates it by no more than the grid's slack, and understates
+        # it by no more than a third of that (what the search relies on).
+        cell = float(grid.clearance_at(np.array([x]), np.array([y]))[0])
+        assert exact - grid.slack / 3 - 1e-9 <= cell <= max(exact, 0.0) + grid.slack
+
+
+@pytest.mark.parametrize(("start", "goal"), [((0.0, 0.0), (3.0, 0.37)),
+                                             ((0.66, 0.0), (3.0, 0.0))])
+def test_stage2_keeps_its_margin_exactly_at_a_wall_it_cannot_pass(
+        start: tuple[float, float], goal: tuple[float, float]) -> None:
+    # The goal lies beyond a wall: the robot comes up to it and stays there, its margin
+    # kept to the millimetre (the grid's 5 cm cells once let it creep 1.6 cm into it).
+    body = FakeBody(Pose(*start, 0.0), wall(1.0, -2.0, 1.0, 2.0, spacing=0.03, radius=0.02))
+    planner = MotionSearchPlanner()
+    assert not _drive(body, planner, [start, goal], seconds=20.0)
+    assert body.collisions == 0
+    assert body.min_clearance >= body.radius + planner.safety - 0.001
 
 
 @pytest.mark.parametrize("planner", PLANNERS)

@@ -14,7 +14,8 @@ in two steps, as CAESAR does:
    sequence's cost is the time it takes; its heuristic is the least time to
    cover the remaining path length from its end speed, or to turn to the
    path's direction, whichever is longer. A motion is admissible only if the
-   robot stays clear of every grown obstacle all along it.
+   robot stays clear of every grown obstacle all along it, by the exact
+   distance to the returns wherever the grid's cells are too coarse to tell.
 
 Smooth turning: a sequence also pays, in seconds, for every change of turn
 rate along it (``turn_cost``), and its first motion for straying from the turn
@@ -166,7 +167,7 @@ class MotionSearchPlanner:
         """The search by time (the compiled kernel): the first command, expansions, depth."""
         from homebot.navigation import motion_search  # numba: only once stage 2 plans
 
-        start_clearance = float(grid.clearance_at(np.zeros(1), np.zeros(1))[0])
+        start_clearance = grid.exact_clearance(0.0, 0.0)
         static = radius + self.safety
         # Already inside the margin (pushed there by a person): do not get any closer.
         # Then it may move, never closer than half a centimetre to what it is now, and
@@ -196,7 +197,8 @@ class MotionSearchPlanner:
             limits.linear_acceleration, limits.angular_acceleration,
             self.step, self.depth, self.max_expansions, self.batch, self.substeps,
             self.goal_tolerance, self.greed, self.speed_margin, self.turn_cost,
-            held, self.hold_cost, _FINAL_TURN_COST)
+            held, self.hold_cost, _FINAL_TURN_COST, grid.returns, grid.starts, grid.per_side,
+            grid.bucket, grid.leg_margin, grid.slack)
         command = Twist(float(vx), float(vy), float(wz)) if found else None
         self._held = (stamp, float(wz) if found else math.nan)
         return command, int(expansions), int(depth)

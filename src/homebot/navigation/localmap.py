@@ -5,7 +5,11 @@ laser reading, so it works among things the static map does not hold (people,
 a chair moved). ``LocalGrid`` rasterises the scan's returns into a square
 grid round the robot (base_link frame) and keeps, per cell, the clearance:
 the distance to the nearest return. Growing obstacles by a radius (and by a
-margin that rises with speed) is then a comparison with that clearance.
+margin that rises with speed) is then a comparison with that clearance. A
+cell's clearance is measured from its centre, so it may be off by a few
+centimetres at a point in the cell; where that matters (near the margin), the
+returns themselves are kept too, bucketed, for the exact distance
+(``exact_clearance``, and ``motion_search.clearance_near`` in the search).
 ``lookahead`` picks the point of the global path the controller steers for.
 """
 
@@ -14,7 +18,7 @@ from __future__ import annotations
 import functools
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Protocol
 
 import numpy as np
@@ -26,6 +30,8 @@ from homebot.robot import DriveKind, LaserScan, Pose, Twist, VelocityLimits
 _CLUSTER_JUMP = 0.1  #: metres: a bigger range step between beams starts a new cluster
 _SMALL = 0.2  #: metres: clusters narrower than this (and in front of their surroundings) are small
 _PAIR = 0.4  #: metres: two small clusters this close are a pair of legs
+_HIDDEN_BEAMS = 3  #: a leg half hidden behind the other shows at least this many returns
+_BUCKET = 0.25  #: metres: side of the buckets the returns are kept in for exact distances
 
 __all__ = [
     "LocalController",
@@ -85,12 +91,21 @@ class LocalGrid:
     ``clearance[row, column]`` is the distance in metres from the cell's centre
     to the nearest laser return (rows along y, columns along x). Outside the
     grid nothing is known; ``clearance_at`` reports ``outside`` there.
+    ``returns`` holds the returns in the grid as rows (x, y, how much nearer
+    they count: the leg margin for legs, else 0), sorted by bucket (``bucket``
+    metres square, ``per_side`` buckets a side from −``half_size``), bucket k's
+    being rows ``starts[k]:starts[k + 1]``.
     """
 
     resolution: float
     half_size: float
     clearance: np.ndarray
     outside: float = 10.0
+    returns: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    starts: np.ndarray = field(default_factory=lambda: np.zeros(2, dtype=np.int64))
+    bucket: float = _BUCKET
+    per_side: int = 1
+    leg_margin: float = 0.0
 
     @classmethod
     def from_scan(cls, scan: LaserScan, size: float = 4.0, resolution: float = 0.05,
@@ -111,7 +126,12 @@ class LocalGrid:
         if leg_margin > 0 and small.any():
             legs = _clearance(points[small], cells, half, resolution) - leg_margin
             clearance = np.minimum(clearance, np.maximum(legs, 0.0))
-        return cls(resolution, half, np.asarray(clearance, dtype=float))
+        nearer = np.where(small, leg_margin, 0.0) if leg_margin > 0 else np.zeros(len(points))
+        per_side = max(math.ceil(2 * half / _BUCKET), 1)
+        returns, starts = _bucketed(points, nearer, half, _BUCKET, per_side)
+        return cls(resolution, half, np.asarray(clearance, dtype=float), returns=returns,
+                   starts=starts, bucket=_BUCKET, per_side=per_side,
+                   leg_margin=max(leg_margin, 0.0))
 
     @property
     def cells(self) -> int:
@@ -134,6 +154,21 @@ class LocalGrid:
         rows = np.minimum(np.maximum((y + self.half_size) * scale + 1, 0), last).astype(np.intp)
         values: np.ndarray = padded[rows, columns]
         return values
+
+    def exact_clearance(self, x: float, y: float) -> float:
+        """The distance from a robot-frame point to the nearest return (legs counting
+        ``leg_margin`` nearer; ``outside`` when the grid holds none)."""
+        if not len(self.returns):
+            return self.outside
+        gaps = np.hypot(self.returns[:, 0] - x, self.returns[:, 1] - y) - self.returns[:, 2]
+        return float(gaps.min())
+
+    @property
+    def slack(self) -> float:
+        """How far a cell's clearance may overstate the exact one anywhere in the cell: half
+        a diagonal from its centre, and twice that from taking the nearest occupied cell's
+        kept return for the nearest return."""
+        return 3 * self.resolution * math.sqrt(0.5)
 
     @functools.cached_property
     def padded(self) -> np.ndarray:
@@ -181,7 +216,8 @@ class LocalGrid:
 
 
 def _returns(scan: LaserScan) -> tuple[np.ndarray, np.ndarray]:
-    """The scan's returns (robot frame) and which belong to small free-standing clusters."""
+    """The scan's returns (robot frame) and which belong to legs: pairs of small clusters
+    in front of what is beside them."""
     keep = scan.valid()
     ranges = np.where(keep, scan.ranges, np.nan)
     angles = scan.angles() + scan.mount.theta
@@ -200,20 +236,44 @@ def _returns(scan: LaserScan) -> tuple[np.ndarray, np.ndarray]:
     # In front of what is beside it on both sides (or nothing there).
     before = np.where(starts > 0, ranges[np.maximum(starts - 1, 0)], np.inf)
     after = np.where(ends < count - 1, ranges[np.minimum(ends + 1, count - 1)], np.inf)
-    nearer = (np.nan_to_num(before, nan=np.inf) > ranges[starts] + _CLUSTER_JUMP) & \
-        (np.nan_to_num(after, nan=np.inf) > ranges[ends] + _CLUSTER_JUMP)
-    small_cluster = (extent < _SMALL) & nearer & np.isfinite(ranges[starts])
+    nearer_before = np.nan_to_num(before, nan=np.inf) > ranges[starts] + _CLUSTER_JUMP
+    nearer_after = np.nan_to_num(after, nan=np.inf) > ranges[ends] + _CLUSTER_JUMP
+    narrow = (extent < _SMALL) & np.isfinite(ranges[starts])
+    free = narrow & nearer_before & nearer_after
     # Legs come in pairs: keep small clusters with another one close beside them.
     middles = (points[starts] + points[ends]) / 2
-    candidates = np.flatnonzero(small_cluster)
+    small_cluster = np.zeros(len(starts), dtype=bool)
+    candidates = np.flatnonzero(free)
     if len(candidates) > 1:
         gaps = np.hypot(*(middles[candidates, None, :] - middles[None, candidates, :]).T)
         np.fill_diagonal(gaps, np.inf)
         small_cluster[candidates] = gaps.min(axis=0) < _PAIR
-    else:
-        small_cluster[:] = False
+    # Or one leg half hidden behind the other (a person seen from the side, often in a
+    # doorway): the cluster just beyond a free one in the sweep, narrow, of a few beams
+    # (not one beam of a wall seen edge-on) and in front of what is on its other side.
+    close = np.hypot(*(middles[1:] - middles[:-1]).T) < _PAIR
+    hidden = narrow & (ends - starts + 1 >= _HIDDEN_BEAMS)
+    behind_after = free[:-1] & hidden[1:] & nearer_after[1:] & close
+    behind_before = free[1:] & hidden[:-1] & nearer_before[:-1] & close
+    small_cluster[:-1] |= behind_after | behind_before
+    small_cluster[1:] |= behind_after | behind_before
     small = small_cluster[label]
     return points[keep], small[keep]
+
+
+def _bucketed(points: np.ndarray, nearer: np.ndarray, half: float, bucket: float,
+              per_side: int) -> tuple[np.ndarray, np.ndarray]:
+    """The returns in the grid as (x, y, nearer) rows sorted by bucket, and each bucket's
+    first row (``per_side``² + 1 entries)."""
+    columns = np.floor((points[:, 0] + half) / bucket).astype(np.int64)
+    rows = np.floor((points[:, 1] + half) / bucket).astype(np.int64)
+    inside = (columns >= 0) & (columns < per_side) & (rows >= 0) & (rows < per_side)
+    index = rows[inside] * per_side + columns[inside]
+    order = np.argsort(index, kind="stable")
+    returns = np.column_stack((points[inside], nearer[inside]))[order]
+    starts = np.zeros(per_side * per_side + 1, dtype=np.int64)
+    np.cumsum(np.bincount(index, minlength=per_side * per_side), out=starts[1:])
+    return np.ascontiguousarray(returns, dtype=float), starts
 
 
 def _clearance(points: np.ndarray, cells: int, half: float, resolution: float) -> np.ndarray:

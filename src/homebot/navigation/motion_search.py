@@ -20,7 +20,7 @@ import numpy as np
 
 from homebot.navigation.compiled import compiled as _compiled
 
-__all__ = ["downhill_at", "search", "sweep"]
+__all__ = ["clearance_near", "downhill_at", "search", "sweep"]
 
 
 # ------------------------------------------------------------------ helpers
@@ -116,6 +116,35 @@ def _coarse(distances: np.ndarray, row: int, column: int, pool: int) -> float:
     return value if math.isfinite(value) else 1e3
 
 
+@_compiled
+def clearance_near(returns: np.ndarray, starts: np.ndarray, per_side: int, bucket: float,
+                   half_size: float, x: float, y: float, bound: float,
+                   nearer: float) -> float:
+    """The exact clearance at a robot-frame point, or ``bound`` if it is more.
+
+    The distance to the nearest of ``returns`` (rows x, y and how much nearer
+    the return counts, at most ``nearer``; sorted into ``per_side`` ×
+    ``per_side`` buckets of ``bucket`` metres from −``half_size``, bucket k's
+    rows ``starts[k]:starts[k + 1]``) less its own margin, looking only at the
+    buckets within ``bound`` + ``nearer`` of the point.
+    """
+    best = bound
+    reach = bound + nearer
+    last = per_side - 1
+    low_column = int(max(math.floor((x - reach + half_size) / bucket), 0.0))
+    high_column = int(min(math.floor((x + reach + half_size) / bucket), last))
+    low_row = int(max(math.floor((y - reach + half_size) / bucket), 0.0))
+    high_row = int(min(math.floor((y + reach + half_size) / bucket), last))
+    for row in range(low_row, high_row + 1):
+        for column in range(low_column, high_column + 1):
+            k = row * per_side + column
+            for i in range(starts[k], starts[k + 1]):
+                gap = math.hypot(x - returns[i, 0], y - returns[i, 1]) - returns[i, 2]
+                if gap < best:
+                    best = gap
+    return best
+
+
 # ------------------------------------------------------------------ the open list
 
 
@@ -178,6 +207,8 @@ def search(padded: np.ndarray, half_size: float, resolution: float, distances: n
            step: float, depth_limit: int, max_expansions: int, batch: int, substeps: int,
            goal_tolerance: float, greed: float, speed_margin: float, turn_cost: float,
            held_w: float, hold_cost: float, final_turn_cost: float,
+           returns: np.ndarray, starts: np.ndarray, per_side: int, bucket: float,
+           nearer: float, slack: float,
            ) -> tuple[int, float, float, float, int, int]:
     """One cycle's best-first search over motion sequences.
 
@@ -188,7 +219,11 @@ def search(padded: np.ndarray, half_size: float, resolution: float, distances: n
     wins. A motion changes the velocity at a constant rate over its ``step`` and
     is admissible when the robot keeps ``static`` plus ``speed_margin`` × speed
     of clearance (``padded``: the local grid's clearance with a one-cell
-    border) at the middle of each of its ``substeps``; the cost is time, plus
+    border) at the middle of each of its ``substeps``. Where a cell's clearance
+    is within ``slack`` (what it may overstate the clearance anywhere in the
+    cell) of what is needed, the exact clearance from the returns counts
+    instead (``clearance_near``): the margin kept is then the true one,
+    whatever the cells' size. The cost is time, plus
     ``turn_cost`` per rad/s of change in turn rate, and for the first motion
     ``hold_cost`` per rad/s its turn rate differs from ``held_w``, the one the
     last cycle chose (NaN: none), so that the plan does not flip from cycle to
@@ -284,7 +319,14 @@ def search(padded: np.ndarray, half_size: float, resolution: float, distances: n
                     row = int(min(max((ys[k] + half_size) * scale + 1.0, 0.0), cells + 1.0))
                     last_clearance = padded[row, column]
                     speed = math.hypot(vx, vy) if omni else abs(vx)
-                    if last_clearance < static + speed_margin * speed:
+                    need = static + speed_margin * speed
+                    if last_clearance < need + slack:
+                        # A cell's clearance is at most half its diagonal short of the
+                        # exact one: with that bound every return that counts is seen.
+                        last_clearance = clearance_near(
+                            returns, starts, per_side, bucket, half_size, xs[k], ys[k],
+                            last_clearance + slack / 3.0 + 1e-9, nearer)
+                    if last_clearance < need:
                         ok = False
                         break
                 if not ok:
