@@ -124,3 +124,17 @@ def test_round_trip_through_yaml(name: str, tmp_path: Path) -> None:
     again = World.load(path)
     assert again.model == world.model
     assert yaml.safe_load(path.read_text()) == world.to_dict()
+
+
+def test_a_persons_height_is_drawn_as_declared_and_must_be_a_persons(tmp_path: Path) -> None:
+    from homebot.sim.body_tracker import person_height
+
+    ann = "{name: Ann, room: hall, position: [1, 1]}"
+    tall = World.load(_write(tmp_path, MINIMAL.replace(ann, ann[:-1] + ", height: 1.93}")))
+    assert person_height("Ann", tall.model.people[0]) == 1.93
+    drawn = person_height("Ann", World.load(_write(tmp_path, MINIMAL)).model.people[0])
+    assert 1.55 <= drawn <= 1.95
+    path = _write(tmp_path, MINIMAL.replace(ann, ann[:-1] + ", height: -1.7}"))
+    with pytest.raises(WorldError,
+                       match=r"line 14: people\.0\.height: must be greater than or equal to 0\.5"):
+        World.load(path)

@@ -54,8 +54,11 @@ _TRUNK, _LEGS = 0.40, 0.30  #: metres across the trunk and the legs together
 _LYING = (0.45, 0.24)  #: metres: a lying body's width and thickness
 
 
-def person_height(name: str) -> float:
-    """A person's height, metres: the same for the same name in every run (1.55-1.95)."""
+def person_height(name: str, model: PersonModel | None = None) -> float:
+    """A person's height, metres: as the world file gives it, else drawn from the name
+    (1.55-1.95; the same for the same name in every run: visitors have none declared)."""
+    if model is not None and model.height is not None:
+        return model.height
     return 1.55 + 0.4 * (zlib.crc32(f"height:{name}".encode()) % 1000) / 999
 
 
@@ -75,7 +78,7 @@ def clothes_rgb(clothes: list[str], *, bottom: bool) -> tuple[int, int, int] | N
 def person_solids(world: World, name: str, model: PersonModel, position: tuple[float, float],
                   heading: float) -> list[Solid]:
     """The solids the camera sees of a person: where ``position`` is, facing ``heading``."""
-    height = person_height(name)
+    height = person_height(name, model)
     top = clothes_rgb(model.clothes, bottom=False) or _UNKNOWN_CLOTH
     legs = clothes_rgb(model.clothes, bottom=True) or _LEGS_RGB
     x, y = position
@@ -137,7 +140,7 @@ class BodyTracker:
         self._looks += 1
         rng = np.random.default_rng([body.sim.seed, zlib.crc32(name.encode()),
                                      round(body.now() * 1000), self._looks])
-        arm = self._arm(state.model, state.position, pose, person_height(name), rng)
+        arm = self._arm(state.model, state.position, pose, person_height(name, state.model), rng)
         return PersonView(stamp=body.now(),
                           arm=_to_base(arm.reshape(-1, 3), pose).reshape(arm.shape))
 

@@ -252,12 +252,14 @@ class PersonModel(_Strict):
     """A person in the home and how the simulation plays them.
 
     ``answers`` maps a question (lower case, as asked) to the reply the person
-    gives; ``cooperative`` people step aside and open doors when asked.
+    gives; ``cooperative`` people step aside and open doors when asked; ``height`` in
+    metres is how tall the simulator draws them (unset: drawn from the name).
     """
 
     name: Name
     room: Name
     position: Point
+    height: float | None = Field(default=None, ge=0.5, le=2.5)
     posture: Posture = Posture.STANDING
     gesture: Gesture = Gesture.NONE
     clothes: list[str] = Field(default_factory=list)
