@@ -59,7 +59,7 @@ def test_people_are_seen_by_their_legs(apartment: World, apartment_navigator: Na
     body.teleport(Pose(1.0, 5.0, 0.0))
     ahead = len(body.scan().ranges) // 2
     before = body.scan().ranges[ahead]
-    body.sim.move_person("John", (3.0, 5.1))
+    body.sim.move_person("Sophie", (3.0, 5.1))  # she stands (John lies: see below)
     body.teleport(Pose(1.0, 5.0, 0.0))
     assert body.scan().ranges[ahead] < min(before, 2.0)
 
@@ -194,3 +194,27 @@ def test_driving_into_someone_is_a_collision_with_them(apartment: World,
     body.tick(100)
     assert [c["with"] for c in body.sim.collisions] == ["person John"]
     assert body.sim.robot_pose[0] < 3.0 - apartment.robot.radius
+
+
+def test_someone_lying_is_a_long_body_on_the_floor_and_hidden_on_a_bed(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    body = _body(apartment, apartment_navigator, laser=QUIET_LASER)
+    john = body.sim.people["John"]
+    assert john.posture.value == "lying"  # on the bed, as the world file has him
+    assert not [leg for name, leg in body.people.named_legs() if name == "John"]
+    # Fallen in the corridor: the laser sees the length of him, not two legs.
+    john.position, john.room = (3.0, 5.0), "corridor"
+    body.teleport(Pose(1.0, 5.0, 0.0))
+    outline = [leg for name, leg in body.people.named_legs() if name == "John"]
+    spread = max(math.dist(a, b) for a in outline for b in outline)
+    assert spread >= 1.5 and body.scan().ranges[len(body.scan().ranges) // 2] < 2.0
+
+
+def test_a_walker_who_sets_off_has_got_up(apartment: World,
+                                         apartment_navigator: Navigator) -> None:
+    body = _body(apartment, apartment_navigator, seed=3, walkers=["John"])
+    assert body.sim.people["John"].posture.value == "lying"
+    body.tick(20 * 90)
+    assert body.people.walkers[0].destination is not None  # he went somewhere
+    assert body.sim.people["John"].posture.value == "standing"
+    assert len([leg for name, leg in body.people.named_legs() if name == "John"]) == 2

@@ -96,7 +96,7 @@ def look_figures(world: World, looks: int, seed: int) -> dict[str, Any]:
         for percept_index, truth_index in pairs:
             percept, (name, state) = seen[percept_index], truth[truth_index]
             errors.append(math.dist(percept.position, state.position))
-            counts["posture"] += percept.posture == state.model.posture.value
+            counts["posture"] += percept.posture == state.posture.value
             colour = state.model.clothes[0].split()[0] if state.model.clothes else ""
             counts["top"] += bool(percept.clothes) and percept.clothes[0] == f"{colour} top"
             counts["gesture"] += percept.gesture == state.model.gesture.value

@@ -227,13 +227,9 @@ class SimBody(Body):
             x, y = sim.position_on(name, placement.name)
             solids.append(Solid(entry.shape, entry.extent, entry.rgb, x, y,
                                 surface_height(placement.model), object_yaw(name, sim.seed)))
-        headings = {walker.name: walker.heading for walker in self.people.walkers}
         for name, state in sorted(sim.people.items()):
-            # someone standing still faces the middle of their room
-            middle = sim.world.room_polygons[state.room].centroid
-            heading = headings.get(name, math.atan2(middle.y - state.position[1],
-                                                    middle.x - state.position[0]))
-            solids.extend(person_solids(sim.world, name, state.model, state.position, heading))
+            solids.extend(person_solids(sim.world, name, state.model, state.posture,
+                                        state.position, self.people.facing(name)))
         return solids
 
     def speaker(self) -> Speaker:

@@ -39,7 +39,8 @@ from homebot.world import (
 if TYPE_CHECKING:
     from homebot.sim.body import SimBody
 
-__all__ = ["BodyTracker", "clothes_rgb", "person_height", "person_solids"]
+__all__ = ["BodyTracker", "clothes_rgb", "lying_body_outline", "person_height",
+           "person_solids"]
 
 _SPOT = 0.6  #: metres from the spot looked at within which a person is the one seen
 _RANGE = 6.0  #: metres: the depth camera's reach
@@ -75,29 +76,22 @@ def clothes_rgb(clothes: list[str], *, bottom: bool) -> tuple[int, int, int] | N
     return None
 
 
-def person_solids(world: World, name: str, model: PersonModel, position: tuple[float, float],
-                  heading: float) -> list[Solid]:
-    """The solids the camera sees of a person: where ``position`` is, facing ``heading``."""
+def person_solids(world: World, name: str, model: PersonModel, posture: Posture,
+                  position: tuple[float, float], heading: float) -> list[Solid]:
+    """The solids the camera sees of a person in ``posture``: where ``position`` is, facing
+    ``heading``."""
     height = person_height(name, model)
     top = clothes_rgb(model.clothes, bottom=False) or _UNKNOWN_CLOTH
     legs = clothes_rgb(model.clothes, bottom=True) or _LEGS_RGB
     x, y = position
-    if model.posture is Posture.LYING:
-        under = [p for p in world.placements.values()
-                 if p.model.kind is PlacementKind.FURNITURE and
-                 p.footprint.contains(ShapelyPoint(x, y))]
-        bed = max((surface_height(p.model) for p in under), default=0.0)
+    if posture is Posture.LYING:
+        bed, yaw = _lying_on(world, position, heading)
         width, thick = _LYING
-        # the body lies along the furniture's long side (or along ``heading`` on the floor)
-        yaw = heading
-        if under:
-            x0, y0, x1, y1 = under[0].footprint.bounds
-            yaw = 0.0 if x1 - x0 >= y1 - y0 else math.pi / 2
         return [Solid(Shape.BOX, (height - _HEAD, width, thick), top, x, y, bed, yaw),
                 Solid(Shape.SPHERE, (_HEAD, _HEAD, _HEAD), _SKIN_RGB,
                       x + (height - _HEAD) / 2 * math.cos(yaw),
                       y + (height - _HEAD) / 2 * math.sin(yaw), bed)]
-    if model.posture is Posture.SITTING:
+    if posture is Posture.SITTING:
         trunk = 0.53 * height - _HEAD
         knees = (x + 0.3 * math.cos(heading), y + 0.3 * math.sin(heading))
         return [Solid(Shape.CYLINDER, (_LEGS, _LEGS, _SEAT), legs, *knees, 0.0),
@@ -107,6 +101,37 @@ def person_solids(world: World, name: str, model: PersonModel, position: tuple[f
     return [Solid(Shape.CYLINDER, (_LEGS, _LEGS, hips), legs, x, y, 0.0),
             Solid(Shape.CYLINDER, (_TRUNK, _TRUNK, height - _HEAD - hips), top, x, y, hips),
             Solid(Shape.SPHERE, (_HEAD, _HEAD, _HEAD), _SKIN_RGB, x, y, height - _HEAD)]
+
+
+def _lying_on(world: World, position: tuple[float, float], heading: float
+              ) -> tuple[float, float]:
+    """The height a person lying at ``position`` lies at (0: the floor) and the body's
+    heading: along the furniture's long side, or along ``heading`` on the floor."""
+    under = [p for p in world.placements.values()
+             if p.model.kind is PlacementKind.FURNITURE and
+             p.footprint.contains(ShapelyPoint(*position))]
+    if not under:
+        return 0.0, heading
+    x0, y0, x1, y1 = under[0].footprint.bounds
+    return max(surface_height(p.model) for p in under), 0.0 if x1 - x0 >= y1 - y0 else math.pi / 2
+
+
+def lying_body_outline(world: World, name: str, model: PersonModel, posture: Posture,
+                       position: tuple[float, float], heading: float
+                       ) -> list[tuple[float, float]] | None:
+    """What a floor-level laser sees of a person lying down, as leg-sized circles' centres
+    every 10 cm along the body (a long blob, no pair of legs): nothing when they lie on
+    furniture (the bed or sofa hides them); None when they are not lying."""
+    if posture is not Posture.LYING:
+        return None
+    bed, yaw = _lying_on(world, position, heading)
+    if bed > 0.0:
+        return []
+    length = person_height(name, model)
+    # the trunk box is centred on ``position``; the head lies beyond its far end
+    along = np.arange(-(length - _HEAD) / 2, (length + _HEAD) / 2 + 1e-9, 0.1)
+    return [(position[0] + t * math.cos(yaw), position[1] + t * math.sin(yaw))
+            for t in along]
 
 
 class BodyTracker:

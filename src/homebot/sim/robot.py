@@ -173,7 +173,7 @@ class SimRobot(Robot):
             if sim.random.random() < sim.disturbances.detection_miss:
                 continue
             model = state.model
-            seen.append(PersonPercept(name, model.posture.value, model.gesture.value,
+            seen.append(PersonPercept(name, state.posture.value, model.gesture.value,
                                       tuple(model.clothes), state.position, state.room))
         return seen
 

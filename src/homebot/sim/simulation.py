@@ -23,6 +23,7 @@ from homebot.world import (
     DoorState,
     PersonModel,
     PlacementKind,
+    Posture,
     World,
     object_positions,
 )
@@ -46,6 +47,11 @@ class _PersonState:
     position: tuple[float, float]
     room: str
     blocking_door: str | None = None
+    got_up: bool = False  #: they set off walking: whatever the world file said, they stand
+
+    @property
+    def posture(self) -> Posture:
+        return Posture.STANDING if self.got_up else self.model.posture
 
 
 class PlanCache:

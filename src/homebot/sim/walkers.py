@@ -14,6 +14,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from homebot.sim.body_tracker import lying_body_outline
 from homebot.sim.simulation import Simulation
 from homebot.world import PlacementKind
 
@@ -68,16 +69,32 @@ class PeopleWalking:
         return [leg for _, leg in self.named_legs()]
 
     def named_legs(self) -> list[tuple[str, tuple[float, float]]]:
-        """Each leg's centre with whose it is: two a person, across their walking direction."""
+        """Each leg's centre with whose it is: two a person, across their walking direction;
+        someone lying on the floor is a row of them along the body, someone lying on a bed
+        none."""
         headings = {walker.name: walker.heading for walker in self.walkers}
-        legs = []
+        legs: list[tuple[str, tuple[float, float]]] = []
         for name, state in sorted(self.sim.people.items()):
+            lying = lying_body_outline(self.sim.world, name, state.model, state.posture,
+                                       state.position, self.facing(name))
+            if lying is not None:
+                legs.extend((name, point) for point in lying)
+                continue
             across = headings.get(name, 0.0) + math.pi / 2
             x, y = state.position
             for side in (-1, 1):
                 legs.append((name, (x + side * _LEG_SPREAD * math.cos(across),
                                     y + side * _LEG_SPREAD * math.sin(across))))
         return legs
+
+    def facing(self, name: str) -> float:
+        """Which way a person faces: where they walk, else the middle of their room."""
+        walker = next((walker for walker in self.walkers if walker.name == name), None)
+        if walker is not None:
+            return walker.heading
+        state = self.sim.people[name]
+        middle = self.sim.world.room_polygons[state.room].centroid
+        return math.atan2(middle.y - state.position[1], middle.x - state.position[0])
 
     def advance(self, seconds: float, robot: tuple[float, float], keep_away: float) -> None:
         """Let ``seconds`` pass for every walker; nobody steps within ``keep_away`` of the robot."""
@@ -102,6 +119,7 @@ class PeopleWalking:
             return
         walker.path = list(plan.waypoints[1:])
         walker.destination = destination
+        sim.people[walker.name].got_up = True
         origin, walker.at_place = walker.at_place, None
         if origin is not None and self.rng.random() < _CARRY_CHANCE:
             objects = sim.objects_on(origin)
