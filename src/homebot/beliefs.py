@@ -6,12 +6,15 @@ kept, where people usually are) and change only with what the robot perceives.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 
 from homebot.events import EventLog
 from homebot.world import World
 
 __all__ = ["Beliefs"]
+
+_SAME_SPOT = 0.5  #: metres within which someone seen stands where a mistake was made
 
 
 @dataclass
@@ -22,6 +25,9 @@ class Beliefs:
     not_at: dict[str, set[str]] = field(default_factory=dict)
     closed_doors: set[str] = field(default_factory=set)
     person_at: dict[str, tuple[float, float]] = field(default_factory=dict)
+    #: where someone taken for a person proved not to be them (they did not take what
+    #: was handed to that person): a face misread there is not believed again
+    mistaken_for: dict[str, list[tuple[float, float]]] = field(default_factory=dict)
     holding: dict[str, str | None] = field(default_factory=dict)
     seen: set[str] = field(default_factory=set)  # objects whose place the robot saw itself
     last_taken: str | None = None  # the object picked up last ("give it" hands that one)
@@ -82,6 +88,15 @@ class Beliefs:
 
     def saw_person(self, name: str, position: tuple[float, float]) -> None:
         self.person_at[name] = position
+
+    def mistook(self, name: str, position: tuple[float, float]) -> None:
+        """Whoever stands at ``position`` is not ``name``, whatever their face said."""
+        self.mistaken_for.setdefault(name, []).append(position)
+        self._note("mistook", person=name, position=position)
+
+    def is_mistaken(self, name: str, position: tuple[float, float]) -> bool:
+        return any(math.dist(position, spot) <= _SAME_SPOT
+                   for spot in self.mistaken_for.get(name, ()))
 
     def free_hand(self) -> str | None:
         return next((hand for hand, held in self.holding.items() if held is None), None)

@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import pytest
 
 from homebot.bench.fetch_tasks import delivered, fetch_tasks
 from homebot.bench.robustness import compare_modes
 from homebot.navigation import Navigator
-from homebot.robot import Blocker, MoveReport, Pose
+from homebot.robot import Blocker, MoveReport, PersonPercept, Pose
 from homebot.scenarios import SimulatedRun
 from homebot.sim import PERSON_PREFIX
 from homebot.skills import ErrorCode
@@ -232,3 +234,26 @@ def test_an_obstruction_that_stays_ends_the_trying_and_says_so(
     assert not report.success
     assert 1 <= len(report.steps[0].recoveries) <= 4
     assert any("something I cannot get past" in text for text in report.speech)
+
+
+def test_someone_taken_for_the_person_who_does_not_take_it_is_not_them(
+        apartment: World, apartment_navigator: Navigator,
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    # A visitor in the kitchen whose face reads as Maria's; Maria is in the office.
+    run = _run(apartment, apartment_navigator)
+    visitor = run.simulation.place_person_in_doorway("kitchen arch")
+    run.simulation.move_person(visitor, (10.5, 2.5))
+    run.simulation.move_person("Maria", (9.0, 7.0))
+    perceive = run.robot.perceive_people
+
+    def misreading() -> list[PersonPercept]:
+        return [replace(seen, name="Maria") if seen.name == visitor else seen
+                for seen in perceive()]
+
+    monkeypatch.setattr(run.robot, "perceive_people", misreading)
+    report = run.run(_bring("cola", "fridge", "Maria"))
+    assert report.success
+    assert run.simulation.object_location["cola"] == PERSON_PREFIX + "Maria"
+    assert "not_delivered" in report.steps[-1].recoveries
+    assert run.context.beliefs.is_mistaken("Maria", (10.5, 2.5))
+    assert any("took you for Maria" in text for text in report.speech)

@@ -15,7 +15,7 @@ from typing import Any
 from homebot.robot import HelpRequest
 from homebot.skills import ErrorCode, Outcome, SkillContext, speak
 from homebot.skills.perception import looked_everywhere
-from homebot.skills.places import resolve_target
+from homebot.skills.places import people_in_view, resolve_target
 from homebot.skills.wording import be, is_plural
 
 __all__ = ["PROTOCOLS", "Protocol", "StepRunner"]
@@ -35,7 +35,7 @@ def _door_closed(context: SkillContext, skill: str, args: Mapping[str, Any],
     opened = run("open_door", {"door": door})
     if opened:
         return True
-    seen = context.robot.perceive_people()
+    seen = people_in_view(context)
     # people the robot cannot name are asked once, without a name: whoever is nearest hears
     asked = [person.name for person in seen if person.name] + (
         [""] if any(person.name is None for person in seen) else [])
@@ -142,6 +142,21 @@ def _person_not_found(context: SkillContext, skill: str, args: Mapping[str, Any]
     return False
 
 
+def _not_taken(context: SkillContext, skill: str, args: Mapping[str, Any],
+               outcome: Outcome, run: StepRunner) -> bool:
+    """The person handed to did not take it: whoever stood there was not them (a face
+    misread, or they had walked off). That spot is not believed to be them again; they
+    are searched for, and the hand-over tried again where they are found."""
+    person = str(outcome.data.get("person") or "")
+    if skill != "give" or not person:
+        return False
+    where = context.beliefs.person_at.get(person)
+    if where is not None:
+        context.beliefs.mistook(person, where)
+    speak(context, f"I am sorry, I took you for {person}. I will look for {person}.")
+    return bool(run("find_person", {"person": {"name": person}}))
+
+
 def _find_again(context: SkillContext, skill: str, args: Mapping[str, Any],
                 outcome: Outcome, run: StepRunner) -> bool | Outcome:
     """Something was not where it should be: widen the search for it."""
@@ -155,4 +170,5 @@ PROTOCOLS: Mapping[ErrorCode, Protocol] = {
     ErrorCode.PATH_BLOCKED: _path_blocked,
     ErrorCode.NOT_FOUND: _find_again,
     ErrorCode.NOT_GRASPED: _slipped,
+    ErrorCode.NOT_DELIVERED: _not_taken,
 }

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from homebot.skills.places import person_name
+from homebot.skills.places import people_in_view, person_name
 from homebot.skills.skill import ErrorCode, Outcome, Skill, SkillContext, speak
 from homebot.skills.wording import be, object_is_at, place_in
 
@@ -127,7 +127,7 @@ class Greet(Skill):
     def monitor(self, context: SkillContext, args: Mapping[str, Any],
                 finished: Outcome) -> Outcome:
         person = finished.data["person"]
-        if any(seen.name == person for seen in context.robot.perceive_people()):
+        if any(seen.name == person for seen in people_in_view(context)):
             return Outcome.verified(f"greeted {person}")
         return Outcome.aborted(ErrorCode.LOST_PERSON, f"{person} is not here to be greeted")
 

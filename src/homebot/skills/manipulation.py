@@ -8,7 +8,7 @@ from typing import Any
 
 from homebot.skills.motion import drive, drive_to_target
 from homebot.skills.perception import go_and_look, matches_object
-from homebot.skills.places import HANDING_REACH, person_name, resolve_target
+from homebot.skills.places import HANDING_REACH, people_in_view, person_name, resolve_target
 from homebot.skills.skill import ErrorCode, Outcome, Skill, SkillContext, Status, speak
 from homebot.skills.wording import be, here_is, place_in
 
@@ -170,7 +170,8 @@ class Give(Skill):
             return Outcome.verified(f"{finished.data['person']} has the {finished.data['object']}",
                                     person=finished.data["person"])
         return Outcome.aborted(ErrorCode.NOT_DELIVERED,
-                               f"{finished.data['person']} did not take the object")
+                               f"{finished.data['person']} did not take the object",
+                               person=finished.data["person"])
 
 
 class Receive(Skill):
@@ -248,7 +249,7 @@ def _look_for(context: SkillContext, person: str) -> bool:
     """Look round, twice if need be (a look can miss someone): is ``person`` seen? Where
     they are seen is believed."""
     for _ in range(_LOOKS):
-        for seen in context.robot.perceive_people():
+        for seen in people_in_view(context):
             if seen.name == person:
                 context.beliefs.saw_person(person, seen.position)
                 return True

@@ -11,6 +11,7 @@ from homebot.skills.motion import drive, drive_to_target
 from homebot.skills.places import (
     OPERATOR,
     near,
+    people_in_view,
     pose_near_point,
     resolve_target,
     sees_person_nearby,
@@ -395,7 +396,7 @@ def _people_met(context: SkillContext, description: Mapping[str, Any]
     """The people seen in the room; then, for each seen without a name (too far to see
     their face) who may fit the description, nearest first, the people seen after going
     up to them. A robot knows people by their faces, and sees a face only from near."""
-    first = context.robot.perceive_people()
+    first = people_in_view(context)
     yield from first
     unnamed = {key: value for key, value in description.items() if key != "name"}
     nameless = [seen for seen in first if seen.name is None and
@@ -404,7 +405,7 @@ def _people_met(context: SkillContext, description: Mapping[str, Any]
         moved = drive(context, pose_near_point(context, seen.position))
         if moved.status is not Status.FINISHED:
             continue
-        yield from (again for again in context.robot.perceive_people()
+        yield from (again for again in people_in_view(context)
                     if math.dist(again.position, seen.position) <= _SAME_PERSON)
 
 
@@ -446,7 +447,7 @@ class Count(Skill):
         if moved is not None:
             return moved
         description = _description(args.get("person"))
-        return sum(1 for seen in context.robot.perceive_people()
+        return sum(1 for seen in people_in_view(context)
                    if matches_person(seen, description))
 
     def monitor(self, context: SkillContext, args: Mapping[str, Any],
@@ -486,7 +487,7 @@ class Describe(Skill):
         person = context.bindings.get("person")
         if person is None:
             return Outcome.failed(ErrorCode.NO_PERSON, "I have nobody to describe")
-        for seen in context.robot.perceive_people():
+        for seen in people_in_view(context):
             if seen.name == person:
                 info = str(args.get("info", "name"))
                 text = _person_fact(seen, info)

@@ -4,17 +4,19 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
+from dataclasses import replace
 from typing import Any
 
 from scipy import ndimage
 
-from homebot.robot import Pose
+from homebot.robot import PersonPercept, Pose
 from homebot.skills.skill import SkillContext
 
 __all__ = [
     "HANDING_REACH",
     "OPERATOR",
     "near",
+    "people_in_view",
     "person_name",
     "point_goal",
     "pose_near_point",
@@ -157,10 +159,19 @@ def near(context: SkillContext, pose: Pose, tolerance: float = 0.3) -> bool:
     return math.dist(context.robot.pose().xy(), pose.xy()) <= tolerance
 
 
+def people_in_view(context: SkillContext) -> list[PersonPercept]:
+    """The people the robot sees now, with no name where it already learnt that whoever
+    stands there is not the person their face says (``Beliefs.mistook``)."""
+    beliefs = context.beliefs
+    return [replace(seen, name=None) if seen.name and beliefs.is_mistaken(seen.name,
+                                                                          seen.position)
+            else seen for seen in context.robot.perceive_people()]
+
+
 def sees_person_nearby(context: SkillContext, person: str, reach: float = 2.0) -> bool:
     """Look around: is ``person`` seen within ``reach`` metres? Beliefs follow what is seen."""
     here = context.robot.pose().xy()
-    for seen in context.robot.perceive_people():
+    for seen in people_in_view(context):
         if seen.name == person and math.dist(seen.position, here) <= reach:
             context.beliefs.saw_person(person, seen.position)
             return True
