@@ -100,3 +100,28 @@ def test_enrolment_needs_a_name_and_a_face(detector: FaceDetector) -> None:
 def test_an_untrained_detector_says_so() -> None:
     with pytest.raises(FaceError, match="not trained"):
         FaceDetector().detect(np.zeros((80, 80), dtype=np.uint8))
+
+
+def test_a_look_weighs_its_views_together(detector: FaceDetector) -> None:
+    rng = np.random.default_rng(11)
+    people = [face_identity(name, 4) for name in ("Ada", "Ben", "Cy", "Dee")]
+    memory = FaceMemory(detector, trees=40, features=800)
+    for person in people:
+        memory.enrol(person.name, [face_view(person, rng)[0] for _ in range(12)])
+    named = [memory.identify_views([face_view(person, rng)[0] for _ in range(6)])
+             for person in people for _ in range(3)]
+    truth = [person.name for person in people for _ in range(3)]
+    # a known person's look may come out unknown, never as someone else
+    assert all(name in (None, right) for name, right in zip(named, truth, strict=True))
+    assert sum(name == right for name, right in zip(named, truth, strict=True)) >= 7
+    # a stranger's look is named less often than a stranger's single view (this small
+    # cascade's windows wander: its strangers are named more often than the bench's)
+    looks = [[face_view(face_identity(f"x{i}", 5), rng)[0] for _ in range(6)]
+             for i in range(20)]
+    by_look = sum(memory.identify_look(views)[0] is not None for views in looks) / 20
+    by_view = sum(memory.identify(view)[0] is not None for views in looks
+                  for view in views) / 120
+    assert by_look < 0.8 * by_view
+    assert memory.identify_look([np.zeros((80, 80), dtype=np.uint8)]) == (None, math.inf)
+    # the look's threshold is learnt from the enrolment: narrower for more views
+    assert memory._look_threshold(6) < memory._look_threshold(1)

@@ -68,9 +68,11 @@ def test_a_person_who_says_my_name_is_in_front_of_the_embodied_robot_is_recognis
     assert robot.introduce("Hello robot, my name is Zoe") == "Zoe"
     stand_in_front(other)
     assert robot.introduce("I'm Kim") == "Kim"
-    stand_in_front("Alex")
-    assert robot.face_in_front() == "Zoe"  # a later look: new views, new pose and light
-    stand_in_front(other)
-    assert robot.face_in_front() == "Kim"
+    # later looks: new views, new pose and light. A look may come out unknown (the
+    # robot then looks again), never as the other person
+    for name, person in (("Zoe", "Alex"), ("Kim", other)):
+        stand_in_front(person)
+        looks = [robot.face_in_front() for _ in range(5)]
+        assert set(looks) <= {name, None} and looks.count(name) >= 3, (name, looks)
     assert [event.data["person"] for event in sim.events.of_kind("robot.met")] == \
         ["Zoe", "Kim"]

@@ -26,8 +26,14 @@ level does not matter.
   distance: a face further from the voted person's enrolled views than
   ``threshold`` times their reach (in the forest's most telling features) is
   nobody known; a person's reach is learnt from their enrolment images alone,
-  each held out in turn (``_held_out_spacing``). The forest's own vote share and
-  leaf proximity, and a per-person spread model, separated strangers worse.
+  each held out in turn (``_held_out_distances``), and shrunk halfway towards the
+  household's median reach. The forest's own vote share and leaf proximity, and a
+  per-person spread model, separated strangers worse.
+- **A look** (``identify_look``, ``identify_views``): several views of one person
+  are weighed together, not by a majority of per-view decisions: the votes summed
+  over the views pick the person, and the median of the views' distances from
+  them must be within a threshold learnt from looks drawn from held-out enrolment
+  images. A stranger's look is named far less often than a stranger's view.
 - **Online enrolment** (``Acquaintances``, ``introduced_name``): "my name is ..."
   said in front of the robot enrols the views of the face in front under that name.
 """
@@ -50,6 +56,12 @@ Window = tuple[int, int, int]  #: x, y, side in pixels
 _TELLING = 200  #: features the forest rates highest, for the distance to a person's views
 _NEAREST = 3  #: enrolled views a face is compared with
 _HELD_OUT = 0.9  #: quantile of a person's held-out enrolment distances: their reach
+#: how much of a person's own reach is kept: it is shrunk (geometrically) halfway towards
+#: the household's median reach (a face whose views vary much, such as a low-contrast one,
+#: otherwise reached so far that it took in most strangers' faces)
+_OWN_REACH = 0.5
+_LOOK_QUANTILE = 0.9  #: of the held-out enrolment looks' distances: a look's threshold
+_LOOK_DRAWS = 200  #: held-out enrolment looks drawn per person for that threshold
 
 
 class FaceError(HomebotError):
@@ -378,6 +390,8 @@ class FaceMemory:
             np.zeros(0, dtype=np.intp), np.zeros(0), np.ones(0))
         self._standard = np.zeros((0, 0))
         self._typical = np.ones(0)
+        self._held_out: list[np.ndarray] = []  #: each person's held-out enrolment distances
+        self._look_thresholds: dict[int, float] = {}
 
     @property
     def people(self) -> list[str]:
@@ -447,13 +461,16 @@ class FaceMemory:
         centre, scale = data[:, telling].mean(axis=0), data[:, telling].std(axis=0) + 1e-9
         self._telling = (telling, centre, scale)
         self._standard = (data[:, telling] - centre) / scale
-        self._typical = np.ones(len(self._names))
         images = np.concatenate([np.full(len(block), number) for number, block in
                                  enumerate(b for name in self._names
                                            for b in self._samples[name])])
-        for index in range(len(self._names)):
-            self._typical[index] = _held_out_spacing(self._standard[labels == index],
-                                                     images[labels == index])
+        self._held_out = [_held_out_distances(self._standard[labels == index],
+                                              images[labels == index])
+                          for index in range(len(self._names))]
+        own = np.asarray([_reach(self._standard[labels == index], distances)
+                          for index, distances in enumerate(self._held_out)])
+        self._typical = own ** _OWN_REACH * float(np.median(own)) ** (1.0 - _OWN_REACH)
+        self._look_thresholds = {}
 
     def identify(self, image: np.ndarray, window: Window | None = None
                  ) -> tuple[str | None, float]:
@@ -467,25 +484,60 @@ class FaceMemory:
         if vector is None:
             return None, math.inf
         best = int(np.argmax(self._forest.shares(self._forest.leaves(vector))))
-        telling, centre, scale = self._telling
-        gaps = np.linalg.norm(self._standard[self._labels == best] -
-                              (vector[telling] - centre) / scale, axis=1)
-        far = float(np.sort(gaps)[:_NEAREST].mean()) / self._typical[best]
+        far = self._far(vector, best)
         return (self._names[best], far) if far <= self.threshold else (None, far)
 
+    def _far(self, vector: np.ndarray, person: int) -> float:
+        """How far a face's features are from ``person``'s enrolled views: the mean
+        distance to the nearest few, over the person's reach."""
+        telling, centre, scale = self._telling
+        gaps = np.linalg.norm(self._standard[self._labels == person] -
+                              (vector[telling] - centre) / scale, axis=1)
+        return float(np.sort(gaps)[:_NEAREST].mean() / self._typical[person])
+
+    def identify_look(self, images: Sequence[np.ndarray]) -> tuple[str | None, float]:
+        """Whose face several views of one person show, from the evidence of all of
+        them: the person the forest's votes, summed over the views in which a face is
+        found, point to, and the median of those views' distances from that person's
+        enrolled views (each over their reach, as ``identify`` gives it). The look is
+        theirs when that median is within ``threshold`` times the look threshold: the
+        ``_LOOK_QUANTILE`` quantile of the same median over looks of as many views
+        drawn from the household's held-out enrolment images (``_look_threshold``:
+        learnt from the enrolment alone); else (None, median). (None, inf) when no
+        view shows a face."""
+        if self._forest is None:
+            raise FaceError("nobody is enrolled yet: enrol(name, images) first")
+        vectors = [vector for vector in (self.describe(image) for image in images)
+                   if vector is not None]
+        if not vectors:
+            return None, math.inf
+        votes = np.sum([self._forest.shares(self._forest.leaves(vector))
+                        for vector in vectors], axis=0)
+        best = int(np.argmax(votes))
+        far = float(np.median([self._far(vector, best) for vector in vectors]))
+        limit = self.threshold * self._look_threshold(len(vectors))
+        return (self._names[best], far) if far <= limit else (None, far)
 
     def identify_views(self, images: Sequence[np.ndarray]) -> str | None:
-        """Whose face several views of one person show: the name most of the views in
-        which a face is found agree on (a stranger's views mostly come out unknown);
-        None when no name has a majority of those views."""
-        names = [self.identify(image)[0] for image in images]
-        seen = [name for name in names if name is not None]
-        found = sum(1 for image, name in zip(images, names, strict=True)
-                    if name is not None or self.describe(image) is not None)
-        if not seen:
-            return None
-        best = max(sorted(set(seen)), key=seen.count)
-        return best if 2 * seen.count(best) > found else None
+        """Whose face several views of one person show (``identify_look``'s name):
+        None for a stranger, or when no view shows a face."""
+        return self.identify_look(images)[0]
+
+    def _look_threshold(self, views: int) -> float:
+        """How far (over the person's reach) a look of ``views`` views may be: the
+        ``_LOOK_QUANTILE`` quantile of the median distance of ``views`` held-out
+        enrolment images of a person, over ``_LOOK_DRAWS`` draws for each person
+        enrolled (seeded: the same memory, the same threshold)."""
+        if views not in self._look_thresholds:
+            rng = np.random.default_rng([self.seed, 1515, views])
+            medians = [float(np.median(rng.choice(distances / reach, views,
+                                                  replace=len(distances) < views)))
+                       for distances, reach in zip(self._held_out, self._typical,
+                                                   strict=True)
+                       if len(distances) for _ in range(_LOOK_DRAWS)]
+            self._look_thresholds[views] = float(np.quantile(medians, _LOOK_QUANTILE)) \
+                if medians else 1.0
+        return self._look_thresholds[views]
 
 
 _INTRODUCTION = re.compile(
@@ -558,20 +610,25 @@ class Acquaintances:
         return self._memory.identify_views(images)
 
 
-def _held_out_spacing(views: np.ndarray, images: np.ndarray) -> float:
-    """How far a new view of a person may lie from their enrolled views: each enrolment
-    image in turn is held out, its distance to the nearest ``_NEAREST`` views of the
-    person's other images taken, and the ``_HELD_OUT`` quantile of these returned
-    (cross-validation on the enrolment images alone: no stranger's face is needed).
-    With one image only, the spread of its own jittered copies stands in."""
+def _held_out_distances(views: np.ndarray, images: np.ndarray) -> np.ndarray:
+    """How far new views of a person lie from their enrolled views: each enrolment
+    image in turn is held out and its distance to the nearest ``_NEAREST`` views of the
+    person's other images taken (cross-validation on the enrolment images alone: no
+    stranger's face is needed); empty with one image only."""
     scores = []
     for image in np.unique(images):
         probe, others = views[images == image][0], views[images != image]
         if len(others):
             scores.append(float(np.sort(np.linalg.norm(others - probe, axis=1))
                                 [:_NEAREST].mean()))
-    if scores:
-        return float(np.quantile(scores, _HELD_OUT))
+    return np.asarray(scores)
+
+
+def _reach(views: np.ndarray, distances: np.ndarray) -> float:
+    """A person's own reach: the ``_HELD_OUT`` quantile of their held-out ``distances``;
+    with one image only, the spread of its own jittered copies stands in."""
+    if len(distances):
+        return float(np.quantile(distances, _HELD_OUT))
     gaps = np.linalg.norm(views[:, None, :] - views[None, :, :], axis=2)
     return float(np.median(gaps[gaps > 1e-6])) if np.any(gaps > 1e-6) else 1.0
 
