@@ -143,6 +143,8 @@ def test_a_leg_half_hidden_behind_the_other_is_a_leg_too() -> None:
     assert near_legs.sum() > 5
     assert np.all(grid.returns[near_legs, 2] == 0.12)
     assert np.all(grid.returns[~near_legs, 2] == 0.0)
+    assert np.all(grid.returns[near_legs, 3] == 0.0)  # not walls
+    assert np.all(grid.returns[~near_legs, 3] == 1.0)
     assert grid.exact_clearance(0.0, 0.0) == pytest.approx(0.54 - 0.12, abs=0.005)
 
 
@@ -156,12 +158,14 @@ def test_exact_clearance_is_the_distance_to_the_nearest_return() -> None:
     grid = LocalGrid.from_scan(body.scan(), leg_margin=0.12)
     rng = np.random.default_rng(3)
     for x, y in rng.uniform(-1.5, 1.5, (300, 2)):
+        for farther in (0.0, 0.02):
+            exact = grid.exact_clearance(x, y, farther)
+            for bound in (0.2, 0.45, 3.0):
+                near = motion_search.clearance_near(grid.returns, grid.starts, grid.per_side,
+                                                    grid.bucket, grid.half_size, x, y, bound,
+                                                    grid.leg_margin, farther)
+                assert near == pytest.approx(min(exact, bound))
         exact = grid.exact_clearance(x, y)
-        for bound in (0.2, 0.45, 3.0):
-            near = motion_search.clearance_near(grid.returns, grid.starts, grid.per_side,
-                                                grid.bucket, grid.half_size, x, y, bound,
-                                                grid.leg_margin)
-            assert near == pytest.approx(min(exact, bound))
         # A cell's clearance overstates it by no more than the grid's slack, and understates
         # it by no more than a third of that (what the search relies on).
         cell = float(grid.clearance_at(np.array([x]), np.array([y]))[0])
@@ -170,14 +174,31 @@ def test_exact_clearance_is_the_distance_to_the_nearest_return() -> None:
 
 @pytest.mark.parametrize(("start", "goal"), [((0.0, 0.0), (3.0, 0.37)),
                                              ((0.66, 0.0), (3.0, 0.0))])
+@pytest.mark.parametrize("allowance", [0.0, 0.02])
 def test_stage2_keeps_its_margin_exactly_at_a_wall_it_cannot_pass(
-        start: tuple[float, float], goal: tuple[float, float]) -> None:
+        start: tuple[float, float], goal: tuple[float, float], allowance: float) -> None:
     # The goal lies beyond a wall: the robot comes up to it and stays there, its margin
-    # kept to the millimetre (the grid's 5 cm cells once let it creep 1.6 cm into it).
+    # kept to the millimetre (the grid's 5 cm cells once let it creep 1.6 cm into it),
+    # less what it may crawl nearer walls.
     body = FakeBody(Pose(*start, 0.0), wall(1.0, -2.0, 1.0, 2.0, spacing=0.03, radius=0.02))
-    planner = MotionSearchPlanner()
+    planner = MotionSearchPlanner(crawl_allowance=allowance)
     assert not _drive(body, planner, [start, goal], seconds=20.0)
     assert body.collisions == 0
+    assert body.min_clearance >= body.radius + planner.safety - allowance - 0.001
+
+
+@pytest.mark.parametrize("goal_y", [0.0, 0.2])
+def test_stage2_crawls_up_to_nothing_narrow_inside_its_margin(goal_y: float) -> None:
+    # A lone post as thin as a leg (an unpaired one) stands before a wall, on the way to a
+    # goal beyond both: the robot stops at its full margin from the post, not crawling
+    # the allowance nearer as it may to walls (counting the post as a wall, 0.28 m).
+    post = (0.9, 0.0, 0.06)
+    body = FakeBody(Pose(0.0, 0.0, 0.0), [post, *wall(1.3, -2.0, 1.3, 2.0, spacing=0.03,
+                                                       radius=0.02)])
+    planner = MotionSearchPlanner()
+    assert not _drive(body, planner, [(0.0, 0.0), (3.0, goal_y)], seconds=20.0)
+    assert body.collisions == 0
+    assert body.min_clearance == pytest.approx(math.dist(body.pose.xy(), post[:2]) - post[2])
     assert body.min_clearance >= body.radius + planner.safety - 0.001
 
 

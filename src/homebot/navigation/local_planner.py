@@ -96,6 +96,10 @@ class MotionSearchPlanner:
         leg_margin: extra clearance kept from pairs of legs (a person is wider than them).
         hold_cost: seconds added per rad/s the first motion's turn rate differs from the one
             the cycle before chose (hysteresis: no flip-flopping between near-equal plans).
+        crawl: m/s: no faster, a motion needs no clearance for its speed (it stops within
+            a centimetre) ...
+        crawl_allowance: ... and may come this much nearer walls and furniture (returns of
+            clusters wider than a leg) than ``safety``: through a doorway met at a slant.
     """
 
     period: float = 0.05
@@ -114,6 +118,8 @@ class MotionSearchPlanner:
     leg_margin: float = 0.12
     substeps: int = 3
     hold_cost: float = 1.5
+    crawl: float = 0.1
+    crawl_allowance: float = 0.02
     last: PlannerCycle | None = field(default=None, init=False)
     _held: tuple[float, float] = field(default=(-math.inf, math.nan), init=False, repr=False)
 
@@ -128,9 +134,10 @@ class MotionSearchPlanner:
         if min(self.depth, self.max_expansions, self.substeps, self.batch) < 1:
             raise LocalPlannerError("depth, max_expansions, substeps and batch must be at "
                                     "least 1")
-        if min(self.safety, self.speed_margin, self.turn_cost, self.hold_cost) < 0:
-            raise LocalPlannerError("safety, speed_margin, turn_cost and hold_cost cannot be "
-                                    "negative")
+        if min(self.safety, self.speed_margin, self.turn_cost, self.hold_cost, self.crawl,
+               self.crawl_allowance) < 0:
+            raise LocalPlannerError("safety, speed_margin, turn_cost, hold_cost, crawl and "
+                                    "crawl_allowance cannot be negative")
 
     def plan(self, pose: Pose, velocity: Twist, scan: LaserScan,
              path: Sequence[tuple[float, float]], limits: VelocityLimits, drive: DriveKind,
@@ -167,7 +174,7 @@ class MotionSearchPlanner:
         """The search by time (the compiled kernel): the first command, expansions, depth."""
         from homebot.navigation import motion_search  # numba: only once stage 2 plans
 
-        start_clearance = grid.exact_clearance(0.0, 0.0)
+        start_clearance = grid.exact_clearance(0.0, 0.0, self.crawl_allowance)
         static = radius + self.safety
         # Already inside the margin (pushed there by a person): do not get any closer.
         # Then it may move, never closer than half a centimetre to what it is now, and
@@ -198,7 +205,7 @@ class MotionSearchPlanner:
             self.step, self.depth, self.max_expansions, self.batch, self.substeps,
             self.goal_tolerance, self.greed, self.speed_margin, self.turn_cost,
             held, self.hold_cost, _FINAL_TURN_COST, grid.returns, grid.starts, grid.per_side,
-            grid.bucket, grid.leg_margin, grid.slack)
+            grid.bucket, grid.leg_margin, grid.slack, self.crawl, self.crawl_allowance)
         command = Twist(float(vx), float(vy), float(wz)) if found else None
         self._held = (stamp, float(wz) if found else math.nan)
         return command, int(expansions), int(depth)

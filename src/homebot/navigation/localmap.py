@@ -92,7 +92,8 @@ class LocalGrid:
     to the nearest laser return (rows along y, columns along x). Outside the
     grid nothing is known; ``clearance_at`` reports ``outside`` there.
     ``returns`` holds the returns in the grid as rows (x, y, how much nearer
-    they count: the leg margin for legs, else 0), sorted by bucket (``bucket``
+    they count: the leg margin for legs, else 0; 1 for a wall's or furniture's,
+    a cluster wider than a leg, else 0), sorted by bucket (``bucket``
     metres square, ``per_side`` buckets a side from −``half_size``), bucket k's
     being rows ``starts[k]:starts[k + 1]``.
     """
@@ -101,7 +102,7 @@ class LocalGrid:
     half_size: float
     clearance: np.ndarray
     outside: float = 10.0
-    returns: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+    returns: np.ndarray = field(default_factory=lambda: np.zeros((0, 4)))
     starts: np.ndarray = field(default_factory=lambda: np.zeros(2, dtype=np.int64))
     bucket: float = _BUCKET
     per_side: int = 1
@@ -121,14 +122,14 @@ class LocalGrid:
         """
         cells = round(size / resolution) | 1
         half = cells * resolution / 2
-        points, small = _returns(scan)
+        points, small, wide = _returns(scan)
         clearance = _clearance(points, cells, half, resolution)
         if leg_margin > 0 and small.any():
             legs = _clearance(points[small], cells, half, resolution) - leg_margin
             clearance = np.minimum(clearance, np.maximum(legs, 0.0))
         nearer = np.where(small, leg_margin, 0.0) if leg_margin > 0 else np.zeros(len(points))
         per_side = max(math.ceil(2 * half / _BUCKET), 1)
-        returns, starts = _bucketed(points, nearer, half, _BUCKET, per_side)
+        returns, starts = _bucketed(points, nearer, wide, half, _BUCKET, per_side)
         return cls(resolution, half, np.asarray(clearance, dtype=float), returns=returns,
                    starts=starts, bucket=_BUCKET, per_side=per_side,
                    leg_margin=max(leg_margin, 0.0))
@@ -155,12 +156,14 @@ class LocalGrid:
         values: np.ndarray = padded[rows, columns]
         return values
 
-    def exact_clearance(self, x: float, y: float) -> float:
+    def exact_clearance(self, x: float, y: float, farther: float = 0.0) -> float:
         """The distance from a robot-frame point to the nearest return (legs counting
-        ``leg_margin`` nearer; ``outside`` when the grid holds none)."""
+        ``leg_margin`` nearer, walls and furniture ``farther``; ``outside`` when the grid
+        holds none)."""
         if not len(self.returns):
             return self.outside
-        gaps = np.hypot(self.returns[:, 0] - x, self.returns[:, 1] - y) - self.returns[:, 2]
+        gaps = np.hypot(self.returns[:, 0] - x, self.returns[:, 1] - y) - self.returns[:, 2] \
+            + farther * self.returns[:, 3]
         return float(gaps.min())
 
     @property
@@ -215,9 +218,9 @@ class LocalGrid:
         return field
 
 
-def _returns(scan: LaserScan) -> tuple[np.ndarray, np.ndarray]:
-    """The scan's returns (robot frame) and which belong to legs: pairs of small clusters
-    in front of what is beside them."""
+def _returns(scan: LaserScan) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The scan's returns (robot frame), which belong to legs (pairs of small clusters in
+    front of what is beside them) and which to wide clusters (walls, furniture)."""
     keep = scan.valid()
     ranges = np.where(keep, scan.ranges, np.nan)
     angles = scan.angles() + scan.mount.theta
@@ -225,7 +228,7 @@ def _returns(scan: LaserScan) -> tuple[np.ndarray, np.ndarray]:
                               scan.mount.y + ranges * np.sin(angles)))
     count = len(ranges)
     if count == 0:
-        return points[keep], np.zeros(0, dtype=bool)
+        return points[keep], np.zeros(0, dtype=bool), np.zeros(0, dtype=bool)
     # Clusters: runs of neighbouring beams whose ranges differ by less than a jump.
     jump = np.ones(count, dtype=bool)
     jump[1:] = ~(np.abs(np.diff(ranges)) < _CLUSTER_JUMP)
@@ -258,19 +261,20 @@ def _returns(scan: LaserScan) -> tuple[np.ndarray, np.ndarray]:
     small_cluster[:-1] |= behind_after | behind_before
     small_cluster[1:] |= behind_after | behind_before
     small = small_cluster[label]
-    return points[keep], small[keep]
+    wide = (extent >= _SMALL)[label]
+    return points[keep], small[keep], wide[keep]
 
 
-def _bucketed(points: np.ndarray, nearer: np.ndarray, half: float, bucket: float,
-              per_side: int) -> tuple[np.ndarray, np.ndarray]:
-    """The returns in the grid as (x, y, nearer) rows sorted by bucket, and each bucket's
-    first row (``per_side``² + 1 entries)."""
+def _bucketed(points: np.ndarray, nearer: np.ndarray, wide: np.ndarray, half: float,
+              bucket: float, per_side: int) -> tuple[np.ndarray, np.ndarray]:
+    """The returns in the grid as (x, y, nearer, wide) rows sorted by bucket, and each
+    bucket's first row (``per_side``² + 1 entries)."""
     columns = np.floor((points[:, 0] + half) / bucket).astype(np.int64)
     rows = np.floor((points[:, 1] + half) / bucket).astype(np.int64)
     inside = (columns >= 0) & (columns < per_side) & (rows >= 0) & (rows < per_side)
     index = rows[inside] * per_side + columns[inside]
     order = np.argsort(index, kind="stable")
-    returns = np.column_stack((points[inside], nearer[inside]))[order]
+    returns = np.column_stack((points[inside], nearer[inside], wide[inside]))[order]
     starts = np.zeros(per_side * per_side + 1, dtype=np.int64)
     np.cumsum(np.bincount(index, minlength=per_side * per_side), out=starts[1:])
     return np.ascontiguousarray(returns, dtype=float), starts

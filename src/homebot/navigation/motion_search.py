@@ -119,13 +119,14 @@ def _coarse(distances: np.ndarray, row: int, column: int, pool: int) -> float:
 @_compiled
 def clearance_near(returns: np.ndarray, starts: np.ndarray, per_side: int, bucket: float,
                    half_size: float, x: float, y: float, bound: float,
-                   nearer: float) -> float:
+                   nearer: float, farther: float) -> float:
     """The exact clearance at a robot-frame point, or ``bound`` if it is more.
 
-    The distance to the nearest of ``returns`` (rows x, y and how much nearer
-    the return counts, at most ``nearer``; sorted into ``per_side`` ×
-    ``per_side`` buckets of ``bucket`` metres from −``half_size``, bucket k's
-    rows ``starts[k]:starts[k + 1]``) less its own margin, looking only at the
+    The distance to the nearest of ``returns`` (rows x, y, how much nearer
+    the return counts, at most ``nearer``, and whether it counts ``farther``:
+    1 for walls and furniture; sorted into ``per_side`` × ``per_side`` buckets
+    of ``bucket`` metres from −``half_size``, bucket k's rows
+    ``starts[k]:starts[k + 1]``) less its own margin, looking only at the
     buckets within ``bound`` + ``nearer`` of the point.
     """
     best = bound
@@ -139,7 +140,8 @@ def clearance_near(returns: np.ndarray, starts: np.ndarray, per_side: int, bucke
         for column in range(low_column, high_column + 1):
             k = row * per_side + column
             for i in range(starts[k], starts[k + 1]):
-                gap = math.hypot(x - returns[i, 0], y - returns[i, 1]) - returns[i, 2]
+                gap = math.hypot(x - returns[i, 0], y - returns[i, 1]) - returns[i, 2] + \
+                    farther * returns[i, 3]
                 if gap < best:
                     best = gap
     return best
@@ -208,7 +210,7 @@ def search(padded: np.ndarray, half_size: float, resolution: float, distances: n
            goal_tolerance: float, greed: float, speed_margin: float, turn_cost: float,
            held_w: float, hold_cost: float, final_turn_cost: float,
            returns: np.ndarray, starts: np.ndarray, per_side: int, bucket: float,
-           nearer: float, slack: float,
+           nearer: float, slack: float, crawl: float, crawl_allowance: float,
            ) -> tuple[int, float, float, float, int, int]:
     """One cycle's best-first search over motion sequences.
 
@@ -223,7 +225,12 @@ def search(padded: np.ndarray, half_size: float, resolution: float, distances: n
     is within ``slack`` (what it may overstate the clearance anywhere in the
     cell) of what is needed, the exact clearance from the returns counts
     instead (``clearance_near``): the margin kept is then the true one,
-    whatever the cells' size. The cost is time, plus
+    whatever the cells' size. A motion no faster than ``crawl`` needs only
+    ``static``, walls and furniture (``returns`` marked wide) counting
+    ``crawl_allowance`` farther: a robot at its margin can still edge along it
+    or away, and through a doorway it meets at a slant. Not from anything
+    narrow: an unpaired leg is never crept up to. The
+    cost is time, plus
     ``turn_cost`` per rad/s of change in turn rate, and for the first motion
     ``hold_cost`` per rad/s its turn rate differs from ``held_w``, the one the
     last cycle chose (NaN: none), so that the plan does not flip from cycle to
@@ -319,13 +326,17 @@ def search(padded: np.ndarray, half_size: float, resolution: float, distances: n
                     row = int(min(max((ys[k] + half_size) * scale + 1.0, 0.0), cells + 1.0))
                     last_clearance = padded[row, column]
                     speed = math.hypot(vx, vy) if omni else abs(vx)
-                    need = static + speed_margin * speed
+                    # Crawling needs no margin for its speed (it stops within a period),
+                    # and walls and furniture may count a little farther then.
+                    crawling = speed <= crawl
+                    need = static if crawling else static + speed_margin * speed
                     if last_clearance < need + slack:
                         # A cell's clearance is at most half its diagonal short of the
                         # exact one: with that bound every return that counts is seen.
+                        farther = crawl_allowance if crawling else 0.0
                         last_clearance = clearance_near(
                             returns, starts, per_side, bucket, half_size, xs[k], ys[k],
-                            last_clearance + slack / 3.0 + 1e-9, nearer)
+                            last_clearance + slack / 3.0 + farther + 1e-9, nearer, farther)
                     if last_clearance < need:
                         ok = False
                         break
