@@ -79,6 +79,23 @@ def test_a_request_to_nobody_by_name_is_heard_by_whoever_stands_in_the_door(
     assert robot.move_to(Pose(*apartment.placements["desk"].approach)).reached
 
 
+def test_someone_stepping_out_of_a_doorway_stands_on_free_floor(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    from homebot.robot import HelpRequest
+
+    simulation = Simulation(apartment, seed=1, navigator=apartment_navigator)
+    visitor = simulation.place_person_in_doorway("kitchen door")
+    robot = SimRobot(simulation)
+    assert robot.move_to(Pose(9.5, 5.0, -1.57)).person == visitor  # they block the door
+    assert robot.request("", HelpRequest.STEP_ASIDE, "kitchen door")
+    # the kitchen's middle lies under its table: they stand beside it, in the kitchen
+    kitchen = apartment.room_polygons["kitchen"].centroid
+    assert apartment.placements["kitchen table"].footprint.contains(kitchen)
+    spot = simulation.people[visitor].position
+    assert apartment.room_at(*spot) == "kitchen"
+    assert apartment.footprint_problem(*spot, radius=0.15) is None
+
+
 def test_grasp_needs_reach_and_can_slip(apartment: World, apartment_navigator: Navigator) -> None:
     slippery = DisturbanceModel(grasp_slip=1.0)
     simulation = Simulation(apartment, seed=1, disturbances=slippery,

@@ -290,8 +290,8 @@ class SimRobot(Robot):
         if not state.model.cooperative:
             return False
         if request is HelpRequest.STEP_ASIDE and state.blocking_door == target:
-            room = sim.world.room_polygons[state.room].centroid
-            sim.move_person(person, (room.x, room.y))
+            middle = sim.world.room_polygons[state.room].centroid
+            sim.move_person(person, sim.free_floor_near((middle.x, middle.y)))
             return True
         if request is HelpRequest.STEP_ASIDE:
             # Anyone else in the way (a passer-by who stopped in a doorway, too) steps

@@ -270,6 +270,16 @@ class Simulation:
                     best = (score, spot)
         return best[1] if best else None
 
+    def free_floor_near(self, point: tuple[float, float]) -> tuple[float, float]:
+        """The free floor nearest ``point`` in its room (a room's middle may lie under its
+        table: nobody stands inside furniture); ``point`` when there is none."""
+        grid = self.navigator.grid
+        cell = grid.nearest_free(grid.blocked.ravel(), *grid.cell_of(*point))
+        if cell is None:
+            return point
+        spot = grid.center_of(*cell)
+        return spot if self.world.room_at(*spot) == self.world.room_at(*point) else point
+
     def distance_to(self, point: tuple[float, float]) -> float:
         return math.dist(self.robot_pose[:2], point)
 
