@@ -289,14 +289,13 @@ class SimRobot(Robot):
             return False
         if not state.model.cooperative:
             return False
-        if request is HelpRequest.STEP_ASIDE and state.blocking_door == target:
-            middle = sim.world.room_polygons[state.room].centroid
-            sim.move_person(person, sim.free_floor_near((middle.x, middle.y)))
-            return True
         if request is HelpRequest.STEP_ASIDE:
-            # Anyone else in the way (a passer-by who stopped in a doorway, too) steps
-            # off the robot's way where there is room.
+            # Whoever is in the way steps off the robot's way where there is room; one
+            # who blocked a doorway on purpose, finding none, goes into their room.
             spot = sim.spot_aside(state.position)
+            if spot is None and state.blocking_door == target:
+                middle = sim.world.room_polygons[state.room].centroid
+                spot = sim.free_floor_near((middle.x, middle.y))
             if spot is None:
                 return False
             sim.move_person(person, spot)
