@@ -117,10 +117,10 @@ def test_a_look_weighs_its_views_together(detector: FaceDetector) -> None:
     # a stranger's look is named less often than a stranger's single view (this small
     # cascade's windows wander: its strangers are named more often than the bench's)
     looks = [[face_view(face_identity(f"x{i}", 5), rng)[0] for _ in range(6)]
-             for i in range(20)]
-    by_look = sum(memory.identify_look(views)[0] is not None for views in looks) / 20
+             for i in range(15)]
+    by_look = sum(memory.identify_look(views)[0] is not None for views in looks) / 15
     by_view = sum(memory.identify(view)[0] is not None for views in looks
-                  for view in views) / 120
+                  for view in views) / 90
     assert by_look < 0.8 * by_view
     assert memory.identify_look([np.zeros((80, 80), dtype=np.uint8)]) == (None, math.inf)
     # the look's threshold is learnt from the enrolment: narrower for more views
