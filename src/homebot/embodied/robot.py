@@ -65,7 +65,7 @@ _IN_THE_WAY = 0.8  #: metres from the robot's way within which a person stands i
 _FOLLOWING_REACH = 2.0  #: metres within which the person to follow must stand
 _ASKING_DISTANCE = 1.2  #: metres from a person where the robot stops to ask them something
 _INTRODUCTION_VIEWS = 20  #: face views enrolled while a person says their name (2 s at 10 Hz)
-_RECOGNITION_VIEWS = 10  #: face views whose majority names the person in front
+_RECOGNITION_VIEWS = 10  #: face views weighed together to name the person in front
 
 
 class Companions(Protocol):
