@@ -116,3 +116,21 @@ def test_the_arms_scene_puts_objects_where_perception_saw_them() -> None:
         assert where is not None and where[:2] == detection.position
         assert where[3] == surface_height(world.placements["coffee table"].model)
     assert robot.seen and all(p == "coffee table" for p, _ in robot.seen.values())
+
+
+def test_what_the_hand_holds_stays_held_when_the_robot_moves_on() -> None:
+    # The arm's scene is built again wherever the robot stops; the hand closed on the
+    # chocolate bar must go on squeezing it there, not merely stand at its width.
+    world = World.load("apartment")
+    sim = Simulation(world, seed=1)
+    body = SimBody(sim)
+    control = ArmControl(body, world, _locate(sim, body), seed=1)  # type: ignore[arg-type]
+    stand = Pose(*world.placements["coffee table"].approach)
+    body.teleport(stand)
+    assert control.pick("chocolate bar", stand)
+    for step in range(3):
+        body.teleport(Pose(stand.x + 0.3 * (step + 1), stand.y, stand.theta))
+        assert control.gripper_holds()  # the scene is built where the robot now stands
+        body.tick(60)  # three seconds of physics there, nothing else holding the bar up
+        assert sim.hands["left"] == "chocolate bar", step
+        assert control.gripper_holds()

@@ -144,13 +144,16 @@ class ArmSimulation:
         torso: the torso lift's start height.
         held: an object to start in the gripper with its pose relative to the grasp site
             (``relative_to_grasp``), e.g. when the scene is rebuilt at another placement.
+        grip: the gripper's command (width, force) when it differs from ``gripper``, the
+            fingers' start width: a hand closed on an object keeps squeezing it.
     """
 
     def __init__(self, *, base: tuple[float, float, float],
                  surfaces: Sequence[SurfaceBox] = (), objects: Sequence[ObjectBody] = (),
                  model_path: Path | None = None, arm: Sequence[float] = HOME,
                  torso: float = 0.2, gripper: float = MAX_GRIPPER_WIDTH,
-                 held: tuple[ObjectBody, np.ndarray] | None = None) -> None:
+                 held: tuple[ObjectBody, np.ndarray] | None = None,
+                 grip: tuple[float, float | None] | None = None) -> None:
         import mujoco
 
         self._mj = mujoco
@@ -203,7 +206,8 @@ class ArmSimulation:
         self.data.qpos[self._torso_q] = torso
         self.data.qpos[self._finger_q] = gripper / 2
         self.command(arm, torso=torso)
-        self.command_gripper(gripper)
+        self.gripper_command: tuple[float, float | None] = (gripper, None)
+        self.command_gripper(*(grip or (gripper, None)))
         mujoco.mj_forward(m, self.data)
         if held is not None:
             self._put_in_gripper(held[0], held[1])
@@ -228,6 +232,8 @@ class ArmSimulation:
     def command_gripper(self, width: float, force: float | None = None) -> None:
         """Move the fingers to ``width`` apart (metres); ``force`` caps each finger's push."""
         half = max(0.0, min(MAX_GRIPPER_WIDTH, width)) / 2
+        # the force cap stays in the model until changed: the command keeps it too
+        self.gripper_command = (width, force if force is not None else self.gripper_command[1])
         self.data.ctrl[self._finger_act] = half
         if force is not None:
             for act in self._finger_act:

@@ -177,6 +177,7 @@ class SimHands:
         self._arm: tuple[float, ...] = HOME
         self._torso = 0.2
         self._gripper = MAX_GRIPPER_WIDTH
+        self._grip: tuple[float, float | None] = (MAX_GRIPPER_WIDTH, None)
         self._held: tuple[ObjectBody, np.ndarray] | None = None
         self._surfaces: dict[str, SurfaceBox] = {}
         self._gone: set[str] = set()
@@ -226,6 +227,7 @@ class SimHands:
         self._arm = tuple(float(v) for v in sim.arm_positions())
         self._torso = sim.torso_height()
         self._gripper = sim.gripper_width()
+        self._grip = sim.gripper_command
         held = sim.held_object()
         self._held = (sim.objects[held], sim.relative_to_grasp(held)) if held else None
 
@@ -244,7 +246,8 @@ class SimHands:
             else None
         sim = ArmSimulation(base=pose, surfaces=surfaces, objects=objects,
                             model_path=self.model_path, arm=self._arm, torso=self._torso,
-                            gripper=self._gripper if held else MAX_GRIPPER_WIDTH, held=held)
+                            gripper=self._gripper if held else MAX_GRIPPER_WIDTH, held=held,
+                            grip=self._grip if held else None)
         self._driver = ArmDriver(sim, self.tick_period, start=truth.clock.now())
         self._base = pose
         self._gone = set()
