@@ -16,7 +16,7 @@ import numpy as np
 
 from homebot.sim.body_tracker import lying_body_outline
 from homebot.sim.simulation import Simulation
-from homebot.world import PlacementKind
+from homebot.world import PlacementKind, Posture
 
 __all__ = ["PeopleWalking", "Walker"]
 
@@ -63,6 +63,8 @@ class PeopleWalking:
         self.walkers = [Walker(name, rng.uniform(*_SPEED),
                                leaves_at=simulation.clock.now() + rng.uniform(0.0, _DWELL[1]))
                         for name in names]
+        self._outlines: dict[tuple[str, tuple[float, float]],
+                             list[tuple[float, float]] | None] = {}
 
     def legs(self) -> list[tuple[float, float]]:
         """Where every person's two legs are (walkers and those standing still)."""
@@ -75,8 +77,7 @@ class PeopleWalking:
         headings = {walker.name: walker.heading for walker in self.walkers}
         legs: list[tuple[str, tuple[float, float]]] = []
         for name, state in sorted(self.sim.people.items()):
-            lying = lying_body_outline(self.sim.world, name, state.model, state.posture,
-                                       state.position, self.facing(name))
+            lying = self._lying_outline(name)
             if lying is not None:
                 legs.extend((name, point) for point in lying)
                 continue
@@ -86,6 +87,19 @@ class PeopleWalking:
                 legs.append((name, (x + side * _LEG_SPREAD * math.cos(across),
                                     y + side * _LEG_SPREAD * math.sin(across))))
         return legs
+
+    def _lying_outline(self, name: str) -> list[tuple[float, float]] | None:
+        """``lying_body_outline`` of ``name`` as they are now; kept while they lie still
+        (every laser sweep asks, and finding the bed under them is slow)."""
+        state = self.sim.people[name]
+        if state.posture is not Posture.LYING:
+            return None
+        key = (name, state.position)
+        if key not in self._outlines:
+            self._outlines[key] = lying_body_outline(self.sim.world, name, state.model,
+                                                     state.posture, state.position,
+                                                     self.facing(name))
+        return self._outlines[key]
 
     def facing(self, name: str) -> float:
         """Which way a person faces: where they walk, else the middle of their room."""
