@@ -29,13 +29,19 @@ def _locate(sim: Simulation, body: SimBody) -> object:
     return locate
 
 
-def test_a_pick_puts_the_object_in_a_hand_and_a_place_puts_it_back_on_the_table() -> None:
+def _at_the_coffee_table() -> tuple[Simulation, SimBody, ArmControl, Pose]:
+    """The apartment's robot with its arm, standing at the coffee table."""
     world = World.load("apartment")
     sim = Simulation(world, seed=1)
     body = SimBody(sim)
     control = ArmControl(body, world, _locate(sim, body), seed=1)  # type: ignore[arg-type]
     stand = Pose(*world.placements["coffee table"].approach)
     body.teleport(stand)
+    return sim, body, control, stand
+
+
+def test_a_pick_puts_the_object_in_a_hand_and_a_place_puts_it_back_on_the_table() -> None:
+    sim, body, control, stand = _at_the_coffee_table()
     assert control.pick("crisps", stand)
     assert sim.object_location["crisps"] == "hand:left" and sim.hands["left"] == "crisps"
     body.tick(20)  # the base stands still: the arm goes on holding it
@@ -121,12 +127,7 @@ def test_the_arms_scene_puts_objects_where_perception_saw_them() -> None:
 def test_what_the_hand_holds_stays_held_when_the_robot_moves_on() -> None:
     # The arm's scene is built again wherever the robot stops; the hand closed on the
     # chocolate bar must go on squeezing it there, not merely stand at its width.
-    world = World.load("apartment")
-    sim = Simulation(world, seed=1)
-    body = SimBody(sim)
-    control = ArmControl(body, world, _locate(sim, body), seed=1)  # type: ignore[arg-type]
-    stand = Pose(*world.placements["coffee table"].approach)
-    body.teleport(stand)
+    sim, body, control, stand = _at_the_coffee_table()
     assert control.pick("chocolate bar", stand)
     for step in range(3):
         body.teleport(Pose(stand.x + 0.3 * (step + 1), stand.y, stand.theta))
