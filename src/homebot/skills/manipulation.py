@@ -229,18 +229,20 @@ def _come_to(context: SkillContext, person: str) -> Outcome | None:
     may be stale (asked to let the robot by, they stepped aside). Seen again from nearer,
     they may be elsewhere (a look from afar can take someone else for them): the robot
     drives once more, and fails ``not_found`` if they are still out of arm's length."""
+    def out_of_reach() -> bool:
+        position = context.beliefs.person_at.get(person)
+        return position is not None and \
+            math.dist(context.robot.pose().xy(), position) > HANDING_REACH
+
     seen = _look_for(context, person)
     for _ in range(_APPROACHES):
-        position = context.beliefs.person_at.get(person)
-        if position is None or math.dist(context.robot.pose().xy(), position) <= HANDING_REACH:
+        if not out_of_reach():
             break
         moved = drive_to_target(context, person)
         if moved is not None:
             return moved
         seen = _look_for(context, person)
-    position = context.beliefs.person_at.get(person)
-    if not seen or (position is not None and
-                    math.dist(context.robot.pose().xy(), position) > HANDING_REACH):
+    if not seen or out_of_reach():
         return Outcome.failed(ErrorCode.NOT_FOUND, f"I cannot see {person}", person=person)
     return None
 
