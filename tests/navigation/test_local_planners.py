@@ -172,6 +172,39 @@ def test_exact_clearance_is_the_distance_to_the_nearest_return() -> None:
         assert exact - grid.slack / 3 - 1e-9 <= cell <= max(exact, 0.0) + grid.slack
 
 
+def test_local_grid_clearance_is_an_exact_distance_transform() -> None:
+    # Each cell's clearance is the distance from its centre to the return kept (the last
+    # to fall) in one of its nearest occupied cells, nearest by an exact Euclidean distance.
+    pytest.importorskip("numba")
+    from homebot.navigation import motion_search
+
+    rng = np.random.default_rng(5)
+    cells, resolution = 41, 0.05
+    half = cells * resolution / 2
+    centres = (np.arange(cells) + 0.5) * resolution - half
+    for count in (1, 7, 60, 400):
+        points = rng.uniform(-1.2 * half, 1.2 * half, (count, 2))
+        clearance = motion_search.clearance_grid(points, cells, half, resolution, 10.0)
+        columns = np.floor((points[:, 0] + half) / resolution).astype(int)
+        rows = np.floor((points[:, 1] + half) / resolution).astype(int)
+        inside = (columns >= 0) & (columns < cells) & (rows >= 0) & (rows < cells)
+        kept: dict[tuple[int, int], np.ndarray] = {}
+        for row, column, point in zip(rows[inside], columns[inside], points[inside],
+                                      strict=True):
+            kept[int(row), int(column)] = point
+        if not kept:
+            assert np.all(clearance == 10.0)
+            continue
+        occupied = np.array(list(kept))
+        returns = np.array(list(kept.values()))
+        for row, column in itertools.product(range(cells), range(cells)):
+            gaps = np.hypot(occupied[:, 0] - row, occupied[:, 1] - column)
+            nearest = np.isclose(gaps, gaps.min())
+            candidates = np.hypot(returns[nearest, 0] - centres[column],
+                                  returns[nearest, 1] - centres[row])
+            assert np.isclose(candidates, clearance[row, column]).any()
+
+
 @pytest.mark.parametrize(("start", "goal"), [((0.0, 0.0), (3.0, 0.37)),
                                              ((0.66, 0.0), (3.0, 0.0))])
 @pytest.mark.parametrize("allowance", [0.0, 0.02])

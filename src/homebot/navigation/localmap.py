@@ -220,49 +220,18 @@ class LocalGrid:
 
 def _returns(scan: LaserScan) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The scan's returns (robot frame), which belong to legs (pairs of small clusters in
-    front of what is beside them) and which to wide clusters (walls, furniture)."""
+    front of what is beside them) and which to wide clusters (walls, furniture); see
+    ``motion_search.classify_returns``."""
+    from homebot.navigation import motion_search  # numba: only once a controller plans
+
     keep = scan.valid()
     ranges = np.where(keep, scan.ranges, np.nan)
     angles = scan.angles() + scan.mount.theta
-    points = np.column_stack((scan.mount.x + ranges * np.cos(angles),
-                              scan.mount.y + ranges * np.sin(angles)))
-    count = len(ranges)
-    if count == 0:
-        return points[keep], np.zeros(0, dtype=bool), np.zeros(0, dtype=bool)
-    # Clusters: runs of neighbouring beams whose ranges differ by less than a jump.
-    jump = np.ones(count, dtype=bool)
-    jump[1:] = ~(np.abs(np.diff(ranges)) < _CLUSTER_JUMP)
-    label = np.cumsum(jump) - 1
-    starts = np.flatnonzero(jump)
-    ends = np.append(starts[1:], count) - 1
-    extent = np.hypot(points[ends, 0] - points[starts, 0], points[ends, 1] - points[starts, 1])
-    # In front of what is beside it on both sides (or nothing there).
-    before = np.where(starts > 0, ranges[np.maximum(starts - 1, 0)], np.inf)
-    after = np.where(ends < count - 1, ranges[np.minimum(ends + 1, count - 1)], np.inf)
-    nearer_before = np.nan_to_num(before, nan=np.inf) > ranges[starts] + _CLUSTER_JUMP
-    nearer_after = np.nan_to_num(after, nan=np.inf) > ranges[ends] + _CLUSTER_JUMP
-    narrow = (extent < _SMALL) & np.isfinite(ranges[starts])
-    free = narrow & nearer_before & nearer_after
-    # Legs come in pairs: keep small clusters with another one close beside them.
-    middles = (points[starts] + points[ends]) / 2
-    small_cluster = np.zeros(len(starts), dtype=bool)
-    candidates = np.flatnonzero(free)
-    if len(candidates) > 1:
-        gaps = np.hypot(*(middles[candidates, None, :] - middles[None, candidates, :]).T)
-        np.fill_diagonal(gaps, np.inf)
-        small_cluster[candidates] = gaps.min(axis=0) < _PAIR
-    # Or one leg half hidden behind the other (a person seen from the side, often in a
-    # doorway): the cluster just beyond a free one in the sweep, narrow, of a few beams
-    # (not one beam of a wall seen edge-on) and in front of what is on its other side.
-    close = np.hypot(*(middles[1:] - middles[:-1]).T) < _PAIR
-    hidden = narrow & (ends - starts + 1 >= _HIDDEN_BEAMS)
-    behind_after = free[:-1] & hidden[1:] & nearer_after[1:] & close
-    behind_before = free[1:] & hidden[:-1] & nearer_before[:-1] & close
-    small_cluster[:-1] |= behind_after | behind_before
-    small_cluster[1:] |= behind_after | behind_before
-    small = small_cluster[label]
-    wide = (extent >= _SMALL)[label]
-    return points[keep], small[keep], wide[keep]
+    xs = scan.mount.x + ranges * np.cos(angles)
+    ys = scan.mount.y + ranges * np.sin(angles)
+    small, wide = motion_search.classify_returns(ranges, xs, ys, _CLUSTER_JUMP, _SMALL, _PAIR,
+                                                 _HIDDEN_BEAMS)
+    return np.column_stack((xs[keep], ys[keep])), small[keep], wide[keep]
 
 
 def _bucketed(points: np.ndarray, nearer: np.ndarray, wide: np.ndarray, half: float,
@@ -282,17 +251,9 @@ def _bucketed(points: np.ndarray, nearer: np.ndarray, wide: np.ndarray, half: fl
 
 def _clearance(points: np.ndarray, cells: int, half: float, resolution: float) -> np.ndarray:
     """Per cell, the distance from its centre to the return kept in the nearest occupied cell."""
-    if not len(points):
-        return np.full((cells, cells), 10.0)
     from homebot.navigation import motion_search  # numba: only once a controller plans
 
-    occupied, kept = motion_search.rasterise(points, cells, half, resolution)
-    if not occupied.any():
-        return np.full((cells, cells), 10.0)
-    near_rows, near_columns = ndimage.distance_transform_edt(
-        ~occupied, return_distances=False, return_indices=True)
-    clearance: np.ndarray = motion_search.distances_to_kept(kept, near_rows, near_columns,
-                                                            half, resolution)
+    clearance: np.ndarray = motion_search.clearance_grid(points, cells, half, resolution, 10.0)
     return clearance
 
 

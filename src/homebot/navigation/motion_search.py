@@ -7,8 +7,8 @@ clearance (grown by the speed), the heuristic (time to go) and the open list
 arrays (see ``homebot.navigation.compiled``), so tests can run the very same
 code as ``search.py_func``. ``coarse_field`` (with ``sweep``, one Dijkstra) is
 the search by length before it, ``expand`` puts its result back on the local
-grid, and ``rasterise`` and ``distances_to_kept`` build that grid's clearance
-from a scan around scipy's distance transform. This module is imported when a
+grid, ``clearance_grid`` builds that grid's clearance from a scan's returns and
+``classify_returns`` tells legs and walls among them. This module is imported when a
 local controller first plans.
 """
 
@@ -20,7 +20,7 @@ import numpy as np
 
 from homebot.navigation.compiled import compiled as _compiled
 
-__all__ = ["clearance_near", "downhill_at", "search", "sweep"]
+__all__ = ["classify_returns", "clearance_near", "downhill_at", "search", "sweep"]
 
 
 # ------------------------------------------------------------------ helpers
@@ -532,12 +532,20 @@ def expand(coarse: np.ndarray, pool: int, cells: int) -> np.ndarray:
 
 
 @_compiled
-def rasterise(points: np.ndarray, cells: int, half: float,
-              resolution: float) -> tuple[np.ndarray, np.ndarray]:
-    """The cells (``cells`` × ``cells``, from −``half``) the points fall in, and per cell the
-    last point that fell in it."""
+def clearance_grid(points: np.ndarray, cells: int, half: float, resolution: float,
+                   outside: float) -> np.ndarray:
+    """Per cell of a ``cells`` × ``cells`` grid from −``half`` (rows along y), the distance
+    from its centre to the point kept in its nearest occupied cell (the last point that fell
+    in that cell); ``outside`` everywhere when no point falls in the grid.
+
+    The nearest occupied cell comes from an exact Euclidean distance transform
+    (Felzenszwalb and Huttenlocher's: the nearest occupied row in each column,
+    then per row the lower envelope of the parabolas those rows make).
+    """
+    clearance = np.full((cells, cells), outside)
     occupied = np.zeros((cells, cells), dtype=np.bool_)
     kept = np.zeros((cells, cells, 2))
+    any_occupied = False
     for k in range(points.shape[0]):
         column = int(np.floor((points[k, 0] + half) / resolution))
         row = int(np.floor((points[k, 1] + half) / resolution))
@@ -545,20 +553,140 @@ def rasterise(points: np.ndarray, cells: int, half: float,
             occupied[row, column] = True
             kept[row, column, 0] = points[k, 0]
             kept[row, column, 1] = points[k, 1]
-    return occupied, kept
+            any_occupied = True
+    if not any_occupied:
+        return clearance
+    # Down each column: the nearest occupied row (−1: the column has none).
+    near_row = np.full((cells, cells), -1, dtype=np.int64)
+    for column in range(cells):
+        last = -1
+        for row in range(cells):
+            if occupied[row, column]:
+                last = row
+            near_row[row, column] = last
+        last = -1
+        for row in range(cells - 1, -1, -1):
+            if occupied[row, column]:
+                last = row
+            if last >= 0 and (near_row[row, column] < 0 or
+                              last - row < row - near_row[row, column]):
+                near_row[row, column] = last
+    # Along each row: the lower envelope of (x − j)² + (row gap in column j)².
+    sites = np.zeros(cells, dtype=np.int64)
+    bounds = np.zeros(cells + 1)
+    heights = np.zeros(cells)
+    for row in range(cells):
+        k = -1
+        for q in range(cells):
+            if near_row[row, q] < 0:
+                continue
+            gap = near_row[row, q] - row
+            heights[q] = float(gap * gap + q * q)
+            if k < 0:
+                k = 0
+                sites[0] = q
+                bounds[0] = -np.inf
+                bounds[1] = np.inf
+                continue
+            crossing = 0.0
+            while True:
+                crossing = (heights[q] - heights[sites[k]]) / (2.0 * (q - sites[k]))
+                if crossing <= bounds[k]:
+                    k -= 1
+                else:
+                    break
+            k += 1
+            sites[k] = q
+            bounds[k] = crossing
+            bounds[k + 1] = np.inf
+        k = 0
+        y = (row + 0.5) * resolution - half
+        for column in range(cells):
+            while bounds[k + 1] < column:
+                k += 1
+            j = sites[k]
+            i = near_row[row, j]
+            dx = kept[i, j, 0] - ((column + 0.5) * resolution - half)
+            dy = kept[i, j, 1] - y
+            clearance[row, column] = math.sqrt(dx * dx + dy * dy)
+    return clearance
 
 
 @_compiled
-def distances_to_kept(kept: np.ndarray, near_rows: np.ndarray, near_columns: np.ndarray,
-                      half: float, resolution: float) -> np.ndarray:
-    """Per cell, the distance from its centre to the point kept in its nearest occupied cell
-    (``near_rows``, ``near_columns``: the distance transform's indices)."""
-    cells = kept.shape[0]
-    clearance = np.empty((cells, cells))
-    for row in range(cells):
-        y = (row + 0.5) * resolution - half
-        for column in range(cells):
-            x = (column + 0.5) * resolution - half
-            r, c = near_rows[row, column], near_columns[row, column]
-            clearance[row, column] = np.hypot(kept[r, c, 0] - x, kept[r, c, 1] - y)
-    return clearance
+def classify_returns(ranges: np.ndarray, xs: np.ndarray, ys: np.ndarray, jump: float,
+                     small_extent: float, pair: float,
+                     hidden_beams: int) -> tuple[np.ndarray, np.ndarray]:
+    """Per beam, whether its return belongs to a leg and whether to a wide cluster.
+
+    Beams are ``ranges`` (NaN: no return) with their returns at (``xs``, ``ys``).
+    A cluster is a run of neighbouring beams whose ranges differ by less than
+    ``jump``. A leg's cluster is narrower than ``small_extent``, in front of the
+    beams either side of it (or of nothing there), and paired: another such
+    cluster lies within ``pair``, or the next cluster in the sweep is a leg half
+    hidden behind it (narrow, of ``hidden_beams`` beams at least, in front of
+    its far side, within ``pair``). A cluster at least ``small_extent`` wide is
+    a wall's or furniture's.
+    """
+    count = ranges.shape[0]
+    small = np.zeros(count, dtype=np.bool_)
+    wide = np.zeros(count, dtype=np.bool_)
+    if count == 0:
+        return small, wide
+    # Clusters: where each starts and ends (NaN ranges never join a cluster).
+    starts = np.empty(count, dtype=np.int64)
+    clusters = 0
+    for i in range(count):
+        if i == 0 or not abs(ranges[i] - ranges[i - 1]) < jump:
+            starts[clusters] = i
+            clusters += 1
+    ends = np.empty(clusters, dtype=np.int64)
+    for c in range(clusters - 1):
+        ends[c] = starts[c + 1] - 1
+    ends[clusters - 1] = count - 1
+    narrow = np.zeros(clusters, dtype=np.bool_)
+    is_wide = np.zeros(clusters, dtype=np.bool_)
+    free = np.zeros(clusters, dtype=np.bool_)
+    nearer_before = np.zeros(clusters, dtype=np.bool_)
+    nearer_after = np.zeros(clusters, dtype=np.bool_)
+    middle_x = np.empty(clusters)
+    middle_y = np.empty(clusters)
+    for c in range(clusters):
+        s, e = starts[c], ends[c]
+        extent = math.hypot(xs[e] - xs[s], ys[e] - ys[s])
+        before = ranges[s - 1] if s > 0 else np.inf
+        after = ranges[e + 1] if e < count - 1 else np.inf
+        if math.isnan(before):
+            before = np.inf
+        if math.isnan(after):
+            after = np.inf
+        nearer_before[c] = before > ranges[s] + jump
+        nearer_after[c] = after > ranges[e] + jump
+        narrow[c] = extent < small_extent and math.isfinite(ranges[s])
+        is_wide[c] = extent >= small_extent
+        free[c] = narrow[c] and nearer_before[c] and nearer_after[c]
+        middle_x[c] = (xs[s] + xs[e]) / 2.0
+        middle_y[c] = (ys[s] + ys[e]) / 2.0
+    leg = np.zeros(clusters, dtype=np.bool_)
+    for a in range(clusters):
+        if not free[a]:
+            continue
+        for b in range(clusters):
+            if b != a and free[b] and \
+                    math.hypot(middle_x[a] - middle_x[b], middle_y[a] - middle_y[b]) < pair:
+                leg[a] = True
+                break
+    # Or one leg half hidden behind the other: the cluster next to a free one in the sweep.
+    for c in range(clusters - 1):
+        if not math.hypot(middle_x[c + 1] - middle_x[c], middle_y[c + 1] - middle_y[c]) < pair:
+            continue
+        hidden_after = narrow[c + 1] and ends[c + 1] - starts[c + 1] + 1 >= hidden_beams
+        hidden_before = narrow[c] and ends[c] - starts[c] + 1 >= hidden_beams
+        if (free[c] and hidden_after and nearer_after[c + 1]) or \
+                (free[c + 1] and hidden_before and nearer_before[c]):
+            leg[c] = True
+            leg[c + 1] = True
+    for c in range(clusters):
+        for i in range(starts[c], ends[c] + 1):
+            small[i] = leg[c]
+            wide[i] = is_wide[c]
+    return small, wide
