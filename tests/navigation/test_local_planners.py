@@ -205,6 +205,23 @@ def test_local_grid_clearance_is_an_exact_distance_transform() -> None:
             assert np.isclose(candidates, clearance[row, column]).any()
 
 
+def test_cells_the_local_search_cannot_reach_lead_to_the_nearest_it_can() -> None:
+    # An unreached cell gets the field of its nearest reached cell plus the way there.
+    pytest.importorskip("numba")
+    from homebot.navigation import motion_search
+
+    rng = np.random.default_rng(8)
+    field = np.where(rng.random((23, 23)) < 0.3, rng.uniform(0.0, 5.0, (23, 23)), np.inf)
+    filled = motion_search.fill_unreached(field, 0.1)
+    reached = np.argwhere(np.isfinite(field))
+    for row, column in itertools.product(range(23), range(23)):
+        gaps = np.hypot(reached[:, 0] - row, reached[:, 1] - column)
+        nearest = reached[np.isclose(gaps, gaps.min())]
+        assert np.isclose(filled[row, column],
+                          field[nearest[:, 0], nearest[:, 1]] + 0.1 * gaps.min()).any()
+    assert np.all(np.isinf(motion_search.fill_unreached(np.full((5, 5), np.inf), 0.1)))
+
+
 @pytest.mark.parametrize(("start", "goal"), [((0.0, 0.0), (3.0, 0.37)),
                                              ((0.66, 0.0), (3.0, 0.0))])
 @pytest.mark.parametrize("allowance", [0.0, 0.02])

@@ -22,7 +22,6 @@ from dataclasses import dataclass, field
 from typing import Protocol
 
 import numpy as np
-from scipy import ndimage
 
 from homebot.errors import NavigationError
 from homebot.robot import DriveKind, LaserScan, Pose, Twist, VelocityLimits
@@ -120,6 +119,8 @@ class LocalGrid:
         ``leg_margin``, returns in pairs of small free-standing clusters (legs:
         the person above them is wider) count that much nearer.
         """
+        from homebot.navigation import motion_search  # numba: only once a controller plans
+
         cells = round(size / resolution) | 1
         half = cells * resolution / 2
         points, small, wide = _returns(scan)
@@ -129,7 +130,8 @@ class LocalGrid:
             clearance = np.minimum(clearance, np.maximum(legs, 0.0))
         nearer = np.where(small, leg_margin, 0.0) if leg_margin > 0 else np.zeros(len(points))
         per_side = max(math.ceil(2 * half / _BUCKET), 1)
-        returns, starts = _bucketed(points, nearer, wide, half, _BUCKET, per_side)
+        returns, starts = motion_search.bucketed(points, nearer, wide, half, _BUCKET,
+                                                 per_side)
         return cls(resolution, half, np.asarray(clearance, dtype=float), returns=returns,
                    starts=starts, bucket=_BUCKET, per_side=per_side,
                    leg_margin=max(leg_margin, 0.0))
@@ -208,12 +210,7 @@ class LocalGrid:
             self.clearance, grown, pool, (target[0] + self.half_size) / resolution,
             (target[1] + self.half_size) / resolution, max(margin, 1e-6), top, resolution)
         if not everywhere:
-            reached = np.isfinite(coarse)
-            if not reached.any():
-                return np.full(self.clearance.shape, np.inf)
-            gap, (near_rows, near_columns) = ndimage.distance_transform_edt(
-                ~reached, return_indices=True)
-            coarse = np.where(reached, coarse, coarse[near_rows, near_columns] + gap * resolution)
+            coarse = motion_search.fill_unreached(coarse, resolution)
         field: np.ndarray = motion_search.expand(coarse, pool, self.cells)
         return field
 
@@ -232,21 +229,6 @@ def _returns(scan: LaserScan) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     small, wide = motion_search.classify_returns(ranges, xs, ys, _CLUSTER_JUMP, _SMALL, _PAIR,
                                                  _HIDDEN_BEAMS)
     return np.column_stack((xs[keep], ys[keep])), small[keep], wide[keep]
-
-
-def _bucketed(points: np.ndarray, nearer: np.ndarray, wide: np.ndarray, half: float,
-              bucket: float, per_side: int) -> tuple[np.ndarray, np.ndarray]:
-    """The returns in the grid as (x, y, nearer, wide) rows sorted by bucket, and each
-    bucket's first row (``per_side``² + 1 entries)."""
-    columns = np.floor((points[:, 0] + half) / bucket).astype(np.int64)
-    rows = np.floor((points[:, 1] + half) / bucket).astype(np.int64)
-    inside = (columns >= 0) & (columns < per_side) & (rows >= 0) & (rows < per_side)
-    index = rows[inside] * per_side + columns[inside]
-    order = np.argsort(index, kind="stable")
-    returns = np.column_stack((points[inside], nearer[inside], wide[inside]))[order]
-    starts = np.zeros(per_side * per_side + 1, dtype=np.int64)
-    np.cumsum(np.bincount(index, minlength=per_side * per_side), out=starts[1:])
-    return np.ascontiguousarray(returns, dtype=float), starts
 
 
 def _clearance(points: np.ndarray, cells: int, half: float, resolution: float) -> np.ndarray:

@@ -7,8 +7,9 @@ clearance (grown by the speed), the heuristic (time to go) and the open list
 arrays (see ``homebot.navigation.compiled``), so tests can run the very same
 code as ``search.py_func``. ``coarse_field`` (with ``sweep``, one Dijkstra) is
 the search by length before it, ``expand`` puts its result back on the local
-grid, ``clearance_grid`` builds that grid's clearance from a scan's returns and
-``classify_returns`` tells legs and walls among them. This module is imported when a
+grid, ``clearance_grid`` builds that grid's clearance from a scan's returns,
+``classify_returns`` tells legs and walls among them and ``bucketed`` sorts them for
+``clearance_near``. This module is imported when a
 local controller first plans.
 """
 
@@ -20,7 +21,7 @@ import numpy as np
 
 from homebot.navigation.compiled import compiled as _compiled
 
-__all__ = ["classify_returns", "clearance_near", "downhill_at", "search", "sweep"]
+__all__ = ["bucketed", "classify_returns", "clearance_near", "downhill_at", "search", "sweep"]
 
 
 # ------------------------------------------------------------------ helpers
@@ -520,11 +521,14 @@ def expand(coarse: np.ndarray, pool: int, cells: int) -> np.ndarray:
     """``coarse`` back on the fine grid of ``cells``: each value ``pool`` × ``pool`` times,
     the last row and column repeated where ``cells`` is not a multiple of ``pool``."""
     n = coarse.shape[0]
+    coarse_column = np.empty(cells, dtype=np.int64)
+    for c in range(cells):
+        coarse_column[c] = min(c // pool, n - 1)
     field = np.empty((cells, cells))
     for r in range(cells):
         i = min(r // pool, n - 1)
         for c in range(cells):
-            field[r, c] = coarse[i, min(c // pool, n - 1)]
+            field[r, c] = coarse[i, coarse_column[c]]
     return field
 
 
@@ -532,55 +536,39 @@ def expand(coarse: np.ndarray, pool: int, cells: int) -> np.ndarray:
 
 
 @_compiled
-def clearance_grid(points: np.ndarray, cells: int, half: float, resolution: float,
-                   outside: float) -> np.ndarray:
-    """Per cell of a ``cells`` × ``cells`` grid from −``half`` (rows along y), the distance
-    from its centre to the point kept in its nearest occupied cell (the last point that fell
-    in that cell); ``outside`` everywhere when no point falls in the grid.
-
-    The nearest occupied cell comes from an exact Euclidean distance transform
-    (Felzenszwalb and Huttenlocher's: the nearest occupied row in each column,
-    then per row the lower envelope of the parabolas those rows make).
-    """
-    clearance = np.full((cells, cells), outside)
-    occupied = np.zeros((cells, cells), dtype=np.bool_)
-    kept = np.zeros((cells, cells, 2))
-    any_occupied = False
-    for k in range(points.shape[0]):
-        column = int(np.floor((points[k, 0] + half) / resolution))
-        row = int(np.floor((points[k, 1] + half) / resolution))
-        if 0 <= column < cells and 0 <= row < cells:
-            occupied[row, column] = True
-            kept[row, column, 0] = points[k, 0]
-            kept[row, column, 1] = points[k, 1]
-            any_occupied = True
-    if not any_occupied:
-        return clearance
+def nearest_occupied(occupied: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per cell, the row and column of the nearest occupied cell, by an exact Euclidean
+    distance transform (Felzenszwalb and Huttenlocher's: the nearest occupied row in each
+    column, then per row the lower envelope of the parabolas those rows make). Rows and
+    columns are −1 everywhere when no cell is occupied."""
+    rows, columns = occupied.shape
+    near_rows = np.full((rows, columns), -1, dtype=np.int64)
+    near_columns = np.full((rows, columns), -1, dtype=np.int64)
     # Down each column: the nearest occupied row (−1: the column has none).
-    near_row = np.full((cells, cells), -1, dtype=np.int64)
-    for column in range(cells):
+    column_near = np.full((rows, columns), -1, dtype=np.int64)
+    for column in range(columns):
         last = -1
-        for row in range(cells):
+        for row in range(rows):
             if occupied[row, column]:
                 last = row
-            near_row[row, column] = last
+            column_near[row, column] = last
         last = -1
-        for row in range(cells - 1, -1, -1):
+        for row in range(rows - 1, -1, -1):
             if occupied[row, column]:
                 last = row
-            if last >= 0 and (near_row[row, column] < 0 or
-                              last - row < row - near_row[row, column]):
-                near_row[row, column] = last
+            if last >= 0 and (column_near[row, column] < 0 or
+                              last - row < row - column_near[row, column]):
+                column_near[row, column] = last
     # Along each row: the lower envelope of (x − j)² + (row gap in column j)².
-    sites = np.zeros(cells, dtype=np.int64)
-    bounds = np.zeros(cells + 1)
-    heights = np.zeros(cells)
-    for row in range(cells):
+    sites = np.zeros(columns, dtype=np.int64)
+    bounds = np.zeros(columns + 1)
+    heights = np.zeros(columns)
+    for row in range(rows):
         k = -1
-        for q in range(cells):
-            if near_row[row, q] < 0:
+        for q in range(columns):
+            if column_near[row, q] < 0:
                 continue
-            gap = near_row[row, q] - row
+            gap = column_near[row, q] - row
             heights[q] = float(gap * gap + q * q)
             if k < 0:
                 k = 0
@@ -599,17 +587,99 @@ def clearance_grid(points: np.ndarray, cells: int, half: float, resolution: floa
             sites[k] = q
             bounds[k] = crossing
             bounds[k + 1] = np.inf
+        if k < 0:
+            return near_rows, near_columns  # nothing occupied at all
         k = 0
-        y = (row + 0.5) * resolution - half
-        for column in range(cells):
+        for column in range(columns):
             while bounds[k + 1] < column:
                 k += 1
-            j = sites[k]
-            i = near_row[row, j]
+            near_columns[row, column] = sites[k]
+            near_rows[row, column] = column_near[row, sites[k]]
+    return near_rows, near_columns
+
+
+@_compiled
+def clearance_grid(points: np.ndarray, cells: int, half: float, resolution: float,
+                   outside: float) -> np.ndarray:
+    """Per cell of a ``cells`` × ``cells`` grid from −``half`` (rows along y), the distance
+    from its centre to the point kept in its nearest occupied cell (the last point that fell
+    in that cell); ``outside`` everywhere when no point falls in the grid."""
+    clearance = np.full((cells, cells), outside)
+    occupied = np.zeros((cells, cells), dtype=np.bool_)
+    kept = np.zeros((cells, cells, 2))
+    any_occupied = False
+    for k in range(points.shape[0]):
+        column = int(np.floor((points[k, 0] + half) / resolution))
+        row = int(np.floor((points[k, 1] + half) / resolution))
+        if 0 <= column < cells and 0 <= row < cells:
+            occupied[row, column] = True
+            kept[row, column, 0] = points[k, 0]
+            kept[row, column, 1] = points[k, 1]
+            any_occupied = True
+    if not any_occupied:
+        return clearance
+    near_rows, near_columns = nearest_occupied(occupied)
+    for row in range(cells):
+        y = (row + 0.5) * resolution - half
+        for column in range(cells):
+            i, j = near_rows[row, column], near_columns[row, column]
             dx = kept[i, j, 0] - ((column + 0.5) * resolution - half)
             dy = kept[i, j, 1] - y
             clearance[row, column] = math.sqrt(dx * dx + dy * dy)
     return clearance
+
+
+@_compiled
+def fill_unreached(field: np.ndarray, resolution: float) -> np.ndarray:
+    """``field`` (metres; inf where not reached) with each unreached cell given its nearest
+    reached cell's value plus the straight way there (all inf when none was reached)."""
+    rows, columns = field.shape
+    reached = np.zeros((rows, columns), dtype=np.bool_)
+    for row in range(rows):
+        for column in range(columns):
+            reached[row, column] = math.isfinite(field[row, column])
+    near_rows, near_columns = nearest_occupied(reached)
+    filled = field.copy()
+    if near_rows[0, 0] < 0:
+        return filled
+    for row in range(rows):
+        for column in range(columns):
+            if not reached[row, column]:
+                i, j = near_rows[row, column], near_columns[row, column]
+                gap = math.sqrt(float((i - row) * (i - row) + (j - column) * (j - column)))
+                filled[row, column] = field[i, j] + gap * resolution
+    return filled
+
+
+@_compiled
+def bucketed(points: np.ndarray, nearer: np.ndarray, wide: np.ndarray, half: float,
+             bucket: float, per_side: int) -> tuple[np.ndarray, np.ndarray]:
+    """The points in a grid of ``per_side`` × ``per_side`` buckets (``bucket`` metres square,
+    from −``half``) as (x, y, nearer, wide) rows sorted by bucket (in their order within
+    one), and each bucket's first row (``per_side``² + 1 entries: a counting sort)."""
+    count = points.shape[0]
+    index = np.full(count, -1, dtype=np.int64)
+    starts = np.zeros(per_side * per_side + 1, dtype=np.int64)
+    for k in range(count):
+        column = int(np.floor((points[k, 0] + half) / bucket))
+        row = int(np.floor((points[k, 1] + half) / bucket))
+        if 0 <= column < per_side and 0 <= row < per_side:
+            index[k] = row * per_side + column
+            starts[index[k] + 1] += 1
+    for b in range(per_side * per_side):
+        starts[b + 1] += starts[b]
+    filled = starts[:-1].copy()
+    rows = np.zeros((starts[-1], 4))
+    for k in range(count):
+        b = index[k]
+        if b < 0:
+            continue
+        rows[filled[b], 0] = points[k, 0]
+        rows[filled[b], 1] = points[k, 1]
+        rows[filled[b], 2] = nearer[k]
+        rows[filled[b], 3] = 1.0 if wide[k] else 0.0
+        filled[b] += 1
+    return rows, starts
 
 
 @_compiled
