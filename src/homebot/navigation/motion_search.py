@@ -37,6 +37,12 @@ def _sign(value: float) -> float:
 
 
 @_compiled
+def _length(dx: float, dy: float) -> float:
+    """sqrt(dx² + dy²): ``math.hypot`` guards against overflow, at many times the cost."""
+    return math.sqrt(dx * dx + dy * dy)
+
+
+@_compiled
 def _ramp_time(distance: float, speed: float, top: float, acceleration: float) -> float:
     """Least time to cover ``distance`` from ``speed`` (may be negative) within ``top``."""
     speed = min(speed, top)
@@ -141,7 +147,7 @@ def clearance_near(returns: np.ndarray, starts: np.ndarray, per_side: int, bucke
         for column in range(low_column, high_column + 1):
             k = row * per_side + column
             for i in range(starts[k], starts[k + 1]):
-                gap = math.hypot(x - returns[i, 0], y - returns[i, 1]) - returns[i, 2] + \
+                gap = _length(x - returns[i, 0], y - returns[i, 1]) - returns[i, 2] + \
                     farther * returns[i, 3]
                 if gap < best:
                     best = gap
@@ -298,7 +304,7 @@ def search(padded: np.ndarray, half_size: float, resolution: float, distances: n
                 if omni:
                     # Hardly backwards: the laser sees ahead and to the sides.
                     end_x = min(max(end_x, -0.1), linear)
-                    if math.hypot(end_x, end_y) > linear + 1e-9:
+                    if _length(end_x, end_y) > linear + 1e-9:
                         continue
                 else:
                     end_x = min(max(end_x, 0.0), linear)
@@ -326,7 +332,7 @@ def search(padded: np.ndarray, half_size: float, resolution: float, distances: n
                     column = int(min(max((xs[k] + half_size) * scale + 1.0, 0.0), cells + 1.0))
                     row = int(min(max((ys[k] + half_size) * scale + 1.0, 0.0), cells + 1.0))
                     last_clearance = padded[row, column]
-                    speed = math.hypot(vx, vy) if omni else abs(vx)
+                    speed = _length(vx, vy) if omni else abs(vx)
                     # Crawling needs no margin for its speed (it stops within a period),
                     # and walls and furniture may count a little farther then.
                     crawling = speed <= crawl
@@ -350,16 +356,16 @@ def search(padded: np.ndarray, half_size: float, resolution: float, distances: n
                 row = int(min(max((y + half_size) * scale, 0.0), cells - 1.0))
                 # The field is coarse; the straight distance is a bound that is exact near
                 # the target.
-                remaining = max(distances[row, column], math.hypot(x - target_x, y - target_y))
+                remaining = max(distances[row, column], _length(x - target_x, y - target_y))
                 # At the goal, able to stop on it: v² ≤ 2·a·(distance left).
-                if final and math.hypot(end_x, end_y) > math.sqrt(
+                if final and _length(end_x, end_y) > math.sqrt(
                         2.0 * linear_acceleration * max(remaining - 0.02, 0.0)) + 0.05:
                     continue
                 # The time left: cover the distance from this speed, after turning where
                 # needed (a differential base must face the way down the distance field,
                 # and its speed counts only along that way).
                 if omni:
-                    to_go = _ramp_time(remaining, math.hypot(end_x, end_y), linear,
+                    to_go = _ramp_time(remaining, _length(end_x, end_y), linear,
                                        linear_acceleration)
                 else:
                     if remaining > 0.15:
@@ -373,7 +379,7 @@ def search(padded: np.ndarray, half_size: float, resolution: float, distances: n
                         # The way lies behind: either turn will do, so keep turning the way
                         # it turns now (otherwise the choice flips and the robot dithers).
                         error += spin * 2.0 * math.pi
-                    if math.hypot(target_x - x, target_y - y) <= goal_tolerance or \
+                    if _length(target_x - x, target_y - y) <= goal_tolerance or \
                             (final and remaining <= 0.15 and abs(error) < math.pi / 2):
                         # On the goal, or ahead of the robot close by at the end: no turn
                         # on the spot (beside it, though, the robot would circle it).
