@@ -54,6 +54,31 @@ def test_the_compiled_laser_is_its_plain_python(apartment: World,
         assert np.isfinite(compiled).sum() > len(compiled) // 2
 
 
+def test_the_laser_skips_only_samples_that_are_free_for_sure(
+        apartment: World, apartment_navigator: Navigator,
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    # Passing over the samples far from anything solid changes no range: the same sweeps
+    # as sampling every cell, from anywhere in the home (inside furniture too).
+    from homebot.sim import laser
+
+    body = _body(apartment, apartment_navigator, laser=QUIET_LASER)
+    rng = np.random.default_rng(2)
+    free_runs = laser._free_runs
+    for _ in range(40):
+        pose = Pose(rng.uniform(-0.5, 12.5), rng.uniform(-0.5, 8.5), rng.uniform(-3.1, 3.1))
+        body.teleport(pose)
+        skipping = body.scan().ranges
+        with monkeypatch.context() as patch:
+            patch.setattr(laser, "_free_runs", lambda solid: np.zeros(solid.shape, np.int32))
+            body.laser._free_runs.clear()
+            body.teleport(pose)
+            sampled = body.scan().ranges
+        body.laser._free_runs.clear()
+        np.testing.assert_array_equal(skipping, sampled)
+    # 5 cells from the edge: the samples 1 to 3 on are less than 5 cells away.
+    assert free_runs(np.zeros((9, 9), np.uint8))[4, 4] == 3
+
+
 def test_people_are_seen_by_their_legs(apartment: World, apartment_navigator: Navigator) -> None:
     body = _body(apartment, apartment_navigator, laser=QUIET_LASER)
     body.teleport(Pose(1.0, 5.0, 0.0))

@@ -2,7 +2,8 @@
 
 Every beam samples the 2 cm raster once a cell along its length until its
 first solid sample (a numba kernel, ``_march_beams``: each beam stops at its
-hit instead of sampling its whole range), which is refined by bisection; legs
+hit instead of sampling its whole range, and passes over samples that are free
+for sure, far from anything solid), which is refined by bisection; legs
 are intersected exactly as circles.
 Noise is Gaussian; a share of beams returns a spurious short range instead of
 the truth, as feet, reflections and clutter do to real lasers.
@@ -15,6 +16,7 @@ from collections.abc import Callable, Sequence
 from typing import Any, TypeVar, cast
 
 import numpy as np
+from scipy import ndimage
 
 from homebot.robot import LaserScan, Pose
 from homebot.sim.geometry import TRUTH_RESOLUTION, TrueGeometry
@@ -40,28 +42,35 @@ def _compiled(function: _F) -> _F:
 
 
 @_compiled
-def _march_beams(solid: np.ndarray, column0: np.float32, row0: np.float32, cos: np.ndarray,
-                 sin: np.ndarray, steps: np.ndarray, directions: np.ndarray, origin_x: float,
-                 origin_y: float, raster_x: float, raster_y: float, cell: float,
-                 range_max: float, bisections: int) -> np.ndarray:
+def _march_beams(solid: np.ndarray, free_run: np.ndarray, column0: np.float32,
+                 row0: np.float32, cos: np.ndarray, sin: np.ndarray, steps: np.ndarray,
+                 directions: np.ndarray, origin_x: float, origin_y: float, raster_x: float,
+                 raster_y: float, cell: float, range_max: float,
+                 bisections: int) -> np.ndarray:
     """Per beam, the range to its first solid sample (inf: none within ``range_max``).
 
     Samples lie ``steps`` cells along each beam from (``column0``, ``row0``),
     computed in float32 and rounded to the nearest cell; outside the raster
-    counts as solid (the home ends there). The hit is then refined by bisecting
-    between the last free sample and the first solid one.
+    counts as solid (the home ends there). ``free_run`` says, per free cell, how
+    many samples after one that falls in it are free for sure (see
+    ``_free_runs``): those are not looked at. The hit is then refined by
+    bisecting between the last free sample and the first solid one.
     """
     rows, columns = solid.shape
     hits = np.full(len(cos), np.inf)
+    count = len(steps)
     for beam in range(len(cos)):
         far = -1.0
-        for step in steps:
+        i = 0
+        while i < count:
+            step = steps[i]
             column = np.rint(cos[beam] * step + column0)
             row = np.rint(sin[beam] * step + row0)
             if not (0 <= column < columns and 0 <= row < rows) or \
                     solid[int(row), int(column)] == 1:
                 far = float(step * np.float32(cell))
                 break
+            i += 1 + free_run[int(row), int(column)]
         if far < 0.0:
             continue
         near = max(far - cell, 0.0)
@@ -77,6 +86,21 @@ def _march_beams(solid: np.ndarray, column0: np.float32, row0: np.float32, cos: 
         if far <= range_max:
             hits[beam] = far
     return hits
+
+
+def _free_runs(solid: np.ndarray) -> np.ndarray:
+    """Per free cell, how many further samples of a beam after one in it are free for sure.
+
+    A sample is its point rounded to the nearest cell, so within half a diagonal
+    (0.71 cells) of it; the samples are one cell apart along the beam. The
+    sample k steps on is then at most k + 1.42 cells from this one's cell, and
+    free while that is less than the distance to the nearest solid cell (or
+    the raster's edge, beyond which all is solid).
+    """
+    free = np.pad(solid == 0, 1, constant_values=False)
+    distance = ndimage.distance_transform_edt(free)[1:-1, 1:-1]
+    runs: np.ndarray = np.maximum(np.ceil(distance - 1.42 - 1e-3) - 1, 0).astype(np.int32)
+    return runs
 
 
 class LaserSimulator:
@@ -100,6 +124,7 @@ class LaserSimulator:
         self._beam_angles = self.angle_min + self.angle_increment * np.arange(model.beams)
         # Distances along a beam at which the raster is sampled, in cells.
         self._steps = np.arange(1, int(model.range_max / TRUTH_RESOLUTION) + 2, dtype=np.float32)
+        self._free_runs: dict[frozenset[str], np.ndarray] = {}
 
     def scan(self, stamp: float, robot: tuple[float, float, float],
              shut_doors: frozenset[str], legs: Sequence[tuple[float, float]]) -> LaserScan:
@@ -121,15 +146,17 @@ class LaserSimulator:
                shut_doors: frozenset[str]) -> np.ndarray:
         """The first solid sample along each beam, sampled every raster cell, then refined."""
         solid = self.geometry.solid_image(shut_doors)
+        if shut_doors not in self._free_runs:
+            self._free_runs[shut_doors] = _free_runs(solid)
         raster = self.geometry.raster
         column0 = np.float32((origin[0] - raster.origin[0]) / TRUTH_RESOLUTION - 0.5)
         row0 = np.float32((origin[1] - raster.origin[1]) / TRUTH_RESOLUTION - 0.5)
         cos, sin = directions.astype(np.float32).T
         hits: np.ndarray = _march_beams(
-            solid, column0, row0, np.ascontiguousarray(cos), np.ascontiguousarray(sin),
-            self._steps, np.ascontiguousarray(directions), origin[0], origin[1],
-            raster.origin[0], raster.origin[1], TRUTH_RESOLUTION, self.model.range_max,
-            _BISECTIONS)
+            solid, self._free_runs[shut_doors], column0, row0, np.ascontiguousarray(cos),
+            np.ascontiguousarray(sin), self._steps, np.ascontiguousarray(directions),
+            origin[0], origin[1], raster.origin[0], raster.origin[1], TRUTH_RESOLUTION,
+            self.model.range_max, _BISECTIONS)
         return hits
 
     def _add_noise(self, ranges: np.ndarray) -> np.ndarray:
