@@ -192,10 +192,13 @@ def cluster(points: np.ndarray, eps: float, min_points: int,
         far = np.flatnonzero(reach > eps)
         if len(far):
             found = tree.query_ball_point(points[far], reach[far])
-            extra = [(int(i), int(j)) for i, near in zip(far, found, strict=True)
-                     for j in near if reach[j] > eps]
-            if extra:
-                pairs = np.vstack((pairs.reshape(-1, 2), np.array(extra)))
+            sizes = np.fromiter((len(near) for near in found), dtype=np.int64, count=len(far))
+            if sizes.sum():
+                first = np.repeat(far, sizes)
+                second = np.concatenate([near for near in found if near]).astype(np.int64)
+                joined = reach[second] > eps
+                pairs = np.vstack((pairs.reshape(-1, 2),
+                                   np.column_stack((first[joined], second[joined]))))
     graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(count, count))
     _, labels = connected_components(graph, directed=False)
     sizes = np.bincount(labels)
