@@ -66,6 +66,16 @@ def test_the_refiner_moves_the_window_onto_the_face(detector: FaceDetector) -> N
     assert refine > 0
     assert np.mean(overlaps[refine]) > np.mean(overlaps[0]) + 0.02
     assert np.median(overlaps[refine]) > 0.8
+    # the finer refiner, trained on where the first one leaves windows, moves them closer
+    refiners = detector._refiners
+    assert len(refiners) == 1 + detector.fine >= 2
+    try:
+        detector._refiners = refiners[:1]
+        first = [_overlap(found[0].window(), window) if found else 0.0
+                 for image, window in views for found in [detector.detect(image)]]
+    finally:
+        detector._refiners = refiners
+    assert np.mean(overlaps[refine]) > np.mean(first)
 
 
 def test_enrolled_people_are_told_apart(detector: FaceDetector) -> None:
@@ -125,3 +135,23 @@ def test_a_look_weighs_its_views_together(detector: FaceDetector) -> None:
     assert memory.identify_look([np.zeros((80, 80), dtype=np.uint8)]) == (None, math.inf)
     # the look's threshold is learnt from the enrolment: narrower for more views
     assert memory._look_threshold(6) < memory._look_threshold(1)
+
+
+def test_faces_of_strangers_learnt_are_nobody_known(detector: FaceDetector) -> None:
+    rng = np.random.default_rng(12)
+    people = [face_identity(name, 6) for name in ("Ada", "Ben", "Cy")]
+    crowd = [face_identity(f"s{index}", 7) for index in range(10)]
+    memory = FaceMemory(detector, threshold=math.inf, trees=40, features=800)
+    assert memory.enrol_strangers([face_view(face, rng)[0] for face in crowd
+                                   for _ in range(4)]) >= 30
+    for person in people:
+        memory.enrol(person.name, [face_view(person, rng)[0] for _ in range(12)])
+    assert memory.people == ["Ada", "Ben", "Cy"]
+    # with no distance limit, only the strangers' class can make a face nobody known
+    known = sum(memory.identify(face_view(person, rng)[0])[0] == person.name
+                for person in people for _ in range(5))
+    named = sum(memory.identify(face_view(face, rng)[0])[0] is not None
+                for face in crowd for _ in range(2))
+    looks = sum(memory.identify_views([face_view(face, rng)[0] for _ in range(4)]) is not None
+                for face in crowd)
+    assert known >= 12 and named <= 6 and looks <= 2

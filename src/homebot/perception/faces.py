@@ -15,8 +15,9 @@ level does not matter.
 - **Alignment**: the best-scoring window is often a few pixels off the face
   (median overlap 0.82 with the true one); a regression forest on the cascade's
   features, trained on shifted and resized windows of the training faces, moves
-  it onto the face (twice). Identifying with the true windows would find 98 % of
-  a seed's faces against 94 % with the raw ones.
+  it onto the face (twice), and a second, finer forest, trained on where the first
+  leaves windows (cascaded regression), once more. Identifying with the true windows
+  would find 98 % of a seed's faces against 94 % with the raw ones.
 - **Identification** (``FaceMemory``): a random forest on a larger bank of Haar
   features of the face window votes for an identity; each enrolled view is also
   learnt mirrored. ``enrol(name, images)`` adds
@@ -24,10 +25,12 @@ level does not matter.
   milliseconds). The identification features are divided by the contrast of the
   window's middle (its corners show the background). Strangers are rejected by
   distance: a face further from the voted person's enrolled views than
-  ``threshold`` times their reach (in the forest's most telling features) is
-  nobody known; a person's reach is learnt from their enrolment images alone,
-  each held out in turn (``_held_out_distances``), and shrunk halfway towards the
-  household's median reach. The forest's own vote share and leaf proximity, and a
+  ``threshold`` times their reach (in the forest's 800 most telling features,
+  each standardised and weighed by the square root of its importance) is nobody
+  known; a person's reach (the 95th percentile: one known view in twenty refused)
+  is learnt from their enrolment images alone, each held out in turn
+  (``_held_out_distances``), and shrunk halfway towards the household's median
+  reach. The forest's own vote share and leaf proximity, and a
   per-person spread model, separated strangers worse.
 - **A look** (``identify_look``, ``identify_views``): several views of one person
   are weighed together, not by a majority of per-view decisions: the votes summed
@@ -53,13 +56,16 @@ __all__ = ["Acquaintances", "FaceDetector", "FaceError", "FaceMemory", "FaceWind
            "HaarFeatures", "integral_image", "introduced_name"]
 
 Window = tuple[int, int, int]  #: x, y, side in pixels
-_TELLING = 200  #: features the forest rates highest, for the distance to a person's views
+_TELLING = 800  #: features the forest rates highest, for the distance to a person's views
 _NEAREST = 3  #: enrolled views a face is compared with
-_HELD_OUT = 0.9  #: quantile of a person's held-out enrolment distances: their reach
+_HELD_OUT = 0.97  #: quantile of a person's held-out enrolment distances: their reach
 #: how much of a person's own reach is kept: it is shrunk (geometrically) halfway towards
 #: the household's median reach (a face whose views vary much, such as a low-contrast one,
 #: otherwise reached so far that it took in most strangers' faces)
 _OWN_REACH = 0.5
+#: the enrolled windows around each aligned one: x, y, side in pixels (the first is the
+#: window itself)
+_SHIFTS = ((0, 0, 0), (-1, 0, 0), (1, 0, 0), (0, -1, 0), (0, 1, 0), (-1, -1, 2), (1, 1, -2))
 _LOOK_QUANTILE = 0.9  #: of the held-out enrolment looks' distances: a look's threshold
 _LOOK_DRAWS = 200  #: held-out enrolment looks drawn per person for that threshold
 
@@ -213,15 +219,16 @@ class FaceDetector:
 
     def __init__(self, sizes: Sequence[int] = (30, 35, 40, 46), stride: float = 0.1,
                  features: int = 400, stumps: tuple[int, int] = (12, 120),
-                 seed: int = 0, refine: int = 2) -> None:
+                 seed: int = 0, refine: int = 2, fine: int = 1) -> None:
         self.sizes = tuple(sizes)
         self.stumps = stumps
         self.stride = stride
         self.bank = HaarFeatures(features, seed)
         self.seed = seed
         self.refine = refine
+        self.fine = fine
         self._stages: list[_Stage] = []
-        self._refiner: _Forest | None = None
+        self._refiners: list[_Forest] = []
 
     def train(self, images: Sequence[np.ndarray], faces: Sequence[Window],
               faceless: Sequence[np.ndarray]) -> None:
@@ -271,45 +278,53 @@ class FaceDetector:
         """Learn where the face is from a window near it: windows shifted by up to 5
         pixels and resized by up to 6 around each example face, and the shift and
         resizing (as shares of the window's side) that bring each back onto the face;
-        a regression forest (extremely randomised trees) on the bank's features."""
+        a regression forest (extremely randomised trees) on the bank's features. With
+        ``fine`` stages, each further forest learns from new windows as far as the
+        forests before it bring them (cascaded regression: the later ones learn the
+        small errors the first leaves)."""
+        self._refiners = []
         if self.refine <= 0:
-            self._refiner = None
             return
         from sklearn.ensemble import ExtraTreesRegressor
 
-        rng = np.random.default_rng([self.seed, 11])
-        data: list[np.ndarray] = []
-        targets: list[tuple[float, float, float]] = []
-        for image, (x, y, side) in zip(images, faces, strict=True):
-            moves = np.column_stack((rng.integers(-5, 6, (12, 2)), rng.integers(-6, 7, 12)))
-            windows = [w for w in ((x + a, y + b, side + c) for a, b, c in moves)
-                       if _fits(w, image.shape)]
-            if not windows:
-                continue
-            data.append(self.bank.compute(integral_image(image), np.asarray(windows)))
-            targets.extend(((x - wx) / ws, (y - wy) / ws, (side - ws) / ws)
-                           for wx, wy, ws in windows)
-        if not data:
-            self._refiner = None
-            return
-        forest = ExtraTreesRegressor(n_estimators=60, min_samples_leaf=3, max_features=0.3,
-                                     random_state=self.seed, n_jobs=1)
-        forest.fit(np.vstack(data), np.asarray(targets))
-        self._refiner = _Forest.of(forest, 3, regression=True)
+        for stage in range(1 + self.fine):
+            rng = np.random.default_rng([self.seed, 11, stage] if stage else [self.seed, 11])
+            data: list[np.ndarray] = []
+            targets: list[tuple[float, float, float]] = []
+            for image, (x, y, side) in zip(images, faces, strict=True):
+                moves = np.column_stack((rng.integers(-5, 6, (12, 2)), rng.integers(-6, 7, 12)))
+                windows = [w for w in ((x + a, y + b, side + c) for a, b, c in moves)
+                           if _fits(w, image.shape)]
+                if not windows:
+                    continue
+                integrals = integral_image(image)
+                if stage:
+                    windows = [self._aligned(integrals, w, image.shape) for w in windows]
+                data.append(self.bank.compute(integrals, np.asarray(windows)))
+                targets.extend(((x - wx) / ws, (y - wy) / ws, (side - ws) / ws)
+                               for wx, wy, ws in windows)
+            if not data:
+                return
+            forest = ExtraTreesRegressor(n_estimators=60, min_samples_leaf=3, max_features=0.3,
+                                         random_state=self.seed + stage, n_jobs=1)
+            forest.fit(np.vstack(data), np.asarray(targets))
+            self._refiners.append(_Forest.of(forest, 3, regression=True))
 
     def _aligned(self, integrals: tuple[np.ndarray, np.ndarray], window: Window,
                  shape: tuple[int, ...]) -> Window:
-        """``window`` moved onto the face by the refiner, ``refine`` times over."""
-        if self._refiner is None:
+        """``window`` moved onto the face by the refiners: the first ``refine`` times
+        over, each later (finer) one once."""
+        if self.refine <= 0:
             return window
-        for _ in range(self.refine):
-            x, y, side = window
-            vector = self.bank.compute(integrals, np.asarray([window]))[0]
-            dx, dy, ds = self._refiner.shares(self._refiner.leaves(vector))
-            moved = (round(x + dx * side), round(y + dy * side), round(side * (1.0 + ds)))
-            if not _fits(moved, shape) or moved == window:
-                break
-            window = moved
+        for stage, refiner in enumerate(self._refiners):
+            for _ in range(self.refine if stage == 0 else 1):
+                x, y, side = window
+                vector = self.bank.compute(integrals, np.asarray([window]))[0]
+                dx, dy, ds = refiner.shares(refiner.leaves(vector))
+                moved = (round(x + dx * side), round(y + dy * side), round(side * (1.0 + ds)))
+                if not _fits(moved, shape) or moved == window:
+                    break
+                window = moved
         return window
 
     @property
@@ -383,6 +398,7 @@ class FaceMemory:
         self.bank = HaarFeatures(features, seed + 1, inset=0.12)
         self.seed = seed
         self._samples: dict[str, list[np.ndarray]] = {}
+        self._strangers: list[np.ndarray] = []  #: faces of nobody known (``enrol_strangers``)
         self._forest: _Forest | None = None
         self._names: list[str] = []
         self._labels = np.zeros(0, dtype=np.intp)
@@ -415,25 +431,8 @@ class FaceMemory:
         images had a face."""
         if not name.strip():
             raise FaceError("a person to enrol needs a name")
-        described = []
-        for image in images:
-            found = self.detector.detect(image)
-            if found:
-                # the aligned window still wanders by a pixel or so: learn the face so too
-                x, y, side = found[0].window()
-                shifts = [(0, 0, 0), (-1, 0, 0), (1, 0, 0), (0, -1, 0), (0, 1, 0),
-                          (-1, -1, 2), (1, 1, -2)]
-                windows = [w for w in ((x + a, y + b, side + c) for a, b, c in shifts)
-                           if _fits(w, image.shape)]
-                views = [self.bank.compute(integral_image(image), np.asarray(windows),
-                                           core=self.core)]
-                if self.mirror:
-                    # a face seen in a mirror is the same face turned the other way
-                    width = image.shape[1]
-                    flipped = [(width - wx - ws, wy, ws) for wx, wy, ws in windows]
-                    views.append(self.bank.compute(integral_image(image[:, ::-1]),
-                                                   np.asarray(flipped), core=self.core))
-                described.append(np.vstack(views))
+        described = [views for views in (self._views(image, _SHIFTS) for image in images)
+                     if views is not None]
         if not described:
             raise FaceError(f"no face found in the {len(images)} image(s) of {name}; "
                             "enrol with images in which the face is seen from the front")
@@ -441,29 +440,70 @@ class FaceMemory:
         self._grow()
         return len(described)
 
+    def enrol_strangers(self, images: Sequence[np.ndarray]) -> int:
+        """Learn faces of people who are nobody the robot knows (say, the faces the
+        detector was trained on), as one more class of the forest: "a stranger". A face
+        the forest votes a stranger's is nobody known, however near a person it lies;
+        how many of the images had a face."""
+        described = [views for views in (self._views(image, _SHIFTS) for image in images)
+                     if views is not None]
+        self._strangers.extend(described)
+        if self._samples:
+            self._grow()
+        return len(described)
+
+    def _views(self, image: np.ndarray, shifts: Sequence[tuple[int, int, int]]
+               ) -> np.ndarray | None:
+        """The features of the face the detector finds in ``image``, of its window moved
+        by each of ``shifts`` (x, y, side), and (``mirror``) of the mirrored image's;
+        None when no face is found."""
+        found = self.detector.detect(image)
+        if not found:
+            return None
+        # the aligned window still wanders by a pixel or so: learn the face so too
+        x, y, side = found[0].window()
+        windows = [w for w in ((x + a, y + b, side + c) for a, b, c in shifts)
+                   if _fits(w, image.shape)]
+        views = [self.bank.compute(integral_image(image), np.asarray(windows), core=self.core)]
+        if self.mirror:
+            # a face seen in a mirror is the same face turned the other way
+            width = image.shape[1]
+            flipped = [(width - wx - ws, wy, ws) for wx, wy, ws in windows]
+            views.append(self.bank.compute(integral_image(image[:, ::-1]), np.asarray(flipped),
+                                           core=self.core))
+        return np.vstack(views)
+
     def _grow(self) -> None:
         from sklearn.ensemble import RandomForestClassifier
 
         self._names = sorted(self._samples)
         blocks = [np.vstack(self._samples[name]) for name in self._names]
+        if self._strangers:  # the last class: nobody known
+            blocks.append(np.vstack(self._strangers))
         data = np.vstack(blocks)
         labels = np.concatenate([np.full(len(block), index)
                                  for index, block in enumerate(blocks)])
         forest = RandomForestClassifier(n_estimators=self.trees, max_features="sqrt",
                                         random_state=self.seed, n_jobs=1)
         forest.fit(data, labels)
-        self._forest = _Forest.of(forest, len(self._names))
+        self._forest = _Forest.of(forest, len(blocks))
         self._labels = labels
         # For rejecting strangers: the features the forest found telling, standardised;
         # a face is far from a person when its nearest enrolled views of them are further
         # than their views are from one another.
-        telling = np.argsort(-forest.feature_importances_)[:_TELLING]
-        centre, scale = data[:, telling].mean(axis=0), data[:, telling].std(axis=0) + 1e-9
+        importance = forest.feature_importances_
+        telling = np.argsort(-importance)[:_TELLING]
+        # each standardised feature weighed by the square root of its importance (the
+        # distance's square by the importance: a feature the forest splits on often counts
+        # more than one it hardly uses)
+        weight = np.sqrt(importance[telling] / max(float(importance[telling].mean()), 1e-12))
+        centre = data[:, telling].mean(axis=0)
+        scale = (data[:, telling].std(axis=0) + 1e-9) / np.maximum(weight, 1e-6)
         self._telling = (telling, centre, scale)
         self._standard = (data[:, telling] - centre) / scale
         images = np.concatenate([np.full(len(block), number) for number, block in
-                                 enumerate(b for name in self._names
-                                           for b in self._samples[name])])
+                                 enumerate([b for name in self._names
+                                            for b in self._samples[name]] + self._strangers)])
         self._held_out = [_held_out_distances(self._standard[labels == index],
                                               images[labels == index])
                           for index in range(len(self._names))]
@@ -483,9 +523,16 @@ class FaceMemory:
         vector = self.describe(image, window)
         if vector is None:
             return None, math.inf
-        best = int(np.argmax(self._forest.shares(self._forest.leaves(vector))))
+        votes = self._forest.shares(self._forest.leaves(vector))
+        best = int(np.argmax(votes[:len(self._names)]))
         far = self._far(vector, best)
+        if self._stranger_voted(votes):
+            return None, far
         return (self._names[best], far) if far <= self.threshold else (None, far)
+
+    def _stranger_voted(self, votes: np.ndarray) -> bool:
+        """Whether the forest's ``votes`` point to the strangers' class (when there is one)."""
+        return len(votes) > len(self._names) and int(np.argmax(votes)) == len(self._names)
 
     def _far(self, vector: np.ndarray, person: int) -> float:
         """How far a face's features are from ``person``'s enrolled views: the mean
@@ -513,8 +560,10 @@ class FaceMemory:
             return None, math.inf
         votes = np.sum([self._forest.shares(self._forest.leaves(vector))
                         for vector in vectors], axis=0)
-        best = int(np.argmax(votes))
+        best = int(np.argmax(votes[:len(self._names)]))
         far = float(np.median([self._far(vector, best) for vector in vectors]))
+        if self._stranger_voted(votes):
+            return None, far
         limit = self.threshold * self._look_threshold(len(vectors))
         return (self._names[best], far) if far <= limit else (None, far)
 
