@@ -20,18 +20,21 @@ level does not matter.
   would find 98 % of a seed's faces against 94 % with the raw ones.
 - **Identification** (``FaceMemory``): a random forest on a larger bank of Haar
   features of the face window votes for an identity; each enrolled view is also
-  learnt mirrored. ``enrol(name, images)`` adds
-  a person online (the forest is grown again on everything enrolled: tens of
-  milliseconds). The identification features are divided by the contrast of the
-  window's middle (its corners show the background). Strangers are rejected by
+  learnt mirrored. ``enrol(name, images)`` adds a person online (the forest is grown
+  again on everything enrolled: seconds). The identification features are divided by
+  the contrast of the window's middle (its corners show the background). Strangers are rejected by
   distance: a face further from the voted person's enrolled views than
   ``threshold`` times their reach (in the forest's 800 most telling features,
   each standardised and weighed by the square root of its importance) is nobody
-  known; a person's reach (the 95th percentile: one known view in twenty refused)
-  is learnt from their enrolment images alone, each held out in turn
-  (``_held_out_distances``), and shrunk halfway towards the household's median
-  reach. The forest's own vote share and leaf proximity, and a
-  per-person spread model, separated strangers worse.
+  known; a person's reach is learnt from their enrolment images alone, each held
+  out in turn (``_held_out_distances``): the median of those distances times the
+  household's 95th percentile of them over their person's median, then shrunk halfway
+  towards the household's median reach. Faces of people nobody knows
+  (``enrol_strangers``: the faces the cascade was trained on, say) are one more class
+  of the forest: a face voted a stranger's is nobody known however near someone it
+  lies. With them the reach can be wider (each person's own 90th percentile before):
+  the class takes many strangers a wider reach would let in. The forest's own vote
+  share and leaf proximity, and a per-person spread model, separated strangers worse.
 - **A look** (``identify_look``, ``identify_views``): several views of one person
   are weighed together, not by a majority of per-view decisions: the votes summed
   over the views pick the person, and the median of the views' distances from
@@ -58,7 +61,8 @@ __all__ = ["Acquaintances", "FaceDetector", "FaceError", "FaceMemory", "FaceWind
 Window = tuple[int, int, int]  #: x, y, side in pixels
 _TELLING = 800  #: features the forest rates highest, for the distance to a person's views
 _NEAREST = 3  #: enrolled views a face is compared with
-_HELD_OUT = 0.97  #: quantile of a person's held-out enrolment distances: their reach
+#: quantile of held-out enrolment distances (each over their person's median): the reach
+_HELD_OUT = 0.95
 #: how much of a person's own reach is kept: it is shrunk (geometrically) halfway towards
 #: the household's median reach (a face whose views vary much, such as a low-contrast one,
 #: otherwise reached so far that it took in most strangers' faces)
@@ -405,6 +409,7 @@ class FaceMemory:
         self._telling: tuple[np.ndarray, np.ndarray, np.ndarray] = (
             np.zeros(0, dtype=np.intp), np.zeros(0), np.ones(0))
         self._standard = np.zeros((0, 0))
+        self._by_person: list[np.ndarray] = []  #: ``_standard``'s rows of each person
         self._typical = np.ones(0)
         self._held_out: list[np.ndarray] = []  #: each person's held-out enrolment distances
         self._look_thresholds: dict[int, float] = {}
@@ -501,14 +506,22 @@ class FaceMemory:
         scale = (data[:, telling].std(axis=0) + 1e-9) / np.maximum(weight, 1e-6)
         self._telling = (telling, centre, scale)
         self._standard = (data[:, telling] - centre) / scale
+        self._by_person = [self._standard[labels == index] for index in range(len(blocks))]
         images = np.concatenate([np.full(len(block), number) for number, block in
                                  enumerate([b for name in self._names
                                             for b in self._samples[name]] + self._strangers)])
         self._held_out = [_held_out_distances(self._standard[labels == index],
                                               images[labels == index])
                           for index in range(len(self._names))]
-        own = np.asarray([_reach(self._standard[labels == index], distances)
-                          for index, distances in enumerate(self._held_out)])
+        # a person's own spacing is the median of their held-out distances (40 images say
+        # little about a 97th percentile); how far the tail reaches beyond the median is
+        # the household's, from everyone's distances over their own spacing
+        spacing = np.asarray([_reach(self._standard[labels == index], distances, 0.5)
+                              for index, distances in enumerate(self._held_out)])
+        pooled = np.concatenate([distances / max(gap, 1e-9) for distances, gap in
+                                 zip(self._held_out, spacing, strict=True)])
+        tail = float(np.quantile(pooled, _HELD_OUT)) if len(pooled) else 1.0
+        own = spacing * tail
         self._typical = own ** _OWN_REACH * float(np.median(own)) ** (1.0 - _OWN_REACH)
         self._look_thresholds = {}
 
@@ -538,8 +551,8 @@ class FaceMemory:
         """How far a face's features are from ``person``'s enrolled views: the mean
         distance to the nearest few, over the person's reach."""
         telling, centre, scale = self._telling
-        gaps = np.linalg.norm(self._standard[self._labels == person] -
-                              (vector[telling] - centre) / scale, axis=1)
+        gaps = np.linalg.norm(self._by_person[person] - (vector[telling] - centre) / scale,
+                              axis=1)
         return float(np.sort(gaps)[:_NEAREST].mean() / self._typical[person])
 
     def identify_look(self, images: Sequence[np.ndarray]) -> tuple[str | None, float]:
@@ -673,11 +686,11 @@ def _held_out_distances(views: np.ndarray, images: np.ndarray) -> np.ndarray:
     return np.asarray(scores)
 
 
-def _reach(views: np.ndarray, distances: np.ndarray) -> float:
-    """A person's own reach: the ``_HELD_OUT`` quantile of their held-out ``distances``;
-    with one image only, the spread of its own jittered copies stands in."""
+def _reach(views: np.ndarray, distances: np.ndarray, quantile: float) -> float:
+    """The ``quantile`` of a person's held-out ``distances``; with one image only, the
+    spread of its own jittered copies stands in."""
     if len(distances):
-        return float(np.quantile(distances, _HELD_OUT))
+        return float(np.quantile(distances, quantile))
     gaps = np.linalg.norm(views[:, None, :] - views[None, :, :], axis=2)
     return float(np.median(gaps[gaps > 1e-6])) if np.any(gaps > 1e-6) else 1.0
 
@@ -723,13 +736,18 @@ class _Forest:
 
     def leaves(self, vector: np.ndarray) -> np.ndarray:
         """The leaf each tree sends ``vector`` to."""
-        trees = np.arange(len(self.feature))
-        node = np.zeros(len(trees), dtype=np.intp)
+        node = np.zeros(len(self.feature), dtype=np.intp)
+        active = np.arange(len(self.feature))  # the trees not yet at a leaf
         for _ in range(self.depth):
-            left = self.left[trees, node]
+            at = node[active]
+            left = self.left[active, at]
             inner = left >= 0
-            go_left = vector[self.feature[trees, node]] <= self.threshold[trees, node]
-            node = np.where(inner, np.where(go_left, left, self.right[trees, node]), node)
+            if not inner.all():
+                active, at, left = active[inner], at[inner], left[inner]
+                if not len(active):
+                    break
+            go_left = vector[self.feature[active, at]] <= self.threshold[active, at]
+            node[active] = np.where(go_left, left, self.right[active, at])
         return node
 
     def shares(self, leaves: np.ndarray) -> np.ndarray:
