@@ -135,3 +135,23 @@ def test_what_the_hand_holds_stays_held_when_the_robot_moves_on() -> None:
         body.tick(60)  # three seconds of physics there, nothing else holding the bar up
         assert sim.hands["left"] == "chocolate bar", step
         assert control.gripper_holds()
+
+
+def test_what_a_person_puts_in_the_offered_hand_is_held_by_the_fingers() -> None:
+    sim, body, control, stand = _at_the_coffee_table()
+    control.offer_hand(stand)
+    # Nothing put in it: the fingers close on nothing, and the hand opens again.
+    assert not control.close_on_handed("cola", stand)
+    assert control.holding is None
+    # The person puts the cola in (the truth's hand-over), and holds it there until the
+    # fingers close on it.
+    control.offer_hand(stand)
+    sim.object_location["cola"] = "hand:left"
+    sim.hands["left"] = "cola"
+    assert control.close_on_handed("cola", stand)
+    body.tick(20)  # tucked in, it stays in the hand
+    assert control.gripper_holds() and sim.hands["left"] == "cola"
+    assert body.hands.driver().sim.held_object() == "cola"
+    grasp = body.hands.driver().sim.grasp_point()
+    held = body.hands.driver().sim.object_position("cola")
+    assert math.dist(grasp, held) < 0.05

@@ -15,6 +15,8 @@ from homebot.navigation import Navigator
 from homebot.robot import Blocker, Pose
 from homebot.scenarios import SimulatedRun
 from homebot.scenarios.embodied import Fidelity
+from homebot.sim import PERSON_PREFIX
+from homebot.skills import Status, skill_named
 from homebot.task import Step, Task
 from homebot.world import DoorState, World
 
@@ -119,3 +121,15 @@ def test_the_robot_comes_up_to_someone_far_off_before_asking_them_to_step_aside(
     assert math.dist(simulation.robot_pose[:2], (7.8, 2.9)) < 2.0
     assert math.dist(simulation.people["Maria"].position, (7.8, 2.9)) >= 0.8
     assert simulation.collisions == []
+
+
+def test_what_a_person_hands_the_robot_ends_up_between_its_fingers(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    pytest.importorskip("mujoco")
+    run = _run(apartment, apartment_navigator)
+    run.simulation.object_location["cola"] = PERSON_PREFIX + apartment.model.operator
+    outcome = skill_named("receive").run(run.context, {"person": "operator"})
+    assert outcome.status is Status.VERIFIED, outcome.message
+    assert run.simulation.hands[outcome.data["hand"]] == "cola"
+    assert run.simulation.object_location["cola"].startswith("hand:")
+    assert run.robot.arm.gripper_holds()  # type: ignore[attr-defined]

@@ -157,6 +157,20 @@ class ArmedBodyRobot(BodyRobot):
             self.body.tick(max(1, round(0.5 / self.body.tick_period)))
             self.arm.holding = None
 
+    def receive(self, hand: str, person: str) -> Detection | None:
+        """Hold the open hand out; once the person has put the object in, close on it.
+        Whether the robot then holds it is what its fingers sense."""
+        if hand in self._holding or self.arm.holding is not None:
+            return None
+        self.arm.offer_hand(self.pose())
+        given = super().receive(hand, person)
+        if given is None or not self.arm.close_on_handed(given.label, self.pose()):
+            self.events.record("robot.receive", person=person, held=False)
+            return None
+        self.events.record("robot.receive", person=person, held=True, object=given.label)
+        self._holding[hand] = given
+        return given
+
     def hand_over(self, hand: str, person: str) -> bool:
         given = super().hand_over(hand, person)
         if given and self._holding.pop(hand, None) is not None:

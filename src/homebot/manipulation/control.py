@@ -22,6 +22,7 @@ import numpy as np
 from homebot.manipulation.grasps import IK_SEEDS, ObjectGeometry
 from homebot.manipulation.ik import solve_ik
 from homebot.manipulation.pick import (
+    GRIP_FORCE,
     TUCKED,
     PickOutcome,
     PickPlan,
@@ -49,6 +50,10 @@ _DROP_ABOVE = 0.2  #: metres above a bin's opening where the hand lets go
 _REACH = 0.9  #: metres from the base's centre the arm can put things
 _NEAREST = 0.55  #: metres: nearer than this the arm is too cramped to put things down
 _BEST_REACH = 0.72  #: metres: spots about this far in front of the robot are tried first
+#: torso, then the arm held out in front at chest height, fingers level: offering the hand
+_OFFER = np.array([0.2, 0.0, 0.5, 0.0, -1.2, 0.0, 0.7, 0.0])
+_OPEN = 0.2  #: a gripper command wider than the fingers open: fully open
+_CLOSING = 1.0  #: seconds the fingers get to close on what a person put in the hand
 
 
 @dataclass(frozen=True)
@@ -171,6 +176,36 @@ class ArmControl:
             self._tuck(scene)
         self.last = result
         return result
+
+    # ------------------------------------------------------------ taking from a person
+
+    def offer_hand(self, base: Pose) -> None:
+        """Hold the open hand out in front, fingers level (Cosero §7.3.1), for a person to
+        put something in."""
+        scene = self._scene(base)
+        here = current_configuration(self.body)
+        self.body.gripper().command(_OPEN)
+        path = plan_motion(scene, here, _OFFER, self.rng, gripper=_OPEN)
+        follow(self.body, path or [here, _OFFER])
+
+    def close_on_handed(self, name: str, base: Pose) -> bool:
+        """Close the offered hand on ``name``, which a person put in it; whether the fingers
+        then hold something (sensed: they stand apart), when the arm tucks it in."""
+        if self.holding is not None:
+            return False
+        self.body.gripper().command(0.0, GRIP_FORCE)
+        self.body.tick(max(1, round(_CLOSING / self.body.tick_period)))
+        entry = catalogue_entry(self.world, name)
+        _, rotation = self._scene(base).grasp_frame(current_configuration(self.body))
+        # Held out to the robot, it sits centred between the fingertips.
+        self.holding = _Holding(name, entry.extent[2] / 2, rotation,
+                                math.hypot(entry.extent[0], entry.extent[1]) / 2)
+        if not self.gripper_holds():
+            self.holding = None
+            self.body.gripper().command(_OPEN)
+            return False
+        self._tuck(self._scene(base, leave_out=name))
+        return True
 
     def gripper_holds(self) -> bool:
         """Sensed: the fingers stand apart though told to close (something is between)."""

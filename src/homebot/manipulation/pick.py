@@ -24,6 +24,7 @@ from homebot.manipulation.scene import PlanningScene
 from homebot.robot import Arm, Gripper, JointTarget, Wrench
 
 __all__ = [
+    "GRIP_FORCE",
     "TUCKED",
     "Manipulator",
     "PickOutcome",
@@ -43,7 +44,7 @@ _LIFT = 0.12  #: metres the object is lifted after closing
 _RISEN = 0.05  #: metres the hand must have risen for the object to count as lifted
 _ARRIVED = 0.1  #: radians (metres for the torso) from the carry pose: the arm got there
 _CARRY_REACH = 0.45  #: metres from the base's centre where the hand carries an object
-_GRIP_FORCE = 20.0  #: newtons per finger
+GRIP_FORCE = 20.0  #: newtons per finger
 _GRAVITY = 9.81
 _EMPTY_WIDTH = 0.006  #: fingers closer than this hold nothing
 #: the wrist must feel at least this share of the object's weight (when its mass is known)
@@ -212,7 +213,7 @@ def execute_pick(body: Manipulator, plan: PickPlan, *, mass: float | None = None
     follow(body, plan.path)
     before = float(np.linalg.norm(body.wrist_wrench().force))
     follow(body, [plan.path[-1], grasp.grasp], settle=0.2)
-    body.gripper().command(0.0, _GRIP_FORCE)
+    body.gripper().command(0.0, GRIP_FORCE)
     body.tick(max(1, round(0.6 / body.tick_period)))
     follow(body, [grasp.grasp, plan.lift], settle=0.3)
     width = body.gripper().state().width

@@ -200,6 +200,10 @@ class ArmSimulation:
         self._force_adr = int(m.sensor_adr[m.sensor("wrist_force").id])
         self._torque_adr = int(m.sensor_adr[m.sensor("wrist_torque").id])
         self._pads = {m.geom("left_pad").id, m.geom("right_pad").id}
+        palm = m.geom("palm").id
+        #: how far the grasp site lies out from the palm's face, along the approach
+        self._grasp_to_palm = float(m.site_pos[self._grasp_site][0] - m.geom_pos[palm][0] -
+                                    m.geom_size[palm][0])
         self._base_mocap = int(m.body_mocapid[m.body("base").id])
         self.set_base(base)
         self.data.qpos[self._arm_qpos] = arm
@@ -242,6 +246,19 @@ class ArmSimulation:
     def push(self, body: str, force: Sequence[float]) -> None:
         """An external force (newtons, map frame) on ``body`` at its centre, until changed."""
         self.data.xfrc_applied[self.model.body(body).id, :3] = force
+
+    def hold_at_grasp(self, name: str) -> None:
+        """Put ``name`` upright (turned as the base) between the fingers, pushed in up to
+        the palm, at rest: where a person holds it out into the robot's open hand."""
+        joint = self.model.joint(f"{name}:free")
+        position = int(self.model.jnt_qposadr[joint.id])
+        velocity = int(self.model.jnt_dofadr[joint.id])
+        approach = np.array(self.data.site_xmat[self._grasp_site]).reshape(3, 3)[:, 0]
+        inward = max(self._grasp_to_palm - self.objects[name].extents[0] / 2 - 0.003, 0.0)
+        self.data.qpos[position:position + 3] = self.grasp_point() - inward * approach
+        self.data.qpos[position + 3:position + 7] = _quat_yaw(self.base[2])
+        self.data.qvel[velocity:velocity + 6] = 0.0
+        self._mj.mj_forward(self.model, self.data)
 
     def step(self, seconds: float) -> None:
         """Let ``seconds`` of simulated time pass."""

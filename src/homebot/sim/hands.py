@@ -147,6 +147,7 @@ _HELD_RISE = 0.02  #: metres above its resting height for a held object to count
 _AT_REST = 0.02  #: m/s: an object slower than this has come to rest
 _SETTLE_LIMIT = 3.0  #: seconds of physics for objects to come to rest when the robot leaves
 _SETTLE_STEP = 0.1
+_GRAVITY = 9.81
 
 
 class SimHands:
@@ -181,16 +182,26 @@ class SimHands:
         self._held: tuple[ObjectBody, np.ndarray] | None = None
         self._surfaces: dict[str, SurfaceBox] = {}
         self._gone: set[str] = set()
+        #: what a person holds out into the open hand until both fingers touch it
+        self._handing: str | None = None
         #: how objects physics moved stand turned now (radians, map frame)
         self.headings: dict[str, float] = {}
 
     def driver(self) -> ArmDriver:
         """The arm's drivers where the robot stands now (built when it has moved)."""
         pose = tuple(self.simulation.robot_pose)
-        if self._driver is None or pose != self._base:
+        if self._driver is None or pose != self._base or self._handed_in() is not None:
             self._build((float(pose[0]), float(pose[1]), float(pose[2])))
         assert self._driver is not None
         return self._driver
+
+    def _handed_in(self) -> str | None:
+        """What the truth has a person put in the robot's hand that the scene lacks."""
+        if self._driver is None:
+            return None
+        scene = self._driver.sim.objects
+        return next((name for name in self.simulation.hands.values()
+                     if name and name not in scene), None)
 
     def advance(self, seconds: float) -> None:
         """Physics for ``seconds`` while the base stands where the scene was built."""
@@ -199,7 +210,17 @@ class SimHands:
         if tuple(self.simulation.robot_pose) != self._base:
             self._leave()
             return
-        self._driver.sim.step(seconds)
+        sim = self._driver.sim
+        handing = self._handing
+        if handing is not None:
+            # The person's hand keeps it there, bearing its weight, until the robot's
+            # fingers both touch it; then it lets go.
+            sim.hold_at_grasp(handing)
+            sim.push(handing, (0.0, 0.0, sim.objects[handing].mass * _GRAVITY))
+        sim.step(seconds)
+        if handing is not None and sim.touching_fingers(handing) == 2:
+            sim.push(handing, (0.0, 0.0, 0.0))
+            self._handing = None
         self._follow_physics()
 
     # ------------------------------------------------------------ building
@@ -209,6 +230,9 @@ class SimHands:
         ``_SETTLE_LIMIT`` s more of physics); the truth takes every object as it then lies."""
         assert self._driver is not None
         sim = self._driver.sim
+        if self._handing is not None:  # driven off before closing the hand: it falls
+            sim.push(self._handing, (0.0, 0.0, 0.0))
+            self._handing = None
         held = sim.held_object()
         for _ in range(round(_SETTLE_LIMIT / _SETTLE_STEP)):
             if all(self._resting(name) for name in sim.objects
@@ -244,10 +268,16 @@ class SimHands:
         holding = {name for name in truth.hands.values() if name}
         held = self._held if self._held is not None and self._held[0].name in holding \
             else None
+        # Something in a hand that physics did not carry here: a person puts it in.
+        handed = sorted(holding - {held[0].name} if held else holding)
+        objects += [object_body(world, name, pose[:2], 0.0) for name in handed]
         sim = ArmSimulation(base=pose, surfaces=surfaces, objects=objects,
                             model_path=self.model_path, arm=self._arm, torso=self._torso,
-                            gripper=self._gripper if held else MAX_GRIPPER_WIDTH, held=held,
-                            grip=self._grip if held else None)
+                            gripper=self._gripper if held or handed else MAX_GRIPPER_WIDTH,
+                            held=held, grip=self._grip if held or handed else None)
+        self._handing = handed[0] if handed else None
+        if self._handing is not None:
+            sim.hold_at_grasp(self._handing)
         self._driver = ArmDriver(sim, self.tick_period, start=truth.clock.now())
         self._base = pose
         self._gone = set()
@@ -259,6 +289,8 @@ class SimHands:
         sim, truth = self._driver.sim, self.simulation
         in_hand = {name: hand for hand, name in truth.hands.items() if name}
         for name, body in sim.objects.items():
+            if name == self._handing:
+                continue  # still in the person's hand
             where = truth.object_location.get(name)
             if name in self._gone or not (where is None or where in truth.world.placements or
                                           where.startswith((HAND_PREFIX, "floor:"))):
