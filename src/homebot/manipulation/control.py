@@ -189,8 +189,8 @@ class ArmControl:
         follow(self.body, path or [here, _OFFER])
 
     def close_on_handed(self, name: str, base: Pose) -> bool:
-        """Close the offered hand on ``name``, which a person put in it; whether the fingers
-        then hold something (sensed: they stand apart), when the arm tucks it in."""
+        """Close the offered hand on ``name``, which a person put in it: whether the fingers
+        then hold something (sensed: they stand apart). If they do, the arm tucks it in."""
         if self.holding is not None:
             return False
         self.body.gripper().command(0.0, GRIP_FORCE)
