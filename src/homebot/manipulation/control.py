@@ -196,7 +196,8 @@ class ArmControl:
         self.body.gripper().command(0.0, GRIP_FORCE)
         self.body.tick(max(1, round(_CLOSING / self.body.tick_period)))
         entry = catalogue_entry(self.world, name)
-        _, rotation = self._scene(base).grasp_frame(current_configuration(self.body))
+        scene = self._scene(base, leave_out=name)
+        _, rotation = scene.grasp_frame(current_configuration(self.body))
         # Held out to the robot, it sits centred between the fingertips.
         self.holding = _Holding(name, entry.extent[2] / 2, rotation,
                                 math.hypot(entry.extent[0], entry.extent[1]) / 2)
@@ -204,7 +205,7 @@ class ArmControl:
             self.holding = None
             self.body.gripper().command(_OPEN)
             return False
-        self._tuck(self._scene(base, leave_out=name))
+        self._tuck(scene)
         return True
 
     def gripper_holds(self) -> bool:

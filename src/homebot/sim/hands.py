@@ -147,7 +147,6 @@ _HELD_RISE = 0.02  #: metres above its resting height for a held object to count
 _AT_REST = 0.02  #: m/s: an object slower than this has come to rest
 _SETTLE_LIMIT = 3.0  #: seconds of physics for objects to come to rest when the robot leaves
 _SETTLE_STEP = 0.1
-_GRAVITY = 9.81
 
 
 class SimHands:
@@ -216,7 +215,7 @@ class SimHands:
             # The person's hand keeps it there, bearing its weight, until the robot's
             # fingers both touch it; then it lets go.
             sim.hold_at_grasp(handing)
-            sim.push(handing, (0.0, 0.0, sim.objects[handing].mass * _GRAVITY))
+            sim.push(handing, -sim.objects[handing].mass * sim.model.opt.gravity)
         sim.step(seconds)
         if handing is not None and sim.touching_fingers(handing) == 2:
             sim.push(handing, (0.0, 0.0, 0.0))
