@@ -133,7 +133,8 @@ def face_figures(seed: int) -> dict[str, Any]:
     known = [face_identity(f"person{i}", seed) for i in range(10)]
     memory = FaceMemory(detector, seed=seed)
     # the cascade's training faces are nobody of the household: the forest's strangers
-    memory.enrol_strangers([image for image, _ in views])
+    memory.enrol_strangers([image for image, _ in views],
+                           [strangers[i % 30].name for i in range(len(views))])
     enrol_cpu = 0.0
     for identity in known:
         enrolment = [face_view(identity, rng)[0] for _ in range(40)]

@@ -48,7 +48,7 @@ from __future__ import annotations
 
 import math
 import re
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -61,12 +61,13 @@ __all__ = ["Acquaintances", "FaceDetector", "FaceError", "FaceMemory", "FaceWind
 Window = tuple[int, int, int]  #: x, y, side in pixels
 _TELLING = 800  #: features the forest rates highest, for the distance to a person's views
 _NEAREST = 3  #: enrolled views a face is compared with
-#: quantile of held-out enrolment distances (each over their person's median): the reach
+_COHORT = 5  #: the nearest others (people, strangers) a face's nearness is judged against
+#: the reach lets in strangers (estimated: ``FaceMemory._learn_reach``) this many times as
+#: often as it misses the household's faces: the issue's error budgets, 20 % and 10 %
+_LET_IN_PER_MISS = 2.0
+#: with nobody to compare with (one person, no strangers): the quantile of the held-out
+#: enrolment ratios that is the reach
 _HELD_OUT = 0.95
-#: how much of a person's own reach is kept: it is shrunk (geometrically) halfway towards
-#: the household's median reach (a face whose views vary much, such as a low-contrast one,
-#: otherwise reached so far that it took in most strangers' faces)
-_OWN_REACH = 0.5
 #: the enrolled windows around each aligned one: x, y, side in pixels (the first is the
 #: window itself)
 _SHIFTS = ((0, 0, 0), (-1, 0, 0), (1, 0, 0), (0, -1, 0), (0, 1, 0), (-1, -1, 2), (1, 1, -2))
@@ -87,6 +88,19 @@ def integral_image(image: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     padded[1:, 1:] = values.cumsum(0).cumsum(1)
     squares[1:, 1:] = (values ** 2).cumsum(0).cumsum(1)
     return padded, squares
+
+
+def moment_integrals(image: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The integral images of ``image`` times each pixel's column and times its row
+    (padded as ``integral_image``'s): with the plain one, the best-fit brightness plane
+    of any rectangle in a few look-ups."""
+    values = np.asarray(image, dtype=np.float64)
+    rows, columns = np.indices(values.shape, dtype=np.float64)
+    by_column = np.zeros((values.shape[0] + 1, values.shape[1] + 1))
+    by_row = np.zeros_like(by_column)
+    by_column[1:, 1:] = (values * columns).cumsum(0).cumsum(1)
+    by_row[1:, 1:] = (values * rows).cumsum(0).cumsum(1)
+    return by_column, by_row
 
 
 class HaarFeatures:
@@ -128,11 +142,15 @@ class HaarFeatures:
         self._starts = np.flatnonzero(np.r_[True, np.diff(owners) != 0])
 
     def compute(self, integrals: tuple[np.ndarray, np.ndarray], windows: np.ndarray,
-                only: np.ndarray | None = None, core: float = 0.0) -> np.ndarray:
+                only: np.ndarray | None = None, core: float = 0.0,
+                moments: tuple[np.ndarray, np.ndarray] | None = None) -> np.ndarray:
         """The features of each window (k, 3: x, y, side) of the image whose
         ``integral_image`` is given, as a (k, count) array; with ``only`` (feature
         indices), just those, as (k, len(only)); ``core``: the share of the window's side
-        left out at each edge for the contrast the features are divided by."""
+        left out at each edge for the contrast the features are divided by. With the
+        image's ``moment_integrals``, the brightness plane that best fits the window's
+        middle is taken off first (Sung and Poggio's lighting correction): a light from
+        one side adds a ramp across the face that the contrast alone leaves in."""
         integral, squares = integrals
         windows = np.asarray(windows, dtype=np.float64).reshape(-1, 3)
         box, weight, starts = self._box, self._weight, self._starts
@@ -148,18 +166,35 @@ class HaarFeatures:
         x1 = np.maximum(np.rint(wx + box[None, :, 2] * side).astype(np.intp), x0 + 1)
         y1 = np.maximum(np.rint(wy + box[None, :, 3] * side).astype(np.intp), y0 + 1)
         sums = integral[y1, x1] - integral[y0, x1] - integral[y1, x0] + integral[y0, x0]
-        areas = (x1 - x0) * (y1 - y0)
-        values = sums / areas * weight[None, :]
-        features = np.add.reduceat(values, starts, axis=1)
+        means = sums / ((x1 - x0) * (y1 - y0))
         # normalise by the window's contrast (with ``core``, of its middle only, as much
         # of the window as a face fills): light level and gain drop out
         margin = np.rint(windows[:, 2] * core).astype(np.intp)
         a, b = (windows[:, :2].astype(np.intp) + margin[:, None]).T
         s = windows[:, 2].astype(np.intp) - 2 * margin
-        total = integral[b + s, a + s] - integral[b, a + s] - integral[b + s, a] + integral[b, a]
-        total2 = squares[b + s, a + s] - squares[b, a + s] - squares[b + s, a] + squares[b, a]
-        mean = total / (s * s)
-        spread = np.sqrt(np.maximum(total2 / (s * s) - mean ** 2, 1.0))
+        n = s * s
+
+        def region(table: np.ndarray) -> np.ndarray:
+            total: np.ndarray = table[b + s, a + s] - table[b, a + s] - table[b + s, a] \
+                + table[b, a]
+            return total
+
+        mean = region(integral) / n
+        variance = region(squares) / n - mean ** 2
+        if moments is not None:
+            # the plane I = mean + slope_x (x - x̄) + slope_y (y - ȳ), by least squares
+            # over the middle (the pixel grid makes the two slopes independent)
+            centre_x, centre_y = a + (s - 1) / 2, b + (s - 1) / 2
+            spread_sum = s * s * (s * s - 1) / 12.0  # Σ (x - x̄)² over the middle
+            slope_x = (region(moments[0]) - centre_x * region(integral)) / spread_sum
+            slope_y = (region(moments[1]) - centre_y * region(integral)) / spread_sum
+            plane = mean[:, None] \
+                + slope_x[:, None] * ((x0 + x1 - 1) / 2 - centre_x[:, None]) \
+                + slope_y[:, None] * ((y0 + y1 - 1) / 2 - centre_y[:, None])
+            means = means - plane
+            variance = variance - (slope_x ** 2 + slope_y ** 2) * spread_sum / n
+        features = np.add.reduceat(means * weight[None, :], starts, axis=1)
+        spread = np.sqrt(np.maximum(variance, 1.0))
         normalised: np.ndarray = features / spread[:, None]
         return normalised
 
@@ -392,9 +427,10 @@ class FaceMemory:
 
     def __init__(self, detector: FaceDetector, threshold: float = 1.0, trees: int = 100,
                  features: int = 2000, seed: int = 0, core: float = 0.2,
-                 mirror: bool = True) -> None:
+                 mirror: bool = True, flatten: bool = True) -> None:
         self.detector = detector
         self.core = core
+        self.flatten = flatten
         self.mirror = mirror
         self.threshold = threshold
         self.trees = trees
@@ -403,15 +439,14 @@ class FaceMemory:
         self.seed = seed
         self._samples: dict[str, list[np.ndarray]] = {}
         self._strangers: list[np.ndarray] = []  #: faces of nobody known (``enrol_strangers``)
+        self._stranger_names: list[str] = []  #: whose each of ``_strangers`` is
         self._forest: _Forest | None = None
         self._names: list[str] = []
-        self._labels = np.zeros(0, dtype=np.intp)
         self._telling: tuple[np.ndarray, np.ndarray, np.ndarray] = (
             np.zeros(0, dtype=np.intp), np.zeros(0), np.ones(0))
-        self._standard = np.zeros((0, 0))
-        self._by_person: list[np.ndarray] = []  #: ``_standard``'s rows of each person
-        self._typical = np.ones(0)
-        self._held_out: list[np.ndarray] = []  #: each person's held-out enrolment distances
+        self._gallery: _Gallery | None = None
+        self._reach = 1.0  #: the nearness ratio beyond which a face is nobody known
+        self._held_out: list[np.ndarray] = []  #: each person's held-out enrolment ``_far``s
         self._look_thresholds: dict[int, float] = {}
 
     @property
@@ -427,32 +462,57 @@ class FaceMemory:
             if not found:
                 return None
             window = found[0].window()
-        vector: np.ndarray = self.bank.compute(integral_image(image), np.asarray([window]),
-                                               core=self.core)[0]
+        vector: np.ndarray = self._describe(image, np.asarray([window]))[0]
         return vector
+
+    def _describe(self, image: np.ndarray, windows: np.ndarray) -> np.ndarray:
+        """The identification features of ``windows`` of ``image``."""
+        moments = moment_integrals(image) if self.flatten else None
+        return self.bank.compute(integral_image(image), windows, core=self.core,
+                                 moments=moments)
 
     def enrol(self, name: str, images: Sequence[np.ndarray]) -> int:
         """Add ``name``'s faces (online: the forest is grown again); how many of the
         images had a face."""
-        if not name.strip():
-            raise FaceError("a person to enrol needs a name")
-        described = [views for views in (self._views(image, _SHIFTS) for image in images)
-                     if views is not None]
-        if not described:
-            raise FaceError(f"no face found in the {len(images)} image(s) of {name}; "
-                            "enrol with images in which the face is seen from the front")
-        self._samples.setdefault(name, []).extend(described)
-        self._grow()
-        return len(described)
+        return self.enrol_people({name: images})[name]
 
-    def enrol_strangers(self, images: Sequence[np.ndarray]) -> int:
+    def enrol_people(self, faces: Mapping[str, Sequence[np.ndarray]]) -> dict[str, int]:
+        """Add several people's faces at once (the forest is grown once, not per
+        person); how many of each one's images had a face. Nobody is added when one of
+        them has no name or no face."""
+        described: dict[str, list[np.ndarray]] = {}
+        for name, images in faces.items():
+            if not name.strip():
+                raise FaceError("a person to enrol needs a name")
+            described[name] = [views for views in (self._views(image, _SHIFTS)
+                                                   for image in images) if views is not None]
+            if not described[name]:
+                raise FaceError(f"no face found in the {len(images)} image(s) of {name}; "
+                                "enrol with images in which the face is seen from the front")
+        for name, views in described.items():
+            self._samples.setdefault(name, []).extend(views)
+        if described:
+            self._grow()
+        return {name: len(views) for name, views in described.items()}
+
+    def enrol_strangers(self, images: Sequence[np.ndarray],
+                        names: Sequence[str] | None = None) -> int:
         """Learn faces of people who are nobody the robot knows (say, the faces the
-        detector was trained on), as one more class of the forest: "a stranger". A face
-        the forest votes a stranger's is nobody known, however near a person it lies;
+        detector was trained on): how near a face is to a person is judged against how
+        near it is to them (and they are one more class of the forest, "a stranger",
+        which sharpens the features it finds telling). ``names`` says whose each image is
+        (the same name, the same stranger; without, each image is a stranger of its own);
         how many of the images had a face."""
-        described = [views for views in (self._views(image, _SHIFTS) for image in images)
+        if names is not None and len(names) != len(images):
+            raise FaceError(f"{len(images)} stranger image(s) but {len(names)} name(s): "
+                            "give one name per image, or none")
+        owners = list(names) if names is not None else \
+            [f"stranger {len(self._stranger_names) + index}" for index in range(len(images))]
+        described = [(views, owner) for views, owner in
+                     zip((self._views(image, _SHIFTS) for image in images), owners, strict=True)
                      if views is not None]
-        self._strangers.extend(described)
+        self._strangers.extend(views for views, _ in described)
+        self._stranger_names.extend(owner for _, owner in described)
         if self._samples:
             self._grow()
         return len(described)
@@ -469,13 +529,12 @@ class FaceMemory:
         x, y, side = found[0].window()
         windows = [w for w in ((x + a, y + b, side + c) for a, b, c in shifts)
                    if _fits(w, image.shape)]
-        views = [self.bank.compute(integral_image(image), np.asarray(windows), core=self.core)]
+        views = [self._describe(image, np.asarray(windows))]
         if self.mirror:
             # a face seen in a mirror is the same face turned the other way
             width = image.shape[1]
             flipped = [(width - wx - ws, wy, ws) for wx, wy, ws in windows]
-            views.append(self.bank.compute(integral_image(image[:, ::-1]), np.asarray(flipped),
-                                           core=self.core))
+            views.append(self._describe(image[:, ::-1], np.asarray(flipped)))
         return np.vstack(views)
 
     def _grow(self) -> None:
@@ -492,37 +551,65 @@ class FaceMemory:
                                         random_state=self.seed, n_jobs=1)
         forest.fit(data, labels)
         self._forest = _Forest.of(forest, len(blocks))
-        self._labels = labels
-        # For rejecting strangers: the features the forest found telling, standardised;
-        # a face is far from a person when its nearest enrolled views of them are further
-        # than their views are from one another.
+        # For nearness: the features the forest found telling, standardised, each weighed
+        # by the square root of its importance (the distance's square by the importance:
+        # a feature the forest splits on often counts more than one it hardly uses)
         importance = forest.feature_importances_
         telling = np.argsort(-importance)[:_TELLING]
-        # each standardised feature weighed by the square root of its importance (the
-        # distance's square by the importance: a feature the forest splits on often counts
-        # more than one it hardly uses)
         weight = np.sqrt(importance[telling] / max(float(importance[telling].mean()), 1e-12))
         centre = data[:, telling].mean(axis=0)
         scale = (data[:, telling].std(axis=0) + 1e-9) / np.maximum(weight, 1e-6)
         self._telling = (telling, centre, scale)
-        self._standard = (data[:, telling] - centre) / scale
-        self._by_person = [self._standard[labels == index] for index in range(len(blocks))]
-        images = np.concatenate([np.full(len(block), number) for number, block in
-                                 enumerate([b for name in self._names
-                                            for b in self._samples[name]] + self._strangers)])
-        self._held_out = [_held_out_distances(self._standard[labels == index],
-                                              images[labels == index])
-                          for index in range(len(self._names))]
-        # a person's own spacing is the median of their held-out distances (40 images say
-        # little about a 97th percentile); how far the tail reaches beyond the median is
-        # the household's, from everyone's distances over their own spacing
-        spacing = np.asarray([_reach(self._standard[labels == index], distances, 0.5)
-                              for index, distances in enumerate(self._held_out)])
-        pooled = np.concatenate([distances / max(gap, 1e-9) for distances, gap in
-                                 zip(self._held_out, spacing, strict=True)])
-        tail = float(np.quantile(pooled, _HELD_OUT)) if len(pooled) else 1.0
-        own = spacing * tail
-        self._typical = own ** _OWN_REACH * float(np.median(own)) ** (1.0 - _OWN_REACH)
+        # the gallery: every enrolled image's views, grouped by whose they are (the
+        # people, then each stranger)
+        strangers = sorted(set(self._stranger_names))
+        per_image = [(self._names.index(name), views) for name in self._names
+                     for views in self._samples[name]] + \
+            [(len(self._names) + strangers.index(owner), views)
+             for owner, views in zip(self._stranger_names, self._strangers, strict=True)]
+        self._gallery = _Gallery.of([((views[:, telling] - centre) / scale, owner)
+                                     for owner, views in per_image],
+                                    len(self._names) + len(strangers))
+        self._learn_reach([owner for owner, _ in per_image])
+
+    def _learn_reach(self, owners: Sequence[int]) -> None:
+        """How near (``_ratio``) a face must be to be a person's, from the enrolment
+        alone: each enrolled image of a person is held out in turn and its ratio taken
+        against the rest (how new views of them lie); each image of a stranger, and of a
+        person, is taken with everything of its owner left out (how a newcomer's face
+        lies: the nearest other person stands for the one the forest would vote). The
+        reach is where, over those, the share of strangers let in is ``_LET_IN_PER_MISS``
+        times the share of the household's faces missed (they cross there)."""
+        gallery, people = self._gallery, len(self._names)
+        assert gallery is not None and self._forest is not None
+        probes = gallery.rows[gallery.firsts]  # each image's own window, unshifted
+        distances = gallery.distances(probes)
+        held: list[list[float]] = [[] for _ in range(people)]
+        newcomers: list[float] = []
+        for image, owner in enumerate(owners):
+            near = gallery.nearest(np.where(gallery.images == image, np.inf, distances[image]))
+            if owner < people:
+                held[owner].append(_ratio(near, owner))
+            alone = gallery.nearest(np.where(gallery.owners == owner, np.inf, distances[image]))
+            others = [person for person in range(people) if person != owner]
+            if others:
+                voted = min(others, key=lambda person: alone[person])
+                newcomers.append(_ratio(alone, voted))
+        pooled = np.concatenate([np.asarray(ratios) for ratios in held])
+        if len(pooled) and newcomers:
+            candidates = np.sort(np.r_[pooled, newcomers])
+            missed = 1.0 - np.searchsorted(np.sort(pooled), candidates, side="right") / len(pooled)
+            let_in = np.searchsorted(np.sort(newcomers), candidates, side="right") / len(newcomers)
+            self._reach = float(candidates[np.argmin(np.maximum(_LET_IN_PER_MISS * missed,
+                                                                let_in))])
+        elif len(pooled):
+            self._reach = float(np.quantile(pooled, _HELD_OUT))
+        else:  # one image of one person: the spread of its own shifted views
+            rows = gallery.rows
+            gaps = np.linalg.norm(rows[:, None, :] - rows[None, :, :], axis=2)
+            self._reach = float(np.median(gaps[gaps > 1e-6])) if np.any(gaps > 1e-6) else 1.0
+        self._reach = max(self._reach, 1e-9)
+        self._held_out = [np.asarray(ratios) / self._reach for ratios in held]
         self._look_thresholds = {}
 
     def identify(self, image: np.ndarray, window: Window | None = None
@@ -539,21 +626,15 @@ class FaceMemory:
         votes = self._forest.shares(self._forest.leaves(vector))
         best = int(np.argmax(votes[:len(self._names)]))
         far = self._far(vector, best)
-        if self._stranger_voted(votes):
-            return None, far
         return (self._names[best], far) if far <= self.threshold else (None, far)
 
-    def _stranger_voted(self, votes: np.ndarray) -> bool:
-        """Whether the forest's ``votes`` point to the strangers' class (when there is one)."""
-        return len(votes) > len(self._names) and int(np.argmax(votes)) == len(self._names)
-
     def _far(self, vector: np.ndarray, person: int) -> float:
-        """How far a face's features are from ``person``'s enrolled views: the mean
-        distance to the nearest few, over the person's reach."""
+        """How far a face is from ``person``'s enrolled views, for others' too: its
+        ``_ratio`` over the reach (1: as far as a person's face may be)."""
+        assert self._gallery is not None
         telling, centre, scale = self._telling
-        gaps = np.linalg.norm(self._by_person[person] - (vector[telling] - centre) / scale,
-                              axis=1)
-        return float(np.sort(gaps)[:_NEAREST].mean() / self._typical[person])
+        distances = self._gallery.distances(((vector[telling] - centre) / scale)[None, :])[0]
+        return _ratio(self._gallery.nearest(distances), person) / self._reach
 
     def identify_look(self, images: Sequence[np.ndarray]) -> tuple[str | None, float]:
         """Whose face several views of one person show, from the evidence of all of
@@ -575,8 +656,6 @@ class FaceMemory:
                         for vector in vectors], axis=0)
         best = int(np.argmax(votes[:len(self._names)]))
         far = float(np.median([self._far(vector, best) for vector in vectors]))
-        if self._stranger_voted(votes):
-            return None, far
         limit = self.threshold * self._look_threshold(len(vectors))
         return (self._names[best], far) if far <= limit else (None, far)
 
@@ -592,10 +671,9 @@ class FaceMemory:
         enrolled (seeded: the same memory, the same threshold)."""
         if views not in self._look_thresholds:
             rng = np.random.default_rng([self.seed, 1515, views])
-            medians = [float(np.median(rng.choice(distances / reach, views,
+            medians = [float(np.median(rng.choice(distances, views,
                                                   replace=len(distances) < views)))
-                       for distances, reach in zip(self._held_out, self._typical,
-                                                   strict=True)
+                       for distances in self._held_out
                        if len(distances) for _ in range(_LOOK_DRAWS)]
             self._look_thresholds[views] = float(np.quantile(medians, _LOOK_QUANTILE)) \
                 if medians else 1.0
@@ -672,27 +750,65 @@ class Acquaintances:
         return self._memory.identify_views(images)
 
 
-def _held_out_distances(views: np.ndarray, images: np.ndarray) -> np.ndarray:
-    """How far new views of a person lie from their enrolled views: each enrolment
-    image in turn is held out and its distance to the nearest ``_NEAREST`` views of the
-    person's other images taken (cross-validation on the enrolment images alone: no
-    stranger's face is needed); empty with one image only."""
-    scores = []
-    for image in np.unique(images):
-        probe, others = views[images == image][0], views[images != image]
-        if len(others):
-            scores.append(float(np.sort(np.linalg.norm(others - probe, axis=1))
-                                [:_NEAREST].mean()))
-    return np.asarray(scores)
+def _ratio(nearest: np.ndarray, person: int) -> float:
+    """How near a face is to ``person`` against everyone else: its distance to them (the
+    mean of the ``_NEAREST`` nearest of their views, ``nearest[person]``) over the mean
+    distance to the ``_COHORT`` nearest others (people and strangers); a face of theirs
+    is nearer to them than to others, a newcomer's lies about as near to several. With
+    nobody else enrolled, the distance itself."""
+    others = np.delete(nearest, person)
+    others = others[np.isfinite(others)]  # owners left out
+    if not len(others):
+        return float(nearest[person])
+    cohort = float(np.sort(others)[:_COHORT].mean())
+    return float(nearest[person]) / max(cohort, 1e-12)
 
 
-def _reach(views: np.ndarray, distances: np.ndarray, quantile: float) -> float:
-    """The ``quantile`` of a person's held-out ``distances``; with one image only, the
-    spread of its own jittered copies stands in."""
-    if len(distances):
-        return float(np.quantile(distances, quantile))
-    gaps = np.linalg.norm(views[:, None, :] - views[None, :, :], axis=2)
-    return float(np.median(gaps[gaps > 1e-6])) if np.any(gaps > 1e-6) else 1.0
+@dataclass(frozen=True)
+class _Gallery:
+    """Enrolled views (standardised telling features) grouped by whose they are, for the
+    distance from a face to each owner: the mean of its ``_NEAREST`` nearest views."""
+
+    rows: np.ndarray  #: (n, d) float32
+    norms: np.ndarray  #: (n,) the rows' squared lengths
+    owners: np.ndarray  #: (n,) whose each row is
+    images: np.ndarray  #: (n,) which enrolled image each row comes from
+    firsts: np.ndarray  #: each image's first row (its own window, unshifted)
+    layout: np.ndarray  #: (owners, most) each owner's rows, padded with n (a far slot)
+
+    @classmethod
+    def of(cls, images: Sequence[tuple[np.ndarray, int]], owners: int) -> _Gallery:
+        """The gallery of ``images``: each one's views and owner."""
+        rows = np.vstack([views for views, _ in images]).astype(np.float32)
+        owner_of = np.concatenate([np.full(len(views), owner) for views, owner in images])
+        image_of = np.concatenate([np.full(len(views), index)
+                                   for index, (views, _) in enumerate(images)])
+        firsts = np.r_[0, np.cumsum([len(views) for views, _ in images])[:-1]]
+        members = [np.flatnonzero(owner_of == owner) for owner in range(owners)]
+        layout = np.full((owners, max(len(m) for m in members)), len(rows), dtype=np.intp)
+        for owner, indices in enumerate(members):
+            layout[owner, :len(indices)] = indices
+        return cls(rows, np.einsum("ij,ij->i", rows, rows), owner_of, image_of,
+                   firsts.astype(np.intp), layout)
+
+    def distances(self, vectors: np.ndarray) -> np.ndarray:
+        """(m, n): each of ``vectors``' distance to each row (|a-b|² = |a|² - 2ab + |b|²,
+        one matrix product: a face is compared with thousands of views)."""
+        vectors = np.asarray(vectors, dtype=np.float32)
+        squares = self.norms[None, :] - 2.0 * (vectors @ self.rows.T) \
+            + np.einsum("ij,ij->i", vectors, vectors)[:, None]
+        distances: np.ndarray = np.sqrt(np.maximum(squares, 0.0)).astype(np.float64)
+        return distances
+
+    def nearest(self, distances: np.ndarray) -> np.ndarray:
+        """Each owner's mean distance over its ``_NEAREST`` nearest rows (inf for an
+        owner all of whose rows are left out, as inf distances)."""
+        padded = np.append(distances, np.inf)[self.layout]
+        k = min(_NEAREST, padded.shape[1])
+        smallest = np.partition(padded, k - 1, axis=1)[:, :k]
+        with np.errstate(invalid="ignore"):
+            means: np.ndarray = smallest.mean(axis=1)
+        return means
 
 
 @dataclass(frozen=True)

@@ -22,7 +22,7 @@ import numpy as np
 
 import homebot.perception.faces as faces_module
 import homebot.sim.faces as sim_faces_module
-from homebot.perception.faces import FaceDetector, FaceMemory
+from homebot.perception.faces import FaceDetector, FaceMemory, Window
 from homebot.perception.recognition import (
     LabelledFrame,
     Recogniser,
@@ -72,23 +72,37 @@ def perception_for(world: World, seed: int = 0) -> TabletopPerception:
     return TabletopPerception(recogniser, np.random.default_rng([seed, 1516]))
 
 
+def stranger_faces(seed: int = 0, strangers: int = 30, views: int = 300
+                   ) -> list[tuple[np.ndarray, Window, str]]:
+    """``views`` rendered views of ``strangers`` people (nobody of any home): each image,
+    where its face is and whose it is. The face cascade learns from them what a face is,
+    and the face memory whom a newcomer's face might be as near as to someone it knows."""
+    rng = np.random.default_rng([seed, 1517])
+    people = [face_identity(f"stranger{i}", seed + 1) for i in range(strangers)]
+    return [(*face_view(people[i % strangers], rng), people[i % strangers].name)
+            for i in range(views)]
+
+
 @functools.lru_cache(maxsize=4)
 def trained_face_detector(seed: int = 0, strangers: int = 30, views: int = 300,
                           faceless: int = 200) -> FaceDetector:
-    """A face cascade trained on ``views`` rendered views of ``strangers`` (nobody of the
-    home) and ``faceless`` clutter images (remembered: training takes tens of seconds)."""
-    rng = np.random.default_rng([seed, 1517])
-    people = [face_identity(f"stranger{i}", seed + 1) for i in range(strangers)]
-    rendered = [face_view(people[i % strangers], rng) for i in range(views)]
+    """A face cascade trained on ``stranger_faces`` and ``faceless`` clutter images
+    (remembered: training takes tens of seconds)."""
+    rendered = stranger_faces(seed, strangers, views)
+    rng = np.random.default_rng([seed, 1519])
     detector = FaceDetector(seed=seed)
-    detector.train([image for image, _ in rendered], [window for _, window in rendered],
+    detector.train([image for image, _, _ in rendered], [window for _, window, _ in rendered],
                    [background_patch(rng) for _ in range(faceless)])
     return detector
 
 
 def face_memory(seed: int = 0) -> FaceMemory:
-    """An empty face memory over the trained detector, for people to be enrolled in."""
-    return FaceMemory(trained_face_detector(seed), seed=seed)
+    """An empty face memory over the trained detector, for people to be enrolled in; it
+    knows the detector's training faces as strangers' (``FaceMemory.enrol_strangers``)."""
+    memory = FaceMemory(trained_face_detector(seed), seed=seed)
+    rendered = stranger_faces(seed)
+    memory.enrol_strangers([image for image, _, _ in rendered], [name for _, _, name in rendered])
+    return memory
 
 
 def household_faces(world: World) -> FaceMemory:
@@ -118,9 +132,8 @@ def _taught(names: tuple[str, ...]) -> FaceMemory:
         pass
     memory = face_memory()
     rng = np.random.default_rng([0, 1518])
-    for name in names:
-        identity = face_identity(name, 0)
-        memory.enrol(name, [face_view(identity, rng)[0] for _ in range(_ENROLMENT_VIEWS)])
+    memory.enrol_people({name: [face_view(face_identity(name, 0), rng)[0]
+                                for _ in range(_ENROLMENT_VIEWS)] for name in names})
     try:
         cached.parent.mkdir(parents=True, exist_ok=True)
         cached.write_bytes(pickle.dumps(memory))
