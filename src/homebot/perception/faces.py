@@ -20,21 +20,25 @@ level does not matter.
   would find 98 % of a seed's faces against 94 % with the raw ones.
 - **Identification** (``FaceMemory``): a random forest on a larger bank of Haar
   features of the face window votes for an identity; each enrolled view is also
-  learnt mirrored. ``enrol(name, images)`` adds a person online (the forest is grown
-  again on everything enrolled: seconds). The identification features are divided by
-  the contrast of the window's middle (its corners show the background). Strangers are rejected by
-  distance: a face further from the voted person's enrolled views than
-  ``threshold`` times their reach (in the forest's 800 most telling features,
-  each standardised and weighed by the square root of its importance) is nobody
-  known; a person's reach is learnt from their enrolment images alone, each held
-  out in turn (``_held_out_distances``): the median of those distances times the
-  household's 95th percentile of them over their person's median, then shrunk halfway
-  towards the household's median reach. Faces of people nobody knows
-  (``enrol_strangers``: the faces the cascade was trained on, say) are one more class
-  of the forest: a face voted a stranger's is nobody known however near someone it
-  lies. With them the reach can be wider (each person's own 90th percentile before):
-  the class takes many strangers a wider reach would let in. The forest's own vote
-  share and leaf proximity, and a per-person spread model, separated strangers worse.
+  learnt mirrored, and shifted by a pixel. ``enrol(name, images)`` adds a person online
+  (the forest is grown again on everything enrolled: seconds). Before the identification
+  features are taken, the brightness plane that best fits the window's middle is taken
+  off (Sung and Poggio's lighting correction: a light from one side adds a ramp across
+  the face), and they are divided by the contrast left. Whether the face is the voted
+  person's at all is a question of nearness, judged against others (cohort
+  normalisation, as in speaker verification): its distance to that person's nearest
+  enrolled views (in the forest's 800 most telling features, each standardised and
+  weighed by the square root of its importance) over its mean distance to the
+  ``_COHORT`` nearest others, people and strangers. Faces of people nobody knows
+  (``enrol_strangers``: the faces the cascade was trained on, say, by whose they are)
+  are those others, and one more class of the forest (it makes the features it finds
+  telling sharper; the class does not veto a face). The reach of that ratio is learnt
+  from the enrolment alone (``_learn_reach``): each enrolled image held out in turn
+  tells how new views of a person lie, each image of a stranger or a person taken with
+  everything of its owner left out tells how a newcomer's face lies, and the reach is
+  where strangers let in are ``_LET_IN_PER_MISS`` times the faces missed. A bare distance
+  with a per-person reach (before), a strangers' class that vetoed, a vote share,
+  leaf proximity and a per-person spread model all separated strangers worse.
 - **A look** (``identify_look``, ``identify_views``): several views of one person
   are weighed together, not by a majority of per-view decisions: the votes summed
   over the views pick the person, and the median of the views' distances from
@@ -140,6 +144,19 @@ class HaarFeatures:
         self._box = table[:, :4]
         self._weight = table[:, 4]
         self._starts = np.flatnonzero(np.r_[True, np.diff(owners) != 0])
+        self._subsets: dict[bytes, tuple[np.ndarray, np.ndarray, np.ndarray]] = {}
+
+    def _subset(self, only: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """The rectangles, weights and feature starts of the features ``only`` (kept:
+        a cascade stage asks for the same ones at every image)."""
+        key = only.tobytes()
+        if key not in self._subsets:
+            ends = np.r_[self._starts[1:], len(self._box)]
+            rows = np.concatenate([np.arange(self._starts[i], ends[i]) for i in only])
+            lengths = ends[only] - self._starts[only]
+            self._subsets[key] = (self._box[rows], self._weight[rows],
+                                  np.r_[0, np.cumsum(lengths)[:-1]])
+        return self._subsets[key]
 
     def compute(self, integrals: tuple[np.ndarray, np.ndarray], windows: np.ndarray,
                 only: np.ndarray | None = None, core: float = 0.0,
@@ -155,11 +172,7 @@ class HaarFeatures:
         windows = np.asarray(windows, dtype=np.float64).reshape(-1, 3)
         box, weight, starts = self._box, self._weight, self._starts
         if only is not None:
-            ends = np.r_[self._starts[1:], len(self._box)]
-            rows = np.concatenate([np.arange(self._starts[i], ends[i]) for i in only])
-            lengths = ends[only] - self._starts[only]
-            box, weight = box[rows], weight[rows]
-            starts = np.r_[0, np.cumsum(lengths)[:-1]]
+            box, weight, starts = self._subset(np.asarray(only, dtype=np.intp))
         wx, wy, side = windows[:, 0:1], windows[:, 1:2], windows[:, 2:3]
         x0 = np.rint(wx + box[None, :, 0] * side).astype(np.intp)
         y0 = np.rint(wy + box[None, :, 1] * side).astype(np.intp)
@@ -414,8 +427,8 @@ class FaceMemory:
 
     Args:
         detector: finds the face in each image (trained).
-        threshold: how far (over the person's typical spacing) a face may be from the
-            voted person's enrolled views; further, it is a stranger's.
+        threshold: how far a face may be from the voted person's enrolled views, as a
+            share of the learnt reach (``_far``); further, it is a stranger's.
         trees: the forest's size.
         features: the identification bank's size.
         seed: the bank's layout and the forest's randomness.
@@ -615,9 +628,9 @@ class FaceMemory:
     def identify(self, image: np.ndarray, window: Window | None = None
                  ) -> tuple[str | None, float]:
         """Whose face ``image`` shows by the forest's vote, and how far it is from that
-        person's enrolled views (mean distance to the nearest few, over their typical
-        spacing, in the forest's most telling features); (None, far) when it is further
-        than ``threshold`` (a stranger), (None, inf) when no face is found."""
+        person's enrolled views against others (``_far``: 1 is the reach); (None, far)
+        when it is further than ``threshold`` (a stranger), (None, inf) when no face is
+        found."""
         if self._forest is None:
             raise FaceError("nobody is enrolled yet: enrol(name, images) first")
         vector = self.describe(image, window)
@@ -640,7 +653,7 @@ class FaceMemory:
         """Whose face several views of one person show, from the evidence of all of
         them: the person the forest's votes, summed over the views in which a face is
         found, point to, and the median of those views' distances from that person's
-        enrolled views (each over their reach, as ``identify`` gives it). The look is
+        enrolled views (each ``_far``, as ``identify`` gives it). The look is
         theirs when that median is within ``threshold`` times the look threshold: the
         ``_LOOK_QUANTILE`` quantile of the same median over looks of as many views
         drawn from the household's held-out enrolment images (``_look_threshold``:
@@ -665,7 +678,7 @@ class FaceMemory:
         return self.identify_look(images)[0]
 
     def _look_threshold(self, views: int) -> float:
-        """How far (over the person's reach) a look of ``views`` views may be: the
+        """How far (``_far``) a look of ``views`` views may be: the
         ``_LOOK_QUANTILE`` quantile of the median distance of ``views`` held-out
         enrolment images of a person, over ``_LOOK_DRAWS`` draws for each person
         enrolled (seeded: the same memory, the same threshold)."""
@@ -851,7 +864,15 @@ class _Forest:
         return cls(feature, threshold, left, right, value, depth)
 
     def leaves(self, vector: np.ndarray) -> np.ndarray:
-        """The leaf each tree sends ``vector`` to."""
+        """The leaf each tree sends ``vector`` to (compiled: ``forest_walk``)."""
+        from homebot.perception.forest_walk import walk
+
+        leaves: np.ndarray = walk(self.feature, self.threshold, self.left, self.right,
+                                  np.ascontiguousarray(vector, dtype=np.float64))
+        return leaves
+
+    def leaves_by_levels(self, vector: np.ndarray) -> np.ndarray:
+        """``leaves`` by numpy, a level of all trees at a time (the compiled walk's check)."""
         node = np.zeros(len(self.feature), dtype=np.intp)
         active = np.arange(len(self.feature))  # the trees not yet at a leaf
         for _ in range(self.depth):
