@@ -8,7 +8,7 @@ the simulator's truth:
   figures from motmetrics (a track matches a person within 0.5 m); posture from
   body clouds and clothes colour from torso patches (``homebot.sim.silhouettes``).
 - ``face_figures``: a cascade trained on 30 strangers' faces and faceless
-  clutter (those faces are also the face memory's strangers' class,
+  clutter (those faces, by whose they are, are also the face memory's strangers,
   ``FaceMemory.enrol_strangers``); 10 people enrolled with 40 views each; 20 new views of each
   identified; 100 strangers' faces that should come out unknown (all per
   view); then per person, looks of 3 views, and of 6 as the robot takes them,
