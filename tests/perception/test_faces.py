@@ -218,3 +218,18 @@ def test_the_compiled_forest_walk_reaches_the_leaves_a_level_walk_does() -> None
         assert np.array_equal(plain(forest.feature, forest.threshold, forest.left,
                                     forest.right, vector), expected)
         assert (forest.left[np.arange(15), expected] < 0).all()  # leaves, every one
+
+
+def test_a_person_enrolled_from_one_image_has_a_finite_reach(detector: FaceDetector) -> None:
+    rng = np.random.default_rng(14)
+    crowd = [face_identity(f"s{index}", 9) for index in range(6)]
+    ada = face_identity("Ada", 9)
+    for strangers in (False, True):
+        memory = FaceMemory(detector, trees=20, features=400)
+        if strangers:
+            memory.enrol_strangers([face_view(face, rng)[0] for face in crowd for _ in range(3)],
+                                   [face.name for face in crowd for _ in range(3)])
+        image = face_view(ada, rng)[0]
+        assert memory.enrol("Ada", [image]) == 1
+        assert 0.0 < memory._reach < math.inf
+        assert memory.identify(image)[0] == "Ada"  # the very view it learnt

@@ -70,7 +70,7 @@ _COHORT = 5  #: the nearest others (people, strangers) a face's nearness is judg
 #: often as it misses the household's faces: the issue's error budgets, 20 % and 10 %
 _LET_IN_PER_MISS = 2.0
 #: with nobody to compare with (one person, no strangers): the quantile of the held-out
-#: enrolment ratios that is the reach
+#: enrolment distances that is the reach
 _HELD_OUT = 0.95
 #: the enrolled windows around each aligned one: x, y, side in pixels (the first is the
 #: window itself)
@@ -599,8 +599,13 @@ class FaceMemory:
         distances = gallery.distances(probes)
         held: list[list[float]] = [[] for _ in range(people)]
         newcomers: list[float] = []
+        images_of = np.bincount(np.asarray(owners, dtype=np.intp), minlength=people)
         for image, owner in enumerate(owners):
-            near = gallery.nearest(np.where(gallery.images == image, np.inf, distances[image]))
+            # held out: the image's views; a person's only image, just the window itself
+            # (its shifted and mirrored views stand in for new ones)
+            out = gallery.images == image if images_of[owner] > 1 else \
+                np.arange(len(gallery.rows)) == gallery.firsts[image]
+            near = gallery.nearest(np.where(out, np.inf, distances[image]))
             if owner < people:
                 held[owner].append(_ratio(near, owner))
             alone = gallery.nearest(np.where(gallery.owners == owner, np.inf, distances[image]))
@@ -615,12 +620,8 @@ class FaceMemory:
             let_in = np.searchsorted(np.sort(newcomers), candidates, side="right") / len(newcomers)
             self._reach = float(candidates[np.argmin(np.maximum(_LET_IN_PER_MISS * missed,
                                                                 let_in))])
-        elif len(pooled):
+        else:  # nobody to compare with: one person, no strangers
             self._reach = float(np.quantile(pooled, _HELD_OUT))
-        else:  # one image of one person: the spread of its own shifted views
-            rows = gallery.rows
-            gaps = np.linalg.norm(rows[:, None, :] - rows[None, :, :], axis=2)
-            self._reach = float(np.median(gaps[gaps > 1e-6])) if np.any(gaps > 1e-6) else 1.0
         self._reach = max(self._reach, 1e-9)
         self._held_out = [np.asarray(ratios) / self._reach for ratios in held]
         self._look_thresholds = {}
