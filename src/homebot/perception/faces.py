@@ -594,7 +594,7 @@ class FaceMemory:
         reach is where, over those, the share of strangers let in is ``_LET_IN_PER_MISS``
         times the share of the household's faces missed (they cross there)."""
         gallery, people = self._gallery, len(self._names)
-        assert gallery is not None and self._forest is not None
+        assert gallery is not None
         probes = gallery.rows[gallery.firsts]  # each image's own window, unshifted
         distances = gallery.distances(probes)
         held: list[list[float]] = [[] for _ in range(people)]
