@@ -827,15 +827,14 @@ class _Gallery:
 
 @dataclass(frozen=True)
 class _Forest:
-    """A grown forest as padded arrays, walked for all trees at once with numpy
-    (scikit-learn's per-call overhead is ~0.1 ms a tree, for one face)."""
+    """A grown forest as padded arrays, walked compiled (``forest_walk``: scikit-learn's
+    per-call overhead is ~0.1 ms a tree, for one face)."""
 
     feature: np.ndarray  #: (trees, nodes)
     threshold: np.ndarray
     left: np.ndarray
     right: np.ndarray
     value: np.ndarray  #: (trees, nodes, classes): class shares at each node
-    depth: int
 
     @classmethod
     def of(cls, forest: object, classes: int, regression: bool = False) -> _Forest:
@@ -861,8 +860,7 @@ class _Forest:
             counts = tree.value[:, 0, :]
             value[index, :n, :counts.shape[1]] = counts / np.maximum(
                 counts.sum(axis=1, keepdims=True), 1e-12)
-        depth = max(int(estimator.get_depth()) for estimator in forest.estimators_)  # type: ignore[attr-defined]
-        return cls(feature, threshold, left, right, value, depth)
+        return cls(feature, threshold, left, right, value)
 
     def leaves(self, vector: np.ndarray) -> np.ndarray:
         """The leaf each tree sends ``vector`` to (compiled: ``forest_walk``)."""
@@ -871,22 +869,6 @@ class _Forest:
         leaves: np.ndarray = walk(self.feature, self.threshold, self.left, self.right,
                                   np.ascontiguousarray(vector, dtype=np.float64))
         return leaves
-
-    def leaves_by_levels(self, vector: np.ndarray) -> np.ndarray:
-        """``leaves`` by numpy, a level of all trees at a time (the compiled walk's check)."""
-        node = np.zeros(len(self.feature), dtype=np.intp)
-        active = np.arange(len(self.feature))  # the trees not yet at a leaf
-        for _ in range(self.depth):
-            at = node[active]
-            left = self.left[active, at]
-            inner = left >= 0
-            if not inner.all():
-                active, at, left = active[inner], at[inner], left[inner]
-                if not len(active):
-                    break
-            go_left = vector[self.feature[active, at]] <= self.threshold[active, at]
-            node[active] = np.where(go_left, left, self.right[active, at])
-        return node
 
     def shares(self, leaves: np.ndarray) -> np.ndarray:
         """Each identity's share of the trees' votes (a regressor's: the mean outputs)."""

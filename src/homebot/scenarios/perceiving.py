@@ -72,15 +72,17 @@ def perception_for(world: World, seed: int = 0) -> TabletopPerception:
     return TabletopPerception(recogniser, np.random.default_rng([seed, 1516]))
 
 
+@functools.lru_cache(maxsize=2)
 def stranger_faces(seed: int = 0, strangers: int = 30, views: int = 300
-                   ) -> list[tuple[np.ndarray, Window, str]]:
+                   ) -> tuple[tuple[np.ndarray, Window, str], ...]:
     """``views`` rendered views of ``strangers`` people (nobody of any home): each image,
     where its face is and whose it is. The face cascade learns from them what a face is,
-    and the face memory whom a newcomer's face might be as near as to someone it knows."""
+    and the face memory whom a newcomer's face might be as near as to someone it knows
+    (remembered: both ask for them)."""
     rng = np.random.default_rng([seed, 1517])
     people = [face_identity(f"stranger{i}", seed + 1) for i in range(strangers)]
-    return [(*face_view(people[i % strangers], rng), people[i % strangers].name)
-            for i in range(views)]
+    return tuple((*face_view(people[i % strangers], rng), people[i % strangers].name)
+                 for i in range(views))
 
 
 @functools.lru_cache(maxsize=4)
