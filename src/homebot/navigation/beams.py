@@ -1,4 +1,4 @@
-"""Monte Carlo localisation's per-beam work as compiled kernels (``navigation.compiled``).
+"""Monte Carlo localisation's per-beam work as compiled kernels (``homebot.compiled``).
 
 ``log_likelihoods`` weighs every particle by one table look-up per beam end
 point; ``raycast`` marches rays through the map's solid cells, each stopping
@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from homebot.navigation.compiled import compiled
+from homebot.compiled import compiled
 
 __all__ = ["log_likelihoods", "raycast"]
 

@@ -4,7 +4,7 @@
 each motion in substeps, the collision check against the local grid's
 clearance (grown by the speed), the heuristic (time to go) and the open list
 (a binary heap on arrays). It is written as plain Python over scalars and
-arrays (see ``homebot.navigation.compiled``), so tests can run the very same
+arrays (see ``homebot.compiled``), so tests can run the very same
 code as ``search.py_func``. ``coarse_field`` (with ``sweep``, one Dijkstra) is
 the search by length before it, ``expand`` puts its result back on the local
 grid, ``clearance_grid`` builds that grid's clearance from a scan's returns,
@@ -19,7 +19,7 @@ import math
 
 import numpy as np
 
-from homebot.navigation.compiled import compiled as _compiled
+from homebot.compiled import compiled as _compiled
 
 __all__ = ["bucketed", "classify_returns", "clearance_near", "downhill_at", "search", "sweep"]
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from homebot.navigation.compiled import compiled
+from homebot.compiled import compiled
 
 __all__ = ["walk"]
 

@@ -12,12 +12,12 @@ the truth, as feet, reflections and clutter do to real lasers.
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
-from typing import Any, TypeVar, cast
+from collections.abc import Sequence
 
 import numpy as np
 from scipy import ndimage
 
+from homebot.compiled import compiled
 from homebot.robot import LaserScan, Pose
 from homebot.sim.geometry import TRUTH_RESOLUTION, TrueGeometry
 from homebot.world import LaserModel
@@ -29,19 +29,7 @@ _RANGE_MIN = 0.05
 _BISECTIONS = 4
 
 
-_F = TypeVar("_F", bound=Callable[..., Any])
-
-
-def _compiled(function: _F) -> _F:
-    """``function`` compiled by numba (cached on disk) when numba is there, else as it is."""
-    try:
-        from numba import njit
-    except ImportError:  # pragma: no cover - the embodied extra brings numba
-        return function
-    return cast(_F, njit(cache=True, nogil=True)(function))
-
-
-@_compiled
+@compiled
 def _march_beams(solid: np.ndarray, free_run: np.ndarray, column0: np.float32,
                  row0: np.float32, cos: np.ndarray, sin: np.ndarray, steps: np.ndarray,
                  directions: np.ndarray, origin_x: float, origin_y: float, raster_x: float,

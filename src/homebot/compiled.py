@@ -1,4 +1,5 @@
-"""The decorator for the navigation's compiled kernels (numba, from the ``embodied`` extra).
+"""The decorator for compiled kernels (numba, from the ``embodied`` extra): the navigation's,
+the simulated laser's and the face forests' walk.
 
 A kernel is plain Python over scalars and arrays: without numba it runs as it
 is (slower), and tests run the very same code as ``kernel.py_func``. Modules
