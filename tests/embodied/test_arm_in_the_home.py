@@ -11,8 +11,8 @@ pytest.importorskip("mujoco")
 
 from homebot.cli import main
 from homebot.errors import WorldError
+from homebot.geometry import Pose
 from homebot.manipulation.control import ArmControl
-from homebot.robot import Pose
 from homebot.sim import Simulation
 from homebot.sim.body import SimBody
 from homebot.world import World, shipped_world_path, surface_height

@@ -11,8 +11,9 @@ import math
 import pytest
 
 from homebot.bench.fetch_tasks import delivered, fetch_tasks
+from homebot.geometry import Pose
 from homebot.navigation import Navigator
-from homebot.robot import Blocker, Pose
+from homebot.robot import Blocker
 from homebot.scenarios import SimulatedRun
 from homebot.scenarios.embodied import Fidelity
 from homebot.sim import PERSON_PREFIX

@@ -6,8 +6,8 @@ import math
 
 import pytest
 
+from homebot.geometry import Pose
 from homebot.navigation import Navigator
-from homebot.robot import Pose
 from homebot.scenarios import SimulatedRun
 from homebot.scenarios.embodied import Fidelity
 from homebot.world import DoorState, World

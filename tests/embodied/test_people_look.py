@@ -11,8 +11,9 @@ import math
 
 import pytest
 
+from homebot.geometry import Pose
 from homebot.navigation import Navigator
-from homebot.robot import PersonPercept, Pose
+from homebot.robot import PersonPercept
 from homebot.scenarios import SimulatedRun
 from homebot.scenarios.embodied import Fidelity
 from homebot.task import Step, Task

@@ -8,8 +8,9 @@ import pytest
 
 from homebot.bench.fetch_tasks import delivered, fetch_tasks
 from homebot.bench.robustness import compare_modes
+from homebot.geometry import Pose
 from homebot.navigation import Navigator
-from homebot.robot import Blocker, MoveReport, PersonPercept, Pose
+from homebot.robot import Blocker, MoveReport, PersonPercept
 from homebot.scenarios import SimulatedRun
 from homebot.sim import PERSON_PREFIX
 from homebot.skills import ErrorCode

@@ -6,16 +6,8 @@ import math
 
 import numpy as np
 
-from homebot.robot import (
-    Body,
-    DriveKind,
-    HeadState,
-    LaserScan,
-    Odometry,
-    Pose,
-    Twist,
-    VelocityLimits,
-)
+from homebot.geometry import Pose
+from homebot.robot import Body, DriveKind, HeadState, LaserScan, Odometry, Twist, VelocityLimits
 
 
 class FakeBody(Body):

@@ -9,6 +9,7 @@ import pytest
 
 from homebot.cli import main
 from homebot.errors import HomebotError
+from homebot.geometry import Pose
 from homebot.navigation import (
     LikelihoodField,
     MclParameters,
@@ -16,7 +17,7 @@ from homebot.navigation import (
     Navigator,
     OccupancyGrid,
 )
-from homebot.robot import BodyError, DriveKind, LaserScan, Odometry, Pose, Twist
+from homebot.robot import BodyError, DriveKind, LaserScan, Odometry, Twist
 from homebot.sim.body import SimBody
 from homebot.sim.simulation import Simulation
 from homebot.world import LaserModel, World

@@ -8,6 +8,7 @@ import pytest
 from fake_body import FakeBody, wall
 
 from homebot.errors import NavigationError
+from homebot.geometry import Pose
 from homebot.navigation import Navigator
 from homebot.navigation.local_planner import MotionSearchPlanner
 from homebot.navigation.navigate import (
@@ -17,7 +18,7 @@ from homebot.navigation.navigate import (
     OdometryPose,
     StopReason,
 )
-from homebot.robot import ActionStatus, Pose
+from homebot.robot import ActionStatus
 from homebot.world import World
 
 

@@ -9,11 +9,12 @@ import numpy as np
 import pytest
 
 from homebot.errors import NavigationError
+from homebot.geometry import Pose
 from homebot.navigation import Navigator
 from homebot.navigation.local_planner import MotionSearchPlanner
 from homebot.navigation.navigate import StopReason
 from homebot.navigation.recovery import ObstacleMemory, RecoveringNavigation, RecoveryPolicy
-from homebot.robot import HelpRequest, Pose
+from homebot.robot import HelpRequest
 from homebot.sim.body import SimBody
 from homebot.sim.robot import SimRobot
 from homebot.sim.simulation import Simulation

@@ -7,9 +7,10 @@ import math
 import numpy as np
 import pytest
 
+from homebot.geometry import Pose
 from homebot.navigation import Navigator
 from homebot.perception.gestures import classify_gesture
-from homebot.robot import Blocker, Pose
+from homebot.robot import Blocker
 from homebot.scenarios import SimulatedRun
 from homebot.scenarios.embodied import Fidelity
 from homebot.sim.keypoints import gesture_keypoints

@@ -10,8 +10,8 @@ pytest.importorskip("sklearn")
 pytest.importorskip("cv2")
 
 from homebot.embodied import BodyRobot
+from homebot.geometry import Pose
 from homebot.navigation import Navigator
-from homebot.robot import Pose
 from homebot.scenarios.embodied import embodied_robot
 from homebot.sim import Simulation
 from homebot.world import World, catalogue_entry

@@ -7,6 +7,7 @@ import math
 import numpy as np
 import pytest
 
+from homebot.geometry import Pose
 from homebot.perception.people import (
     COLOURS,
     PeopleTracker,
@@ -16,7 +17,7 @@ from homebot.perception.people import (
     posture_from_profile,
     segment_scan,
 )
-from homebot.robot import LaserScan, Pose
+from homebot.robot import LaserScan
 from homebot.sim.crowd import crowd_scene
 from homebot.sim.silhouettes import POSTURES, person_cloud, torso_patch
 

@@ -6,8 +6,9 @@ import math
 
 from shapely.geometry import Point as ShapelyPoint
 
+from homebot.geometry import Pose
 from homebot.navigation import Navigator
-from homebot.robot import Blocker, Pose
+from homebot.robot import Blocker
 from homebot.sim import ScriptedResponder, SimRobot, Simulation
 from homebot.world import DisturbanceModel, DoorState, World
 

@@ -10,7 +10,7 @@ import pytest
 pytest.importorskip("cyclonedds")
 pytest.importorskip("rosbags")
 
-from homebot.robot import Pose
+from homebot.geometry import Pose
 from homebot.transport.actions import (
     ActionClient,
     ActionServer,

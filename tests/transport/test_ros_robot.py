@@ -11,7 +11,8 @@ pytest.importorskip("cyclonedds")
 pytest.importorskip("rosbags")
 
 from homebot.errors import TransportError
-from homebot.robot import Blocker, Pose
+from homebot.geometry import Pose
+from homebot.robot import Blocker
 from homebot.transport.actions import ActionServer, GoalContext, GoalStatus
 from homebot.transport.messages import pose_of, pose_stamped
 from homebot.transport.node import Node, loopback

@@ -14,10 +14,11 @@ from rich.console import Console
 
 from homebot.bench.arguments import count, seed
 from homebot.executive.recovery import Protocol, StepRunner
+from homebot.geometry import Pose
 from homebot.inference import InferenceCycle, Inventory, fetch_task
 from homebot.knowledge import KnowledgeBase
 from homebot.navigation import Navigator
-from homebot.robot import Detection, MoveReport, Pose
+from homebot.robot import Detection, MoveReport
 from homebot.scenarios.runtime import SimulatedRun, disturbed
 from homebot.sim import SimRobot, Simulation
 from homebot.skills import ErrorCode, Outcome, SkillContext, skill_named

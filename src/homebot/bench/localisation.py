@@ -34,9 +34,10 @@ from rich.console import Console
 from rich.table import Table
 
 from homebot.bench.arguments import count
+from homebot.geometry import Pose
 from homebot.navigation import Navigator, OccupancyGrid
 from homebot.navigation.localisation import MclParameters, MonteCarloLocalisation
-from homebot.robot import Body, LaserScan, Pose, Twist
+from homebot.robot import Body, LaserScan, Twist
 from homebot.sim.body import SimBody
 from homebot.sim.simulation import Simulation
 from homebot.world import DoorState, LaserModel, World

@@ -55,6 +55,7 @@ from scipy import ndimage
 
 from homebot.bench.arguments import count, seed
 from homebot.errors import BenchmarkError, NavigationError
+from homebot.geometry import Pose
 from homebot.navigation import Navigator, astar
 from homebot.navigation.astar import cached_jump_tables, forget_jump_tables, libtcod_astar
 from homebot.navigation.dwa import DynamicWindowPlanner
@@ -64,7 +65,7 @@ from homebot.navigation.localisation import MclParameters, MonteCarloLocalisatio
 from homebot.navigation.localmap import LocalController
 from homebot.navigation.navigate import OdometryPose
 from homebot.navigation.recovery import RecoveringNavigation, RecoveryPolicy
-from homebot.robot import DriveKind, LaserScan, Pose, Twist, VelocityLimits
+from homebot.robot import DriveKind, LaserScan, Twist, VelocityLimits
 from homebot.sim.body import SimBody
 from homebot.sim.simulation import Simulation
 from homebot.world import PlacementKind, World

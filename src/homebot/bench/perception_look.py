@@ -22,9 +22,9 @@ from typing import Any
 
 import numpy as np
 
+from homebot.geometry import Pose
 from homebot.navigation import Navigator
 from homebot.perception.recognition import match_positions
-from homebot.robot import Pose
 from homebot.scenarios import SimulatedRun
 from homebot.scenarios.embodied import Fidelity
 from homebot.world import Gesture, PlacementKind, Posture, World

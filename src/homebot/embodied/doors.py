@@ -13,7 +13,8 @@ import math
 
 import numpy as np
 
-from homebot.robot import LaserScan, Pose
+from homebot.geometry import Pose
+from homebot.robot import LaserScan
 
 __all__ = ["door_seen_open"]
 

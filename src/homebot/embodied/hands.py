@@ -25,9 +25,10 @@ import numpy as np
 from shapely.geometry import LineString, Point
 
 from homebot.embodied.robot import BodyRobot
+from homebot.geometry import Pose
 from homebot.manipulation.control import ArmControl
 from homebot.manipulation.pick import PickOutcome, PickResult
-from homebot.robot import Detection, Pose
+from homebot.robot import Detection
 from homebot.world import surface_height
 
 __all__ = ["ArmedBodyRobot"]

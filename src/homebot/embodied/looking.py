@@ -17,8 +17,9 @@ from typing import Protocol
 
 from shapely.geometry import Point
 
+from homebot.geometry import Pose
 from homebot.perception.recognition import ObjectEstimate, TabletopPerception
-from homebot.robot import Body, Detection, Pose
+from homebot.robot import Body, Detection
 from homebot.world import World, surface_height
 
 __all__ = ["ObjectWorld", "TableLook"]

@@ -32,6 +32,7 @@ from homebot.embodied.looking import TableLook
 from homebot.embodied.people_look import PeopleLook
 from homebot.errors import NavigationError, SpeechError
 from homebot.events import EventLog
+from homebot.geometry import Pose
 from homebot.navigation import Navigator
 from homebot.navigation.localisation import MonteCarloLocalisation
 from homebot.navigation.localmap import LocalController
@@ -46,7 +47,6 @@ from homebot.robot import (
     MoveReport,
     PartMissing,
     PersonPercept,
-    Pose,
     Robot,
     Speaker,
 )

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from homebot.geometry import Pose
 from homebot.manipulation.grasps import IK_SEEDS, ObjectGeometry
 from homebot.manipulation.ik import solve_ik
 from homebot.manipulation.pick import (
@@ -34,7 +35,7 @@ from homebot.manipulation.pick import (
     plan_pick,
 )
 from homebot.manipulation.scene import Obstacle, PlanningScene
-from homebot.robot import Body, Pose
+from homebot.robot import Body
 from homebot.world import World, catalogue_entry, surface_height
 
 __all__ = ["ArmControl", "Locate", "PlaceOutcome", "free_spots"]

@@ -25,6 +25,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from homebot.geometry import Pose
 from homebot.navigation.localmap import (
     LocalGrid,
     LocalPlannerError,
@@ -32,7 +33,7 @@ from homebot.navigation.localmap import (
     lookahead,
     visible_lookahead,
 )
-from homebot.robot import DriveKind, LaserScan, Pose, Twist, VelocityLimits
+from homebot.robot import DriveKind, LaserScan, Twist, VelocityLimits
 
 __all__ = ["DynamicWindowPlanner"]
 

@@ -33,10 +33,10 @@ from statistics import NormalDist
 
 import numpy as np
 
+from homebot.geometry import Pose
 from homebot.navigation.grid import OccupancyGrid
 from homebot.navigation.likelihood import LikelihoodField
 from homebot.robot.body import BodyError, DriveKind, LaserScan, Odometry
-from homebot.robot.port import Pose
 
 __all__ = ["MclParameters", "MonteCarloLocalisation"]
 

@@ -24,7 +24,8 @@ from typing import Protocol
 import numpy as np
 
 from homebot.errors import NavigationError
-from homebot.robot import DriveKind, LaserScan, Pose, Twist, VelocityLimits
+from homebot.geometry import Pose
+from homebot.robot import DriveKind, LaserScan, Twist, VelocityLimits
 
 _CLUSTER_JUMP = 0.1  #: metres: a bigger range step between beams starts a new cluster
 _SMALL = 0.2  #: metres: clusters narrower than this (and in front of their surroundings) are small

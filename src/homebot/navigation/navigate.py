@@ -19,9 +19,10 @@ from dataclasses import dataclass
 from enum import StrEnum
 
 from homebot.errors import NavigationError
+from homebot.geometry import Pose
 from homebot.navigation.localmap import LocalController
 from homebot.navigation.navigator import Navigator, polyline_length
-from homebot.robot import Action, ActionStatus, Body, Pose, Twist
+from homebot.robot import Action, ActionStatus, Body, Twist
 
 __all__ = [
     "NavigateToPose",

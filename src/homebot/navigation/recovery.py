@@ -27,6 +27,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from homebot.errors import NavigationError
+from homebot.geometry import Pose
 from homebot.navigation.localmap import LocalController
 from homebot.navigation.navigate import (
     NavigateToPose,
@@ -35,7 +36,7 @@ from homebot.navigation.navigate import (
     StopReason,
 )
 from homebot.navigation.navigator import Navigator, polyline_length
-from homebot.robot import Body, LaserScan, Pose, Twist
+from homebot.robot import Body, LaserScan, Twist
 
 __all__ = ["NavigationAttempt", "ObstacleMemory", "RecoveringNavigation", "RecoveryPolicy",
            "scan_on_map"]

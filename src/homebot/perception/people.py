@@ -36,7 +36,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
-from homebot.robot import LaserScan, Pose
+from homebot.geometry import Pose
+from homebot.robot import LaserScan
 
 __all__ = [
     "COLOURS",

@@ -1,5 +1,6 @@
 """The ports: ``Robot`` (what skills call) and ``Body`` (what a robot's drivers offer)."""
 
+from homebot.geometry import Pose
 from homebot.robot.actions import Action, ActionStatus
 from homebot.robot.body import (
     Arm,
@@ -27,7 +28,6 @@ from homebot.robot.port import (
     HelpRequest,
     MoveReport,
     PersonPercept,
-    Pose,
     Robot,
 )
 

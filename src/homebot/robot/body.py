@@ -23,8 +23,8 @@ from pathlib import Path
 import numpy as np
 
 from homebot.errors import HomebotError
+from homebot.geometry import Pose
 from homebot.robot.camera import PersonView, RgbdFrame
-from homebot.robot.port import Pose
 
 __all__ = [
     "Arm",

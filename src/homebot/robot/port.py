@@ -12,27 +12,16 @@ from abc import ABC, abstractmethod
 from dataclasses import dataclass
 from enum import StrEnum
 
+from homebot.geometry import Pose
+
 __all__ = [
     "Blocker",
     "Detection",
     "HelpRequest",
     "MoveReport",
     "PersonPercept",
-    "Pose",
     "Robot",
 ]
-
-
-@dataclass(frozen=True, slots=True)
-class Pose:
-    """A planar pose: position in metres and heading in radians."""
-
-    x: float
-    y: float
-    theta: float = 0.0
-
-    def xy(self) -> tuple[float, float]:
-        return (self.x, self.y)
 
 
 class Blocker(StrEnum):

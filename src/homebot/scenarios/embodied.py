@@ -11,8 +11,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from homebot.errors import HomebotError
+from homebot.geometry import Pose
 from homebot.navigation import Navigator
-from homebot.robot import Pose, Robot
+from homebot.robot import Robot
 from homebot.sim import SimRobot, Simulation
 
 if TYPE_CHECKING:

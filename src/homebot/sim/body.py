@@ -17,6 +17,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from homebot.geometry import Pose
 from homebot.robot import (
     Arm,
     Body,
@@ -29,7 +30,6 @@ from homebot.robot import (
     Odometry,
     PartMissing,
     PersonView,
-    Pose,
     RgbdFrame,
     Speaker,
     Twist,

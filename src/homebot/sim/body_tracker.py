@@ -21,7 +21,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 from shapely.geometry import Point as ShapelyPoint
 
-from homebot.robot import PersonView, Pose
+from homebot.geometry import Pose
+from homebot.robot import PersonView
 from homebot.sim.camera import Solid
 from homebot.sim.keypoints import gesture_keypoints
 from homebot.world import (

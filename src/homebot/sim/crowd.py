@@ -20,7 +20,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from homebot.robot import LaserScan, Pose
+from homebot.geometry import Pose
+from homebot.robot import LaserScan
 
 __all__ = ["CrowdFrame", "CrowdLaser", "CrowdScene", "crowd_scene"]
 

@@ -18,7 +18,8 @@ import numpy as np
 from scipy import ndimage
 
 from homebot.compiled import compiled
-from homebot.robot import LaserScan, Pose
+from homebot.geometry import Pose
+from homebot.robot import LaserScan
 from homebot.sim.geometry import TRUTH_RESOLUTION, TrueGeometry
 from homebot.world import LaserModel
 

@@ -4,15 +4,8 @@ from __future__ import annotations
 
 import math
 
-from homebot.robot import (
-    Blocker,
-    Detection,
-    HelpRequest,
-    MoveReport,
-    PersonPercept,
-    Pose,
-    Robot,
-)
+from homebot.geometry import Pose
+from homebot.robot import Blocker, Detection, HelpRequest, MoveReport, PersonPercept, Robot
 from homebot.sim.simulation import HAND_PREFIX, PERSON_PREFIX, Simulation
 from homebot.world import DoorState
 

@@ -5,7 +5,8 @@ from __future__ import annotations
 from collections.abc import Mapping
 from typing import Any
 
-from homebot.robot import Blocker, MoveReport, Pose
+from homebot.geometry import Pose
+from homebot.robot import Blocker, MoveReport
 from homebot.skills.places import (
     HANDING_REACH,
     OPERATOR,

@@ -6,7 +6,8 @@ import math
 from collections.abc import Iterator, Mapping, Sequence
 from typing import Any
 
-from homebot.robot import Detection, PersonPercept, Pose
+from homebot.geometry import Pose
+from homebot.robot import Detection, PersonPercept
 from homebot.skills.motion import drive, drive_to_target
 from homebot.skills.places import (
     OPERATOR,

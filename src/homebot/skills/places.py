@@ -9,7 +9,8 @@ from typing import Any
 
 from scipy import ndimage
 
-from homebot.robot import PersonPercept, Pose
+from homebot.geometry import Pose
+from homebot.robot import PersonPercept
 from homebot.skills.skill import SkillContext
 
 __all__ = [

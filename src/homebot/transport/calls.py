@@ -13,7 +13,8 @@ from collections.abc import Callable
 from typing import Any
 
 from homebot.errors import TransportError
-from homebot.robot import Blocker, Detection, HelpRequest, MoveReport, PersonPercept, Pose, Robot
+from homebot.geometry import Pose
+from homebot.robot import Blocker, Detection, HelpRequest, MoveReport, PersonPercept, Robot
 
 __all__ = ["CALLS", "decode_result", "encode", "serve"]
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from homebot.robot import Pose
+from homebot.geometry import Pose
 from homebot.transport.types import MessageTypes
 
 __all__ = ["pose_of", "pose_stamped", "seconds", "stamp", "yaw_of"]

@@ -21,16 +21,8 @@ from typing import Any
 
 import numpy as np
 
-from homebot.robot import (
-    Body,
-    DriveKind,
-    HeadState,
-    LaserScan,
-    Odometry,
-    Pose,
-    Twist,
-    VelocityLimits,
-)
+from homebot.geometry import Pose
+from homebot.robot import Body, DriveKind, HeadState, LaserScan, Odometry, Twist, VelocityLimits
 from homebot.transport.messages import pose_of, seconds, stamp
 from homebot.transport.naming import DEFAULT_QOS, MAP_QOS, SENSOR_QOS
 from homebot.transport.node import Node, TransportError

@@ -29,15 +29,8 @@ import yaml
 
 from homebot.errors import RobotLost, TransportError
 from homebot.events import EventLog
-from homebot.robot import (
-    Blocker,
-    Detection,
-    HelpRequest,
-    MoveReport,
-    PersonPercept,
-    Pose,
-    Robot,
-)
+from homebot.geometry import Pose
+from homebot.robot import Blocker, Detection, HelpRequest, MoveReport, PersonPercept, Robot
 from homebot.transport.actions import ActionClient, GoalStatus
 from homebot.transport.calls import decode_result, encode, move_report
 from homebot.transport.messages import pose_of, pose_stamped

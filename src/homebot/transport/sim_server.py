@@ -21,8 +21,9 @@ from typing import Any
 import numpy as np
 
 from homebot.events import EventLog
+from homebot.geometry import Pose
 from homebot.navigation import OccupancyGrid
-from homebot.robot import MoveReport, Pose, Robot
+from homebot.robot import MoveReport, Robot
 from homebot.transport.actions import ActionServer, GoalContext, GoalStatus
 from homebot.transport.calls import CallError, encode, serve
 from homebot.transport.messages import pose_stamped, stamp, yaw_of

@@ -1,0 +1,22 @@
+"""Planar geometry at the bottom of the house: ``Pose``, frames, angles, quaternions, rays.
+
+Units and frames follow ROS REP 103: metres, radians, x forward, y left, z up. Every
+layer above uses these, as every ROS package uses ``geometry_msgs``; this package
+imports nothing of homebot.
+"""
+
+from homebot.geometry.angles import (
+    quaternion_from_yaw,
+    wrap_angle,
+    wrap_angles,
+    yaw_from_quaternion,
+)
+from homebot.geometry.pose import Pose
+
+__all__ = [
+    "Pose",
+    "quaternion_from_yaw",
+    "wrap_angle",
+    "wrap_angles",
+    "yaw_from_quaternion",
+]

@@ -1,0 +1,37 @@
+"""Planar angles: wrapping into one turn, and the yaw of a quaternion (REP 103: radians)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import numpy.typing as npt
+
+__all__ = [
+    "quaternion_from_yaw",
+    "wrap_angle",
+    "wrap_angles",
+    "yaw_from_quaternion",
+]
+
+
+def wrap_angle(angle: float) -> float:
+    """``angle`` in radians wrapped into [-π, π): the same direction, the shortest turn."""
+    return (angle + math.pi) % math.tau - math.pi
+
+
+def wrap_angles(angles: npt.ArrayLike) -> npt.NDArray[np.float64]:
+    """``wrap_angle`` for every angle of an array, elementwise."""
+    wrapped: npt.NDArray[np.float64] = (np.asarray(angles, dtype=float) + np.pi) % (2 * np.pi) \
+        - np.pi
+    return wrapped
+
+
+def quaternion_from_yaw(yaw: float) -> tuple[float, float, float, float]:
+    """The unit quaternion ``(w, x, y, z)`` of a turn by ``yaw`` radians about z (up)."""
+    return (math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2))
+
+
+def yaw_from_quaternion(w: float, x: float, y: float, z: float) -> float:
+    """The heading (rotation about z, radians in [-π, π]) of an orientation quaternion."""
+    return math.atan2(2.0 * (w * z + x * y), 1.0 - 2.0 * (y * y + z * z))
