@@ -35,7 +35,7 @@ def _at_the_coffee_table() -> tuple[Simulation, SimBody, ArmControl, Pose]:
     sim = Simulation(world, seed=1)
     body = SimBody(sim)
     control = ArmControl(body, world, _locate(sim, body), seed=1)  # type: ignore[arg-type]
-    stand = Pose(*world.placements["coffee table"].approach)
+    stand = world.placements["coffee table"].approach
     body.teleport(stand)
     return sim, body, control, stand
 
@@ -111,7 +111,7 @@ def test_the_arms_scene_puts_objects_where_perception_saw_them() -> None:
     truth = _locate(sim, robot.body)  # type: ignore[arg-type]
     unseen = robot.arm.locate("crisps")
     assert unseen == truth("crisps")  # not seen yet: the wiring's locate stands in
-    stand = Pose(*world.placements["coffee table"].approach)
+    stand = world.placements["coffee table"].approach
     robot.body.teleport(stand)
     robot.localisation.initialise(stand, spread=0.01, angle_spread=0.01)  # type: ignore[attr-defined]
     detections = robot.perceive_objects("coffee table")

@@ -36,7 +36,7 @@ def test_navigate_really_drives_and_the_pose_is_an_estimate(
     assert report.success
     truth = run.simulation.robot_pose
     goal = apartment.placements["bed"].approach
-    assert math.dist(truth[:2], goal[:2]) < 0.3
+    assert math.dist(truth[:2], goal.xy()) < 0.3
     assert run.simulation.collisions == []
     estimate = run.robot.pose()
     assert estimate.xy() != truth[:2]  # the robot knows only its estimate ...
@@ -44,7 +44,7 @@ def test_navigate_really_drives_and_the_pose_is_an_estimate(
     kinds = {event.kind for event in run.simulation.events.events}
     assert {"robot.trajectory", "robot.laser", "robot.particles"} <= kinds
     # Driving takes simulated time by the robot's speed, not a jump.
-    assert report.sim_time > math.dist(apartment.robot.pose[:2], goal[:2]) / apartment.robot.speed
+    assert report.sim_time > math.dist(apartment.robot.pose.xy(), goal.xy()) / apartment.robot.speed
 
 
 def test_a_fetch_and_deliver_task_succeeds_by_ground_truth(
@@ -73,7 +73,7 @@ def test_the_robot_reports_a_shut_door_it_cannot_pass(
         apartment: World, apartment_navigator: Navigator) -> None:
     run = _run(apartment, apartment_navigator)
     run.simulation.door_state["bedroom door"] = DoorState.LOCKED
-    report = run.robot.move_to(Pose(*apartment.placements["bed"].approach))
+    report = run.robot.move_to(apartment.placements["bed"].approach)
     assert not report.reached
     assert report.blocker is Blocker.DOOR_CLOSED
     assert report.door == "bedroom door"
@@ -96,7 +96,7 @@ def test_a_door_ahead_that_someone_stands_in_is_what_stops_the_robot(
     run = _run(apartment, apartment_navigator)
     run.simulation.door_state["bedroom door"] = door_state
     run.simulation.place_person_in_doorway("bedroom door", "Maria")
-    report = run.robot.move_to(Pose(*apartment.placements["bed"].approach))
+    report = run.robot.move_to(apartment.placements["bed"].approach)
     assert not report.reached
     assert report.door == "bedroom door"
     assert report.blocker in (Blocker.PERSON, Blocker.DOOR_CLOSED)

@@ -21,8 +21,7 @@ def _robot_before_the_door(world: World, navigator: Navigator, distance: float
                            ) -> SimulatedRun:
     run = SimulatedRun.create(world, seed=0, navigator=navigator, fidelity=Fidelity.EMBODIED)
     door = world.doors[DOOR]
-    x, y, heading = world.point_before_door(DOOR, door.rooms[0], distance)
-    pose = Pose(x, y, heading)
+    pose = world.point_before_door(DOOR, door.rooms[0], distance)
     run.simulation.robot_pose = (pose.x, pose.y, pose.theta)
     run.robot.localisation.initialise(pose, spread=0.01, angle_spread=0.01)  # type: ignore[attr-defined]
     return run

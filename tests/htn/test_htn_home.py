@@ -24,7 +24,7 @@ from homebot.world import DisturbanceModel, World
 def _plans(world: World, task: str, args: list[str], beliefs: Beliefs | None = None) -> list:
     domain = home_domain()
     beliefs = beliefs or Beliefs.from_world(world)
-    state, names = state_from_beliefs(world, beliefs, world.robot.pose[:2])
+    state, names = state_from_beliefs(world, beliefs, world.robot.pose.xy())
     goal = Goal.of(task, args, world, names, domain)
     for atom in goal.atoms:
         state.add(atom)
@@ -94,7 +94,7 @@ def test_tidy_of_200_objects(apartment: World) -> None:
     data["objects"] = [{"name": f"thing {i:03d}", "category": holders[i % len(holders)].holds[0],
                         "placement": "desk"} for i in range(200)]
     messy = World.from_dict(data)
-    state, names = state_from_beliefs(messy, Beliefs.from_world(messy), messy.robot.pose[:2])
+    state, names = state_from_beliefs(messy, Beliefs.from_world(messy), messy.robot.pose.xy())
     plan = find_plan(home_domain(), state, [Goal.of("tidy", [], messy, names).task]).plan
     put = [step for step in plan if step.operator == "!put_down"]
     assert len(put) == 200
@@ -106,7 +106,7 @@ def test_tidy_of_200_objects(apartment: World) -> None:
 def test_cheapest_plan_and_serve_a_category(apartment: World) -> None:
     domain = home_domain()
     state, names = state_from_beliefs(apartment, Beliefs.from_world(apartment),
-                                      apartment.robot.pose[:2])
+                                      apartment.robot.pose.xy())
     goal = Goal.of("serve", ["drink", "John"], apartment, names, domain)
     cheapest = find_cheapest_plan(domain, state, [goal.task])
     assert cheapest.plan.cost == 6 and cheapest.plan.actions()[3][:2] == ("!grasp", "robot")
@@ -141,7 +141,7 @@ def test_where_things_belong_comes_from_the_knowledge_base(apartment: World) -> 
     beliefs.saw_object("red wine", "coffee table")
 
     def tidy(kb: KnowledgeBase | None) -> list[tuple[str, ...]]:
-        state, names = state_from_beliefs(apartment, beliefs, apartment.robot.pose[:2],
+        state, names = state_from_beliefs(apartment, beliefs, apartment.robot.pose.xy(),
                                           knowledge=kb)
         plan = find_plan(domain, state, [Goal.of("tidy", [], apartment, names).task]).plan
         return [(args[1], args[2]) for operator, *args in plan.actions()

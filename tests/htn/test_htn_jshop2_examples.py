@@ -101,7 +101,7 @@ def _tidy_plans(size: int, repeats: int) -> list[list[tuple[object, ...]]]:
 
     world = _tidy_world(World.load("apartment"), size)
     domain = home_domain()
-    state, names = state_from_beliefs(world, Beliefs.from_world(world), world.robot.pose[:2])
+    state, names = state_from_beliefs(world, Beliefs.from_world(world), world.robot.pose.xy())
     goal = Goal.of("tidy", [], world, names, domain)
     planner = Planner(domain)
     plans = []
@@ -109,7 +109,7 @@ def _tidy_plans(size: int, repeats: int) -> list[list[tuple[object, ...]]]:
         result = planner.search(state, [goal.task])
         assert result.plan is not None
         plans.append(result.plan.actions())
-    fresh, _ = state_from_beliefs(world, Beliefs.from_world(world), world.robot.pose[:2])
+    fresh, _ = state_from_beliefs(world, Beliefs.from_world(world), world.robot.pose.xy())
     again = planner.search(fresh, [goal.task]).plan
     assert again is not None
     plans.append(again.actions())

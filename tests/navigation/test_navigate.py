@@ -100,8 +100,8 @@ def test_bad_stuck_time_is_refused() -> None:
 
 def test_planned_goal_follows_stage_one_or_says_there_is_no_path(
         apartment: World, apartment_navigator: Navigator) -> None:
-    start = Pose(*apartment.placements["couch"].approach)
-    bed = Pose(*apartment.placements["bed"].approach)
+    start = apartment.placements["couch"].approach
+    bed = apartment.placements["bed"].approach
     goal = NavigationGoal.planned(apartment_navigator, start, bed)
     assert goal.path[0] == start.xy() and goal.path[-1] == bed.xy()
     with pytest.raises(NavigationError, match="no path"):

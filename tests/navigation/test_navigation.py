@@ -12,8 +12,7 @@ from homebot.world import World
 
 
 def _approach(world: World, name: str) -> tuple[float, float]:
-    x, y, _ = world.placements[name].approach
-    return (x, y)
+    return world.placements[name].approach.xy()
 
 
 def test_astar_finds_the_octile_shortest_path_on_open_floor() -> None:

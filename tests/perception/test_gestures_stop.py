@@ -7,7 +7,6 @@ import math
 import numpy as np
 import pytest
 
-from homebot.geometry import Pose
 from homebot.navigation import Navigator
 from homebot.perception.gestures import classify_gesture
 from homebot.robot import Blocker
@@ -40,7 +39,7 @@ def test_guiding_stops_within_a_second_of_the_persons_stop_gesture(
         return person == "Alex" and seen
 
     robot.stop_shown = stop_shown
-    goal = Pose(*apartment.placements["bed"].approach)
+    goal = apartment.placements["bed"].approach
     report = robot.move_to(goal, escort="Alex")
     assert not report.reached and report.blocker is Blocker.STOPPED
     assert report.person == "Alex"

@@ -77,7 +77,8 @@ def test_objects_at_the_near_edge_are_seen_from_an_imprecise_approach(closer: fl
     simulation = Simulation(world, seed=3)
     robot = embodied_robot(simulation, Navigator(world))
     assert isinstance(robot, BodyRobot)
-    x, y, theta = world.placements["table"].approach
+    stand = world.placements["table"].approach
+    x, y, theta = stand.x, stand.y, stand.theta
     pose = Pose(x + closer * math.cos(theta), y + closer * math.sin(theta), theta + turned)
     simulation.robot_pose = (pose.x, pose.y, pose.theta)
     robot.localisation.initialise(pose, spread=0.01, angle_spread=0.01)

@@ -37,10 +37,10 @@ def test_moving_takes_simulated_time_by_path_length(apartment: World,
                                                     apartment_navigator: Navigator) -> None:
     simulation = Simulation(apartment, seed=1, navigator=apartment_navigator)
     robot = SimRobot(simulation)
-    report = robot.move_to(Pose(*apartment.placements["fridge"].approach))
+    report = robot.move_to(apartment.placements["fridge"].approach)
     assert report.reached
     assert simulation.clock.now() >= report.distance / apartment.robot.speed
-    assert robot.pose().xy() == apartment.placements["fridge"].approach[:2]
+    assert robot.pose().xy() == apartment.placements["fridge"].approach.xy()
 
 
 def test_a_closed_door_stops_the_robot_in_front_of_it(apartment: World,
@@ -48,7 +48,7 @@ def test_a_closed_door_stops_the_robot_in_front_of_it(apartment: World,
     simulation = Simulation(apartment, seed=1, navigator=apartment_navigator)
     simulation.door_state["bedroom door"] = DoorState.CLOSED
     robot = SimRobot(simulation)
-    report = robot.move_to(Pose(*apartment.placements["bed"].approach))
+    report = robot.move_to(apartment.placements["bed"].approach)
     assert not report.reached
     assert report.blocker is Blocker.DOOR_CLOSED and report.door == "bedroom door"
     assert apartment.room_at(*robot.pose().xy()) == "corridor"
@@ -59,12 +59,12 @@ def test_a_person_in_a_doorway_blocks_until_asked(apartment: World,
     simulation = Simulation(apartment, seed=1, navigator=apartment_navigator)
     simulation.place_person_in_doorway("office door", "Maria")
     robot = SimRobot(simulation)
-    report = robot.move_to(Pose(*apartment.placements["desk"].approach))
+    report = robot.move_to(apartment.placements["desk"].approach)
     assert report.blocker is Blocker.PERSON and report.person == "Maria"
     from homebot.robot import HelpRequest
 
     assert robot.request("Maria", HelpRequest.STEP_ASIDE, "office door")
-    assert robot.move_to(Pose(*apartment.placements["desk"].approach)).reached
+    assert robot.move_to(apartment.placements["desk"].approach).reached
 
 
 def test_a_request_to_nobody_by_name_is_heard_by_whoever_stands_in_the_door(
@@ -74,10 +74,10 @@ def test_a_request_to_nobody_by_name_is_heard_by_whoever_stands_in_the_door(
     simulation = Simulation(apartment, seed=1, navigator=apartment_navigator)
     visitor = simulation.place_person_in_doorway("office door")
     robot = SimRobot(simulation)
-    assert not robot.move_to(Pose(*apartment.placements["desk"].approach)).reached
+    assert not robot.move_to(apartment.placements["desk"].approach).reached
     assert robot.request("", HelpRequest.STEP_ASIDE, "office door")
     assert simulation.people[visitor].blocking_door is None
-    assert robot.move_to(Pose(*apartment.placements["desk"].approach)).reached
+    assert robot.move_to(apartment.placements["desk"].approach).reached
 
 
 def test_someone_stepping_out_of_a_doorway_stands_on_free_floor_off_the_robots_way(
@@ -101,7 +101,7 @@ def test_grasp_needs_reach_and_can_slip(apartment: World, apartment_navigator: N
     simulation = Simulation(apartment, seed=1, disturbances=slippery,
                             navigator=apartment_navigator)
     robot = SimRobot(simulation)
-    robot.move_to(Pose(*apartment.placements["fridge"].approach))
+    robot.move_to(apartment.placements["fridge"].approach)
     cola = next(d for d in robot.perceive_objects("fridge") if d.label == "cola")
     robot.grasp(cola, "left")
     assert robot.held("left") is None

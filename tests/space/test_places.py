@@ -14,7 +14,7 @@ def _said(world: World, text: str, viewer: tuple[float, float]) -> str | None:
 
 def test_tables_of_the_apartment_by_what_they_are_near() -> None:
     world = World.load("apartment")
-    here = world.robot.pose[:2]
+    here = world.robot.pose.xy()
     assert _said(world, "the table close to the bed", here) == "bedside table"
     assert _said(world, "the table near the fridge", here) == "kitchen table"
     # the coffee table and the side table are about as near the couch: the robot asks

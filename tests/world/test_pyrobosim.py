@@ -42,7 +42,8 @@ def test_rooms_hallways_locations_and_objects_are_imported() -> None:
     assert world.objects["banana"].placement == "sofa table"  # the first of a list
     # The operator stands beside the robot, which starts at its pose (yaw in degrees).
     assert world.operator is not None and world.operator.name == "Alex"
-    assert world.robot.pose == pytest.approx((1.0, 1.0, 1.571), abs=1e-3)
+    pose = world.robot.pose
+    assert (pose.x, pose.y, pose.theta) == pytest.approx((1.0, 1.0, 1.571), abs=1e-3)
 
 
 def test_a_fetch_task_succeeds_in_the_imported_world(

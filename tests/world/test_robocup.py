@@ -75,7 +75,7 @@ def test_builds_a_valid_world(tmp_path: Path) -> None:
     assert world.objects["cup"].placement == "kitchen table"
     assert world.categories["drink"].plural == "drinks"
     assert set(world.people) == {"Ada", "Bo", "Cy"}
-    assert world.room_at(*world.robot.pose[:2]) is not None
+    assert world.room_at(*world.robot.pose.xy()) is not None
 
 
 def test_objects_without_a_home_go_on_a_placeable_location(tmp_path: Path) -> None:
@@ -155,8 +155,8 @@ def test_the_operator_stands_at_the_start_beside_the_robot() -> None:
     world = World.from_dict(data)
     assert world.operator is not None and world.operator.name == "Adel"
     robot = world.robot.pose
-    assert math.dist(world.operator.position, robot[:2]) < 1.5
-    assert world.placements["entrance"].approach[:2] == pytest.approx(robot[:2], abs=0.5)
+    assert math.dist(world.operator.position, robot.xy()) < 1.5
+    assert world.placements["entrance"].approach.xy() == pytest.approx(robot.xy(), abs=0.5)
 
 
 def test_placements_go_to_their_common_sense_rooms() -> None:

@@ -38,7 +38,7 @@ def test_front_defaults_to_the_approach_side_and_can_be_given() -> None:
     data = World.load("apartment").to_dict()
     world = World.from_dict(data)
     table = world.placements["kitchen table"]
-    ax, ay = table.approach[0] - table.model.center[0], table.approach[1] - table.model.center[1]
+    ax, ay = table.approach.x - table.model.center[0], table.approach.y - table.model.center[1]
     heading = front_heading(table)
     assert math.cos(heading) * ax + math.sin(heading) * ay > 0  # faces the approach side
     for placement in data["placements"]:

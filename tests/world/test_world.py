@@ -54,7 +54,7 @@ def test_shipped_worlds_are_listed() -> None:
 
 def test_every_placement_gets_an_approach_pose_inside_its_room(apartment: World) -> None:
     for placement in apartment.placements.values():
-        x, y, _ = placement.approach
+        x, y = placement.approach.xy()
         assert apartment.room_at(x, y) == placement.room, placement.name
 
 

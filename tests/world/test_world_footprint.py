@@ -28,7 +28,7 @@ def _world(x: float, y: float) -> World:
 @pytest.mark.parametrize("name", shipped_world_names())
 def test_shipped_worlds_start_the_robot_on_free_floor(name: str) -> None:
     world = World.load(name)
-    assert world.footprint_problem(*world.robot.pose[:2]) is None
+    assert world.footprint_problem(*world.robot.pose.xy()) is None
 
 
 @pytest.mark.parametrize(("x", "y", "expected"), [

@@ -396,7 +396,7 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
     """Table 1 figures, our median beside GTPyhop's on bring-object, and tidy-up scaling."""
     world = World.load("apartment")
     domain = home_domain()
-    state, names = state_from_beliefs(world, Beliefs.from_world(world), world.robot.pose[:2])
+    state, names = state_from_beliefs(world, Beliefs.from_world(world), world.robot.pose.xy())
     planner = Planner(domain)
     bring = Goal.of("bring_object", ["pringles", "Alex"], world, names, domain)
     guide = Goal.of("guide_person", ["Alex", "bedroom"], world, names, domain)
@@ -430,7 +430,7 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
     for size in args.sizes:
         messy = _tidy_world(world, size)
         messy_state, messy_names = state_from_beliefs(messy, Beliefs.from_world(messy),
-                                                      messy.robot.pose[:2])
+                                                      messy.robot.pose.xy())
         goal = Goal.of("tidy", [], messy, messy_names, domain)
         tidy_ms, result = _median_ms(partial(planner.search, messy_state, [goal.task]), 3)
         moved = sum(1 for step in result.plan.steps if step.operator == "!put_down")

@@ -215,7 +215,7 @@ def tracking_drive(setting: _Setting, body: Body, truth: Callable[[], tuple[floa
     while body.now() < seconds:
         if not waypoints:
             goal = setting.world.placements[names[int(route.integers(len(names)))]]
-            plan = setting.navigator.plan(estimate.xy(), goal.approach[:2], closed)
+            plan = setting.navigator.plan(estimate.xy(), goal.approach.xy(), closed)
             waypoints = list(plan.waypoints[1:]) if plan else []
             continue
         if math.dist(estimate.xy(), waypoints[0]) < 0.3:

@@ -172,7 +172,7 @@ def _astar_timing(repeat: int) -> dict[str, Any]:
     for a, b in pairs:
         navigator._cache.clear()  # time the search, not the cache
         began = time.perf_counter()
-        plan = navigator.plan(world.placements[a].approach[:2], world.placements[b].approach[:2])
+        plan = navigator.plan(world.placements[a].approach.xy(), world.placements[b].approach.xy())
         samples.append(time.perf_counter() - began)
         lengths.append(plan.length if plan else 0.0)
     figures["apartment plan (all placement pairs)"] = {
@@ -252,8 +252,7 @@ def _goals(world: World, navigator: Navigator, count: int, rng: random.Random) -
     goals: list[Pose] = []
     while len(goals) < count:
         if len(goals) % 2 == 0:
-            x, y, theta = world.placements[rng.choice(spots)].approach
-            goals.append(Pose(x, y, theta))
+            goals.append(world.placements[rng.choice(spots)].approach)
             continue
         x, y = rng.uniform(min_x, max_x), rng.uniform(min_y, max_y)
         if world.room_at(x, y) is None or clearance[grid.cell_of(x, y)] < _GOAL_CLEARANCE:

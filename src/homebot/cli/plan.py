@@ -122,7 +122,7 @@ def plan(args: argparse.Namespace) -> int:
         state = State(problem.atoms)
     else:
         knowledge = KnowledgeBase.load(args.kb) if args.kb else None
-        state, _ = state_from_beliefs(world, Beliefs.from_world(world), world.robot.pose[:2],
+        state, _ = state_from_beliefs(world, Beliefs.from_world(world), world.robot.pose.xy(),
                                       names, knowledge=knowledge)
     tasks, atoms = _goal(args, domain, world, names, problem)
     for atom in atoms:

@@ -6,6 +6,7 @@ import argparse
 import importlib.util
 import json
 import os
+from dataclasses import astuple
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -97,7 +98,7 @@ def world_summary(world: World) -> dict[str, Any]:
         "doors": [{"name": d.name, "rooms": list(d.rooms), "position": list(d.position),
                    "state": d.state.value} for d in world.doors.values()],
         "placements": [{"name": p.name, "category": p.category, "room": p.room,
-                        "kind": p.model.kind.value, "approach": list(p.approach),
+                        "kind": p.model.kind.value, "approach": list(astuple(p.approach)),
                         "holds": list(p.holds)} for p in world.placements.values()],
         "objects": [{"name": o.name, "category": o.category, "placement": o.placement}
                     for o in world.objects.values()],
@@ -105,7 +106,7 @@ def world_summary(world: World) -> dict[str, Any]:
                     "posture": p.posture.value, "gesture": p.gesture.value,
                     "clothes": list(p.clothes)} for p in world.people.values()],
         "operator": world.model.operator,
-        "robot": {"pose": list(world.robot.pose), "hands": list(world.robot.hands)},
+        "robot": {"pose": list(astuple(world.robot.pose)), "hands": list(world.robot.hands)},
     }
 
 
@@ -139,7 +140,7 @@ def _show(args: argparse.Namespace) -> int:
 def _path_from_events(events: Path, world: World) -> list[tuple[float, float]]:
     if not events.exists():
         return []
-    start = (world.robot.pose[0], world.robot.pose[1])
+    start = world.robot.pose.xy()
     path: list[tuple[float, float]] = [start]
     try:
         for line in events.read_text(encoding="utf-8").splitlines():

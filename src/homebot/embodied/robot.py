@@ -154,8 +154,8 @@ class BodyRobot(Robot):
         plan = self.navigator.plan(start.xy(), goal.xy(), avoid_doors)
         if plan is None:
             return MoveReport(False, start, 0.0, Blocker.NO_PATH)
-        legs = [_Leg(Pose(*self.world.point_before_door(door, plan.route.rooms[index],
-                                                         _STOP_BEFORE_DOOR)), door)
+        legs = [_Leg(self.world.point_before_door(door, plan.route.rooms[index],
+                                                  _STOP_BEFORE_DOOR), door)
                 for index, door in enumerate(plan.doors)]
         legs.append(_Leg(goal, None))
         travelled = 0.0
@@ -359,7 +359,7 @@ class BodyRobot(Robot):
         here = self.pose()
         if model is None or math.dist(here.xy(), model.position) > _SEES_THE_DOOR:
             return None
-        x, y, _ = self.world.point_before_door(door, model.rooms[0], 1.0)
+        x, y = self.world.point_before_door(door, model.rooms[0], 1.0).xy()
         normal = (x - model.position[0], y - model.position[1])
         self.body.tick()  # a fresh sweep: the door may have moved since the last one
         seen = door_seen_open(self.body.scan(), self.pose(), model.position, normal,

@@ -143,7 +143,7 @@ def _robot_at(world: World, beliefs: Beliefs, pose: tuple[float, float], names: 
                     for person, position in beliefs.person_at.items())
     if people and people[0][0] <= _NEAR_PERSON:
         return names.of(people[0][1])
-    placements = sorted((math.dist(p.approach[:2], pose), p.name)
+    placements = sorted((math.dist(p.approach.xy(), pose), p.name)
                         for p in world.placements.values())
     if placements and placements[0][0] <= _NEAR_PLACEMENT:
         return names.of(placements[0][1])

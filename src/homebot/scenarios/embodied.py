@@ -11,7 +11,6 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from homebot.errors import HomebotError
-from homebot.geometry import Pose
 from homebot.navigation import Navigator
 from homebot.robot import Robot
 from homebot.sim import SimRobot, Simulation
@@ -83,7 +82,7 @@ def embodied_robot(simulation: Simulation, navigator: Navigator, *,
         navigator.grid, np.random.default_rng([simulation.seed, _LOCALISATION_STREAM]),
         MclParameters(odom_model_type=body.drive))
     if known_start:
-        localisation.initialise(Pose(*world.robot.pose), spread=0.05, angle_spread=0.05)
+        localisation.initialise(world.robot.pose, spread=0.05, angle_spread=0.05)
     else:
         localisation.initialise_globally()
     percepts = SimRobot(simulation)

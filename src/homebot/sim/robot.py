@@ -63,7 +63,7 @@ class SimRobot(Robot):
             if door not in shut:
                 continue
             stop = sim.world.point_before_door(door, plan.route.rooms[index],
-                                               _STOP_BEFORE_DOOR)[:2]
+                                               _STOP_BEFORE_DOOR).xy()
             travelled = sim.navigator.distance(start, stop, avoid_doors)
             travelled = plan.length if math.isinf(travelled) else travelled
             self._travel(travelled, stop, escort)
@@ -136,7 +136,7 @@ class SimRobot(Robot):
         sim = self.sim
         sim.clock.advance(ActionDurations.LOOK)
         where = sim.world.placements.get(placement)
-        if where is None or sim.distance_to(where.approach[:2]) > _REACH_PLACEMENT:
+        if where is None or sim.distance_to(where.approach.xy()) > _REACH_PLACEMENT:
             return []
         sim.maybe_move_during_task(placement)
         detections = []
@@ -180,7 +180,7 @@ class SimRobot(Robot):
             return
         where = sim.object_location[name]
         placement = sim.world.placements.get(where or "")
-        if placement is None or sim.distance_to(placement.approach[:2]) > _REACH_PLACEMENT:
+        if placement is None or sim.distance_to(placement.approach.xy()) > _REACH_PLACEMENT:
             return  # the object is not within reach: the hand closes on nothing
         if sim.random.random() < sim.disturbances.grasp_slip:
             sim.events.record("sim.disturbance", what="grasp_slip", object=name)
@@ -201,7 +201,7 @@ class SimRobot(Robot):
         if name is None:
             return
         where = sim.world.placements.get(placement)
-        reachable = where is not None and sim.distance_to(where.approach[:2]) <= _REACH_PLACEMENT
+        reachable = where is not None and sim.distance_to(where.approach.xy()) <= _REACH_PLACEMENT
         sim.hands[hand] = None
         sim.object_location[name] = placement if reachable else f"floor:{sim.robot_room()}"
 

@@ -129,8 +129,9 @@ class Simulation:
         self.door_state = {name: door.state for name, door in world.doors.items()}
         self.people = {name: _PersonState(person, person.position, person.room)
                        for name, person in world.people.items()}
-        x, y, theta = world.robot.pose
-        self.robot_pose = (x, y, theta)
+        start = world.robot.pose
+        x, y = start.xy()
+        self.robot_pose = (x, y, start.theta)
         self.trail: list[tuple[float, float]] = [(x, y)]  #: where the robot has driven
         #: keep at least this many of the latest trail points, at most twice as many (None:
         #: all), so that a long-running simulation's memory stays flat

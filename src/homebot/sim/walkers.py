@@ -209,7 +209,8 @@ class PeopleWalking:
     def _spot_beside(self, placement: str) -> tuple[float, float] | None:
         """Where a person stands at a placement: beside the robot's approach spot, not on it."""
         sim = self.sim
-        x, y, theta = sim.world.placements[placement].approach
+        approach = sim.world.placements[placement].approach
+        x, y, theta = approach.x, approach.y, approach.theta
         grid = sim.navigator.grid
         for side in (1, -1):
             spot = (x + side * _BESIDE * math.cos(theta + math.pi / 2),

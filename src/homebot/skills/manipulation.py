@@ -108,9 +108,9 @@ class Place(Skill):
                 return Outcome.finished(f"the {placed} is already down", object=placed)
             return Outcome.failed(ErrorCode.NOT_HOLDING, "I am not holding anything to place")
         label = context.beliefs.holding[hand]
-        x, y, _ = context.world.placements[placement].approach
+        stand = context.world.placements[placement].approach
         goal = resolve_target(context, placement)
-        if goal is not None and math.dist(context.robot.pose().xy(), (x, y)) > 0.3:
+        if goal is not None and math.dist(context.robot.pose().xy(), stand.xy()) > 0.3:
             moved = drive(context, goal)
             if moved.status is not Status.FINISHED:
                 return moved

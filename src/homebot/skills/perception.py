@@ -6,7 +6,6 @@ import math
 from collections.abc import Iterator, Mapping, Sequence
 from typing import Any
 
-from homebot.geometry import Pose
 from homebot.robot import Detection, PersonPercept
 from homebot.skills.motion import drive, drive_to_target
 from homebot.skills.places import (
@@ -62,8 +61,7 @@ def go_and_look(context: SkillContext, placement: str) -> tuple[Outcome, list[De
     """Drive to a placement unless already there, then look at it; beliefs follow."""
     if placement not in context.world.placements:
         return Outcome.failed(ErrorCode.UNKNOWN_TARGET, f"I do not know the {placement}"), []
-    x, y, theta = context.world.placements[placement].approach
-    goal = Pose(x, y, theta)
+    goal = context.world.placements[placement].approach
     if not near(context, goal):
         moved = drive(context, goal)
         if moved.status is not Status.FINISHED:
@@ -102,7 +100,7 @@ def candidate_placements(context: SkillContext, wanted: str, room: str | None = 
     believed_places = [p for p in believed if p in world.placements]
     holding = [p.name for p in world.placements_holding(category)] if category else []
     here = context.robot.pose().xy()
-    rest = sorted(world.placements, key=lambda p: math.dist(world.placements[p].approach[:2],
+    rest = sorted(world.placements, key=lambda p: math.dist(world.placements[p].approach.xy(),
                                                              here))
     ordered = list(dict.fromkeys([*believed_places, *holding, *rest]))
     excluded = set(exclude)
@@ -223,7 +221,7 @@ def _referent(context: SkillContext, wanted: str, placement: str, found: Sequenc
     centre = (float(where.model.center[0]), float(where.model.center[1]))
     scene = Scene({d.label: d.position or centre for d in detections},
                   {d.label: d.category for d in detections}, math.hypot(*where.model.size),
-                  (where.approach[0], where.approach[1]), where.approach[2])
+                  where.approach.xy(), where.approach.theta)
     try:
         modifiers = modifiers_from(spatial)
     except ValueError as error:
@@ -277,8 +275,7 @@ def looked_everywhere(wanted: str, searched: Sequence[str]) -> str:
 
 def _affordable(context: SkillContext, placement: str) -> bool:
     """Whether a look at ``placement`` and the way back to the operator fit the time left."""
-    x, y, _ = context.world.placements[placement].approach
-    return _affordable_at(context, (x, y))
+    return _affordable_at(context, context.world.placements[placement].approach.xy())
 
 
 def _affordable_at(context: SkillContext, there: tuple[float, float]) -> bool:

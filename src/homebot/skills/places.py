@@ -143,15 +143,14 @@ def resolve_target(context: SkillContext, target: Any) -> Pose | None:
         return Pose(point[0], point[1], math.atan2(point[1] - here[1], point[0] - here[0]))
     target = str(target)
     if target in world.placements:
-        x, y, theta = world.placements[target].approach
-        return Pose(x, y, theta)
+        return world.placements[target].approach
     if target in world.rooms:
         return Pose(*room_centre(context, target), 0.0)
     name = person_name(context, target)
     if name is not None and name in context.beliefs.person_at:
         return pose_near_point(context, context.beliefs.person_at[name])
     if target in world.doors:
-        return Pose(*world.point_before_door(target, world.doors[target].rooms[0], 0.6))
+        return world.point_before_door(target, world.doors[target].rooms[0], 0.6)
     return None
 
 

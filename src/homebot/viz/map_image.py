@@ -129,7 +129,8 @@ def render_map(world: World, path: Sequence[tuple[float, float]] = (),
     _draw_path(canvas, path)
     if run:
         draw_embodied_run(canvas.draw, canvas.px, run)
-    robot = final.robot or tuple(world.robot.pose)
+    start = world.robot.pose
+    robot = final.robot or (start.x, start.y, start.theta)
     _draw_objects(canvas, final.objects, final.people, robot)
     _draw_robot(canvas, robot)
     _draw_people(canvas, final.people)

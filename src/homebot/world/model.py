@@ -14,9 +14,14 @@ from pydantic import (
     BeforeValidator,
     ConfigDict,
     Field,
+    GetCoreSchemaHandler,
+    GetPydanticSchema,
     field_validator,
     model_validator,
 )
+from pydantic_core import core_schema
+
+from homebot.geometry import Pose
 
 __all__ = [
     "COLOUR_PALETTE",
@@ -43,6 +48,23 @@ Probability = Annotated[float, Field(ge=0.0, le=1.0)]
 # A letter of any script first, then letters (with their accents), digits, space, _ ' -.
 # The pattern runs in pydantic-core's regex engine, which knows Unicode classes.
 Name = Annotated[str, Field(min_length=1, pattern=r"^\p{L}[\p{L}\p{M}\p{N}_ '\-]*$")]
+
+
+
+
+def _pose_schema(_source: Any, handler: GetCoreSchemaHandler) -> core_schema.CoreSchema:
+    """A pose is written ``[x, y, heading]`` and read into a ``Pose``; its errors name the
+    list's items (``robot.pose.2``) as pydantic's own tuple check does."""
+    return core_schema.no_info_before_validator_function(
+        lambda value: (value.x, value.y, value.theta) if isinstance(value, Pose) else value,
+        core_schema.no_info_after_validator_function(
+            lambda xyt: Pose(*xyt), handler(tuple[float, float, float])),
+        serialization=core_schema.plain_serializer_function_ser_schema(
+            lambda pose: [pose.x, pose.y, pose.theta]))
+
+
+#: a pose in a world file: ``[x, y, heading]`` in the map frame (metres, radians)
+PoseField = Annotated[Pose, GetPydanticSchema(_pose_schema)]
 
 
 #: the garments of a person's clothes ("black trousers") worn on the legs; anything else
@@ -187,7 +209,7 @@ class PlacementModel(_Strict):
     kind: PlacementKind = PlacementKind.FURNITURE
     center: Point
     size: tuple[float, float] = (0.6, 0.6)
-    approach: tuple[float, float, float] | None = None
+    approach: PoseField | None = None
     holds: list[Name] = Field(default_factory=list)
     front: Literal["north", "south", "east", "west"] | None = None
     height: float | None = Field(default=None, gt=0.0, le=2.5, description=(
@@ -284,7 +306,7 @@ class LaserModel(_Strict):
 class RobotModel(_Strict):
     """The robot's body: start pose (x, y, heading), size, speeds, hands, base and laser."""
 
-    pose: tuple[float, float, float]
+    pose: PoseField
     radius: float = Field(default=0.25, gt=0.05, le=1.0)
     speed: float = Field(default=0.5, gt=0.0, le=3.0, description=(
         "the base's top linear speed, in m/s"))

@@ -23,9 +23,9 @@ def front_heading(placement: Placement) -> float:
     if placement.model.front is not None:
         return FRONT_HEADINGS[placement.model.front]
     cx, cy = placement.model.center
-    ax, ay = placement.approach[0] - cx, placement.approach[1] - cy
+    ax, ay = placement.approach.x - cx, placement.approach.y - cy
     if ax == 0 and ay == 0:  # a spot: the robot stands on it, facing its heading
-        return placement.approach[2] + math.pi
+        return placement.approach.theta + math.pi
     half_w, half_d = placement.model.size[0] / 2, placement.model.size[1] / 2
     # the side whose outward normal the approach point lies along most (footprint scaled)
     if abs(ax) / half_w >= abs(ay) / half_d:

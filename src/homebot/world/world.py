@@ -16,6 +16,7 @@ from shapely.ops import unary_union
 from shapely.prepared import prep
 
 from homebot.errors import WorldError
+from homebot.geometry import Pose
 from homebot.text import closest_names, fold, folded_index
 from homebot.world.loading import (
     LocatedDocument,
@@ -25,10 +26,12 @@ from homebot.world.loading import (
     validate_document,
 )
 from homebot.world.model import (
+    DisturbanceModel,
     DoorModel,
     PersonModel,
     PlacementKind,
     PlacementModel,
+    RobotModel,
     RoomModel,
     WorldModel,
 )
@@ -47,7 +50,7 @@ class Placement:
 
     model: PlacementModel
     footprint: Polygon
-    approach: tuple[float, float, float]
+    approach: Pose
 
     @property
     def name(self) -> str:
@@ -160,11 +163,11 @@ class World:
         return self.model.name
 
     @property
-    def robot(self) -> Any:
+    def robot(self) -> RobotModel:
         return self.model.robot
 
     @property
-    def disturbances(self) -> Any:
+    def disturbances(self) -> DisturbanceModel:
         return self.model.disturbances
 
     @property
@@ -211,7 +214,7 @@ class World:
         raise WorldError(_unknown("person", name, self.people))
 
     def point_before_door(self, door: str, room: str,
-                          distance: float) -> tuple[float, float, float]:
+                          distance: float) -> Pose:
         """A point ``distance`` metres into ``room`` straight in front of ``door``, facing it.
 
         "Straight in front" is along the normal of the room's wall at the door, so
@@ -228,7 +231,7 @@ class World:
         nx, ny = -ty / norm, tx / norm
         if not polygon.covers(Point(x + 0.1 * nx, y + 0.1 * ny)):
             nx, ny = -nx, -ny
-        return (x + nx * distance, y + ny * distance, math.atan2(-ny, -nx))
+        return Pose(x + nx * distance, y + ny * distance, math.atan2(-ny, -nx))
 
     def plural_of(self, category: str) -> str:
         """The plural of an object category (its declared plural, else ``category + s``)."""
@@ -355,9 +358,9 @@ class World:
                         self._problem(["placements", index, "holds", position],
                                       _unknown("object category", category, self.categories))
             if model.approach and not self.room_polygons[model.room].covers(
-                    Point(model.approach[:2])):
+                    Point(model.approach.xy())):
                 self._problem(["placements", index, "approach"],
-                              f"{list(model.approach[:2])} lies outside room '{model.room}'; "
+                              f"{list(model.approach.xy())} lies outside room '{model.room}'; "
                               "the robot stands in the placement's room to use it")
             approach = model.approach or self._derive_approach(model, footprints[model.name],
                                                                furniture)
@@ -369,11 +372,11 @@ class World:
         return placements
 
     def _derive_approach(self, model: PlacementModel, footprint: Polygon,
-                         furniture: list[Polygon]) -> tuple[float, float, float] | None:
+                         furniture: list[Polygon]) -> Pose | None:
         """The nearest free standing point facing the placement, on its most open side."""
         radius = self.model.robot.radius
         if model.kind is PlacementKind.SPOT:
-            return (model.center[0], model.center[1], 0.0)
+            return Pose(model.center[0], model.center[1], 0.0)
         room = self.room_polygons[model.room]
         free_area = prep(room.buffer(-(radius + self.model.wall_thickness / 2)))
         obstacles = [f.buffer(radius + 0.02) for f in furniture if not f.equals(footprint)]
@@ -387,7 +390,7 @@ class World:
         for x, y in sides:
             spot = Point(x, y)
             if free_area.contains(spot) and not any(o.contains(spot) for o in obstacles):
-                return (round(x, 3), round(y, 3), round(math.atan2(cy - y, cx - x), 4))
+                return Pose(round(x, 3), round(y, 3), round(math.atan2(cy - y, cx - x), 4))
         return None
 
     def _check_objects(self) -> None:
@@ -454,7 +457,7 @@ class World:
         return self._wall_lines
 
     def _check_robot(self) -> None:
-        x, y, _ = self.model.robot.pose
+        x, y = self.model.robot.pose.xy()
         problem = self.footprint_problem(x, y)
         if problem is not None:
             self._problem(["robot", "pose"], f"the robot at ({x:g}, {y:g}) {problem}; place it "

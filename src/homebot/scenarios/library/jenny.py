@@ -36,7 +36,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     """Table 1 from the planner, then both scenarios run through the monitored skills."""
     world = World.load("apartment")
     domain = home_domain()
-    state, names = state_from_beliefs(world, Beliefs.from_world(world), world.robot.pose[:2])
+    state, names = state_from_beliefs(world, Beliefs.from_world(world), world.robot.pose.xy())
     planner = Planner(domain)
     table = {}
     for task, task_args in _SCENARIOS:

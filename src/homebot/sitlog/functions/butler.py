@@ -225,7 +225,7 @@ def next_location(env: Environment, entity: str) -> Term:
     here = home.context.robot.pose().xy()
     elsewhere = sorted((name for name, placement in world.placements.items()
                         if placement.model.kind == "furniture" and name not in locations),
-                       key=lambda name: math.dist(world.placements[name].approach[:2], here))
+                       key=lambda name: math.dist(world.placements[name].approach.xy(), here))
     for location in elsewhere:
         if location not in tried:
             if not any(str(place) in elsewhere for place in tried):
