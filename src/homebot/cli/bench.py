@@ -1,32 +1,30 @@
-"""``homebot bench NAME``: run a benchmark and print its figures (``all`` runs every one)."""
+"""``homebot bench NAME``: run a registered benchmark and print its figures (``all``: every one).
+
+The benchmarks are those of ``homebot.bench.BENCHMARKS``, in its order; a benchmark's module
+is imported only when the command line names it (or ``all`` reaches it). A benchmark whose
+optional extra is missing says which extra to install, and ``all`` carries on without it.
+"""
 
 from __future__ import annotations
 
 import argparse
 import importlib
 import json
+from collections.abc import Callable
 from typing import Any
 
-import homebot.bench
-from homebot.cli.modules import add_module_commands, lazy_subparsers, module_names
-from homebot.errors import HomebotError
+from homebot.bench import BENCHMARKS, Benchmark, benchmark_names, missing_extras
+from homebot.cli.modules import LazySubcommands, lazy_subparsers
+from homebot.errors import BenchmarkError, HomebotError
 
-__all__ = ["benchmark_names", "register"]
-
-# Helper modules of homebot.bench that are not benchmarks themselves.
-_NOT_BENCHMARKS = {"arguments", "fetch_tasks", "manipulation_hri"}
-
-
-def benchmark_names() -> list[str]:
-    """Every benchmark module in ``homebot.bench``."""
-    return module_names(homebot.bench, exclude=_NOT_BENCHMARKS)
+__all__ = ["register"]
 
 
 def register(subparsers: Any) -> None:
     parser = subparsers.add_parser("bench", help="run benchmarks and print their figures")
     bench_parsers = lazy_subparsers(parser, dest="benchmark", metavar="NAME")
-    add_module_commands(bench_parsers, homebot.bench, benchmark_names(),
-                        add_common=_add_json, exit_status=lambda figures: 0)
+    for entry in BENCHMARKS:
+        bench_parsers.add_lazy(entry.name, entry.help, _register_one(entry))
     every = bench_parsers.add_parser("all", help="every benchmark with its default settings")
     _add_json(every)
     every.set_defaults(handler=_run_all)
@@ -41,19 +39,68 @@ def _missing() -> int:
     raise HomebotError(f"name a benchmark: {', '.join([*benchmark_names(), 'all'])}")
 
 
-def _run_all(args: argparse.Namespace) -> int:
+def _missing_extras_message(entry: Benchmark, missing: list[str]) -> str:
+    extras = ", ".join(f"'{extra}'" for extra in missing)
+    install = ",".join(missing)
+    return (f"bench {entry.name} needs the {extras} extra{'s' if len(missing) > 1 else ''}: "
+            f"pip install 'homebot[{install}]'")
+
+
+def _register_one(entry: Benchmark) -> Callable[[LazySubcommands], None]:
+    def register(subparsers: LazySubcommands) -> None:
+        sub = subparsers.add_parser(entry.name, help=entry.help, description=entry.help)
+        _add_json(sub)
+        missing = missing_extras(entry)
+        if missing:  # its module may import the extra: say what to install instead of failing
+            message = _missing_extras_message(entry, missing)
+            sub.set_defaults(handler=lambda args: _refuse(message))
+            return
+        module = importlib.import_module(entry.module)
+        module.add_arguments(sub)
+        sub.set_defaults(handler=lambda args: _print(module.run(args, _console(args)), args))
+    return register
+
+
+def _refuse(message: str) -> int:
+    raise BenchmarkError(message)
+
+
+def _console(args: argparse.Namespace) -> Any:
     from rich.console import Console
 
-    console = None if args.json else Console()
-    everything = []
-    for name in benchmark_names():
-        module = importlib.import_module(f"homebot.bench.{name}")
-        parser = argparse.ArgumentParser()
-        module.add_arguments(parser)
-        defaults = parser.parse_args([])
+    return None if args.json else Console()
+
+
+def _print(figures: dict[str, Any], args: argparse.Namespace) -> int:
+    if args.json:
+        print(json.dumps(figures, ensure_ascii=False))
+    return 0
+
+
+def _run_all(args: argparse.Namespace) -> int:
+    """Every registered benchmark with its defaults; one that cannot run is reported, not fatal."""
+    console = _console(args)
+    everything: list[dict[str, Any]] = []
+    failed = False
+    for entry in BENCHMARKS:
         if console is not None:
-            console.rule(name)
-        everything.append(module.run(defaults, console))
+            console.rule(entry.name)
+        missing = missing_extras(entry)
+        if missing:
+            figures: dict[str, Any] = {"benchmark": entry.name,
+                                       "skipped": _missing_extras_message(entry, missing)}
+        else:
+            module = importlib.import_module(entry.module)
+            parser = argparse.ArgumentParser(prog=f"homebot bench {entry.name}")
+            module.add_arguments(parser)
+            try:
+                figures = module.run(parser.parse_args([]), console)
+            except HomebotError as error:  # reported with the others' figures, and carried on
+                failed = True
+                figures = {"benchmark": entry.name, "error": str(error)}
+        if console is not None and ("skipped" in figures or "error" in figures):
+            console.print(figures.get("skipped") or f"error: {figures['error']}")
+        everything.append(figures)
     if args.json:
         print(json.dumps(everything, ensure_ascii=False))
-    return 0
+    return 1 if failed else 0
