@@ -13,6 +13,7 @@ from homebot.cli import main
 from homebot.errors import WorldError
 from homebot.geometry import Pose
 from homebot.manipulation.control import ArmControl
+from homebot.navigation import Navigator
 from homebot.sim import Simulation
 from homebot.sim.body import SimBody
 from homebot.world import World, shipped_world_path, surface_height
@@ -32,7 +33,7 @@ def _locate(sim: Simulation, body: SimBody) -> object:
 def _at_the_coffee_table() -> tuple[Simulation, SimBody, ArmControl, Pose]:
     """The apartment's robot with its arm, standing at the coffee table."""
     world = World.load("apartment")
-    sim = Simulation(world, seed=1)
+    sim = Simulation(world, navigator=Navigator(world), seed=1)
     body = SimBody(sim)
     control = ArmControl(body, world, _locate(sim, body), seed=1)  # type: ignore[arg-type]
     stand = world.placements["coffee table"].approach
@@ -69,7 +70,7 @@ def test_a_broken_arm_model_in_a_world_file_names_the_file_and_line(tmp_path: Pa
     world_file.write_text(text.replace("robot:\n", "robot:\n  arm: arm.xml\n", 1),
                           encoding="utf-8")
     with pytest.raises(WorldError, match=r"arm\.xml:3"):
-        SimBody(Simulation(World.load(world_file)))
+        SimBody(Simulation(world := World.load(world_file), navigator=Navigator(world)))
     assert main(["do", "--fidelity", "embodied", "--world", str(world_file),
                  "bring me the crisps"]) == 2
     missing = tmp_path / "missing.yaml"
@@ -81,11 +82,11 @@ def test_a_broken_arm_model_in_a_world_file_names_the_file_and_line(tmp_path: Pa
 
 def test_out_of_reach_the_robot_steps_beside_the_nearest_free_side_of_the_surface() -> None:
     from homebot.embodied.hands import ArmedBodyRobot
-    from homebot.navigation import Navigator
     from homebot.scenarios.embodied import embodied_robot
 
     world = World.load("apartment")
-    robot = embodied_robot(Simulation(world, seed=1), Navigator(world))
+    navigator = Navigator(world)
+    robot = embodied_robot(Simulation(world, navigator=navigator, seed=1), navigator)
     assert isinstance(robot, ArmedBodyRobot)
     # The desk (x 9.2-10.8, y 9.15-9.85) stands against the office's wall at y = 10: an
     # object at its back-left corner is reached from its left side, never from behind.
@@ -101,12 +102,12 @@ def test_out_of_reach_the_robot_steps_beside_the_nearest_free_side_of_the_surfac
 
 def test_the_arms_scene_puts_objects_where_perception_saw_them() -> None:
     from homebot.embodied.hands import ArmedBodyRobot
-    from homebot.navigation import Navigator
     from homebot.scenarios.embodied import embodied_robot
 
     world = World.load("apartment")
-    sim = Simulation(world, seed=1)
-    robot = embodied_robot(sim, Navigator(world))
+    navigator = Navigator(world)
+    sim = Simulation(world, navigator=navigator, seed=1)
+    robot = embodied_robot(sim, navigator)
     assert isinstance(robot, ArmedBodyRobot)
     truth = _locate(sim, robot.body)  # type: ignore[arg-type]
     unseen = robot.arm.locate("crisps")

@@ -16,6 +16,7 @@ from homebot.htn import (
     home_domain,
     state_from_beliefs,
 )
+from homebot.navigation import Navigator
 from homebot.sim import Simulation
 from homebot.task import Step
 from homebot.world import DisturbanceModel, World
@@ -49,8 +50,10 @@ def test_table_1_guide_robot(apartment: World) -> None:
     assert plans[0].actions()[3] == ("!guide", "robot", "Alex", "bedroom")
 
 
-def test_state_comes_from_beliefs_not_truth(apartment: World) -> None:
-    simulation = Simulation(apartment, seed=1, disturbances=DisturbanceModel(object_moved=1.0))
+def test_state_comes_from_beliefs_not_truth(apartment: World,
+                                            apartment_navigator: Navigator) -> None:
+    simulation = Simulation(apartment, seed=1, disturbances=DisturbanceModel(object_moved=1.0),
+                            navigator=apartment_navigator)
     assert simulation.object_location["pringles"] != "pantry"  # the truth moved on
     beliefs = Beliefs.from_world(apartment)
     plan = _plans(apartment, "bring_object", ["pringles", "Alex"], beliefs)[0]

@@ -15,12 +15,11 @@ from homebot.navigation import (
     MclParameters,
     MonteCarloLocalisation,
     Navigator,
-    OccupancyGrid,
 )
 from homebot.robot import BodyError, DriveKind, LaserScan, Odometry, Twist
 from homebot.sim.body import SimBody
 from homebot.sim.simulation import Simulation
-from homebot.world import LaserModel, World
+from homebot.world import LaserModel, OccupancyGrid, World
 
 
 def _body(world: World, navigator: Navigator, seed: int, *, walkers: int = 0,
@@ -126,7 +125,7 @@ def test_recovers_after_kidnapping(apartment: World, apartment_navigator: Naviga
 
 
 def _run_filter(world: World, grid: OccupancyGrid, seed: int) -> np.ndarray:
-    simulation = Simulation(world, seed=0)
+    simulation = Simulation(world, navigator=Navigator(world), seed=0)
     body = SimBody(simulation)
     mcl = MonteCarloLocalisation(grid, np.random.default_rng(seed),
                                  MclParameters(min_particles=200, max_particles=1000))

@@ -10,7 +10,6 @@ import yaml
 from PIL import Image
 
 from homebot.errors import MapError
-from homebot.navigation import OccupancyGrid
 from homebot.navigation.map_io import (
     FREE_PIXEL,
     OCCUPIED_PIXEL,
@@ -19,7 +18,7 @@ from homebot.navigation.map_io import (
     read_map,
     write_map,
 )
-from homebot.world import World
+from homebot.world import OccupancyGrid, World
 
 L_SHAPED = """\
 name: l shape

@@ -7,6 +7,7 @@ import math
 import numpy as np
 import pytest
 
+from homebot.navigation import Navigator
 from homebot.robot import HeadState, RgbdFrame
 from homebot.sim import Simulation
 from homebot.sim.body import SimBody
@@ -106,7 +107,7 @@ robot:
 
 def test_sim_body_sees_the_objects_on_its_table() -> None:
     world = World.from_yaml_text(SMALL)
-    simulation = Simulation(world, seed=2)
+    simulation = Simulation(world, navigator=Navigator(world), seed=2)
     body = SimBody(simulation)
     body.point_head(0.0, 0.55)
     frame = body.camera()

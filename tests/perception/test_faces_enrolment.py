@@ -46,7 +46,7 @@ def test_a_person_who_says_my_name_is_in_front_of_the_embodied_robot_is_recognis
     from homebot.world import World
 
     world = World.load("apartment")
-    sim = Simulation(world, seed=3)
+    sim = Simulation(world, navigator=Navigator(world), seed=3)
     robot = embodied_robot(sim, Navigator(world))
     assert isinstance(robot, BodyRobot)
     assert isinstance(robot.face_images, FaceCamera) and robot.acquaintances is not None

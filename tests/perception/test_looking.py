@@ -40,7 +40,7 @@ robot:
 
 def test_the_embodied_robot_sees_what_stands_on_the_table() -> None:
     world = World.from_yaml_text(WORLD)
-    simulation = Simulation(world, seed=1)
+    simulation = Simulation(world, navigator=Navigator(world), seed=1)
     robot = embodied_robot(simulation, Navigator(world))
     before = simulation.clock.now()
     detections = robot.perceive_objects("table")
@@ -61,7 +61,7 @@ def test_the_embodied_robot_sees_what_stands_on_the_table() -> None:
 
 def test_a_robot_lost_elsewhere_sees_nothing_on_the_table() -> None:
     world = World.from_yaml_text(WORLD)
-    simulation = Simulation(world, seed=1)
+    simulation = Simulation(world, navigator=Navigator(world), seed=1)
     robot = embodied_robot(simulation, Navigator(world))
     assert isinstance(robot, BodyRobot)
     robot.localisation.initialise(Pose(1.0, 1.0, 0.0), spread=0.01, angle_spread=0.01)
@@ -74,7 +74,7 @@ def test_objects_at_the_near_edge_are_seen_from_an_imprecise_approach(closer: fl
     text = WORLD.replace("  - {name: soup,", "  - {name: lemon, category: fruit, placement: table, "
                          "position: [3.4, 1.72]}\n  - {name: soup,")
     world = World.from_yaml_text(text)
-    simulation = Simulation(world, seed=3)
+    simulation = Simulation(world, navigator=Navigator(world), seed=3)
     robot = embodied_robot(simulation, Navigator(world))
     assert isinstance(robot, BodyRobot)
     stand = world.placements["table"].approach
@@ -89,7 +89,7 @@ def test_objects_at_the_near_edge_are_seen_from_an_imprecise_approach(closer: fl
 def test_the_table_is_seen_from_its_far_side_too() -> None:
     # Stepping round a table to reach an object, the robot looks again from there.
     world = World.from_yaml_text(WORLD)
-    simulation = Simulation(world, seed=1)
+    simulation = Simulation(world, navigator=Navigator(world), seed=1)
     robot = embodied_robot(simulation, Navigator(world))
     assert isinstance(robot, BodyRobot)
     pose = Pose(3.0, 2.75, -math.pi / 2)

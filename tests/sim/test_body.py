@@ -201,7 +201,7 @@ def test_an_omnidirectional_base_moves_sideways(apartment: World) -> None:
     data = apartment.to_dict()
     data["robot"]["drive"] = "omnidirectional"
     world = World.from_dict(data, "apartment, omnidirectional")
-    body = SimBody(Simulation(world, seed=0))
+    body = SimBody(Simulation(world, navigator=Navigator(world), seed=0))
     assert body.drive is DriveKind.OMNIDIRECTIONAL
     body.teleport(Pose(6.0, 5.0, 0.0))
     body.command_velocity(Twist(0.0, 0.3, 0.0))

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from homebot.navigation import Navigator
 from homebot.sim.components import ComponentSimulation, SimulatedComponent
 
 MODULE = ("off", "starting", "running", "failed")
@@ -68,7 +69,9 @@ def test_the_body_laser_sees_only_while_its_component_runs() -> None:
     components = _simulation(seed=1, mean_time_to_failure=2.0)
     components.components["laser"] = SimulatedComponent("laser", "module", MODULE, "off",
                                                         {"start": 0.05})
-    body = SimBody(Simulation(World.load("apartment"), seed=0), components=components)
+    apartment = World.load("apartment")
+    body = SimBody(Simulation(apartment, seed=0, navigator=Navigator(apartment)),
+                   components=components)
     assert not body.scan().valid().any()  # off: nothing returns
     components.operate("start", "laser")
     body.tick()

@@ -168,10 +168,11 @@ def test_a_person_asked_aside_steps_off_the_robots_way(apartment: World,
         assert math.dist(spot, robot) >= 1.0
 
 
-def test_objects_put_on_a_surface_stand_apart_on_it(apartment: World) -> None:
+def test_objects_put_on_a_surface_stand_apart_on_it(apartment: World,
+                                                    apartment_navigator: Navigator) -> None:
     # Moved by people (disturbances, walkers), not stacked on its centre: the camera would
     # see two objects in one place as one.
-    simulation = Simulation(apartment, seed=1)
+    simulation = Simulation(apartment, seed=1, navigator=apartment_navigator)
     table = apartment.placements["side table"]
     for name in ("banana", "soap", "cola"):
         simulation.put_object(name, "side table")

@@ -13,6 +13,7 @@ pytest.importorskip("cyclonedds")
 pytest.importorskip("rosbags")
 pytest.importorskip("cv2")
 
+from homebot.navigation import Navigator
 from homebot.robot import DriveKind, Twist, VelocityLimits
 from homebot.sim import Simulation
 from homebot.sim.body import SimBody
@@ -36,7 +37,7 @@ def served_body(domain_id: int) -> Iterator[int]:
 
 def test_rosbody_drives_as_simbody_does(served_body: int) -> None:
     world = World.load("apartment")
-    here = SimBody(Simulation(world, seed=5))
+    here = SimBody(Simulation(world, navigator=Navigator(world), seed=5))
     robot = world.robot
     there = RosBody(Node(loopback(served_body)), drive=DriveKind(robot.drive),
                     limits=VelocityLimits(robot.speed, robot.angular_speed),

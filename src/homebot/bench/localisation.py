@@ -35,12 +35,12 @@ from rich.table import Table
 
 from homebot.bench.arguments import count
 from homebot.geometry import Pose
-from homebot.navigation import Navigator, OccupancyGrid
+from homebot.navigation import Navigator
 from homebot.navigation.localisation import MclParameters, MonteCarloLocalisation
 from homebot.robot import Body, LaserScan, Twist
 from homebot.sim.body import SimBody
 from homebot.sim.simulation import Simulation
-from homebot.world import DoorState, LaserModel, World
+from homebot.world import DoorState, LaserModel, OccupancyGrid, World
 
 __all__ = ["add_arguments", "run", "tracking_drive"]
 

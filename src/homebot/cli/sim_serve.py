@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING, Any
 from homebot.cli.options import add_world_options, load_world
 from homebot.cli.ros_options import add_transport_options, transport_node
 from homebot.cli.simulated import record_final_state
+from homebot.navigation import Navigator
 from homebot.scenarios import SimulatedRun, disturbance_level, disturbed
 from homebot.scenarios.embodied import add_fidelity_option, require_embodied
 from homebot.world import World
@@ -73,7 +74,7 @@ def _serve_body(args: argparse.Namespace, node: Node, world: World) -> int:
     from homebot.sim.body import SimBody
     from homebot.transport.ros_body import BodyServer
 
-    simulation = Simulation(world, seed=args.seed,
+    simulation = Simulation(world, navigator=Navigator(world), seed=args.seed,
                             disturbances=disturbed(args.disturb) if args.disturb else None)
     body = SimBody(simulation, walkers=max(0, min(args.walkers, 50)))
     # The first sweep compiles the laser's kernel (seconds on a fresh install): do it

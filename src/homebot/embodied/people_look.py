@@ -34,7 +34,6 @@ import shapely
 from scipy import ndimage
 
 from homebot.geometry import Pose
-from homebot.navigation.grid import OccupancyGrid
 from homebot.perception.faces import Acquaintances
 from homebot.perception.gestures import person_gesture
 from homebot.perception.people import (
@@ -45,7 +44,7 @@ from homebot.perception.people import (
     posture_from_profile,
 )
 from homebot.robot import Body, PartMissing, PersonPercept, PersonView, Twist
-from homebot.world import PlacementKind, World, surface_height
+from homebot.world import OccupancyGrid, PlacementKind, World, surface_height
 
 __all__ = ["PeopleLook"]
 

@@ -17,7 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import ndimage
 
-from homebot.navigation.grid import OccupancyGrid
+from homebot.world import OccupancyGrid
 
 __all__ = ["LikelihoodField"]
 

@@ -34,9 +34,9 @@ from statistics import NormalDist
 import numpy as np
 
 from homebot.geometry import Pose
-from homebot.navigation.grid import OccupancyGrid
 from homebot.navigation.likelihood import LikelihoodField
 from homebot.robot.body import BodyError, DriveKind, LaserScan, Odometry
+from homebot.world import OccupancyGrid
 
 __all__ = ["MclParameters", "MonteCarloLocalisation"]
 

@@ -43,8 +43,7 @@ from PIL import Image, UnidentifiedImageError
 from scipy import ndimage
 
 from homebot.errors import MapError
-from homebot.navigation.grid import OccupancyGrid
-from homebot.world import World
+from homebot.world import OccupancyGrid, World
 from homebot.world.loading import load_yaml_document, short_repr
 
 __all__ = [

@@ -11,29 +11,15 @@ import numpy as np
 from scipy import ndimage
 
 from homebot.navigation.astar import astar
-from homebot.navigation.grid import OccupancyGrid
-from homebot.navigation.topology import Route, TopologicalMap
-from homebot.world import World
+from homebot.navigation.topology import TopologicalMap
+from homebot.world import NavigationPlan, OccupancyGrid, World
 
-__all__ = ["NavigationPlan", "Navigator", "polyline_length"]
+__all__ = ["Navigator", "polyline_length"]
 
 # Metres round the start and goal of plan_around where only the robot's radius is kept clear.
 _END_ALLOWANCE = 0.6
 # How many path segments a navigator remembers; fetch-and-deliver tasks revisit the same places.
 _CACHE_SIZE = 4096
-
-
-@dataclass(frozen=True, slots=True)
-class NavigationPlan:
-    """A path the robot can drive: waypoints, its length, and the doors it passes."""
-
-    waypoints: tuple[tuple[float, float], ...]
-    length: float
-    doors: tuple[str, ...]
-    route: Route
-
-    def __bool__(self) -> bool:
-        return bool(self.waypoints)
 
 
 @dataclass

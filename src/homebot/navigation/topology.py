@@ -4,19 +4,10 @@ from __future__ import annotations
 
 import heapq
 import math
-from dataclasses import dataclass
 
-from homebot.world import World
+from homebot.world import Route, World
 
-__all__ = ["Route", "TopologicalMap"]
-
-
-@dataclass(frozen=True, slots=True)
-class Route:
-    """Rooms and the doors between them, in travel order."""
-
-    rooms: tuple[str, ...]
-    doors: tuple[str, ...]
+__all__ = ["TopologicalMap"]
 
 
 class TopologicalMap:

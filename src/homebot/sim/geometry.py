@@ -16,8 +16,7 @@ import shapely
 from shapely.geometry import Point
 from shapely.geometry.base import BaseGeometry
 
-from homebot.navigation import OccupancyGrid
-from homebot.world import PlacementKind, World
+from homebot.world import OccupancyGrid, PlacementKind, World
 
 __all__ = ["TRUTH_RESOLUTION", "TrueGeometry"]
 

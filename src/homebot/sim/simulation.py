@@ -15,12 +15,13 @@ from shapely.geometry import LineString
 from shapely.geometry import Point as ShapelyPoint
 
 from homebot.events import EventLog
-from homebot.navigation import NavigationPlan, Navigator
 from homebot.sim.clock import Clock
 from homebot.sim.people import Responder, ScriptedResponder
 from homebot.world import (
     DisturbanceModel,
     DoorState,
+    NavigationPlan,
+    PathPlanner,
     PersonModel,
     PlacementKind,
     Posture,
@@ -65,7 +66,7 @@ class PlanCache:
 
     __slots__ = ("_plans", "navigator", "size")
 
-    def __init__(self, navigator: Navigator, size: int = 4096) -> None:
+    def __init__(self, navigator: PathPlanner, size: int = 4096) -> None:
         self.navigator = navigator
         self.size = size
         self._plans: dict[tuple[tuple[float, float], tuple[float, float], frozenset[str]],
@@ -97,7 +98,9 @@ class Simulation:
         seed: seeds every random choice.
         disturbances: overrides the world's disturbance model (None: the world's).
         responder: how people answer questions (default: scripted from the world).
-        navigator: a navigator for this world, shared between runs to save rasterising.
+        navigator: plans paths in this world (``homebot.navigation.Navigator``, passed in
+            by whoever builds the run: the simulator never imports the robot's algorithms),
+            shared between runs to save rasterising.
         plans: remembered navigation plans of ``navigator``, shared between runs (None: a
             cache of this simulation's own).
     """
@@ -105,14 +108,14 @@ class Simulation:
     def __init__(self, world: World, *, seed: int = 0,
                  disturbances: DisturbanceModel | None = None,
                  responder: Responder | None = None,
-                 navigator: Navigator | None = None,
+                 navigator: PathPlanner,
                  plans: PlanCache | None = None) -> None:
         self.world = world
         self.seed = seed
         self.random = random.Random(seed)
         self.clock = Clock()
         self.events = EventLog(self.clock.now)
-        self.navigator = navigator if navigator is not None else Navigator(world)
+        self.navigator = navigator
         self.plans = plans if plans is not None and plans.navigator is self.navigator else (
             PlanCache(self.navigator))
         self.disturbances = disturbances if disturbances is not None else world.disturbances

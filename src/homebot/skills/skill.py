@@ -17,9 +17,8 @@ from typing import Any, ClassVar
 
 from homebot.beliefs import Beliefs
 from homebot.events import EventLog
-from homebot.navigation import Navigator
 from homebot.robot import Robot
-from homebot.world import World
+from homebot.world import PathPlanner, World
 
 __all__ = ["ErrorCode", "Outcome", "Skill", "SkillContext", "Status", "speak", "time_left"]
 
@@ -106,7 +105,7 @@ class SkillContext:
 
     robot: Robot
     world: World  #: the robot's map and what it was told, not the simulator's truth
-    navigator: Navigator
+    navigator: PathPlanner  #: the global planner on the robot's map
     beliefs: Beliefs
     events: EventLog
     bindings: dict[str, Any] = field(default_factory=dict)

@@ -22,14 +22,13 @@ import numpy as np
 
 from homebot.events import EventLog
 from homebot.geometry import Pose
-from homebot.navigation import OccupancyGrid
 from homebot.robot import MoveReport, Robot
 from homebot.transport.actions import ActionServer, GoalContext, GoalStatus
 from homebot.transport.calls import CallError, encode, serve
 from homebot.transport.messages import pose_stamped, stamp, yaw_of
 from homebot.transport.naming import MAP_QOS
 from homebot.transport.node import Node
-from homebot.world import World
+from homebot.world import OccupancyGrid, World
 
 __all__ = ["NAVIGATE_ACTION", "ROBOT_CALL", "SimServer"]
 

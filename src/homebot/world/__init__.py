@@ -9,6 +9,7 @@ from homebot.world.catalogue import (
     object_catalogue,
     surface_height,
 )
+from homebot.world.grid import OccupancyGrid
 from homebot.world.model import (
     COLOUR_PALETTE,
     LEG_GARMENTS,
@@ -29,6 +30,7 @@ from homebot.world.model import (
     Shape,
     WorldModel,
 )
+from homebot.world.paths import NavigationPlan, PathPlanner, Route
 from homebot.world.surfaces import FRONT_HEADINGS, front_heading, object_positions
 from homebot.world.world import Placement, World, shipped_world_names, shipped_world_path
 
@@ -45,8 +47,11 @@ __all__ = [
     "DoorState",
     "Gesture",
     "LaserModel",
+    "NavigationPlan",
     "ObjectCategoryModel",
     "ObjectModel",
+    "OccupancyGrid",
+    "PathPlanner",
     "PersonModel",
     "Placement",
     "PlacementKind",
@@ -54,6 +59,7 @@ __all__ = [
     "Posture",
     "RobotModel",
     "RoomModel",
+    "Route",
     "Shape",
     "World",
     "WorldModel",

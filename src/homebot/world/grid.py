@@ -8,7 +8,8 @@ import numpy as np
 import shapely
 from scipy import ndimage
 
-from homebot.world import PlacementKind, World
+from homebot.world.model import PlacementKind
+from homebot.world.world import World
 
 __all__ = ["OccupancyGrid"]
 
