@@ -134,7 +134,7 @@ def test_with_monitoring_off_a_finished_skill_is_a_done_action() -> None:
     from homebot.world import World
 
     run = SimulatedRun.create(World.load("apartment"), monitoring=False)
-    executor = SkillExecutor(run.context, {"say": lambda action: [Step("say",
+    executor = SkillExecutor(run.executive, {"say": lambda action: [Step("say",
                                                                        {"text": action[1]})]})
     assert executor.execute(("say", "hello"), State())
     assert executor.steps[0]["status"] == "finished"

@@ -18,7 +18,7 @@ def _carry_out(world: World, navigator: Navigator, task: str, args: list[str], *
     run = SimulatedRun.create(world, seed=seed, disturbances=disturbances, navigator=navigator)
     names = Names()
     domain = home_domain()
-    done = PlanActor(run.context, domain, **actor).run(Goal.of(task, args, world, names, domain),
+    done = PlanActor(run.executive, domain, **actor).run(Goal.of(task, args, world, names, domain),
                                                        names)
     return done, run.simulation.events
 
@@ -137,7 +137,7 @@ def test_an_object_moved_away_is_searched_for_and_found(
     run.simulation.object_location["cup"] = "desk"  # someone took it to the office
     names = Names()
     domain = home_domain()
-    done = PlanActor(run.context, domain).run(
+    done = PlanActor(run.executive, domain).run(
         Goal.of("place_object", ["cup", "dishwasher"], apartment, names, domain), names)
     searches = [r.status for r in done.operators if r.operator == "!search_object"]
     assert done and done.replans >= 1 and searches and searches[-1] == "verified"
@@ -157,7 +157,7 @@ def test_declared_effects_are_checked_against_the_beliefs(
         apartment: World, apartment_navigator: Navigator) -> None:
     run = SimulatedRun.create(apartment, navigator=apartment_navigator)
     domain = read_domain_text(WRONG_MODEL)
-    done = PlanActor(run.context, domain, max_replans=1).run(Goal(("go", "robot", "desk")))
+    done = PlanActor(run.executive, domain, max_replans=1).run(Goal(("go", "robot", "desk")))
     # The robot got there (navigate verified), but the model's promise is not believed.
     assert not done and [r.status for r in done.operators] == ["verified", "verified"]
     missing = [e.data["missing"] for e in run.simulation.events.of_kind("htn.effects")]
@@ -170,7 +170,7 @@ def test_operators_without_a_skill_are_refused_before_acting(
     run = SimulatedRun.create(apartment, navigator=apartment_navigator)
     domain = read_domain_text("(defdomain d ((:operator (!dance ?r) () () ((danced ?r)))))")
     with pytest.raises(PlanningError, match="no skill runs operator '!dance'"):
-        PlanActor(run.context, domain).run(Goal(("!dance", "robot")))
+        PlanActor(run.executive, domain).run(Goal(("!dance", "robot")))
     assert not list(run.simulation.events.of_kind("skill.start"))
 
 
@@ -179,7 +179,7 @@ def test_with_monitoring_off_finished_operators_go_on(apartment: World,
     run = SimulatedRun.create(apartment, navigator=apartment_navigator, monitoring=False)
     names = Names()
     domain = home_domain()
-    done = PlanActor(run.context, domain).run(
+    done = PlanActor(run.executive, domain).run(
         Goal.of("bring_object", ["pringles", "Alex"], apartment, names, domain), names)
     assert done and done.replans == 0
     assert [r.status for r in done.operators] == ["finished"] * 8

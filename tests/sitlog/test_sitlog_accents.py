@@ -43,8 +43,8 @@ def test_find_in_the_accented_world_takes_names_without_accents() -> None:
     variables: dict[str, Var] = {}
     term = parse_term("find('creme brulee', [etagere, 'MESA DA COZINHA'], Where)", "<test>",
                       variables)
-    result = Interpreter(load_program("behaviours"), SkillPerception(run.context),
-                         body=SkillBody(run.context), application=run.context).run(term)
+    result = Interpreter(load_program("behaviours"), SkillPerception(run.executive),
+                         body=SkillBody(run.executive), application=run.context).run(term)
     assert format_term(result.final) == "ok"
     assert resolve(variables["Where"]) == "MESA DA COZINHA"
     looked = [event.data for event in run.simulation.events.of_kind("skill.start")

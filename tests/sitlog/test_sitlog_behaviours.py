@@ -22,8 +22,8 @@ def _call(world: World, call: str,
         run.simulation.door_state[door] = DoorState.CLOSED
     variables: dict[str, Var] = {}
     term = parse_term(call, "<test>", variables)
-    result = Interpreter(load_program("behaviours"), SkillPerception(run.context),
-                         body=SkillBody(run.context), application=run.context).run(term)
+    result = Interpreter(load_program("behaviours"), SkillPerception(run.executive),
+                         body=SkillBody(run.executive), application=run.context).run(term)
     return variables, result, run
 
 
@@ -61,8 +61,8 @@ def test_move_asks_someone_in_the_doorway_to_let_it_through() -> None:
     run.simulation.place_person_in_doorway("kids room door", "Tom")
     variables: dict[str, Var] = {}
     term = parse_term("move('toy box', Status)", "<test>", variables)
-    body = SkillBody(run.context)
-    Interpreter(load_program("behaviours"), SkillPerception(run.context), body=body,
+    body = SkillBody(run.executive)
+    Interpreter(load_program("behaviours"), SkillPerception(run.executive), body=body,
                 application=run.context).run(term)
     assert resolve(variables["Status"]) == "ok"
     said = [event.data["text"] for event in run.simulation.events.of_kind("speech")]
@@ -73,7 +73,7 @@ def test_take_then_deliver_to_a_person() -> None:
     run = SimulatedRun.create(_home(), seed=2)
     variables: dict[str, Var] = {}
     program = load_program("behaviours")
-    perception, body = SkillPerception(run.context), SkillBody(run.context)
+    perception, body = SkillPerception(run.executive), SkillBody(run.executive)
     for call in ("take(malz, shelf_drinks, left, Took)", "deliver(malz, 'Luis', 'living room', S)"):
         Interpreter(program, perception, body=body, application=run.context).run(
             parse_term(call, "<test>", variables))

@@ -363,7 +363,7 @@ def _execution(world: World, runs: int, seed: int, level: float) -> list[dict[st
             if mode.startswith("htn"):
                 names = Names()
                 goal = Goal.of("bring_object", [fetch.obj, fetch.person], world, names, domain)
-                done = PlanActor(simulation_run.context, domain).run(goal, names)
+                done = PlanActor(simulation_run.executive, domain).run(goal, names)
                 success, speech, sim_time = done.success, done.speech, done.sim_time
             else:
                 report = simulation_run.run(fetch.task)

@@ -21,7 +21,7 @@ from homebot.navigation import Navigator
 from homebot.robot import Detection, MoveReport
 from homebot.scenarios.runtime import SimulatedRun, disturbed
 from homebot.sim import SimRobot, Simulation
-from homebot.skills import ErrorCode, Outcome, SkillContext, skill_named
+from homebot.skills import ErrorCode, Outcome, SkillContext
 from homebot.task import Step, Task
 from homebot.world import PersonModel, World
 
@@ -124,7 +124,7 @@ def fixed_order_search(order: list[str]) -> Protocol:
             return False
         for place in order:
             context.bindings[f"placement:{wanted}"] = place
-            taken = skill_named("pick").run(context, {"object": wanted})
+            taken = run("pick", {"object": wanted}, recover=False)
             if taken:
                 return taken
         return Outcome.failed(ErrorCode.NOT_FOUND, f"no shelf has the {wanted}")
@@ -184,7 +184,8 @@ def run_world(world: World, navigator: Navigator, seed: int, args: argparse.Name
             result.right += given == [substitute]
         else:
             result.right += not given and inventory.out_of_stock(product)
-        result.put_back += len(cycle.tidy_up(simulated.context))  # idle time
+        result.put_back += len(cycle.tidy_up(simulated.context,  # idle time
+                                             run=simulated.executive.run_step))
     result.kb_consistent = _kb_agrees(inventory, cycle, simulated.simulation, shelves)
     result.sim_time = simulated.robot.now()
 

@@ -182,7 +182,7 @@ def carry_out_with_htn(args: argparse.Namespace, world: World, run: Any,
         Console(stderr=True).print("note: the HTN planner has no task for this command; "
                                    "running the parsed steps", highlight=False)
         return None
-    actor = PlanActor(run.context)
+    actor = PlanActor(run.executive)
     runs = [actor.run(goal, names) for goal in goals]
     if args.json:
         print(json.dumps({"success": all(runs), "goals": [list(g.task) for g in goals],

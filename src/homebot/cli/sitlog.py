@@ -126,9 +126,9 @@ def _on_robot(args: argparse.Namespace, spoken: ScriptedPerception) -> tuple[Any
     from homebot.world import World
 
     run = SimulatedRun.create(World.load(args.world), seed=args.seed)
-    robot = SkillPerception(run.context, person=args.person)
+    robot = SkillPerception(run.executive, person=args.person)
     perception = robot if args.person else _Mixed(spoken, robot)
-    return perception, SkillBody(run.context), run.context
+    return perception, SkillBody(run.executive), run.context
 
 
 def _show(args: argparse.Namespace) -> int:

@@ -5,7 +5,7 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from typing import Any
 
-from homebot.executive.recovery import PROTOCOLS, Protocol
+from homebot.executive.recovery import PROTOCOLS, Protocol, Recover
 from homebot.executive.report import StepReport, TaskReport
 from homebot.skills import (
     OPERATOR,
@@ -77,12 +77,7 @@ class Executive:
                 if context.monitoring:
                     speak(context, "All right, I stopped.")
                 break
-            recoveries: list[str]
-            if time_left(context) <= 0:
-                outcome, recoveries = Outcome.failed(
-                    ErrorCode.OUT_OF_TIME, f"I ran out of time before I could {step.skill}"), []
-            else:
-                outcome, recoveries = self._run_step(step.skill, args)
+            outcome, recoveries = self._step(step.skill, args)
             handled = outcome.data.get("object")
             if (step.skill == "pick" and recoveries and isinstance(handled, str)
                     and handled != args.get("object")):
@@ -113,33 +108,60 @@ class Executive:
         else:
             self.context.deadline = None
 
-    def run_step(self, skill: str, args: Mapping[str, Any]) -> Outcome:
-        """Run one skill step with retries and recovery, as a task's step would be.
+    def run_step(self, skill: str, args: Mapping[str, Any], *, recover: Recover = True,
+                 retries: int | None = None) -> Outcome:
+        """Run one skill step as a task's step would be: the one place every engine's
+        skills run (HTN operators, Golog actions, SitLog situations, the inference cycle).
 
-        For engines that sequence skills themselves (HTN, Golog, SitLog) and want the
-        executive's recovery protocols without its task-level reporting. The first step
-        starts the time budget when ``start_budget`` was not called.
+        The step is not started once the time budget is spent (an ``out_of_time``
+        failure); it runs with the skill's retries (``retries`` extra attempts instead,
+        if given); a failure then goes through the recovery protocols and, where none
+        applies, the inference cycle. ``recover`` narrows which failures may be mended:
+        True every one, False none, or the error codes the engine leaves to the executive
+        (an engine that handles the rest itself: HTN replans, a dialogue model branches).
+        The engine decides what happens next. The first step starts the time budget
+        when ``start_budget`` was not called.
         """
         if self.time_limit is not None and self.context.deadline is None:
             self.start_budget()
-        return self._run_step(skill, self._bind(args))[0]
+        return self._step(skill, self._bind(args), recover=recover, retries=retries)[0]
 
-    def _run_step(self, skill: str, args: Mapping[str, Any],
-                  depth: int = 0) -> tuple[Outcome, list[str]]:
-        outcome = skill_named(skill).run(self.context, args)
+    def _step(self, skill: str, args: Mapping[str, Any], *, recover: Recover = True,
+              retries: int | None = None) -> tuple[Outcome, list[str]]:
+        """A task's step: refused once the budget is spent, else run with recovery."""
+        if time_left(self.context) <= 0:
+            return Outcome.failed(ErrorCode.OUT_OF_TIME,
+                                  f"I ran out of time before I could {skill}"), []
+        budgets = self.context.retries
+        previous = budgets.get(skill)
+        if retries is not None:
+            budgets[skill] = retries
+        try:
+            return self._run_step(skill, args, recover=recover)
+        finally:
+            if retries is not None:
+                if previous is None:
+                    budgets.pop(skill, None)
+                else:
+                    budgets[skill] = previous
+
+    def _run_step(self, skill: str, args: Mapping[str, Any], depth: int = 0, *,
+                  recover: Recover = True) -> tuple[Outcome, list[str]]:
+        outcome = self._skill(skill, args)
         recoveries: list[str] = []
 
-        def nested(name: str, nested_args: Mapping[str, Any]) -> Outcome:
+        def nested(name: str, nested_args: Mapping[str, Any], *,
+                   recover: Recover = True) -> Outcome:
             # Steps a protocol runs may recover too, one level deep.
-            if depth >= 1:
-                return skill_named(name).run(self.context, nested_args)
-            return self._run_step(name, nested_args, depth + 1)[0]
+            if depth >= 1 or recover is False:
+                return self._skill(name, nested_args)
+            return self._run_step(name, nested_args, depth + 1, recover=recover)[0]
 
         # Inference serves the task's own steps, not the steps a protocol runs.
         inference = self.inference if depth == 0 else None
         inferred = gave_up = False
         while (self.recovery and not outcome and len(recoveries) < _MAX_RECOVERIES
-               and outcome.error is not ErrorCode.OUT_OF_TIME and time_left(self.context) > 0):
+               and _mendable(outcome, recover) and time_left(self.context) > 0):
             protocol = self._protocol_for(skill, outcome, inference, inferred, gave_up)
             if protocol is None or (depth > 0 and outcome.error is ErrorCode.NOT_FOUND):
                 break  # a search a protocol runs does not start searches of its own
@@ -161,8 +183,12 @@ class Executive:
                     continue
                 break
             args = self._bind(args)
-            outcome = skill_named(skill).run(self.context, args)
+            outcome = self._skill(skill, args)
         return outcome, recoveries
+
+    def _skill(self, skill: str, args: Mapping[str, Any]) -> Outcome:
+        """Run the skill itself: the one call of a skill in homebot."""
+        return skill_named(skill).run(self.context, args)
 
     @staticmethod
     def _protocol_for(skill: str, outcome: Outcome, inference: Protocol | None,
@@ -198,6 +224,13 @@ class Executive:
         if not context.monitoring:
             return
         # Stop safely: put nothing down, go back to the operator and explain.
-        skill_named("navigate").run(context, {"to": OPERATOR})
+        self._skill("navigate", {"to": OPERATOR})
         speak(context, f"I am sorry, I could not finish step {index + 1} ({step.skill}): "
                        f"{reason}.")
+
+
+def _mendable(outcome: Outcome, recover: Recover) -> bool:
+    """Whether recovery may try to mend this failure: never when time is out."""
+    if outcome.error is ErrorCode.OUT_OF_TIME or recover is False:
+        return False
+    return recover is True or outcome.error in recover

@@ -9,7 +9,8 @@ skills; they never touch the world except through the skills and the Robot port.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+import typing
+from collections.abc import Callable, Collection, Mapping
 from typing import Any
 
 from homebot.robot import HelpRequest
@@ -18,11 +19,26 @@ from homebot.skills.perception import looked_everywhere
 from homebot.skills.places import people_in_view, resolve_target
 from homebot.skills.wording import be, is_plural
 
-__all__ = ["PROTOCOLS", "Protocol", "StepRunner"]
+__all__ = ["PROTOCOLS", "WAY_BLOCKED", "Protocol", "Recover", "StepRunner"]
+
+#: Which failures recovery may mend: True every one, False none, or these error codes.
+Recover = bool | Collection[ErrorCode]
+#: Failures of the way (a door shut, someone in it): mended on the spot for every engine,
+#: while what to do about a thing not found or not grasped is the engine's to decide.
+WAY_BLOCKED: frozenset[ErrorCode] = frozenset({ErrorCode.DOOR_CLOSED, ErrorCode.PATH_BLOCKED})
+
+
+class StepRunner(typing.Protocol):
+    """Runs a skill step through the executive: ``run(skill, args)``, with recovery
+    unless ``recover`` narrows it (False: the bare skill, as the inference cycle's own
+    steps run)."""
+
+    def __call__(self, skill: str, args: Mapping[str, Any], /, *,
+                 recover: Recover = True) -> Outcome: ...
+
 
 # A protocol gets the context, the failed skill, its arguments and outcome, and a
 # runner that runs a skill step with recovery (so a search can open doors on its way).
-StepRunner = Callable[[str, Mapping[str, Any]], Outcome]
 Protocol = Callable[[SkillContext, str, Mapping[str, Any], Outcome, StepRunner], bool | Outcome]
 
 

@@ -39,12 +39,17 @@ ExogenousSource = Callable[[int, State], list[GroundAction]]
 
 @dataclass(frozen=True)
 class Report:
-    """What an executor tells after an action: done or not, nature's outcome, sensed values."""
+    """What an executor tells after an action: done or not, nature's outcome, sensed values.
+
+    ``stop`` says the run cannot go on (the task's time budget is spent): the failed
+    action ends the run, with no re-plan.
+    """
 
     ok: bool = True
     outcome: GroundAction | None = None
     sensed: Mapping[tuple[Any, ...], Any] = field(default_factory=dict)
     message: str = ""
+    stop: bool = False
 
     def __bool__(self) -> bool:
         return self.ok
@@ -52,6 +57,10 @@ class Report:
 
 class Executor(ABC):
     """Carries out primitive actions in some world and reports what happened."""
+
+    def begin(self) -> None:
+        """A run starts (an executor on a robot starts the task's time budget)."""
+        return None
 
     @abstractmethod
     def execute(self, action: GroundAction, state: State) -> Report:
@@ -190,6 +199,7 @@ class Interpreter:
         state = state if state is not None else theory.initial
         run = Run(False, state, [], [], [], 0)
         configuration = program
+        self.executor.begin()
         for _ in range(self.max_steps):
             for action in self.executor.exogenous(state):
                 state = self._exogenous(run, action, state)
@@ -226,7 +236,7 @@ class Interpreter:
             run.history.append(step.action)
             return self._progress(step.action, report, state), remaining, ""
         state = state.progressed(report.sensed) if report.sensed else state
-        if step.fallback is None or run.replans >= self.max_replans:
+        if step.fallback is None or run.replans >= self.max_replans or report.stop:
             return state, remaining, f"{text} failed: {report.message}"
         # A planned action failed: the policy's model of the world was wrong; plan again.
         run.replans += 1

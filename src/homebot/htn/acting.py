@@ -8,8 +8,10 @@ declared effects are checked against what the robot now believes. When an
 operator ends failed or aborted, a door or a person in the way first goes
 through the executive's recovery protocols; otherwise (or if they do not help)
 the robot replans from what it now believes, at most ``max_replans`` times,
-before it gives up and says why. The planner model stays apart from execution:
-``!grasp`` is planned, the ``pick`` skill runs it.
+before it gives up and says why. Every operator's skill runs through the
+executive's ``run_step``, so the task's time budget holds too: once it is spent
+the robot stops, without planning again. The planner model stays apart from
+execution: ``!grasp`` is planned, the ``pick`` skill runs it.
 """
 
 from __future__ import annotations
@@ -18,13 +20,13 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from homebot.executive.recovery import PROTOCOLS
+from homebot.executive import WAY_BLOCKED, Executive
 from homebot.htn.domain import Domain
 from homebot.htn.home import Goal, Names, home_domain, state_from_beliefs
 from homebot.htn.planner import Plan, Planner, PlanStep
 from homebot.htn.state import Atom, State
 from homebot.knowledge import KnowledgeBase
-from homebot.skills import ErrorCode, Outcome, SkillContext, Status, skill_named, speak
+from homebot.skills import ErrorCode, Outcome, Status, speak
 from homebot.task import Step
 
 __all__ = ["OPERATOR_SKILLS", "HtnRun", "OperatorReport", "PlanActor", "step_for"]
@@ -34,10 +36,6 @@ __all__ = ["OPERATOR_SKILLS", "HtnRun", "OperatorReport", "PlanActor", "step_for
 _MEMORY = frozenset({"told", "reported"})
 # Predicates of declared effects the actor checks against the beliefs after an operator.
 _CHECKED = frozenset({"holding", "has", "object-at", "door-closed"})
-# Failures the executive's protocols mend (a door, someone in the way); the rest replan.
-_PROTOCOL_ERRORS = frozenset({ErrorCode.DOOR_CLOSED, ErrorCode.PATH_BLOCKED})
-# How many doors or blocked ways one operator may mend before the robot replans.
-_MAX_RECOVERIES = 4
 
 
 def _announce(what: str, thing: str, who: str) -> Step:
@@ -134,26 +132,25 @@ class PlanActor:
     """Plans a goal from the robot's beliefs and carries the plan out, replanning within a bound.
 
     Args:
-        context: the skills' context (robot, map, beliefs, event log).
+        executive: runs each operator's skill (its recovery protocols mend a closed door
+            or a blocked way first; its time budget bounds the whole goal).
         domain: the HTN domain (the home domain unless given).
         retries: extra attempts per operator name, e.g. ``{"!grasp": 3}``.
         max_replans: how many times to replan after a failed or aborted operator.
-        recovery: let the executive's protocols mend a closed door or a blocked way first.
         knowledge: a knowledge base saying where objects belong (``loc=>PLACE``).
         planner: bounds for each search (``Planner`` keyword arguments).
     """
 
-    def __init__(self, context: SkillContext, domain: Domain | None = None, *,
+    def __init__(self, executive: Executive, domain: Domain | None = None, *,
                  retries: Mapping[str, int] | None = None, max_replans: int = 3,
-                 recovery: bool = True, knowledge: KnowledgeBase | None = None,
-                 **planner: Any) -> None:
-        self.context = context
+                 knowledge: KnowledgeBase | None = None, **planner: Any) -> None:
+        self.executive = executive
+        self.context = executive.context
         self.knowledge = knowledge
         self.domain = domain or home_domain()
         self.planner = Planner(self.domain, **planner)
         self.retries = dict(retries or {})
         self.max_replans = max_replans
-        self.recovery = recovery
 
     def _state(self, goal: Goal, names: Names, memory: set[Atom]) -> State:
         context = self.context
@@ -167,6 +164,7 @@ class PlanActor:
         context = self.context
         names = names or Names()
         started = context.robot.now()
+        self.executive.start_budget()
         first_speech = len(list(context.events.of_kind("speech")))
         context.events.record("htn.goal", task=list(goal.task))
         run = HtnRun(False)
@@ -186,6 +184,9 @@ class PlanActor:
             failure = self._execute(plan, names, memory, goal, run)
             if failure is None:
                 run.success = True
+                break
+            if run.operators and run.operators[-1].error == ErrorCode.OUT_OF_TIME.value:
+                run.reason = failure  # the budget is spent: no new plan would be carried out
                 break
             run.replans += 1
             if run.replans > self.max_replans:
@@ -259,39 +260,13 @@ class PlanActor:
             context.events.record("belief", what="forgot_not_at", object=wanted)
         events = context.events.events
         first = len(events)
-        previous = context.retries.get(skill_step.skill)
-        if step.operator in self.retries:
-            context.retries[skill_step.skill] = self.retries[step.operator]
-        try:
-            outcome = skill_named(skill_step.skill).run(context, skill_step.args)
-            mended = 0
-            while (self.recovery and not outcome and outcome.error in _PROTOCOL_ERRORS
-                   and mended < _MAX_RECOVERIES):
-                mended += 1
-                outcome = self._recover(skill_step, outcome)
-        finally:
-            if previous is None:
-                context.retries.pop(skill_step.skill, None)
-            else:
-                context.retries[skill_step.skill] = previous
+        outcome = self.executive.run_step(skill_step.skill, skill_step.args,
+                                          recover=WAY_BLOCKED,  # the rest: replan
+                                          retries=self.retries.get(step.operator))
         attempts = 1 + sum(1 for event in events[first:] if event.kind == "skill.status"
                            and event.data.get("status") == Status.RETRYING.value
                            and event.data.get("skill") == skill_step.skill)
         return outcome, attempts
-
-    def _recover(self, skill_step: Step, outcome: Outcome) -> Outcome:
-        context = self.context
-        assert outcome.error is not None
-        context.events.record("recovery", skill=skill_step.skill, error=outcome.error.value,
-                              inference=False)
-        mended = PROTOCOLS[outcome.error](
-            context, skill_step.skill, skill_step.args, outcome,
-            lambda name, args: skill_named(name).run(context, args))
-        if isinstance(mended, Outcome):
-            return mended
-        if mended:
-            return skill_named(skill_step.skill).run(context, skill_step.args)
-        return outcome
 
     def _unexpected(self, deletes: list[Atom], adds: list[Atom], goal: Goal, names: Names,
                     memory: set[Atom]) -> list[str]:

@@ -19,7 +19,7 @@ from homebot.inference.observation import (
     observe,
 )
 from homebot.inference.planning import HAND, USER, ActionModel, BasicAction, Carry, Plan
-from homebot.skills import ErrorCode, Outcome, SkillContext, skill_named, speak
+from homebot.skills import ErrorCode, Outcome, SkillContext, speak
 from homebot.skills.places import near, resolve_target
 
 __all__ = ["CycleRecord", "InferenceCycle"]
@@ -95,7 +95,7 @@ class InferenceCycle:
         if shelf is None and self._location(context) in self.inventory.shelves:
             shelf = self._location(context)  # a retried take forgets where it looked
         if shelf is not None:
-            self.inspect(context, shelf, sought=goal)
+            self.inspect(context, shelf, sought=goal, run=run)
         return self.pursue(context, goal, run, take=skill == "pick")
 
     def pursue(self, context: SkillContext, goal: str, run: StepRunner, *,
@@ -124,7 +124,7 @@ class InferenceCycle:
             if decision is None:
                 self.records.append(CycleRecord(goal, diagnosis, None, "failed"))
                 return Outcome.failed(ErrorCode.NO_PATH, f"I cannot plan how to get the {goal}")
-            ended = self._execute(context, decision.plan, goal, take)
+            ended = self._execute(context, decision.plan, goal, take, run)
             self.records.append(CycleRecord(goal, diagnosis, decision,
                                             "surprise" if ended is None else (
                                                 "taken" if ended else "failed")))
@@ -137,17 +137,20 @@ class InferenceCycle:
 
     # -- observing -----------------------------------------------------------------------------
 
-    def inspect(self, context: SkillContext, shelf: str, sought: str | None = None) -> (
-            Observation | None):
-        """Look at a shelf (driving there), then fulfil the cognitive obligations it raises."""
+    def inspect(self, context: SkillContext, shelf: str, sought: str | None = None, *,
+                run: StepRunner) -> Observation | None:
+        """Look at a shelf (driving there), then fulfil the cognitive obligations it raises.
+
+        ``run`` runs the look (the executive's ``run_step``, or the runner a protocol gets).
+        """
         place = self.inventory.place(shelf)
-        looked = skill_named("look").run(context, {"placement": place})
+        looked = run("look", {"placement": place}, recover=False)
         if not looked:
             return None
         labels = set(looked.data["objects"])
         if sought is not None and sought not in labels:
             # A missed detection rarely repeats: look once more before believing the absence.
-            again = skill_named("look").run(context, {"placement": place})
+            again = run("look", {"placement": place}, recover=False)
             labels |= set(again.data.get("objects", ()))
         observation = observe(self.inventory, shelf, sorted(labels), context.robot.now())
         if sought is not None and sought not in observation.seen:
@@ -217,8 +220,8 @@ class InferenceCycle:
 
     # -- execution -----------------------------------------------------------------------------
 
-    def _execute(self, context: SkillContext, plan: Plan, goal: str,
-                 take: bool = True) -> Outcome | None:
+    def _execute(self, context: SkillContext, plan: Plan, goal: str, take: bool,
+                 run: StepRunner) -> Outcome | None:
         """Run the plan up to going to the client: the outcome of taking ``goal``, or None.
 
         None means the world surprised the robot (a look or a take refuted the
@@ -230,41 +233,44 @@ class InferenceCycle:
             if action.kind == "search_user" or (action.kind == "deliver" and action.where == USER):
                 break
             if action.kind == "move":
-                moved = skill_named("navigate").run(
-                    context, {"to": self.inventory.place(action.where)})
+                moved = run("navigate", {"to": self.inventory.place(action.where)},
+                            recover=False)
                 if not moved:
                     return moved
             elif action.kind == "search":
-                observation = self.inspect(context, action.where, sought=action.product)
+                observation = self.inspect(context, action.where, sought=action.product,
+                                           run=run)
                 if observation is None or action.product not in observation.seen:
                     return None
             elif action.kind == "take" and action.product == goal and not take:
-                return self._see(context, action.where, goal)
+                return self._see(context, action.where, goal, run)
             elif action.kind == "take":
-                outcome = self._take(context, action)
+                outcome = self._take(context, action, run)
                 if action.product == goal:
                     if outcome is None or not outcome:
                         return outcome
                     taken = outcome
                 elif outcome is None or not outcome:
                     return None  # a put-back that could not be taken: decide again
-            elif not self._put_back(context, action):
+            elif not self._put_back(context, action, run):
                 return None
         return taken
 
-    def _see(self, context: SkillContext, shelf: str, goal: str) -> Outcome | None:
+    def _see(self, context: SkillContext, shelf: str, goal: str,
+             run: StepRunner) -> Outcome | None:
         """A find's end: the product seen on the shelf (None: it is not there)."""
-        observation = self.inspect(context, shelf, sought=goal)
+        observation = self.inspect(context, shelf, sought=goal, run=run)
         if observation is None or goal not in observation.seen:
             return None
         place = self.inventory.place(shelf)
         return Outcome.verified(f"I see the {goal} on the {place}", object=goal, placement=place)
 
-    def _take(self, context: SkillContext, action: BasicAction) -> Outcome | None:
+    def _take(self, context: SkillContext, action: BasicAction,
+              run: StepRunner) -> Outcome | None:
         product, shelf = action.product, action.where
         place = self.inventory.place(shelf)
         context.bindings[f"placement:{product}"] = place
-        taken = skill_named("pick").run(context, {"object": product})
+        taken = run("pick", {"object": product}, recover=False)
         if taken:
             self.robot_moved.setdefault(product, shelf)
             self.previous_shelves.get(shelf, set()).discard(product)
@@ -272,14 +278,14 @@ class InferenceCycle:
             speak(context, f"I took the {product}.")
             return taken
         if taken.error is ErrorCode.NOT_FOUND:
-            self.inspect(context, shelf, sought=product)
+            self.inspect(context, shelf, sought=product, run=run)
             return None
         return taken
 
-    def _put_back(self, context: SkillContext, action: BasicAction) -> bool:
+    def _put_back(self, context: SkillContext, action: BasicAction, run: StepRunner) -> bool:
         product, shelf = action.product, action.where
-        placed = skill_named("place").run(
-            context, {"placement": self.inventory.place(shelf), "object": product})
+        placed = run("place", {"placement": self.inventory.place(shelf), "object": product},
+                     recover=False)
         if not placed:
             return False
         self.objects_placed.append(product)
@@ -290,7 +296,7 @@ class InferenceCycle:
         if shelf in self.previous_shelves:
             self.previous_shelves[shelf].add(product)
         else:
-            self.inspect(context, shelf)  # standing there anyway: see the whole shelf
+            self.inspect(context, shelf, run=run)  # standing there anyway: see the whole shelf
         return True
 
     def _ran_out(self, context: SkillContext, goal: str, diagnosis: Diagnosis) -> None:
@@ -318,7 +324,7 @@ class InferenceCycle:
             return taken
         run("navigate", {"to": self.client})
         question = f"We ran out of {wanted}. Would you like {goal} instead?"
-        answer = skill_named("ask").run(context, {"question": question, "person": self.client})
+        answer = run("ask", {"question": question, "person": self.client}, recover=False)
         words = str(answer.data.get("answer", "")).lower()
         if answer and words.startswith(_YES):
             context.bindings[f"object:{wanted}"] = goal
@@ -326,8 +332,8 @@ class InferenceCycle:
         speak(context, f"All right, I will put the {goal} back.")
         home = self.inventory.home(goal)
         if home is not None:
-            skill_named("place").run(context, {"placement": self.inventory.place(home),
-                                               "object": goal})
+            run("place", {"placement": self.inventory.place(home), "object": goal},
+                recover=False)
         return Outcome.failed(ErrorCode.NOT_FOUND, f"we ran out of {wanted}", ran_out=wanted)
 
     # -- after the request ---------------------------------------------------------------------
@@ -338,11 +344,13 @@ class InferenceCycle:
         self.pending.pop(product, None)
         self.inventory.believe_at(product, CUSTOMER, f"The {product} went to the client.")
 
-    def tidy_up(self, context: SkillContext, budget: float | None = None) -> list[str]:
+    def tidy_up(self, context: SkillContext, budget: float | None = None, *,
+                run: StepRunner) -> list[str]:
         """Idle time: put back what is in hand, and the misplaced products cheap to put back.
 
         Returns the products put back. ``budget`` (seconds, default ``r_max``) bounds
-        the plan for the pending obligations not already in hand.
+        the plan for the pending obligations not already in hand; ``run`` runs the
+        steps (the executive's ``run_step``).
         """
         held = self._held(context)
         placed: list[str] = []
@@ -363,13 +371,13 @@ class InferenceCycle:
             return placed
         for action in decision.plan.actions:
             if action.kind == "move":
-                if not skill_named("navigate").run(
-                        context, {"to": self.inventory.place(action.where)}):
+                if not run("navigate", {"to": self.inventory.place(action.where)},
+                           recover=False):
                     break
             elif action.kind == "take":
-                if not self._take(context, action):
+                if not self._take(context, action, run):
                     break
-            elif action.kind == "deliver" and self._put_back(context, action):
+            elif action.kind == "deliver" and self._put_back(context, action, run):
                 placed.append(action.product)
         return placed
 

@@ -2,7 +2,7 @@
 
 from homebot.sitlog.diagram import dot_diagram
 from homebot.sitlog.history import History, Transition, render_globals, render_history
-from homebot.sitlog.interpreter import Environment, Interpreter, RunResult
+from homebot.sitlog.interpreter import Environment, Interpreter, RunResult, RunStopped
 from homebot.sitlog.loading import load_program, load_program_text, shipped_dialogue_path
 from homebot.sitlog.model import Arc, DialogueModel, Program, Situation, UserFunction
 from homebot.sitlog.perception import Body, Perception, RecordingBody, ScriptedPerception
@@ -19,6 +19,7 @@ __all__ = [
     "Program",
     "RecordingBody",
     "RunResult",
+    "RunStopped",
     "ScriptedPerception",
     "Situation",
     "Struct",

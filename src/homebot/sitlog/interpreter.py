@@ -9,6 +9,8 @@ the final situation its embedded model ended in), take the first arc whose
 expectation matches, perform its action, evaluate its next situation, and set
 the pipe from ``out_arg`` (unchanged when it is not set). When no expectation is
 met the situation is repeated; after ``repeat`` tries its recovery model runs.
+A perceptual interpreter or body that cannot go on (the task's time budget is
+spent) raises ``RunStopped``: the run ends there, in the final ``stopped(Why)``.
 """
 
 from __future__ import annotations
@@ -37,10 +39,22 @@ from homebot.sitlog.terms import (
     unify,
 )
 
-__all__ = ["Environment", "Frame", "Interpreter", "RunResult"]
+__all__ = ["Environment", "Frame", "Interpreter", "RunResult", "RunStopped"]
 
 _MAX_RECOVERIES = 3  #: recovery models run for one situation before the run gives up
 _MAX_DEPTH = 50  #: dialogue models embedded in one another before the run gives up
+
+
+class RunStopped(Exception):  # a signal, not an error: the run ends normally
+    """Raised by a perceptual interpreter or body when the run must end now.
+
+    ``why`` is a short code (``out_of_time``), ``message`` what to tell a person.
+    """
+
+    def __init__(self, why: str, message: str = "") -> None:
+        super().__init__(message or why)
+        self.why = why
+        self.message = message
 
 
 @dataclass
@@ -63,6 +77,7 @@ class RunResult:
     globals: dict[str, Term]
     history: History
     steps: int
+    stopped: str = ""  #: why the run was stopped before its end (its message), or ""
 
     def transitions(self) -> list[Transition]:
         return transitions(self.history)
@@ -174,7 +189,11 @@ class Interpreter:
             call = parse_term(call, "<call>")
         call = call if call is not None else copy_term(self.program.main_model.head)
         pipe = pipe if pipe is not None else Var("_Pipe")
-        final, pipe = self._run_model(call, pipe, self.history)
+        try:
+            final, pipe = self._run_model(call, pipe, self.history)
+        except RunStopped as stop:
+            return RunResult(Struct("stopped", (stop.why,)), resolve(pipe), dict(self.globals),
+                             self.history, self.steps, stop.message or stop.why)
         return RunResult(resolve(final), resolve(pipe), dict(self.globals), self.history,
                          self.steps)
 

@@ -163,8 +163,8 @@ def run_butler(*, prefers: str = "malz", refuse_update: bool = False, tidy: bool
                                          statement=parse_statement("healthier_than=>coke")),
                             "a general health recommendation")
             interpreter = Interpreter(load_program("butler"),
-                                      SkillPerception(run.context, person="Luis"),
-                                      body=SkillBody(run.context), application=home,
+                                      SkillPerception(run.executive, person="Luis"),
+                                      body=SkillBody(run.executive), application=home,
                                       on_transition=lambda step: run.context.events.record(
                                           "sitlog.transition", transition=str(step)))
             result = interpreter.run()

@@ -135,7 +135,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
         "putdown": lambda action: [Step("place", {"placement": str(action[2]),
                                                   "object": str(action[1])})],
     }
-    executor = SkillExecutor(context, bindings, sensing=sensing)
+    executor = SkillExecutor(simulated.executive, bindings, sensing=sensing)
     outcome = Interpreter(theory, executor, seed=args.seed).run(
         do("fetch_and_carry", obj, destination))
     truth = simulated.simulation

@@ -47,7 +47,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
         world, seed=args.seed,
         disturbances=DisturbanceModel(grasp_slip=args.slip, door_closed=args.door_closed),
         fidelity=fidelity_of(args))
-    actor = PlanActor(simulation_run.context, domain)
+    actor = PlanActor(simulation_run.executive, domain)
     actions: list[dict[str, Any]] = []
     speech: list[str] = []
     success = True

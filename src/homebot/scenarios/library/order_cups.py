@@ -25,7 +25,6 @@ from homebot.golog.domains import CUPS, POSITIONS, cups_theory, minimum_moves
 from homebot.scenarios.embodied import Fidelity, add_fidelity_option, fidelity_of
 from homebot.scenarios.runtime import SimulatedRun
 from homebot.scenarios.summary import scenario_summary
-from homebot.skills import skill_named
 from homebot.task import Step
 from homebot.world import World
 
@@ -91,7 +90,7 @@ def home_cups(initial: Mapping[str, str], seed: int,
     def sensing(action: tuple[Any, ...], done: bool) -> dict[tuple[Any, ...], Any]:
         if not done:  # something is not as planned: look at the table again
             for placement in PLACEMENTS.values():
-                skill_named("look").run(context, {"placement": placement})
+                simulated.executive.run_step("look", {"placement": placement}, recover=False)
         return believed()
 
     def move(action: tuple[Any, ...]) -> list[Step]:
@@ -108,8 +107,9 @@ def home_cups(initial: Mapping[str, str], seed: int,
         "move_cup": move,
         "say": lambda action: [Step("say", {"text": str(action[1])})],
     }
-    executor = SkillExecutor(context, bindings, sensing=sensing, noticing=noticing,
-                             recovery=False)
+    # a cup not where the plan put it is the program's to re-plan, not a search's
+    executor = SkillExecutor(simulated.executive, bindings, sensing=sensing, noticing=noticing,
+                             recover=False)
     return HomeCups(simulated, executor)
 
 

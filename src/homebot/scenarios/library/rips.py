@@ -78,7 +78,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
         return [("press_start_button",)] if len(waits) <= 3 else None
 
     theory = rips_theory()
-    executor = SkillExecutor(context, _bindings(), waiting=waiting)
+    executor = SkillExecutor(simulation_run.executive, _bindings(), waiting=waiting)
     def record(entry: dict[str, Any]) -> None:
         # Golog's own steps go into the run's event log beside the skills' events.
         context.events.record(f"golog.{entry['kind']}",

@@ -19,7 +19,7 @@ from homebot.scenarios.embodied import add_fidelity_option, fidelity_of
 from homebot.scenarios.runtime import SimulatedRun
 from homebot.scenarios.summary import report_actions, scenario_summary
 from homebot.sim import ScriptedResponder
-from homebot.skills import skill_named, speak
+from homebot.skills import speak
 from homebot.world import World
 
 __all__ = ["STORY_TRUTH", "add_arguments", "run"]
@@ -69,16 +69,17 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     inventory.clock = simulated.robot.now
     simulated.simulation.object_location.update(STORY_TRUTH)
     context = simulated.context
+    run_step = simulated.executive.run_step
 
-    cycle.inspect(context, "shelf_bread")  # the robot's round by the entrance
-    skill_named("navigate").run(context, {"to": "operator"})
-    heard = skill_named("ask").run(context, {"question": GREETING, "person": "operator"})
+    cycle.inspect(context, "shelf_bread", run=run_step)  # the robot's round by the entrance
+    run_step("navigate", {"to": "operator"}, recover=False)
+    heard = run_step("ask", {"question": GREETING, "person": "operator"}, recover=False)
     request = str(heard.data.get("answer", ""))
     product = requested_product(inventory, request)
     report = None
     if product is None:
         speak(context, "I am sorry, we do not sell that.")
-    elif not _old_enough(context, inventory, product):
+    elif not _old_enough(simulated, inventory, product):
         speak(context, f"I am sorry, I cannot serve you {product}.")
     else:
         speak(context, f"Thank you. I will bring you a {product}.")
@@ -86,7 +87,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
         for step in report.steps:
             if step.skill == "give" and step.status == "verified":
                 cycle.handed_over(str(step.args["object"]))
-    cycle.tidy_up(context)
+    cycle.tidy_up(context, run=run_step)
     put_back = list(cycle.objects_placed)
     cycle.report_to_manager(context)
 
@@ -124,15 +125,15 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     return summary
 
 
-def _old_enough(context: Any, inventory: Inventory, product: str) -> bool:
+def _old_enough(simulated: SimulatedRun, inventory: Inventory, product: str) -> bool:
     """Alcohol only for adults: the KB's ``min_age`` prompts the question (Fig. 1, box 1)."""
     minimum = inventory.minimum_age(product)
     if minimum is None:
         return True
     kind = next((c for c in inventory.kb.classes_of_individual(product)), product)
-    answer = skill_named("ask").run(context, {
+    answer = simulated.executive.run_step("ask", {
         "question": f"{kind.capitalize()} contains alcohol. How old are you?",
-        "person": "operator"})
+        "person": "operator"}, recover=False)
     age = age_in_words(str(answer.data.get("answer", "")))
     return age is not None and age >= minimum
 
