@@ -10,6 +10,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import json
+import time
 from collections.abc import Callable
 from typing import Any
 
@@ -85,6 +86,7 @@ def _run_all(args: argparse.Namespace) -> int:
     for entry in BENCHMARKS:
         if console is not None:
             console.rule(entry.name)
+        began = time.perf_counter()
         missing = missing_extras(entry)
         if missing:
             figures: dict[str, Any] = {"benchmark": entry.name,
@@ -100,6 +102,9 @@ def _run_all(args: argparse.Namespace) -> int:
                 figures = {"benchmark": entry.name, "error": str(error)}
         if console is not None and ("skipped" in figures or "error" in figures):
             console.print(figures.get("skipped") or f"error: {figures['error']}")
+        if console is not None:
+            seconds = time.perf_counter() - began
+            console.print(f"[dim]bench {entry.name}: {seconds:.0f} s wall[/dim]")
         everything.append(figures)
     if args.json:
         print(json.dumps(everything, ensure_ascii=False))
