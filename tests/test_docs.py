@@ -1,5 +1,6 @@
 """The README and the documentation site name only code that exists: every ``homebot.X``
-written in code style resolves to a module, or to an attribute of one.
+written in code style, and every ``X.Y`` whose first part is a homebot package or module,
+resolves to a module, or to an attribute of one.
 
 Packages move; a page that still names the old place misleads a newcomer, and the strict site
 build (``make docs``) checks links, not prose. This test reads the prose.
@@ -17,6 +18,17 @@ ROOT = Path(__file__).resolve().parents[1]
 PAGES = [ROOT / "README.md", *sorted((ROOT / "docs").glob("*.md"))]
 # The benchmark log is history: it names code as it was.
 HISTORY = {"benchmark-log.md"}
+PACKAGES = sorted(path.stem for path in (ROOT / "src" / "homebot").iterdir()
+                  if (path / "__init__.py").exists() or path.suffix == ".py")
+# Dotted names in code style that start like a package but are not code.
+NOT_CODE = {
+    # the world file's fields (robot: {speed: ..., laser: ...})
+    "robot.speed", "robot.angular_speed", "robot.drive", "robot.laser", "robot.arm",
+    # event kinds in the event log
+    "robot.lost", "sim.speech", "sim.final",
+    # file names
+    "world.yaml", "task.yaml",
+}
 
 
 def named_code() -> dict[str, list[str]]:
@@ -25,7 +37,11 @@ def named_code() -> dict[str, list[str]]:
     for page in PAGES:
         if page.name in HISTORY:
             continue
-        for name in re.findall(r"`(homebot(?:\.\w+)+)", page.read_text(encoding="utf-8")):
+        text = page.read_text(encoding="utf-8")
+        found = re.findall(r"`(homebot(?:\.\w+)+)", text)
+        found += ["homebot." + name for name in re.findall(
+            r"`((?:" + "|".join(PACKAGES) + r")(?:\.\w+)+)", text) if name not in NOT_CODE]
+        for name in found:
             pages = names.setdefault(name, [])
             if page.name not in pages:
                 pages.append(page.name)
