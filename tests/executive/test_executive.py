@@ -8,6 +8,7 @@ import pytest
 
 from homebot.bench.fetch_tasks import delivered, fetch_tasks
 from homebot.bench.robustness import compare_modes
+from homebot.cancel import CancelToken
 from homebot.geometry import Pose
 from homebot.navigation import Navigator
 from homebot.robot import Blocker, MoveReport, PersonPercept
@@ -208,11 +209,11 @@ def _obstructed(run: SimulatedRun, times: int) -> list[object]:
     real, calls = robot.move_to, []
 
     def move_to(goal: Pose, avoid_doors: frozenset[str] = frozenset(),
-                escort: str | None = None) -> MoveReport:
+                escort: str | None = None, *, cancel: CancelToken | None = None) -> MoveReport:
         calls.append(goal)
         if len(calls) <= times:
             return MoveReport(False, robot.pose(), 0.0, Blocker.OBSTRUCTED)
-        return real(goal, avoid_doors, escort)
+        return real(goal, avoid_doors, escort, cancel=cancel)
 
     robot.move_to = move_to  # type: ignore[method-assign]
     return calls

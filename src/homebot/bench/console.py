@@ -129,6 +129,8 @@ def _one_press(home: Console, kind: str, steps: list[dict[str, Any]], after: int
     """Run ``steps``; ``after`` ticks into the motion skill, press the stop from the worker."""
     pressed: dict[str, Any] = {}
     motion = "follow" if kind == "follow" else "navigate"
+    body = home.body
+    assert body is not None, "the e-stop trials run an embodied console"
 
     def hook(tick: int) -> None:
         if "tick" in pressed or home.steps.current < 0:
@@ -137,7 +139,7 @@ def _one_press(home: Console, kind: str, steps: list[dict[str, Any]], after: int
         if step["skill"] != motion or step["status"] != "running":
             return
         pressed.setdefault("first", tick)
-        moving = not home.body.odometry().twist.is_zero()
+        moving = not body.odometry().twist.is_zero()
         if tick - pressed["first"] >= after and moving:
             pressed["tick"] = tick
             pressed["pose"] = home.sim.robot_pose

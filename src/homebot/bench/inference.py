@@ -13,6 +13,7 @@ from typing import Any
 from rich.console import Console
 
 from homebot.bench.arguments import count, seed
+from homebot.cancel import CancelToken
 from homebot.executive.recovery import Protocol, StepRunner
 from homebot.geometry import Pose
 from homebot.inference import InferenceCycle, Inventory, fetch_task
@@ -59,9 +60,10 @@ class ShelfVisitCounter(SimRobot):
         self.expect()
 
     def move_to(self, goal: Pose, avoid_doors: frozenset[str] = frozenset(),
-                escort: str | None = None) -> MoveReport:
+                escort: str | None = None, *,
+                cancel: CancelToken | None = None) -> MoveReport:
         self._arrived = True
-        return super().move_to(goal, avoid_doors, escort)
+        return super().move_to(goal, avoid_doors, escort, cancel=cancel)
 
     def expect(self, *products: str | None) -> None:
         """Count the visits until one of ``products`` is grasped (a new request)."""

@@ -27,6 +27,7 @@ import numpy as np
 from shapely.geometry import LineString
 from shapely.geometry import Point as ShapelyPoint
 
+from homebot.cancel import CancelToken
 from homebot.embodied.doors import door_seen_open
 from homebot.embodied.looking import TableLook
 from homebot.embodied.people_look import PeopleLook
@@ -149,7 +150,8 @@ class BodyRobot(Robot):
     # ------------------------------------------------------------ motion
 
     def move_to(self, goal: Pose, avoid_doors: frozenset[str] = frozenset(),
-                escort: str | None = None) -> MoveReport:
+                escort: str | None = None, *,
+                cancel: CancelToken | None = None) -> MoveReport:
         start = self.pose()
         plan = self.navigator.plan(start.xy(), goal.xy(), avoid_doors)
         if plan is None:
@@ -163,8 +165,11 @@ class BodyRobot(Robot):
         companion = escort or self._walking_with
         for index, leg in enumerate(legs):
             report = self._drive_leg(leg.target, avoid_doors, final=leg.door is None,
-                                     companion=companion)
+                                     companion=companion, cancel=cancel)
             travelled += report.distance
+            if report.blocker is Blocker.CANCELLED:
+                return MoveReport(False, self.pose(), travelled, Blocker.CANCELLED,
+                                  doors_passed=tuple(passed))
             if not report.reached:
                 self._record_view()
                 # Stopped short: a door still ahead that is shut, or that the laser sees
@@ -193,20 +198,31 @@ class BodyRobot(Robot):
         return MoveReport(True, self.pose(), travelled, doors_passed=tuple(passed))
 
     def _drive_leg(self, target: Pose, avoid_doors: frozenset[str], final: bool,
-                   companion: str | None = None) -> MoveReport:
+                   companion: str | None = None, cancel: CancelToken | None = None
+                   ) -> MoveReport:
         """Drive to ``target`` along stage-1 paths, planning round what blocks the way;
-        stop when ``companion`` (the person guided or followed) shows stop."""
+        stop when ``companion`` (the person guided or followed) shows stop, or when
+        ``cancel`` is cancelled."""
         shown = self.stop_shown
-        stop = (lambda: shown(companion)) if shown is not None and companion else None
+        gesture = (lambda: shown(companion)) if shown is not None and companion else None
+
+        def stop() -> bool:
+            return (cancel is not None and cancel.cancelled) or (
+                gesture is not None and gesture())
+
         try:
             attempt = self.navigation.drive(target, avoid_doors, tolerance=_GOAL_TOLERANCE,
                                             heading_tolerance=_HEADING_TOLERANCE if final
-                                            else None, stop=stop)
+                                            else None,
+                                            stop=stop if cancel is not None or gesture is not None
+                                            else None)
         except NavigationError:
             return MoveReport(False, self.pose(), 0.0, Blocker.NO_PATH)
         if attempt.reached:
             return MoveReport(True, self.pose(), attempt.travelled)
-        if attempt.reason is StopReason.CANCELED and stop is not None:
+        if attempt.reason is StopReason.CANCELED and cancel is not None and cancel.cancelled:
+            return MoveReport(False, self.pose(), attempt.travelled, Blocker.CANCELLED)
+        if attempt.reason is StopReason.CANCELED and gesture is not None:
             self.events.record("robot.stopped", person=companion)
             return MoveReport(False, self.pose(), attempt.travelled, Blocker.STOPPED, None,
                               companion)
@@ -303,7 +319,8 @@ class BodyRobot(Robot):
         self.events.record("robot.particles", world=world,
                            points=np.round(particles, 3).tolist())
 
-    def follow(self, person: str, goal: Pose | None) -> MoveReport:
+    def follow(self, person: str, goal: Pose | None, *,
+               cancel: CancelToken | None = None) -> MoveReport:
         seen = self._seen_near(person, _FOLLOWING_REACH)
         if not seen or math.dist(seen[0].position, self.pose().xy()) > _FOLLOWING_REACH:
             return MoveReport(False, self.pose(), 0.0, Blocker.NO_PATH)
@@ -320,7 +337,7 @@ class BodyRobot(Robot):
                     math.atan2(dy, dx))
         self._walking_with = person
         try:
-            return self.move_to(stop)
+            return self.move_to(stop, cancel=cancel)
         finally:
             self._walking_with = None
 

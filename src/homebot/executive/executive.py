@@ -5,6 +5,7 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from typing import Any
 
+from homebot.cancel import CancelToken
 from homebot.executive.recovery import PROTOCOLS, Protocol, Recover
 from homebot.executive.report import StepReport, TaskReport
 from homebot.skills import (
@@ -53,13 +54,18 @@ class Executive:
         self.inference = inference if self.recovery else None
         self.time_limit = time_limit
 
-    def run(self, task: Task, *, interrupt: Callable[[], bool] | None = None) -> TaskReport:
+    def run(self, task: Task, *, interrupt: Callable[[], bool] | None = None,
+            cancel: CancelToken | None = None) -> TaskReport:
         """Run every step in order; the report says whether all ended as expected.
 
         ``interrupt`` is asked before each step after the first; when it answers true
         ("stop", "cancel" heard), the task ends there, unfinished, and the robot says so.
+        ``cancel`` (None: a token nobody cancels) stops the task the same way, at once: the
+        running skill ends ``cancelled`` without recovery, and the report's reason is the
+        token's.
         """
         context = self.context
+        context.cancel = cancel if cancel is not None else CancelToken()
         started = context.robot.now()
         self.start_budget()
         first_event = context.events.count
@@ -71,11 +77,9 @@ class Executive:
             # A search is a new search ("bring me two drinks" looks for a second drink),
             # so its object is not bound to what an earlier search found.
             args = dict(step.args) if step.skill == "find_object" else self._bind(step.args)
-            if index and interrupt is not None and interrupt():
-                reason = "stopped"
-                context.events.record("task.interrupted", step=index)
-                if context.monitoring:
-                    speak(context, "All right, I stopped.")
+            if context.cancel.cancelled or (index and interrupt is not None and interrupt()):
+                reason = context.cancel.reason or "stopped"
+                self._stopped(index)
                 break
             outcome, recoveries = self._step(step.skill, args)
             handled = outcome.data.get("object")
@@ -88,6 +92,10 @@ class Executive:
                                       outcome.error.value if outcome.error else None,
                                       outcome.message, tuple(recoveries)))
             self._remember(step, outcome)
+            if outcome.error is ErrorCode.CANCELLED:
+                reason = outcome.message
+                self._stopped(index)
+                break
             if outcome.status in (Status.FAILED, Status.ABORTED):
                 reason = outcome.message or (outcome.error.value if outcome.error else "")
                 self._tell_operator_failure(index, step, reason)
@@ -219,6 +227,12 @@ class Executive:
         if step.skill == "find_person" and outcome.data.get("person"):
             self.context.bindings["person"] = outcome.data["person"]
 
+    def _stopped(self, index: int) -> None:
+        """The task stops before (or in) step ``index``, where the robot is; it says so."""
+        self.context.events.record("task.interrupted", step=index)
+        if self.context.monitoring:
+            speak(self.context, "All right, I stopped.")
+
     def _tell_operator_failure(self, index: int, step: Step, reason: str) -> None:
         context = self.context
         if not context.monitoring:
@@ -230,7 +244,8 @@ class Executive:
 
 
 def _mendable(outcome: Outcome, recover: Recover) -> bool:
-    """Whether recovery may try to mend this failure: never when time is out."""
-    if outcome.error is ErrorCode.OUT_OF_TIME or recover is False:
+    """Whether recovery may try to mend this failure: never when time is out or the run
+    was cancelled."""
+    if outcome.error in (ErrorCode.OUT_OF_TIME, ErrorCode.CANCELLED) or recover is False:
         return False
     return recover is True or outcome.error in recover

@@ -12,6 +12,7 @@ from abc import ABC, abstractmethod
 from dataclasses import dataclass
 from enum import StrEnum
 
+from homebot.cancel import CancelToken
 from homebot.geometry import Pose
 
 __all__ = [
@@ -32,6 +33,7 @@ class Blocker(StrEnum):
     NO_PATH = "no_path"  #: no way exists even with every door open
     OBSTRUCTED = "obstructed"  #: something the map lacks stays in the way, nobody known
     STOPPED = "stopped"  #: the person walking with the robot showed the stop gesture
+    CANCELLED = "cancelled"  #: the run's cancel token was cancelled: stopped where it was
 
 
 @dataclass(frozen=True, slots=True)
@@ -103,8 +105,12 @@ class Robot(ABC):
 
     @abstractmethod
     def move_to(self, goal: Pose, avoid_doors: frozenset[str] = frozenset(),
-                escort: str | None = None) -> MoveReport:
-        """Drive to ``goal``, not through ``avoid_doors``; ``escort`` walks along."""
+                escort: str | None = None, *,
+                cancel: CancelToken | None = None) -> MoveReport:
+        """Drive to ``goal``, not through ``avoid_doors``; ``escort`` walks along.
+
+        Once ``cancel`` is cancelled the motion stops where it is (``Blocker.CANCELLED``).
+        """
 
     @abstractmethod
     def perceive_objects(self, placement: str) -> list[Detection]:
@@ -163,5 +169,9 @@ class Robot(ABC):
         the ``target`` door, if one is given)."""
 
     @abstractmethod
-    def follow(self, person: str, goal: Pose | None) -> MoveReport:
-        """Follow a person until they stop (at ``goal`` when the robot was told it)."""
+    def follow(self, person: str, goal: Pose | None, *,
+               cancel: CancelToken | None = None) -> MoveReport:
+        """Follow a person until they stop (at ``goal`` when the robot was told it).
+
+        Once ``cancel`` is cancelled the robot stops where it is (``Blocker.CANCELLED``).
+        """

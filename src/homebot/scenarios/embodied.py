@@ -12,10 +12,10 @@ import numpy as np
 
 from homebot.errors import HomebotError
 from homebot.navigation import Navigator
-from homebot.robot import Robot
 from homebot.sim import SimRobot, Simulation
 
 if TYPE_CHECKING:
+    from homebot.embodied import BodyRobot
     from homebot.sim.body import SimBody
 
 __all__ = [
@@ -60,7 +60,7 @@ def require_embodied() -> None:
 
 
 def embodied_robot(simulation: Simulation, navigator: Navigator, *,
-                   walkers: int = 0, known_start: bool = True) -> Robot:
+                   walkers: int = 0, known_start: bool = True) -> BodyRobot:
     """A ``BodyRobot`` on a ``SimBody`` in ``simulation``.
 
     Args:

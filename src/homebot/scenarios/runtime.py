@@ -6,8 +6,10 @@ import argparse
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from homebot.beliefs import Beliefs
+from homebot.cancel import CancelToken
 from homebot.executive import Executive, TaskReport
 from homebot.executive.recovery import Protocol
 from homebot.navigation import Navigator
@@ -17,6 +19,9 @@ from homebot.sim import PlanCache, Responder, SimRobot, Simulation
 from homebot.skills import SkillContext
 from homebot.task import Task
 from homebot.world import DisturbanceModel, World
+
+if TYPE_CHECKING:
+    from homebot.embodied import BodyRobot
 
 __all__ = ["SimulatedRun", "disturbance_level", "disturbed", "probability"]
 
@@ -58,13 +63,18 @@ def _number_between(text: str, low: float, high: float, what: str) -> float:
 
 @dataclass
 class SimulatedRun:
-    """Everything one run needs, wired: simulation, robot, beliefs, context, executive."""
+    """Everything one run needs, wired: simulation, robot, beliefs, context, executive.
+
+    ``embodied`` is the robot again, as the ``BodyRobot`` it is in the embodied fidelity
+    (its body, its localisation), None in the symbolic one.
+    """
 
     world: World
     simulation: Simulation
     robot: Robot
     context: SkillContext
     executive: Executive
+    embodied: BodyRobot | None = None
 
     @classmethod
     def create(cls, world: World, *, seed: int = 0,
@@ -87,19 +97,22 @@ class SimulatedRun:
         navigator = navigator or Navigator(world)
         simulation = Simulation(world, seed=seed, disturbances=disturbances,
                                 responder=responder, navigator=navigator, plans=plans)
-        robot: Robot = SimRobot(simulation) if fidelity is Fidelity.SYMBOLIC else \
+        embodied = None if fidelity is Fidelity.SYMBOLIC else \
             embodied_robot(simulation, navigator, walkers=walkers)
+        robot: Robot = SimRobot(simulation) if embodied is None else embodied
         beliefs = Beliefs.from_world(world, simulation.events)
         context = SkillContext(robot=robot, world=world, navigator=navigator, beliefs=beliefs,
                                events=simulation.events, monitoring=monitoring,
                                retries=dict(retries or {}))
         executive = Executive(context, recovery=recovery, inference=inference,
                               time_limit=time_limit)
-        return cls(world, simulation, robot, context, executive)
+        return cls(world, simulation, robot, context, executive, embodied)
 
-    def run(self, task: Task, *, interrupt: Callable[[], bool] | None = None) -> TaskReport:
-        """Run a task in this home; ``interrupt`` (asked between steps) can stop it."""
-        return self.executive.run(task, interrupt=interrupt)
+    def run(self, task: Task, *, interrupt: Callable[[], bool] | None = None,
+            cancel: CancelToken | None = None) -> TaskReport:
+        """Run a task in this home; ``interrupt`` (asked between steps) or ``cancel`` can
+        stop it."""
+        return self.executive.run(task, interrupt=interrupt, cancel=cancel)
 
     def path(self) -> list[tuple[float, float]]:
         """Where the robot has been during the run, from the log of its motions."""

@@ -1,6 +1,5 @@
-"""The simulated home behind the Robot port: ground truth, clock, disturbances."""
+"""The simulated home behind the Robot port: ground truth, disturbances."""
 
-from homebot.sim.clock import Clock
 from homebot.sim.people import (
     InteractiveResponder,
     Responder,
@@ -14,7 +13,6 @@ __all__ = [
     "HAND_PREFIX",
     "PERSON_PREFIX",
     "ActionDurations",
-    "Clock",
     "InteractiveResponder",
     "PlanCache",
     "Responder",

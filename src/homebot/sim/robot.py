@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+from homebot.cancel import CancelToken
 from homebot.geometry import Pose
 from homebot.robot import Blocker, Detection, HelpRequest, MoveReport, PersonPercept, Robot
 from homebot.sim.simulation import HAND_PREFIX, PERSON_PREFIX, Simulation
@@ -52,7 +53,8 @@ class SimRobot(Robot):
     # ------------------------------------------------------------ motion
 
     def move_to(self, goal: Pose, avoid_doors: frozenset[str] = frozenset(),
-                escort: str | None = None) -> MoveReport:
+                escort: str | None = None, *,
+                cancel: CancelToken | None = None) -> MoveReport:
         sim = self.sim
         start = sim.robot_pose[:2]
         plan = sim.plans.plan(start, goal.xy(), avoid_doors)
@@ -66,7 +68,8 @@ class SimRobot(Robot):
                                                _STOP_BEFORE_DOOR).xy()
             travelled = sim.navigator.distance(start, stop, avoid_doors)
             travelled = plan.length if math.isinf(travelled) else travelled
-            self._travel(travelled, stop, escort)
+            if not self._travel(travelled, stop, escort, cancel=cancel):
+                return MoveReport(False, self.pose(), 0.0, Blocker.CANCELLED)
             self._trail([stop])
             blocker_person = next((name for name, p in sim.people.items()
                                    if p.blocking_door == door), None)
@@ -76,7 +79,8 @@ class SimRobot(Robot):
             return MoveReport(False, self.pose(), travelled, blocker, door,
                               blocker_person if blocker is Blocker.PERSON else None,
                               plan.doors[:index])
-        self._travel(plan.length, goal.xy(), escort, goal.theta)
+        if not self._travel(plan.length, goal.xy(), escort, goal.theta, cancel=cancel):
+            return MoveReport(False, self.pose(), 0.0, Blocker.CANCELLED)
         self._trail(plan.waypoints[1:])
         return MoveReport(True, self.pose(), plan.length, doors_passed=plan.doors)
 
@@ -91,16 +95,24 @@ class SimRobot(Robot):
                                points=[list(point) for point in rounded])
 
     def _travel(self, distance: float, point: tuple[float, float], escort: str | None,
-                theta: float | None = None) -> None:
+                theta: float | None = None, *, cancel: CancelToken | None = None) -> bool:
+        """Drive ``distance`` to ``point``; False when cancelled on the way. The symbolic
+        robot arrives at the end of its drive, so a cancelled drive leaves it where it
+        started."""
         sim = self.sim
         heading = sim.robot_pose[2] if theta is None else theta
-        sim.clock.advance(distance / sim.world.robot.speed + ActionDurations.TURN)
+        sim.clock.advance(distance / sim.world.robot.speed + ActionDurations.TURN,
+                          cancel=cancel)
+        if cancel is not None and cancel.cancelled:
+            return False
         sim.robot_pose = (point[0], point[1], heading)
         if escort and escort in sim.people:
             sim.move_person(escort, (point[0] - 0.6 * math.cos(heading),
                                      point[1] - 0.6 * math.sin(heading)))
+        return True
 
-    def follow(self, person: str, goal: Pose | None) -> MoveReport:
+    def follow(self, person: str, goal: Pose | None, *,
+               cancel: CancelToken | None = None) -> MoveReport:
         sim = self.sim
         state = sim.person_state(person)
         if state is None or sim.distance_to(state.position) > _REACH_PERSON:
@@ -114,7 +126,9 @@ class SimRobot(Robot):
         for door in plan.doors:
             if sim.door_state[door] is DoorState.CLOSED:
                 sim.door_state[door] = DoorState.OPEN
-        sim.clock.advance(plan.length / ActionDurations.FOLLOW_SPEED)
+        sim.clock.advance(plan.length / ActionDurations.FOLLOW_SPEED, cancel=cancel)
+        if cancel is not None and cancel.cancelled:  # the person walked on; the robot stood
+            return MoveReport(False, self.pose(), 0.0, Blocker.CANCELLED)
         behind = plan.waypoints[-2] if len(plan.waypoints) > 1 else destination
         dx, dy = destination[0] - behind[0], destination[1] - behind[1]
         norm = math.hypot(dx, dy) or 1.0

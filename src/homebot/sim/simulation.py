@@ -14,8 +14,8 @@ from dataclasses import dataclass
 from shapely.geometry import LineString
 from shapely.geometry import Point as ShapelyPoint
 
+from homebot.clock import Clock
 from homebot.events import EventLog
-from homebot.sim.clock import Clock
 from homebot.sim.people import Responder, ScriptedResponder
 from homebot.world import (
     DisturbanceModel,

@@ -32,10 +32,10 @@ def drive(context: SkillContext, goal: Pose, escort: str | None = None) -> Outco
     ``move_to(goal, avoid_doors)`` contract.
     """
     closed = frozenset(context.beliefs.closed_doors)
-    report = context.robot.move_to(goal, closed, escort)
+    report = context.robot.move_to(goal, closed, escort, cancel=context.cancel)
     if not report.reached and report.blocker is Blocker.NO_PATH and closed:
         context.events.record("motion.through_closed_doors", doors=sorted(closed))
-        report = context.robot.move_to(goal, frozenset(), escort)
+        report = context.robot.move_to(goal, frozenset(), escort, cancel=context.cancel)
     return _motion_outcome(context, report)
 
 
@@ -52,6 +52,8 @@ def drive_to_target(context: SkillContext, target: str) -> Outcome | None:
 def _motion_outcome(context: SkillContext, report: MoveReport) -> Outcome:
     if report.reached:
         return Outcome.finished(f"moved {report.distance:.1f} m", distance=report.distance)
+    if report.blocker is Blocker.CANCELLED:
+        return Outcome.cancelled(context.cancel)
     if report.blocker is Blocker.STOPPED:
         return Outcome.failed(ErrorCode.STOPPED, f"{report.person or 'someone'} showed me to "
                               "stop", person=report.person)
@@ -127,7 +129,9 @@ class Follow(Skill):
         if person is None:
             return Outcome.failed(ErrorCode.NO_PERSON, "I have nobody to follow")
         goal = resolve_target(context, str(args["to"])) if args.get("to") else None
-        report = context.robot.follow(person, goal)
+        report = context.robot.follow(person, goal, cancel=context.cancel)
+        if report.blocker is Blocker.CANCELLED:
+            return Outcome.cancelled(context.cancel)
         if report.blocker is Blocker.STOPPED:  # the person showed stop: following ends here
             return Outcome.finished(f"followed {person} until they showed stop", person=person)
         if not report.reached:
@@ -202,7 +206,8 @@ class OpenDoor(Skill):
         if context.robot.door_is_open(door) is None:
             goal = resolve_target(context, door)
             if goal is not None:
-                context.robot.move_to(goal, frozenset(context.beliefs.closed_doors))
+                context.robot.move_to(goal, frozenset(context.beliefs.closed_doors),
+                                      cancel=context.cancel)
         context.robot.open_door(door)
         return Outcome.finished(f"pushed the {door}")
 

@@ -174,6 +174,8 @@ class FindObject(Skill):
         # message that says where the robot looked when it gives up.
         looked: list[str] = context.bindings.setdefault(f"searched:{wanted}", [])
         for placement in candidates:
+            if context.cancel.cancelled:
+                return Outcome.cancelled(context.cancel)
             if not _affordable(context, placement):
                 return Outcome.failed(
                     ErrorCode.OUT_OF_TIME, f"I ran out of time looking for the {wanted}; "
@@ -345,6 +347,8 @@ class FindPerson(Skill):
             else self._likely_rooms(context, description))
         searched: list[str] = []
         for room in rooms:
+            if context.cancel.cancelled:
+                return Outcome.cancelled(context.cancel)
             if room not in context.world.rooms:
                 return Outcome.failed(ErrorCode.UNKNOWN_TARGET, f"I do not know the {where}")
             entrance = resolve_target(context, room)

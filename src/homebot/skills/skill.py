@@ -4,7 +4,8 @@ A skill's ``execute`` acts and, when it believes it is done, returns ``finished`
 (or ``failed`` if it could not act at all). Its ``monitor`` then senses whether
 the effect is really there: ``verified`` or ``aborted``. ``run`` ties them
 together and retries an aborted (or retryable failed) attempt while the skill's
-retry budget lasts, reporting ``retrying`` each time.
+retry budget lasts, reporting ``retrying`` each time. Once the run's cancel token is
+cancelled, it neither monitors nor retries: it ends ``failed`` with the error ``cancelled``.
 """
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ from enum import StrEnum
 from typing import Any, ClassVar
 
 from homebot.beliefs import Beliefs
+from homebot.cancel import CancelToken
 from homebot.events import EventLog
 from homebot.robot import Robot
 from homebot.world import PathPlanner, World
@@ -58,6 +60,7 @@ class ErrorCode(StrEnum):
     NO_ANSWER = "no_answer"  #: nobody answered
     # cancelled
     OUT_OF_TIME = "out_of_time"  #: the task's time budget ran out before the step was done
+    CANCELLED = "cancelled"  #: the run was cancelled (stop pressed, the goal cancelled)
 
 
 @dataclass(frozen=True, slots=True)
@@ -92,6 +95,11 @@ class Outcome:
     def aborted(cls, error: ErrorCode, message: str, **data: Any) -> Outcome:
         return cls(Status.ABORTED, error, message, data)
 
+    @classmethod
+    def cancelled(cls, cancel: CancelToken) -> Outcome:
+        """The run was cancelled: failed, ``cancelled``, the token's reason as the message."""
+        return cls(Status.FAILED, ErrorCode.CANCELLED, cancel.reason or "cancelled")
+
 
 @dataclass
 class SkillContext:
@@ -100,7 +108,9 @@ class SkillContext:
     ``bindings`` holds what earlier steps found: ``person`` (the person last
     found), ``result`` (the text of the last count or description), and, per
     requested object or category, the object actually found. ``deadline`` is the
-    robot time (``robot.now()``) by which the task must be over, or None.
+    robot time (``robot.now()``) by which the task must be over, or None. ``cancel`` is
+    the running task's cancel token (the executive gives each task its own): skills check
+    it between attempts and in their long loops, and pass it to the robot's motions.
     """
 
     robot: Robot
@@ -112,6 +122,7 @@ class SkillContext:
     monitoring: bool = True
     retries: dict[str, int] = field(default_factory=dict)
     deadline: float | None = None
+    cancel: CancelToken = field(default_factory=CancelToken)
 
 
 def time_left(context: SkillContext) -> float:
@@ -162,15 +173,22 @@ class Skill(ABC):
         """Execute, monitor and report, retrying within the budget; logs every status."""
         budget = context.retries.get(self.name, self.retries) if context.monitoring else 0
         context.events.record("skill.start", skill=self.name, args=dict(args))
+        cancel = context.cancel
         attempt = 0
         while True:
-            outcome = self.execute(context, args)
+            outcome = Outcome.cancelled(cancel) if cancel.cancelled else \
+                self.execute(context, args)
+            if outcome.status is Status.FINISHED and cancel.cancelled:
+                self._report(context, outcome)
+                outcome = Outcome.cancelled(cancel)  # stopped: no time spent checking
             if outcome.status is Status.FINISHED:
                 self._report(context, outcome)
                 if not context.monitoring:
                     self.assume(context, args, outcome)
                     return outcome
                 outcome = self.monitor(context, args, outcome)
+            if cancel.cancelled and not outcome:
+                outcome = Outcome.cancelled(cancel)
             retryable = outcome.status is Status.ABORTED or (
                 outcome.status is Status.FAILED and outcome.error in self.retry_on)
             if not retryable or attempt >= budget:

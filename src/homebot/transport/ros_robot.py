@@ -27,6 +27,7 @@ from typing import Any
 
 import yaml
 
+from homebot.cancel import CancelToken
 from homebot.errors import RobotLost, TransportError
 from homebot.events import EventLog
 from homebot.geometry import Pose
@@ -145,7 +146,11 @@ class RosRobot(Robot):
         return result
 
     def move_to(self, goal: Pose, avoid_doors: frozenset[str] = frozenset(),
-                escort: str | None = None) -> MoveReport:
+                escort: str | None = None, *,
+                cancel: CancelToken | None = None) -> MoveReport:
+        # ``cancel`` is checked before the goal is sent; a goal under way runs to its end.
+        if cancel is not None and cancel.cancelled:
+            return MoveReport(False, self.pose(), 0.0, Blocker.CANCELLED)
         if self.calls is not None:
             self._call("move_options", avoid_doors=sorted(avoid_doors), escort=escort)
         self.feedback = []
@@ -208,7 +213,10 @@ class RosRobot(Robot):
     def request(self, person: str, request: HelpRequest, target: str) -> bool:
         return bool(self._call("request", person=person, request=str(request), target=target))
 
-    def follow(self, person: str, goal: Pose | None) -> MoveReport:
+    def follow(self, person: str, goal: Pose | None, *,
+               cancel: CancelToken | None = None) -> MoveReport:
+        if cancel is not None and cancel.cancelled:
+            return MoveReport(False, self.pose(), 0.0, Blocker.CANCELLED)
         result: MoveReport = self._call("follow", person=person, goal=goal)
         return result
 

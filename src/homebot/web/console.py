@@ -1,10 +1,11 @@
 """``Console``: one simulated home run for the web console, paced against the wall clock.
 
 The robot's logic lives on simulated time only. The console is the one place where the wall
-clock enters: a worker thread runs the home, and every advance of the simulated clock waits
-until the wall clock has caught up with it (``speed`` times real time; 0 runs as fast as
-possible). While it waits, it releases the console's lock, so the server can read a
-consistent snapshot, take the operator's commands and press the emergency stop between ticks.
+clock enters: a worker thread runs the home, and the console observes the simulated clock
+in steps of at most a body tick, each waiting until the wall clock has caught up with it
+(``speed`` times real time; 0 runs as fast as possible). While it waits, it releases the
+console's lock, so the server can read a consistent snapshot, take the operator's commands
+and press the emergency stop between ticks.
 
 Three levels of teleoperation (Cosero §7.4):
 
@@ -14,28 +15,29 @@ Three levels of teleoperation (Cosero §7.4):
 - task: ``command`` (the command box, through ``Conversation``) and ``run_steps`` (composer).
 
 The emergency stop engages the body's own stop (zero velocity from the next tick on) and
-preempts the running task at the next advance of the clock, that is within one tick.
+cancels the running task's token: the motion under way ends at its next tick (a symbolic
+drive, at the next step of the clock) and the task stops there, the robot saying so.
 """
 
 from __future__ import annotations
 
-import contextlib
 import math
 import threading
 import time
 from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from homebot.cancel import CancelToken
 from homebot.errors import HomebotError
 from homebot.events import Event
 from homebot.executive.conversation import Conversation, Turn
 from homebot.executive.report import TaskReport
 from homebot.language import Vocabulary
-from homebot.robot import Twist
+from homebot.robot import Body, Twist
 from homebot.scenarios import SimulatedRun
 from homebot.scenarios.embodied import Fidelity
 from homebot.skills.catalogue import check_step, spelled_as_world
@@ -43,7 +45,10 @@ from homebot.skills.places import resolve_target
 from homebot.task import Step, Task
 from homebot.world import World
 
-__all__ = ["Console", "ConsoleError", "ConsoleSettings", "Preempted", "static_map"]
+if TYPE_CHECKING:
+    from homebot.embodied import BodyRobot
+
+__all__ = ["Console", "ConsoleError", "ConsoleSettings", "static_map"]
 
 _COMMAND_HOLD = 0.5  #: simulated seconds a body-level velocity command holds
 _EVENTS_KEPT = 2000  #: events the console keeps for late-joining watchers
@@ -55,10 +60,6 @@ _SLICE = 0.05  #: simulated seconds: the longest single advance (one body tick a
 
 class ConsoleError(HomebotError):
     """Something the operator asked that the console cannot do now (says why)."""
-
-
-class Preempted(BaseException):  # like KeyboardInterrupt: no skill catches it
-    """Raised in the worker at the clock's next advance after the emergency stop."""
 
 
 @dataclass
@@ -121,13 +122,15 @@ class Console:
                                        fidelity=settings.fidelity, walkers=settings.walkers,
                                        time_limit=settings.time_limit)
         self.sim = self.run.simulation
-        self.body: Any = getattr(self.run.robot, "body", None)
+        self.embodied: BodyRobot | None = self.run.embodied
+        self.body: Body | None = self.embodied.body if self.embodied is not None else None
         self.lock = threading.Condition(threading.RLock())
         self._wall = wall
         self._anchor = (wall(), self.sim.clock.now())
-        self._advance = self.sim.clock.advance
-        # the one seam where wall time enters: the simulated clock waits for the wall clock
-        self.sim.clock.advance = self._paced_advance  # type: ignore[method-assign]
+        #: the running task's token; each task gets a fresh one, the stop cancels it
+        self._cancel = CancelToken()
+        # the one place wall time enters: each step of the simulated clock waits for it
+        self.sim.clock.observe(self._paced, step=_SLICE)
         self.events: deque[tuple[int, dict[str, Any]]] = deque(maxlen=_EVENTS_KEPT)
         self.event_count = 0
         self.sim.events.listeners.append(self._heard)
@@ -138,7 +141,6 @@ class Console:
         self.estop = False
         self.estop_ticks: list[int] = []  #: ticks from each stop press to a standing base
         self._pending_stop: int | None = None
-        self._stop_tick = 0
         self._jobs: deque[Callable[[], object]] = deque()
         self._running = False
         self.last_task: Task | None = None
@@ -172,6 +174,7 @@ class Console:
         """Stop the worker thread and wait for it."""
         with self.lock:
             self._closing = True
+            self._cancel.cancel("the console is closing")
             self.lock.notify_all()
         if self._worker is not None:
             self._worker.join(timeout=10.0)
@@ -181,18 +184,18 @@ class Console:
             while not self._closing:
                 if self._jobs:
                     job = self._jobs.popleft()
-                    self._running = True
+                    self._running, self._cancel = True, CancelToken()
                     try:
                         job()
-                    except Preempted:
-                        self.sim.events.record("console.preempted")
                     finally:
+                        if self._cancel.cancelled:
+                            self.sim.events.record("console.preempted",
+                                                   reason=self._cancel.reason)
                         self._running = False
                         self._anchor = (self._wall(), self.sim.clock.now())
                         self.lock.notify_all()
                 elif self.body is not None and (self.settings.speed > 0 or self._driving()):
-                    with contextlib.suppress(Preempted):
-                        self.step_body()
+                    self.step_body()
                 else:
                     self.lock.wait(0.05)
 
@@ -201,33 +204,25 @@ class Console:
 
     def step_body(self) -> None:
         """One body tick while no task runs: the operator's velocity, slowed near obstacles."""
-        body = self.body
+        body, robot = self.body, self.embodied
+        if body is None or robot is None:
+            raise ConsoleError("driving the base needs a body: serve with --fidelity embodied")
         if self.sim.clock.now() > self._teleop_until or self.estop:
             twist = Twist()
         else:
             twist = self._slowed(self._teleop)
         body.command_velocity(twist)
         body.tick()
-        localisation = getattr(self.run.robot, "localisation", None)
-        if localisation is not None:  # the robot keeps track of where it is driven
-            localisation.update(body.odometry(), body.scan())
+        robot.localise()  # the robot keeps track of where it is driven
 
-    def _paced_advance(self, seconds: float) -> float:
-        """The clock's advance, in slices of at most a body tick, each paced and stoppable.
+    def _paced(self, before: float, now: float) -> None:
+        """A step of the simulated clock (at most a body tick): count it, and in the worker
+        wait until the wall clock has caught up with it.
 
-        A symbolic move is one long advance; slicing it lets the stop preempt it at the next
-        slice (before the robot arrives), as the body's own tick does when embodied.
+        A symbolic move is one long advance; the clock cuts it into steps, so the stop
+        cancels it at the next step (before the robot arrives), as the body's own tick
+        does when embodied. A cancelled task ends unpaced.
         """
-        clock = self.sim.clock
-        target = clock.now() + seconds
-        while target - clock.now() > _SLICE + 1e-9:  # a body tick is one slice, not two
-            self._paced_slice(_SLICE)
-        self._paced_slice(max(0.0, target - clock.now()))
-        clock.time = target  # exactly where one unsliced advance would have put it
-        return target
-
-    def _paced_slice(self, seconds: float) -> None:
-        now = self._advance(seconds)
         self.ticks += 1
         for hook in self.tick_hooks:
             hook(self.ticks)
@@ -244,22 +239,20 @@ class Console:
             remaining = target - self._wall()
             if remaining < -0.5:  # the home fell behind the wall clock: do not rush to catch up
                 self._anchor = (self._wall(), now)
-            while remaining > 0 and not self._closing and not self._preempting():
+            while remaining > 0 and not self._closing and not self._stopping():
                 self.lock.wait(remaining)
                 remaining = target - self._wall()
         else:
             self.lock.wait(0)
-        if self._preempting() or self._closing:
-            raise Preempted
 
     @property
     def busy(self) -> bool:
         """A task runs or waits to run."""
         return self._running or bool(self._jobs)
 
-    def _preempting(self) -> bool:
-        """Stop pressed, a task running, and a tick gone since (the base stands now)."""
-        return self.estop and self._running and self.ticks > self._stop_tick
+    def _stopping(self) -> bool:
+        """A task runs and was cancelled (stop pressed): it ends as fast as it can."""
+        return self._running and self._cancel.cancelled
 
     # ------------------------------------------------------------ events
 
@@ -345,7 +338,7 @@ class Console:
         """Stop the base from the next tick on and preempt whatever runs."""
         with self.lock:
             self.estop = True
-            self._stop_tick = self.ticks
+            self._cancel.cancel("emergency stop")
             self._jobs.clear()
             self._teleop_until = -1.0
             if self.body is not None:
@@ -478,8 +471,7 @@ class Console:
         """
         if not helping:
             self.last_task, self.failed_at, self.help_offer = task, None, None
-        report = self.run.run(task, interrupt=lambda: self.estop or bool(
-            interrupt is not None and interrupt()))
+        report = self.run.run(task, interrupt=interrupt, cancel=self._cancel)
         if not report.success and report.steps and not helping:
             index = len(report.steps) - 1
             self.failed_at = index
@@ -502,8 +494,7 @@ class Console:
                 "people": {name: [round(p.position[0], 2), round(p.position[1], 2)]
                            for name, p in sim.people.items()},
                 "objects": self._objects(),
-                "doors": {name: str(getattr(state, "value", state))
-                          for name, state in sim.door_state.items()},
+                "doors": {name: state.value for name, state in sim.door_state.items()},
                 "hands": dict(sim.hands),
                 "trail": [list(p) for p in sim.trail[-200:]],
                 "path": self.path if self.busy else [],
@@ -516,8 +507,8 @@ class Console:
                 "teleop_scale": round(self.teleop_scale, 3),
                 "events": self.event_count,
             }
-            if self.body is not None:
-                state.update(self._embodied())
+            if self.embodied is not None:
+                state.update(self._embodied(self.embodied))
             return state
 
     def _objects(self) -> dict[str, Any]:
@@ -534,9 +525,9 @@ class Console:
             shown[name] = {"at": where, "xy": [round(px, 3), round(py, 3)]}
         return shown
 
-    def _embodied(self) -> dict[str, Any]:
-        robot = self.run.robot
-        scan = self.body.scan()
+    def _embodied(self, robot: BodyRobot) -> dict[str, Any]:
+        body = robot.body
+        scan = body.scan()
         ranges = np.asarray(scan.ranges)
         x, y, theta = self.sim.robot_pose
         step = max(1, len(ranges) // _SCAN_POINTS_SHOWN)
@@ -546,14 +537,14 @@ class Console:
             if math.isfinite(r):
                 a = theta + scan.mount.theta + scan.angle_min + index * scan.angle_increment
                 points.append([round(x + r * math.cos(a), 2), round(y + r * math.sin(a), 2)])
-        particles = getattr(getattr(robot, "localisation", None), "particles", np.zeros((0, 3)))
+        particles = robot.localisation.particles
         if len(particles) > 150:
             particles = particles[:: math.ceil(len(particles) / 150)]
         return {"scan": points,
                 "particles": np.round(np.asarray(particles)[:, :2], 2).tolist(),
                 "nearest_ahead": round(min(self.nearest_ahead(), 99.0), 3),
-                "velocity": [round(self.body.odometry().twist.vx, 3),
-                             round(self.body.odometry().twist.wz, 3)]}
+                "velocity": [round(body.odometry().twist.vx, 3),
+                             round(body.odometry().twist.wz, 3)]}
 
     def events_since(self, number: int) -> list[dict[str, Any]]:
         """The kept events numbered above ``number``, each with its number as ``n``."""
