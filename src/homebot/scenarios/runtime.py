@@ -6,22 +6,19 @@ import argparse
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
 
 from homebot.beliefs import Beliefs
 from homebot.cancel import CancelToken
 from homebot.executive import Executive, TaskReport
 from homebot.executive.recovery import Protocol
 from homebot.navigation import Navigator
-from homebot.robot import Robot
+from homebot.navigation.localisation import MonteCarloLocalisation
+from homebot.robot import Body, Robot
 from homebot.scenarios.embodied import Fidelity, embodied_robot
 from homebot.sim import PlanCache, Responder, SimRobot, Simulation
 from homebot.skills import SkillContext
 from homebot.task import Task
 from homebot.world import DisturbanceModel, World
-
-if TYPE_CHECKING:
-    from homebot.embodied import BodyRobot
 
 __all__ = ["SimulatedRun", "disturbance_level", "disturbed", "probability"]
 
@@ -65,8 +62,8 @@ def _number_between(text: str, low: float, high: float, what: str) -> float:
 class SimulatedRun:
     """Everything one run needs, wired: simulation, robot, beliefs, context, executive.
 
-    ``embodied`` is the robot again, as the ``BodyRobot`` it is in the embodied fidelity
-    (its body, its localisation), None in the symbolic one.
+    ``body`` and ``localisation`` are the embodied robot's body and particle filter (the
+    console drives the one and shows the other); None in the symbolic fidelity.
     """
 
     world: World
@@ -74,7 +71,8 @@ class SimulatedRun:
     robot: Robot
     context: SkillContext
     executive: Executive
-    embodied: BodyRobot | None = None
+    body: Body | None = None
+    localisation: MonteCarloLocalisation | None = None
 
     @classmethod
     def create(cls, world: World, *, seed: int = 0,
@@ -106,7 +104,10 @@ class SimulatedRun:
                                retries=dict(retries or {}))
         executive = Executive(context, recovery=recovery, inference=inference,
                               time_limit=time_limit)
-        return cls(world, simulation, robot, context, executive, embodied)
+        if embodied is None:
+            return cls(world, simulation, robot, context, executive)
+        return cls(world, simulation, robot, context, executive, embodied.body,
+                   embodied.localisation)
 
     def run(self, task: Task, *, interrupt: Callable[[], bool] | None = None,
             cancel: CancelToken | None = None) -> TaskReport:

@@ -27,7 +27,7 @@ import time
 from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
@@ -44,9 +44,6 @@ from homebot.skills.catalogue import check_step, spelled_as_world
 from homebot.skills.places import resolve_target
 from homebot.task import Step, Task
 from homebot.world import World
-
-if TYPE_CHECKING:
-    from homebot.embodied import BodyRobot
 
 __all__ = ["Console", "ConsoleError", "ConsoleSettings", "static_map"]
 
@@ -122,8 +119,7 @@ class Console:
                                        fidelity=settings.fidelity, walkers=settings.walkers,
                                        time_limit=settings.time_limit)
         self.sim = self.run.simulation
-        self.embodied: BodyRobot | None = self.run.embodied
-        self.body: Body | None = self.embodied.body if self.embodied is not None else None
+        self.body: Body | None = self.run.body
         self.lock = threading.Condition(threading.RLock())
         self._wall = wall
         self._anchor = (wall(), self.sim.clock.now())
@@ -204,8 +200,8 @@ class Console:
 
     def step_body(self) -> None:
         """One body tick while no task runs: the operator's velocity, slowed near obstacles."""
-        body, robot = self.body, self.embodied
-        if body is None or robot is None:
+        body, localisation = self.body, self.run.localisation
+        if body is None:
             raise ConsoleError("driving the base needs a body: serve with --fidelity embodied")
         if self.sim.clock.now() > self._teleop_until or self.estop:
             twist = Twist()
@@ -213,7 +209,8 @@ class Console:
             twist = self._slowed(self._teleop)
         body.command_velocity(twist)
         body.tick()
-        robot.localise()  # the robot keeps track of where it is driven
+        if localisation is not None:  # the robot keeps track of where it is driven
+            localisation.update(body.odometry(), body.scan())
 
     def _paced(self, before: float, now: float) -> None:
         """A step of the simulated clock (at most a body tick): count it, and in the worker
@@ -507,8 +504,8 @@ class Console:
                 "teleop_scale": round(self.teleop_scale, 3),
                 "events": self.event_count,
             }
-            if self.embodied is not None:
-                state.update(self._embodied(self.embodied))
+            if self.body is not None:
+                state.update(self._embodied(self.body))
             return state
 
     def _objects(self) -> dict[str, Any]:
@@ -525,8 +522,7 @@ class Console:
             shown[name] = {"at": where, "xy": [round(px, 3), round(py, 3)]}
         return shown
 
-    def _embodied(self, robot: BodyRobot) -> dict[str, Any]:
-        body = robot.body
+    def _embodied(self, body: Body) -> dict[str, Any]:
         scan = body.scan()
         ranges = np.asarray(scan.ranges)
         x, y, theta = self.sim.robot_pose
@@ -537,7 +533,8 @@ class Console:
             if math.isfinite(r):
                 a = theta + scan.mount.theta + scan.angle_min + index * scan.angle_increment
                 points.append([round(x + r * math.cos(a), 2), round(y + r * math.sin(a), 2)])
-        particles = robot.localisation.particles
+        localisation = self.run.localisation
+        particles = localisation.particles if localisation is not None else np.zeros((0, 3))
         if len(particles) > 150:
             particles = particles[:: math.ceil(len(particles) / 150)]
         return {"scan": points,
