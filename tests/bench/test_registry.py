@@ -2,7 +2,7 @@
 
 A tiny run is the smallest arguments that still go through the benchmark's code: one task,
 one seed, few samples; the parts that take minutes whatever their size (the face forests,
-the physical HRI trials, the load test) are left out with ``--only``. The figures are
+the load test) are left out with ``--only``. The figures are
 checked for their shape, never for their values or their timing.
 """
 
@@ -43,7 +43,8 @@ TINY: dict[str, tuple[list[str], set[str], set[str]]] = {
     "localisation": (["--runs", "1", "--only", "timing"], {"runs", "figures"},
                      {"update timing"}),
     "perception": (["--scenes", "1", "--only", "objects"], {"figures"}, {"objects"}),
-    "manipulation": (["--scenes", "1", "--only", "grasping"], {"figures"}, {"grasping"}),
+    "manipulation": (["--scenes", "1", "--hri-trials", "1"], {"figures"},
+                     {"grasping", "physical HRI"}),
     "speech": (["--count", "1", "--rejection", "0", "--babble-talkers", "0",
                 "--worlds", "apartment"], {"command_accuracy", "worlds", "speed"}, set()),
     "console": (["--trials", "1", "--clients", "0"], {"figures"}, {"estop_navigation"}),

@@ -10,7 +10,6 @@ import math
 
 import pytest
 
-from homebot.bench.fetch_tasks import delivered, fetch_tasks
 from homebot.geometry import Pose
 from homebot.navigation import Navigator
 from homebot.robot import Blocker
@@ -19,6 +18,7 @@ from homebot.scenarios.embodied import Fidelity
 from homebot.sim import PERSON_PREFIX
 from homebot.skills import Status, skill_named
 from homebot.task import Step, Task
+from homebot.trials.fetch import delivered, fetch_tasks
 from homebot.world import DoorState, World
 
 pytest.importorskip("cv2")

@@ -6,7 +6,6 @@ from dataclasses import replace
 
 import pytest
 
-from homebot.bench.fetch_tasks import delivered, fetch_tasks
 from homebot.bench.robustness import compare_modes
 from homebot.cancel import CancelToken
 from homebot.geometry import Pose
@@ -16,6 +15,7 @@ from homebot.scenarios import SimulatedRun
 from homebot.sim import PERSON_PREFIX
 from homebot.skills import ErrorCode
 from homebot.task import Step, Task
+from homebot.trials.fetch import delivered, fetch_tasks
 from homebot.world import DisturbanceModel, DoorState, World
 
 

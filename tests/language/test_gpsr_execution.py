@@ -2,8 +2,9 @@
 
 from __future__ import annotations
 
-from homebot.bench.gpsr import execute_commands, feasible
+from homebot.bench.gpsr import execute_commands
 from homebot.task import Step
+from homebot.trials.gpsr import feasible
 from homebot.world import World
 
 

@@ -7,9 +7,9 @@ import pytest
 
 pytest.importorskip("mujoco")
 
-from homebot.bench.manipulation import Scene, generate_scene, run_pick
 from homebot.manipulation.control import free_spots
 from homebot.sim.arm import ObjectBody, SurfaceBox
+from homebot.trials.picking import Scene, generate_scene, run_pick
 
 TABLE = SurfaceBox("table", (0.65, 0.0), (0.5, 0.8), 0.75)
 

@@ -16,11 +16,11 @@ from typing import Any
 from rich.console import Console
 
 from homebot.bench.arguments import count, seed
-from homebot.bench.fetch_tasks import delivered, fetch_tasks
 from homebot.navigation import Navigator
 from homebot.scenarios import SimulatedRun
 from homebot.scenarios.embodied import add_fidelity_option
 from homebot.sim import PlanCache
+from homebot.trials.fetch import delivered, fetch_tasks
 from homebot.world import World
 
 __all__ = ["add_arguments", "run"]

@@ -6,70 +6,20 @@ import argparse
 import statistics
 import time
 from collections import Counter
-from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
 from rich.console import Console
 
 from homebot.bench.arguments import count, seed
-from homebot.bench.gpsr_truth import judge
 from homebot.language import Vocabulary, parse_command
 from homebot.language.generator import generate_commands
 from homebot.navigation import Navigator
-from homebot.robot import PersonPercept
 from homebot.scenarios import SimulatedRun, disturbance_level, disturbed
-from homebot.skills.perception import matches_person
-from homebot.task import Step
+from homebot.trials.gpsr import feasible, judge
 from homebot.world import World
 
-__all__ = ["ExecutionResult", "add_arguments", "execute_commands", "feasible", "run"]
-
-
-def _person_fits(world: World, description: Mapping[str, Any], room: str | None) -> bool:
-    """Whether someone in ``room`` fits the description, as find_person would match them."""
-    return any(
-        matches_person(PersonPercept(person.name, person.posture.value, person.gesture.value,
-                                     tuple(person.clothes), person.position, person.room),
-                       description)
-        for person in world.people.values() if room is None or person.room == room)
-
-
-def _object_fits(world: World, wanted: str, placement: str | None, room: str | None) -> bool:
-    for obj in world.objects.values():
-        if wanted not in (obj.name, obj.category, world.plural_of(obj.category), "object"):
-            continue
-        where = world.placements[obj.placement]
-        if placement is not None and where.name != placement:
-            continue
-        if room is not None and where.room != room:
-            continue
-        return True
-    return False
-
-
-def feasible(world: World, steps: list[Step]) -> bool:
-    """Whether the home as the world file describes it can satisfy every step.
-
-    A generated command may ask for the waving person in a room where nobody
-    waves, or the biggest fruit on a shelf that holds none; those are commands
-    to refuse or report on, not to carry out, and are left out here.
-    """
-    for step in steps:
-        args = step.args
-        room = args.get("room")
-        if "placement" in args and step.skill in {"find_person"}:
-            room = world.placements[args["placement"]].room
-        if step.skill == "find_person" and not _person_fits(world, args.get("person") or {},
-                                                            room):
-            return False
-        if step.skill == "find_object" and not _object_fits(
-                world, str(args["object"]), args.get("placement"), room):
-            return False
-        if step.skill == "describe" and "property" in args and not _object_fits(
-                world, str(args.get("object", "object")), args.get("placement"), None):
-            return False
-    return True
+__all__ = ["ExecutionResult", "add_arguments", "execute_commands", "run"]
 
 
 @dataclass

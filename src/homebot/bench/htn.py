@@ -25,7 +25,6 @@ from rich.console import Console
 
 from homebot.beliefs import Beliefs
 from homebot.bench.arguments import count, seed
-from homebot.bench.fetch_tasks import delivered, fetch_tasks
 from homebot.htn import (
     Goal,
     Names,
@@ -37,6 +36,7 @@ from homebot.htn import (
 )
 from homebot.navigation import Navigator
 from homebot.scenarios import SimulatedRun, disturbance_level, disturbed
+from homebot.trials.fetch import delivered, fetch_tasks
 from homebot.world import World
 
 __all__ = ["add_arguments", "run"]

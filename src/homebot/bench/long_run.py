@@ -18,9 +18,9 @@ from typing import Any
 from rich.console import Console
 
 from homebot.bench.arguments import count, seed
-from homebot.bench.fetch_tasks import fetch_tasks
 from homebot.navigation import Navigator
 from homebot.scenarios import SimulatedRun
+from homebot.trials.fetch import fetch_tasks
 from homebot.world import World
 
 __all__ = ["add_arguments", "resident_mb", "run"]

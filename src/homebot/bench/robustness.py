@@ -12,10 +12,10 @@ from rich.console import Console
 from rich.table import Table
 
 from homebot.bench.arguments import count, seed
-from homebot.bench.fetch_tasks import delivered, fetch_tasks
 from homebot.navigation import Navigator
 from homebot.scenarios import SimulatedRun, disturbance_level, disturbed
 from homebot.scenarios.embodied import Fidelity, add_fidelity_option
+from homebot.trials.fetch import delivered, fetch_tasks
 from homebot.world import World
 
 __all__ = ["ModeResult", "add_arguments", "compare_modes", "run"]

@@ -26,7 +26,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     """Carry the table with the person."""
-    from homebot.bench.manipulation_hri import carry_table_episode
+    from homebot.trials.interaction import carry_table_episode
 
     result = carry_table_episode(args.seed, 0)
     speech = ["I have my end of the table.",

@@ -7,10 +7,10 @@ from typing import Any
 
 from rich.console import Console
 
-from homebot.bench.fetch_tasks import delivered, fetch_tasks
 from homebot.scenarios.embodied import add_fidelity_option, fidelity_of
 from homebot.scenarios.runtime import SimulatedRun, disturbance_level, disturbed
 from homebot.scenarios.summary import report_actions, scenario_summary
+from homebot.trials.fetch import delivered, fetch_tasks
 from homebot.world import World
 
 __all__ = ["add_arguments", "run"]

@@ -25,7 +25,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     """Follow the person's hand along their route."""
-    from homebot.bench.manipulation_hri import guided_episode
+    from homebot.trials.interaction import guided_episode
 
     result = guided_episode(args.seed, 0)
     median = result.median_deviation

@@ -24,7 +24,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     """Hold the bottle out until the person pulls."""
-    from homebot.bench.manipulation_hri import HANDOVER_THRESHOLD, handover_episode
+    from homebot.trials.interaction import HANDOVER_THRESHOLD, handover_episode
 
     result = handover_episode(args.seed, 0, pull=True)
     speech = ["Here is your bottle.", "You have it." if result.correct else

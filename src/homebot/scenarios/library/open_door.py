@@ -29,7 +29,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     """Open the door and close it again."""
-    from homebot.bench.manipulation_hri import door_episode
+    from homebot.trials.interaction import door_episode
 
     result = door_episode(args.seed, 0)
     door = result.variant

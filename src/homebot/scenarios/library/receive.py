@@ -25,7 +25,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     """Hold the hand out and take the bottle."""
-    from homebot.bench.manipulation_hri import receive_episode
+    from homebot.trials.interaction import receive_episode
 
     result = receive_episode(args.seed)
     speech = ["Please put the bottle in my hand.",

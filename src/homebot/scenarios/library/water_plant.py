@@ -42,12 +42,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def pour(seed: int) -> dict[str, Any]:
     """One watering, judged on the physics' truth; the figures the scenario prints."""
-    from homebot.bench.manipulation_hri import BaseDrive, apply, reach, reading
     from homebot.manipulation.compliance import Compliance, ComplianceController
     from homebot.manipulation.interaction import Command
     from homebot.manipulation.tools import PourPhase, Tool, WateringMotion, approach_offset
     from homebot.robot import Twist
     from homebot.sim.hri import InteractionScene
+    from homebot.trials.interaction import BaseDrive, apply, reach, reading
 
     rng = np.random.default_rng([seed, _STREAM])
     scene = InteractionScene("watering")

@@ -1,4 +1,4 @@
-"""Seeded fetch-and-deliver tasks for a world, and whether one was really delivered."""
+"""Fetch-and-deliver trials: seeded tasks for a world, and a referee of the delivery."""
 
 from __future__ import annotations
 

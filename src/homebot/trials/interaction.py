@@ -1,9 +1,8 @@
-"""Physical interaction in MuJoCo: handover, receiving, guiding, carrying a table, a door.
+"""Physical interaction trials in MuJoCo: handover, receiving, guiding, carrying a table, a door.
 
-Not a benchmark of its own: ``homebot bench manipulation`` calls ``handover_figures``,
-``guided_figures``, ``carry_table_figures`` and ``door_figures``, and the scenarios
-``handover``, ``receive``, ``guided_by_hand``, ``carry_table`` and ``open_door`` run one
-episode each. Every episode runs the robot's behaviour
+The scenarios ``handover``, ``receive``, ``guided_by_hand``, ``carry_table`` and
+``open_door`` run one episode each; ``homebot bench manipulation`` runs many and prints
+their figures. Every episode runs the robot's behaviour
 (``homebot.manipulation.interaction``) on the compliance controller in an
 ``InteractionScene``; the person is a seeded force profile or a gripping hand
 (``homebot.sim.forces``). Success is judged on the physics' ground truth: when the
@@ -16,7 +15,6 @@ from __future__ import annotations
 import itertools
 import math
 import statistics
-import time
 from dataclasses import dataclass
 from typing import Any
 
@@ -37,21 +35,29 @@ from homebot.sim.forces import GrippingHand, Trajectory, apply_at, handover_tria
 from homebot.sim.hri import InteractionScene
 
 __all__ = [
+    "DOOR_OPEN",
+    "DOOR_SHUT",
     "HANDOVER_THRESHOLD",
+    "BaseDrive",
     "CarryProfile",
+    "CarryResult",
     "DoorResult",
     "DoorVariant",
+    "GuidedResult",
+    "HandoverResult",
+    "ReceiveResult",
+    "apply",
     "carry_profile",
     "carry_table_episode",
-    "carry_table_figures",
     "door_episode",
-    "door_figures",
     "door_scene",
     "door_variant",
+    "drive_base",
     "guided_episode",
-    "guided_figures",
+    "guided_route",
     "handover_episode",
-    "handover_figures",
+    "reach",
+    "reading",
     "receive_episode",
 ]
 
@@ -188,36 +194,6 @@ def handover_episode(seed: int, index: int, *, pull: bool | None = None,
         if left is None and scene.time > settle and not _in_hand(scene):
             left = scene.time - settle
     return HandoverResult(trial.pull_above, behaviour.released_at, left, trial.bumps, scene.time)
-
-
-def handover_figures(seed: int, trials: int = 100) -> dict[str, Any]:
-    """Handover over ``trials`` seeded people: released within 0.5 s of a pull above the
-    threshold, and never without one (a fifth of the people never pull; most bump)."""
-    began, cpu = time.perf_counter(), time.process_time()
-    results = [handover_episode(seed, k) for k in range(trials)]
-    wall, cpu = time.perf_counter() - began, time.process_time() - cpu
-    pulled = [r for r in results if r.pull_above is not None]
-    unpulled = [r for r in results if r.pull_above is None]
-    delays = [r.delay for r in pulled if r.delay is not None]
-    early = [r for r in pulled if r.left_hand_at is not None and r.pull_above is not None
-             and r.left_hand_at < r.pull_above]
-    return {
-        "trials": trials,
-        "threshold_n": HANDOVER_THRESHOLD,
-        "pulls": len(pulled),
-        "no_pull_trials": len(unpulled),
-        "with_bumps": sum(1 for r in results if r.bumps),
-        "released_in_time": sum(1 for r in pulled if r.correct),
-        "released_in_time_rate": round(sum(1 for r in pulled if r.correct) / len(pulled), 4)
-        if pulled else None,
-        "released_without_pull": sum(1 for r in unpulled if r.left_hand_at is not None),
-        "released_before_threshold": len(early),
-        "median_delay_s": round(statistics.median(delays), 3) if delays else None,
-        "max_delay_s": round(max(delays), 3) if delays else None,
-        "times_real_time": round(sum(r.seconds for r in results) / wall, 1),
-        "times_real_time_cpu": round(sum(r.seconds for r in results) / cpu, 1),
-        "success": all(r.correct for r in results),
-    }
 
 
 # ------------------------------------------------------------------ guided by the hand
@@ -364,30 +340,6 @@ def guided_episode(seed: int, index: int) -> GuidedResult:
     length = float(sum(math.dist(a, b) for a, b in itertools.pairwise(route)))
     return GuidedResult(length, tuple(deviations), tuple(hand_deviations), collisions, arrived,
                         scene.time)
-
-
-def guided_figures(seed: int, routes: int = 20) -> dict[str, Any]:
-    """Guided walks over ``routes`` seeded routes: median deviation of the base from the
-    person's path (target ≤ 10 cm) and collisions of its footprint (target none)."""
-    began, cpu = time.perf_counter(), time.process_time()
-    results = [guided_episode(seed, k) for k in range(routes)]
-    wall, cpu = time.perf_counter() - began, time.process_time() - cpu
-    medians = [r.median_deviation for r in results]
-    every = [d for r in results for d in r.deviations]
-    return {
-        "routes": routes,
-        "route_length_m": round(sum(r.route_length for r in results), 2),
-        "median_deviation_m": round(statistics.median(every), 4),
-        "worst_route_median_m": round(max(medians), 4),
-        "p95_deviation_m": round(float(np.percentile(every, 95)), 4),
-        "hand_median_deviation_m": round(statistics.median(
-            d for r in results for d in r.hand_deviations), 4),
-        "routes_with_collision": sum(1 for r in results if r.collisions),
-        "arrived": sum(1 for r in results if r.arrived),
-        "times_real_time": round(sum(r.seconds for r in results) / wall, 1),
-        "times_real_time_cpu": round(sum(r.seconds for r in results) / cpu, 1),
-        "success": statistics.median(every) <= 0.10 and not any(r.collisions for r in results),
-    }
 
 
 # ------------------------------------------------------------------ carrying a table
@@ -560,30 +512,6 @@ def _tracked_pitch(scene: InteractionScene, rng: np.random.Generator) -> float:
     return math.atan2(float(far[2] - near[2]), run) + float(rng.normal(0.0, 0.0035))
 
 
-def carry_table_figures(seed: int, trials: int = 20) -> dict[str, Any]:
-    """Carrying a table with a person over ``trials`` seeded carries: the table's worst
-    tilt while off the floor (target ≤ 3°), lifted and lowered with the person."""
-    began, cpu = time.perf_counter(), time.process_time()
-    results = [carry_table_episode(seed, k) for k in range(trials)]
-    wall, cpu = time.perf_counter() - began, time.process_time() - cpu
-    return {
-        "trials": trials,
-        "max_tilt_deg": max(r.max_tilt_deg for r in results),
-        "median_max_tilt_deg": round(statistics.median(r.max_tilt_deg for r in results), 3),
-        "max_tilt_deg_while_held": max((r.max_tilt_deg for r in results if not r.dropped),
-                                       default=None),
-        "lift_detected_after_s": [None if r.lifted_at is None else round(r.lifted_at, 2)
-                                  for r in results],
-        "lowered": sum(1 for r in results if r.lowered),
-        "dropped": sum(1 for r in results if r.dropped),
-        "travelled_m": [r.travelled for r in results],
-        "carried": sum(1 for r in results if r.success),
-        "times_real_time": round(sum(r.seconds for r in results) / wall, 1),
-        "times_real_time_cpu": round(sum(r.seconds for r in results) / cpu, 1),
-        "success": all(r.success for r in results),
-    }
-
-
 # ------------------------------------------------------------------ receiving
 
 
@@ -656,7 +584,6 @@ def receive_episode(seed: int, index: int = 0) -> ReceiveResult:
         "object", "right_pad") and abs(scene.body_position("object")[2] - scene.hand_world()[2])
         < 0.06)  # a plain bool: the scenario prints it as JSON
     return ReceiveResult(behaviour.phase.value, behaviour.closed_at, state["let_go"], held)
-
 
 
 # ------------------------------------------------------------------ opening and closing a door
@@ -838,37 +765,6 @@ def door_episode(seed: int, index: int = 0, *, variant: DoorVariant | None = Non
                       None if open_s is None else round(open_s, 2),
                       None if close_s is None else round(close_s, 2), round(worst, 1), bumped,
                       scene.time)
-
-
-def door_figures(seed: int, trials: int = 20) -> dict[str, Any]:
-    """Opening and closing ``trials`` seeded doors (side, width, hinge friction and damping,
-    the robot's hinge estimate off by centimetres): opened at least 60°, closed within 2°,
-    the handle never lost; judged by the hinge's true angle."""
-    began, cpu = time.perf_counter(), time.process_time()
-    results = [door_episode(seed, k) for k in range(trials)]
-    wall, cpu = time.perf_counter() - began, time.process_time() - cpu
-    return {
-        "trials": trials,
-        "left_hinged": sum(1 for r in results if r.variant.side == "left"),
-        "opened_60deg": sum(1 for r in results if r.opened_deg >= math.degrees(DOOR_OPEN)),
-        "min_opened_deg": min(r.opened_deg for r in results),
-        "closed_2deg": sum(1 for r in results if abs(r.closed_deg) <= math.degrees(DOOR_SHUT)),
-        "max_closed_deg": max(r.closed_deg for r in results),
-        "lost_handle": sum(1 for r in results if r.lost_handle),
-        "median_open_s": _median([r.open_s for r in results]),
-        "median_close_s": _median([r.close_s for r in results]),
-        "worst_hand_force_n": max(r.worst_force for r in results),
-        "bumped_door": sum(1 for r in results if r.bumped),
-        "succeeded": sum(1 for r in results if r.success),
-        "times_real_time": round(sum(r.seconds for r in results) / wall, 1),
-        "times_real_time_cpu": round(sum(r.seconds for r in results) / cpu, 1),
-        "success": all(r.success for r in results),
-    }
-
-
-def _median(values: list[float | None]) -> float | None:
-    known = [v for v in values if v is not None]
-    return round(statistics.median(known), 2) if known else None
 
 
 def _close_fingers(scene: InteractionScene, rest: np.ndarray,

@@ -9,15 +9,15 @@ import pytest
 
 pytest.importorskip("mujoco")
 
-from homebot.bench.manipulation_hri import (
+from homebot.cli import main
+from homebot.sim.hri import InteractionScene, SceneError
+from homebot.trials.interaction import (
     DoorVariant,
     carry_table_episode,
     door_episode,
     handover_episode,
     receive_episode,
 )
-from homebot.cli import main
-from homebot.sim.hri import InteractionScene, SceneError
 
 
 def test_handover_releases_on_a_pull_and_holds_through_bumps() -> None:
@@ -54,9 +54,9 @@ def test_the_bottle_rides_along_when_the_base_drives() -> None:
     # The base moves with a velocity, not by jumps: friction carries what the hand holds.
     import numpy as np
 
-    from homebot.bench.manipulation_hri import _holding_scene, apply
     from homebot.manipulation.compliance import Compliance
     from homebot.manipulation.interaction import Command
+    from homebot.trials.interaction import _holding_scene, apply
 
     scene, controller = _holding_scene()
     hold = Command(controller.target_position, controller.target_rotation, Compliance(),

@@ -1,12 +1,12 @@
-"""The GPSR benchmark's judge reads the simulator's truth, not the robot's report."""
+"""The GPSR referee reads the simulator's truth, not the robot's report."""
 
 from __future__ import annotations
 
-from homebot.bench.gpsr_truth import judge
 from homebot.executive import TaskReport
 from homebot.language import Vocabulary, parse_command
 from homebot.scenarios import SimulatedRun
 from homebot.task import Step
+from homebot.trials.gpsr import judge
 from homebot.world import World
 
 

@@ -1,4 +1,8 @@
-"""Judging a GPSR run by the simulator's ground truth, never by the robot's own report.
+"""GPSR trials: the commands a home can satisfy, and a referee that judges a run by the truth.
+
+``feasible`` keeps the generated commands the world file can satisfy (the others are
+commands to refuse or report on). ``judge`` judges a run by the simulator's ground truth,
+never by the robot's own report.
 
 After a command ran, ``judge`` looks at the simulation (where every object truly is, where
 each person truly stands) and at what the robot said, and checks the command's effects:
@@ -31,8 +35,9 @@ from homebot.scenarios import SimulatedRun
 from homebot.skills.perception import matches_person
 from homebot.skills.wording import number
 from homebot.task import Step
+from homebot.world import World
 
-__all__ = ["judge"]
+__all__ = ["feasible", "judge"]
 
 _NUMBER_WORDS = {number(count): count for count in range(0, 13)}
 
@@ -170,3 +175,49 @@ def judge(run: SimulatedRun, steps: Sequence[Step], report: TaskReport) -> tuple
             held == taken for held in sim.hands.values()):
         return False, f"the {taken} is not in the robot's hand"
     return report.success, "" if report.success else report.reason
+
+
+def _someone_fits(world: World, description: Mapping[str, Any], room: str | None) -> bool:
+    """Whether someone in ``room`` fits the description, as find_person would match them."""
+    return any(
+        matches_person(PersonPercept(person.name, person.posture.value, person.gesture.value,
+                                     tuple(person.clothes), person.position, person.room),
+                       description)
+        for person in world.people.values() if room is None or person.room == room)
+
+
+def _something_fits(world: World, wanted: str, placement: str | None, room: str | None) -> bool:
+    for obj in world.objects.values():
+        if wanted not in (obj.name, obj.category, world.plural_of(obj.category), "object"):
+            continue
+        where = world.placements[obj.placement]
+        if placement is not None and where.name != placement:
+            continue
+        if room is not None and where.room != room:
+            continue
+        return True
+    return False
+
+
+def feasible(world: World, steps: list[Step]) -> bool:
+    """Whether the home as the world file describes it can satisfy every step.
+
+    A generated command may ask for the waving person in a room where nobody
+    waves, or the biggest fruit on a shelf that holds none; those are commands
+    to refuse or report on, not to carry out, and are left out here.
+    """
+    for step in steps:
+        args = step.args
+        room = args.get("room")
+        if "placement" in args and step.skill in {"find_person"}:
+            room = world.placements[args["placement"]].room
+        if step.skill == "find_person" and not _someone_fits(world, args.get("person") or {},
+                                                            room):
+            return False
+        if step.skill == "find_object" and not _something_fits(
+                world, str(args["object"]), args.get("placement"), room):
+            return False
+        if step.skill == "describe" and "property" in args and not _something_fits(
+                world, str(args.get("object", "object")), args.get("placement"), None):
+            return False
+    return True
