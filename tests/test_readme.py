@@ -10,6 +10,7 @@ order in one scratch folder, as a reader would type them, so a file one writes t
 
 from __future__ import annotations
 
+import io
 import re
 import shlex
 from collections.abc import Iterator
@@ -32,7 +33,10 @@ QUICK = [
     ("golog", "check"), ("golog", "plan"), ("golog", "maintain"), ("sitlog", "show"),
     ("do",), ("run-task",), ("scenario", "fetch"), ("scenario", "jenny"),
     ("scenario", "supermarket"), ("scenario", "butler"), ("scenario", "order_cups"),
+    ("chat",),
 ]
+# What a reader types into the commands that read it: `chat` ends at "quit".
+TYPED = {"chat": "quit\n"}
 # Never run here: they need another extra, run long, serve until stopped or read a terminal.
 SLOW_OPTIONS = {"--fidelity", "--robot"}
 
@@ -148,9 +152,11 @@ def reader_folder(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> Path:
     return tmp_path
 
 
-def run_in_order(commands: list[list[str]], capsys: pytest.CaptureFixture[str]) -> None:
+def run_in_order(commands: list[list[str]], capsys: pytest.CaptureFixture[str],
+                 monkeypatch: pytest.MonkeyPatch) -> None:
     failures = []
     for command in commands:
+        monkeypatch.setattr("sys.stdin", io.StringIO(TYPED.get(command[0], "")))
         try:
             status = main(command)
         except SystemExit as stop:
@@ -161,16 +167,17 @@ def run_in_order(commands: list[list[str]], capsys: pytest.CaptureFixture[str]) 
     assert not failures, "\n".join(failures)
 
 
-def test_the_quick_commands_run(reader_folder: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_the_quick_commands_run(reader_folder: Path, capsys: pytest.CaptureFixture[str],
+                                monkeypatch: pytest.MonkeyPatch) -> None:
     run_in_order([command for command in block_commands(README_TEXT) if is_quick(command)],
-                 capsys)
+                 capsys, monkeypatch)
 
 
-def test_the_speech_commands_run(reader_folder: Path,
-                                 capsys: pytest.CaptureFixture[str]) -> None:
+def test_the_speech_commands_run(reader_folder: Path, capsys: pytest.CaptureFixture[str],
+                                 monkeypatch: pytest.MonkeyPatch) -> None:
     pytest.importorskip("pocketsphinx", reason="needs the speech extra")
     pytest.importorskip("espeakng_loader", reason="needs the speech extra")
     speech = [command for command in block_commands(README_TEXT)
               if needs_speech(command) and not SLOW_OPTIONS & set(command)]
     assert speech
-    run_in_order(speech, capsys)
+    run_in_order(speech, capsys, monkeypatch)
