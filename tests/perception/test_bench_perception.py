@@ -8,8 +8,8 @@ import pytest
 
 pytest.importorskip("sklearn")
 
-from homebot.bench.perception import object_figures
 from homebot.cli import main
+from homebot.trials.tabletop import object_figures
 from homebot.world import World
 
 WORLD = """\

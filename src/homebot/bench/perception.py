@@ -13,41 +13,37 @@ estimates; wall clock and the thread's CPU time; run under ``taskset -c 0``). Th
 time target is judged on the CPU time: on a shared core the wall clock also counts
 the time spent waiting for it.
 
-**Look** (``homebot.bench.perception_look``): people as the embodied robot's look at a
+**Look** (``homebot.trials.looks``): people as the embodied robot's look at a
 room reports them (laser, head camera, faces, skeleton tracker), against the truth.
 
 **People, faces, pointing** come from ``homebot.perception.people``, ``faces``
 and ``gestures``, and tags from ``lateration``, with the figure functions in
-``homebot.bench.perception_people`` (``people_figures``, ``face_figures``,
-``pointing_figures``, ``lateration_figures``); a section says "not built" while
-its module is absent.
+``homebot.trials.people`` (``people_figures``, ``face_figures``,
+``pointing_figures``, ``lateration_figures``).
+
+The scenes and their referees live in ``homebot.trials`` (``tabletop``, ``people``,
+``looks``); this module picks the parts and prints their figures.
 """
 
 from __future__ import annotations
 
 import argparse
-import importlib
-import statistics
-import time
 from collections.abc import Callable
 from typing import Any
 
-import numpy as np
 from rich.console import Console
 
 from homebot.bench.arguments import count, seed
-from homebot.perception.recognition import TabletopPerception, match_positions
-from homebot.scenarios.perceiving import trained_recogniser
-from homebot.sim.tabletop import tabletop_scene
-from homebot.world import World, object_catalogue
+from homebot.trials.people import (
+    face_figures,
+    lateration_figures,
+    people_figures,
+    pointing_figures,
+)
+from homebot.trials.tabletop import object_figures
+from homebot.world import World
 
-__all__ = ["add_arguments", "object_figures", "run"]
-
-#: the issue's targets for the objects
-TARGETS = {"precision": 0.95, "recall": 0.90, "category_accuracy": 0.90,
-           "median_position_error_cm": 2.0, "cpu_ms_per_frame": 50.0}
-_MATCH = 0.05  #: metres
-
+__all__ = ["add_arguments", "run"]
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--scenes", type=count("--scenes", 1, 100_000), default=300,
@@ -75,10 +71,10 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
         "objects": lambda: object_figures(World.load(args.world), args.scenes, args.seed,
                                           gap=args.gap / 100,
                                           whole_in_view=not args.partial_views),
-        "people": lambda: _other("people", "people_figures", args.seed, args.scenes),
-        "faces": lambda: _other("faces", "face_figures", args.seed),
-        "pointing": lambda: _other("gestures", "pointing_figures", args.seed),
-        "lateration": lambda: _other("lateration", "lateration_figures", args.seed),
+        "people": lambda: people_figures(args.seed, args.scenes),
+        "faces": lambda: face_figures(args.seed),
+        "pointing": lambda: pointing_figures(args.seed),
+        "lateration": lambda: lateration_figures(args.seed),
         "look": lambda: _look(World.load(args.world), args.looks, args.seed),
     }
     for name, part in parts.items():
@@ -89,81 +85,8 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
     return {"benchmark": "perception", "figures": figures}
 
 
-def _other(module: str, function: str, *arguments: int) -> dict[str, Any]:
-    """Figures from another perception module, or "not built" while it is absent.
-
-    The figure functions live in ``homebot.bench.perception_people`` (they generate
-    scenes with ``homebot.sim``, which the perception modules never import)."""
-    try:
-        importlib.import_module(f"homebot.perception.{module}")
-        found = importlib.import_module("homebot.bench.perception_people")
-    except ModuleNotFoundError:
-        return {"status": "not built"}
-    make = getattr(found, function, None)
-    if make is None:
-        return {"status": "not built"}
-    result: dict[str, Any] = make(*arguments)
-    return result
-
-
 def _look(world: World, looks: int, look_seed: int) -> dict[str, Any]:
-    """The embodied robot's looks at people (``homebot.bench.perception_look``)."""
-    from homebot.bench.perception_look import look_figures  # the embodied extra: OpenCV
+    """The embodied robot's looks at people (``homebot.trials.looks``)."""
+    from homebot.trials.looks import look_figures
 
     return look_figures(world, looks, look_seed)
-
-
-def object_figures(world: World, scenes: int, scene_seed: int, *, gap: float = 0.03,
-                   whole_in_view: bool = True) -> dict[str, Any]:
-    """Detection, recognition and position figures over generated table-top scenes."""
-    catalogue = object_catalogue(world)
-    if not catalogue:
-        return {"status": f"the world {world.name} has no objects"}
-    began = time.perf_counter()
-    recogniser = trained_recogniser(catalogue)  # its own views, not the scenes' seed
-    training_s = time.perf_counter() - began
-    perception = TabletopPerception(recogniser, np.random.default_rng([scene_seed, 7]))
-    entries = list(catalogue.values())
-    truths = found = matched = right_category = right_object = 0
-    errors: list[float] = []
-    wall: list[float] = []
-    cpu: list[float] = []
-    for index in range(scenes):
-        rng = np.random.default_rng([scene_seed, index])
-        scene = tabletop_scene(entries, int(rng.integers(1, 9)), rng, gap=gap,
-                               whole_in_view=whole_in_view)
-        started, started_cpu = time.perf_counter(), time.thread_time()
-        estimates = perception.perceive(scene.frame)
-        cpu.append(time.thread_time() - started_cpu)
-        wall.append(time.perf_counter() - started)
-        pairs = match_positions([e.position for e in estimates],
-                                [placed.position for placed in scene.objects], _MATCH)
-        truths += len(scene.objects)
-        found += len(estimates)
-        matched += len(pairs)
-        for estimate_index, truth_index in pairs:
-            estimate, truth = estimates[estimate_index], scene.objects[truth_index]
-            right_category += estimate.category == truth.entry.category
-            right_object += estimate.label == truth.entry.name
-            errors.append(float(np.hypot(estimate.position[0] - truth.position[0],
-                                         estimate.position[1] - truth.position[1])))
-    figures: dict[str, Any] = {
-        "world": world.name, "catalogue_objects": len(catalogue), "scenes": scenes,
-        "gap_cm": round(gap * 100, 1), "whole_in_view": whole_in_view,
-        "objects": truths, "detections": found,
-        "precision": round(matched / max(found, 1), 4),
-        "recall": round(matched / max(truths, 1), 4),
-        "category_accuracy": round(right_category / max(matched, 1), 4),
-        "object_accuracy": round(right_object / max(matched, 1), 4),
-        "median_position_error_cm": round(100 * statistics.median(errors), 2) if errors
-        else None,
-        "ms_per_frame": round(1000 * statistics.median(wall), 2),
-        "cpu_ms_per_frame": round(1000 * statistics.median(cpu), 2),
-        "training_s": round(training_s, 1),
-    }
-    figures["targets_met"] = {
-        name: (figures[name] is not None and (
-            figures[name] <= target if name in {"median_position_error_cm", "cpu_ms_per_frame"}
-            else figures[name] >= target))
-        for name, target in TARGETS.items()}
-    return figures

@@ -1,4 +1,4 @@
-"""People in the loop: what the embodied robot's look at a room reports, against the truth.
+"""Look trials: what the embodied robot's look at a room reports of people, against the truth.
 
 Each look is a seeded situation in a world: the robot stands at a free spot of a
 room, turned at random, and 1 to 4 of the world's people stand, sit or lie about

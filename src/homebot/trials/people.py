@@ -1,7 +1,7 @@
-"""Figures of people perception for ``homebot bench perception``: tracking, faces, pointing, tags.
+"""People perception trials: tracking, faces, pointing and tags, judged against the truth.
 
 Each function generates its scenes from a seed and judges the pipeline against
-the simulator's truth:
+the simulator's truth (``homebot bench perception`` prints what they return):
 
 - ``people_figures``: crowd scenes (``homebot.sim.crowd``: 2–5 people walking and
   crossing, furniture legs, a 1081-beam laser); legs detected, tracked; CLEAR-MOT

@@ -6,7 +6,7 @@ import pytest
 
 pytest.importorskip("motmetrics")
 
-from homebot.bench.perception_people import (
+from homebot.trials.people import (
     lateration_figures,
     people_figures,
     pointing_figures,
