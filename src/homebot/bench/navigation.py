@@ -384,10 +384,9 @@ def _drive(name: str, world: World, navigator: Navigator, targets: list[Pose],
                     trace.tick(sim, body)
             return source()
 
-        navigation = RecoveringNavigation(body, navigator, controller, localise, _POLICY)
-        if recording:
-            assert trace is not None
-            trace.watch(navigation, body)
+        navigation = RecoveringNavigation(body, navigator, controller, localise, _POLICY) \
+            if trace is None or not recording else \
+            _TracedNavigation(body, navigator, controller, localise, _POLICY, trace=trace)
         collisions = len(sim.collisions)
         previous = target
         try:
@@ -537,22 +536,13 @@ class _Trace:
             "v": [round(twist.vx, 2), round(twist.vy, 2), round(twist.wz, 2)],
             "people": people})
 
-    def watch(self, navigation: RecoveringNavigation, body: SimBody) -> None:
-        """Record every stage-1 path the navigation plans (and when none was found)."""
-        plan_wide = navigation.plan_wide
-
-        def traced(here: Pose, target: Pose, avoid_doors: frozenset[str],
-                   obstacles: np.ndarray, squeeze: bool = False,
-                   ) -> tuple[tuple[float, float], ...] | None:
-            path = plan_wide(here, target, avoid_doors, obstacles, squeeze)
-            self.record["plans"].append({
-                "t": round(body.now(), 2), "from": _rounded(here),
-                "obstacles": len(obstacles), "squeeze": squeeze,
-                "path": None if path is None else [[round(x, 2), round(y, 2)]
-                                                   for x, y in path]})
-            return path
-
-        navigation.plan_wide = traced  # type: ignore[method-assign]
+    def planned(self, now: float, here: Pose, obstacles: np.ndarray, squeeze: bool,
+                path: tuple[tuple[float, float], ...] | None) -> None:
+        """Record a stage-1 path the navigation planned (None: none was found)."""
+        self.record["plans"].append({
+            "t": round(now, 2), "from": _rounded(here),
+            "obstacles": len(obstacles), "squeeze": squeeze,
+            "path": None if path is None else [[round(x, 2), round(y, 2)] for x, y in path]})
 
     def end(self, sim: Simulation, reached: bool, reason: str, duration: float,
             collisions: list[dict[str, object]]) -> None:
@@ -561,6 +551,21 @@ class _Trace:
                            collisions=[str(c.get("with")) for c in collisions])
         with self.path.open("a") as handle:
             handle.write(json.dumps(self.record) + "\n")
+
+
+class _TracedNavigation(RecoveringNavigation):
+    """The navigation, telling ``trace`` every stage-1 path it plans."""
+
+    def __init__(self, *args: Any, trace: _Trace, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)
+        self.trace = trace
+
+    def plan_wide(self, here: Pose, target: Pose, avoid_doors: frozenset[str],
+                  obstacles: np.ndarray, squeeze: bool = False,
+                  ) -> tuple[tuple[float, float], ...] | None:
+        path = super().plan_wide(here, target, avoid_doors, obstacles, squeeze)
+        self.trace.planned(self.body.now(), here, obstacles, squeeze, path)
+        return path
 
 
 def _rounded(pose: Pose) -> list[float]:

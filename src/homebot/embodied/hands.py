@@ -9,10 +9,10 @@ two sides at most), and after a step the robot looks again: the step moved its p
 estimate's error under what it saw. A release puts the object on a free spot of the
 placement (or drops it into a bin). The arm plans among the objects where the robot's
 camera last saw them (``perceive_objects``; a picked object leaves that memory, a placed
-one is where it was put); the wiring's ``locate`` (the simulator's truth) stands in only
-for objects it has not seen and for box headings. The robot has one arm: the world's
-second hand name is kept for the skills, but a grasp with the gripper full is refused (the
-hand stays empty).
+one is where it was put: ``SeenObjects``, the arm's ``locate``); the wiring's own locate
+(the simulator's truth) stands in only for objects it has not seen and for box headings.
+The robot has one arm: the world's second hand name is kept for the skills, but a grasp
+with the gripper full is refused (the hand stays empty).
 """
 
 from __future__ import annotations
@@ -26,12 +26,12 @@ from shapely.geometry import LineString, Point
 
 from homebot.embodied.robot import BodyRobot
 from homebot.geometry import Pose
-from homebot.manipulation.control import ArmControl
+from homebot.manipulation.control import ArmControl, Locate
 from homebot.manipulation.pick import PickOutcome, PickResult
 from homebot.robot import Detection
-from homebot.world import surface_height
+from homebot.world import World, surface_height
 
-__all__ = ["ArmedBodyRobot"]
+__all__ = ["ArmedBodyRobot", "SeenObjects"]
 
 _STAND_OFF = 0.4  #: metres from a surface's edge where the robot stands to reach over it
 _STANDS_TRIED = 2  #: sides of the surface the robot steps to before it gives up
@@ -46,36 +46,57 @@ _NOT_TRIED = {
 _BIN_CATEGORIES = ("bin", "trash", "trash can", "waste bin")
 
 
-class ArmedBodyRobot(BodyRobot):
-    """A ``BodyRobot`` that grasps, holds and releases with its arm.
+class SeenObjects:
+    """Where the robot's camera last saw each object: the arm's ``Locate``.
 
     Args:
-        *args: as ``BodyRobot``.
-        arm: picking and placing over the same body.
-        **kwargs: as ``BodyRobot``.
+        world: the map (surfaces and their heights).
+        fallback: the wiring's locate (the simulator's truth, until perception reports
+            poses), for what perception has not seen and for a box's heading, which
+            perception does not estimate yet.
     """
 
-    def __init__(self, *args: Any, arm: ArmControl, **kwargs: Any) -> None:
-        super().__init__(*args, **kwargs)
-        self.arm = arm
-        self._holding: dict[str, Detection] = {}
-        #: where perception last saw each object: (placement, map position)
-        self.seen: dict[str, tuple[str, tuple[float, float]]] = {}
-        self._given_locate = arm.locate
-        arm.locate = self._locate
+    def __init__(self, world: World, fallback: Locate) -> None:
+        self.world = world
+        self.fallback = fallback
+        #: where perception last saw each object: (placement, map position); the
+        #: ``ArmedBodyRobot`` keeps it
+        self.places: dict[str, tuple[str, tuple[float, float]]] = {}
 
-    def _locate(self, name: str) -> tuple[float, float, float, float] | None:
+    def __call__(self, name: str) -> tuple[float, float, float, float] | None:
         """Where the arm's planning scene puts ``name``: where perception last saw it (on
-        the surface it was seen on, at the map's height for it); the wiring's ``locate``
-        (the simulator's truth, until perception reports poses) only for what perception
-        has not seen, and for a box's heading, which perception does not estimate yet."""
-        given = self._given_locate(name)
-        remembered = self.seen.get(name)
+        the surface it was seen on, at the map's height for it), else the fallback's."""
+        given = self.fallback(name)
+        remembered = self.places.get(name)
         if remembered is None or remembered[0] not in self.world.placements:
             return given
         placement, (x, y) = remembered
         heading = given[2] if given is not None else 0.0
         return (x, y, heading, surface_height(self.world.placements[placement].model))
+
+
+class ArmedBodyRobot(BodyRobot):
+    """A ``BodyRobot`` that grasps, holds and releases with its arm.
+
+    Args:
+        *args: as ``BodyRobot``.
+        arm: picking and placing over the same body, locating objects by ``seen``.
+        seen: the memory of where objects were seen, which this robot keeps.
+        **kwargs: as ``BodyRobot``.
+
+    Raises:
+        ValueError: the arm locates objects some other way than by ``seen``.
+    """
+
+    def __init__(self, *args: Any, arm: ArmControl, seen: SeenObjects, **kwargs: Any) -> None:
+        if arm.locate is not seen:
+            raise ValueError("the arm must locate objects by the robot's SeenObjects: "
+                             "build it with ArmControl(body, world, seen)")
+        super().__init__(*args, **kwargs)
+        self.arm = arm
+        self._holding: dict[str, Detection] = {}
+        #: where perception last saw each object: (placement, map position)
+        self.seen = seen.places
 
     def perceive_objects(self, placement: str) -> list[Detection]:
         detections = super().perceive_objects(placement)

@@ -93,12 +93,14 @@ def embodied_robot(simulation: Simulation, navigator: Navigator, *,
         robot = BodyRobot(body, world, navigator, localisation, MotionSearchPlanner(),
                           percepts, percepts, simulation.events, looking=looking)
     else:
-        from homebot.embodied.hands import ArmedBodyRobot
+        from homebot.embodied.hands import ArmedBodyRobot, SeenObjects
         from homebot.manipulation.control import ArmControl
 
-        arm = ArmControl(body, world, _TrueObjectPoses(simulation, body), seed=simulation.seed)
+        seen = SeenObjects(world, _TrueObjectPoses(simulation, body))
+        arm = ArmControl(body, world, seen, seed=simulation.seed)
         robot = ArmedBodyRobot(body, world, navigator, localisation, MotionSearchPlanner(),
-                               percepts, percepts, simulation.events, looking=looking, arm=arm)
+                               percepts, percepts, simulation.events, looking=looking, arm=arm,
+                               seen=seen)
     # faces: the household is known by face; "my name is ..." enrols the head camera's
     # views of someone new in front
     robot.acquaintances = Acquaintances(lambda: household_faces(world))
