@@ -4,9 +4,10 @@ on their way gets the executive's door protocol, and the task's time budget stop
 from __future__ import annotations
 
 from homebot.events import EventLog
+from homebot.executive import RunReport
 from homebot.golog import Interpreter, Run, State, Theory, parse_program
 from homebot.golog.skill_executor import SkillExecutor
-from homebot.htn import Goal, HtnRun, Names, PlanActor, home_domain
+from homebot.htn import Goal, HtnTrace, Names, PlanActor, home_domain
 from homebot.scenarios import SimulatedRun
 from homebot.sitlog import Interpreter as DialogueInterpreter
 from homebot.sitlog import RunResult, Var, format_term, load_program, parse_term
@@ -38,7 +39,8 @@ def _started_after(events: EventLog, deadline: float) -> list[str]:
 
 # -- HTN: guide Alex to the bedroom, whose door is shut -------------------------------------
 
-def _guide_alex(apartment: World, time_limit: float | None) -> tuple[SimulatedRun, HtnRun]:
+def _guide_alex(apartment: World,
+                time_limit: float | None) -> tuple[SimulatedRun, RunReport[HtnTrace]]:
     run = _shut(apartment, "bedroom door", time_limit)
     names, domain = Names(), home_domain()
     goal = Goal.of("guide_person", ["Alex", "bedroom"], apartment, names, domain)
@@ -57,9 +59,9 @@ def test_an_htn_plan_stops_at_the_time_budget_without_replanning(apartment: Worl
     events = run.simulation.events
     assert _door_opened_by_the_executive(events, "bedroom door", run)
     assert not done
-    last = done.operators[-1]
+    last = done.detail.operators[-1]
     assert (last.operator, last.error) == ("!report", "out_of_time")
-    assert done.replans == 0
+    assert done.detail.replans == 0
     assert "ran out of time" in done.reason
     assert _started_after(events, 35.0) == []
 

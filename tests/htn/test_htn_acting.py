@@ -6,7 +6,8 @@ import pytest
 
 from homebot.errors import PlanningError
 from homebot.events import EventLog
-from homebot.htn import Goal, HtnRun, Names, PlanActor, home_domain, read_domain_text
+from homebot.executive import RunReport
+from homebot.htn import Goal, HtnTrace, Names, PlanActor, home_domain, read_domain_text
 from homebot.navigation import Navigator
 from homebot.scenarios import SimulatedRun, disturbed
 from homebot.world import DisturbanceModel, World
@@ -14,7 +15,7 @@ from homebot.world import DisturbanceModel, World
 
 def _carry_out(world: World, navigator: Navigator, task: str, args: list[str], *, seed: int = 0,
                disturbances: DisturbanceModel | None = None,
-               **actor: object) -> tuple[HtnRun, EventLog]:
+               **actor: object) -> tuple[RunReport[HtnTrace], EventLog]:
     run = SimulatedRun.create(world, seed=seed, disturbances=disturbances, navigator=navigator)
     names = Names()
     domain = home_domain()
@@ -31,9 +32,9 @@ def _statuses(events: EventLog, skill: str) -> list[str]:
 def test_bring_object_verified_operator_by_operator(apartment: World,
                                                     apartment_navigator: Navigator) -> None:
     done, events = _carry_out(apartment, apartment_navigator, "bring_object", ["pringles", "Alex"])
-    assert done and done.replans == 0 and len(done.plans) == 1
-    assert [r.status for r in done.operators] == ["verified"] * 8
-    assert [r.skill for r in done.operators] == ["say", "navigate", "find_object", "pick",
+    assert done and done.detail.replans == 0 and len(done.detail.plans) == 1
+    assert [r.status for r in done.detail.operators] == ["verified"] * 8
+    assert [r.skill for r in done.detail.operators] == ["say", "navigate", "find_object", "pick",
                                                  "navigate", "find_person", "give", "say"]
     # Each operator's state machine: executed (finished), then monitored (verified).
     assert _statuses(events, "pick") == ["finished", "verified"]
@@ -44,15 +45,15 @@ def test_bring_object_verified_operator_by_operator(apartment: World,
 
 def test_guide_person(apartment: World, apartment_navigator: Navigator) -> None:
     done, _ = _carry_out(apartment, apartment_navigator, "guide_person", ["Alex", "bedroom"])
-    assert done and [r.operator for r in done.operators][3] == "!guide"
+    assert done and [r.operator for r in done.detail.operators][3] == "!guide"
 
 
 def test_a_slipping_grasp_is_retried(apartment: World, apartment_navigator: Navigator) -> None:
     done, events = _carry_out(apartment, apartment_navigator, "bring_object",
                               ["pringles", "Alex"], seed=2,
                               disturbances=DisturbanceModel(grasp_slip=0.5))
-    grasp = next(r for r in done.operators if r.operator == "!grasp")
-    assert done and done.replans == 0 and grasp.attempts == 3 and grasp.status == "verified"
+    grasp = next(r for r in done.detail.operators if r.operator == "!grasp")
+    assert done and done.detail.replans == 0 and grasp.attempts == 3 and grasp.status == "verified"
     assert _statuses(events, "pick") == ["finished", "aborted", "retrying", "finished",
                                          "aborted", "retrying", "finished", "verified"]
 
@@ -62,12 +63,12 @@ def test_an_aborted_grasp_leads_to_a_new_plan(apartment: World,
     done, events = _carry_out(apartment, apartment_navigator, "bring_object",
                               ["pringles", "Alex"], seed=4,
                               disturbances=DisturbanceModel(grasp_slip=0.5))
-    assert done and done.replans == 1 and len(done.plans) == 2
-    aborted = [r for r in done.operators if r.status == "aborted"]
+    assert done and done.detail.replans == 1 and len(done.detail.plans) == 2
+    aborted = [r for r in done.detail.operators if r.status == "aborted"]
     assert [(r.operator, r.error, r.attempts) for r in aborted] == [
         ("!grasp", "not_grasped", 3)]
     # The new plan starts from what the robot believes: at the pantry, not yet announced again.
-    assert [step.operator for step in done.plans[1]][:2] == ["!find_object", "!grasp"]
+    assert [step.operator for step in done.detail.plans[1]][:2] == ["!find_object", "!grasp"]
     assert [event.data["reason"] for event in events.of_kind("htn.replan")] == [
         "the pringles slipped from my hand"]
 
@@ -77,8 +78,8 @@ def test_per_operator_retries_are_the_users(apartment: World,
     done, _ = _carry_out(apartment, apartment_navigator, "bring_object", ["pringles", "Alex"],
                          seed=2, disturbances=DisturbanceModel(grasp_slip=0.5),
                          retries={"!grasp": 0})
-    grasps = [r for r in done.operators if r.operator == "!grasp"]
-    assert grasps[0].attempts == 1 and grasps[0].status == "aborted" and done.replans >= 1
+    grasps = [r for r in done.detail.operators if r.operator == "!grasp"]
+    assert grasps[0].attempts == 1 and grasps[0].status == "aborted" and done.detail.replans >= 1
 
 
 def test_an_object_moved_away_is_searched_for(apartment: World,
@@ -86,12 +87,12 @@ def test_an_object_moved_away_is_searched_for(apartment: World,
     done, events = _carry_out(apartment, apartment_navigator, "bring_object",
                               ["pringles", "Alex"], seed=2,
                               disturbances=DisturbanceModel(object_moved=1.0))
-    assert done and done.replans == 1
-    failed = [(r.operator, r.args[2], r.status, r.error) for r in done.operators
+    assert done and done.detail.replans == 1
+    failed = [(r.operator, r.args[2], r.status, r.error) for r in done.detail.operators
               if r.status != "verified"]
     assert failed == [("!find_object", "pantry", "failed", "not_found")]
     assert ("!search_object", ("robot", "pringles")) in [(r.operator, r.args)
-                                                          for r in done.operators]
+                                                          for r in done.detail.operators]
     assert "failed" in _statuses(events, "find_object")
 
 
@@ -110,7 +111,7 @@ def test_giving_up_after_the_replanning_bound(apartment: World,
     done, events = _carry_out(apartment, apartment_navigator, "bring_object",
                               ["pringles", "Alex"], seed=1,
                               disturbances=DisturbanceModel(grasp_slip=1.0), max_replans=2)
-    assert not done and done.replans == 3 and len(done.plans) == 3
+    assert not done and done.detail.replans == 3 and len(done.detail.plans) == 3
     assert "2 new plans did not help" in done.reason
     assert done.speech[-1].startswith("I am sorry, I could not do it: the pringles slipped")
     assert next(iter(events.of_kind("htn.end"))).data["success"] is False
@@ -127,8 +128,8 @@ def test_a_missed_second_look_keeps_the_found_placement(
         apartment: World, apartment_navigator: Navigator) -> None:
     done, _ = _carry_out(apartment, apartment_navigator, "place_object",
                               ["cup", "dishwasher"], seed=1, disturbances=disturbed(1.0))
-    grasp = next(r for r in done.operators if r.operator == "!grasp")
-    assert done and done.replans == 0 and (grasp.status, grasp.attempts) == ("verified", 2)
+    grasp = next(r for r in done.detail.operators if r.operator == "!grasp")
+    assert done and done.detail.replans == 0 and (grasp.status, grasp.attempts) == ("verified", 2)
 
 
 def test_an_object_moved_away_is_searched_for_and_found(
@@ -139,8 +140,8 @@ def test_an_object_moved_away_is_searched_for_and_found(
     domain = home_domain()
     done = PlanActor(run.executive, domain).run(
         Goal.of("place_object", ["cup", "dishwasher"], apartment, names, domain), names)
-    searches = [r.status for r in done.operators if r.operator == "!search_object"]
-    assert done and done.replans >= 1 and searches and searches[-1] == "verified"
+    searches = [r.status for r in done.detail.operators if r.operator == "!search_object"]
+    assert done and done.detail.replans >= 1 and searches and searches[-1] == "verified"
     assert run.simulation.object_location["cup"] == "dishwasher"
 
 
@@ -159,7 +160,7 @@ def test_declared_effects_are_checked_against_the_beliefs(
     domain = read_domain_text(WRONG_MODEL)
     done = PlanActor(run.executive, domain, max_replans=1).run(Goal(("go", "robot", "desk")))
     # The robot got there (navigate verified), but the model's promise is not believed.
-    assert not done and [r.status for r in done.operators] == ["verified", "verified"]
+    assert not done and [r.status for r in done.detail.operators] == ["verified", "verified"]
     missing = [e.data["missing"] for e in run.simulation.events.of_kind("htn.effects")]
     assert missing == [["object-at cola desk"]] * 2
     assert "after move_base I do not believe object-at cola desk" in done.reason
@@ -181,5 +182,5 @@ def test_with_monitoring_off_finished_operators_go_on(apartment: World,
     domain = home_domain()
     done = PlanActor(run.executive, domain).run(
         Goal.of("bring_object", ["pringles", "Alex"], apartment, names, domain), names)
-    assert done and done.replans == 0
-    assert [r.status for r in done.operators] == ["finished"] * 8
+    assert done and done.detail.replans == 0
+    assert [r.status for r in done.detail.operators] == ["finished"] * 8

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from homebot.executive import TaskReport
+from homebot.executive import RunReport
 from homebot.language import Vocabulary, parse_command
 from homebot.scenarios import SimulatedRun
 from homebot.task import Step
@@ -10,7 +10,7 @@ from homebot.trials.gpsr import judge
 from homebot.world import World
 
 
-def _carried_out(command: str) -> tuple[SimulatedRun, list[Step], TaskReport]:
+def _carried_out(command: str) -> tuple[SimulatedRun, list[Step], RunReport[None]]:
     world = World.load("apartment")
     parsed = parse_command(command, Vocabulary.from_world(world))
     run = SimulatedRun.create(world, seed=2)

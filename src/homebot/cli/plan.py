@@ -12,11 +12,11 @@ from rich.console import Console
 from homebot.beliefs import Beliefs
 from homebot.cli.options import add_world_options, load_world
 from homebot.errors import PlanningError
+from homebot.executive import print_report
 from homebot.htn import (
     HOME_TASKS,
     Domain,
     Goal,
-    HtnRun,
     Names,
     PlanActor,
     Planner,
@@ -36,7 +36,7 @@ from homebot.htn.logic import term_text
 from homebot.knowledge import KnowledgeBase
 from homebot.world import World
 
-__all__ = ["carry_out_with_htn", "print_htn_run", "register"]
+__all__ = ["carry_out_with_htn", "register"]
 
 
 def register(subparsers: Any) -> None:
@@ -189,23 +189,6 @@ def carry_out_with_htn(args: argparse.Namespace, world: World, run: Any,
                           "runs": [r.to_dict() for r in runs]}, ensure_ascii=False))
     else:
         console = Console()
-        for goal, done in zip(goals, runs, strict=True):
-            print_htn_run(console, goal, done)
+        for done in runs:
+            print_report(console, done)
     return 0 if all(runs) else 1
-
-
-def print_htn_run(console: Console, goal: Goal, done: HtnRun) -> None:
-    """Each operator with its skill's final status and attempts, and what the robot said."""
-    task = "(" + " ".join(term_text(item) for item in goal.task) + ")"
-    replans = f", {done.replans} replan{'s' * (done.replans != 1)}" if done.replans else ""
-    console.print(f"[bold]{task}[/]: {len(done.plans)} plan{'s' * (len(done.plans) != 1)}"
-                  f"{replans}", highlight=False)
-    for report in done.operators:
-        colour = "green" if report.status == "verified" else "red"
-        tries = f" after {report.attempts} attempts" if report.attempts > 1 else ""
-        error = f" ({report.error})" if report.error else ""
-        args = " ".join(str(arg) for arg in report.args)
-        console.print(f"  [{colour}]{report.status:9}[/] ({report.operator} {args}) -> "
-                      f"{report.skill}{error}{tries}", highlight=False, markup=True)
-    for text in done.speech:
-        console.print(f"  [cyan]robot:[/] {text}", highlight=False)

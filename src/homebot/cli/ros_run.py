@@ -12,8 +12,8 @@ from rich.markup import escape
 from homebot.beliefs import Beliefs
 from homebot.cli.options import retry_budgets
 from homebot.cli.ros_options import add_transport_options, transport_node
-from homebot.cli.simulated import print_report, write_events
-from homebot.executive import Executive
+from homebot.cli.simulated import write_events
+from homebot.executive import Executive, print_report
 from homebot.navigation import Navigator
 from homebot.skills import SkillContext
 from homebot.task import Task

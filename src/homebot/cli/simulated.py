@@ -7,7 +7,6 @@ import json
 from pathlib import Path
 
 from rich.console import Console
-from rich.markup import escape
 
 from homebot.cli.options import (
     add_retry_option,
@@ -18,7 +17,7 @@ from homebot.cli.options import (
 from homebot.cli.world import remember_last_run
 from homebot.errors import TaskError
 from homebot.events import EventLog
-from homebot.executive import TaskReport
+from homebot.executive import RunReport, print_report
 from homebot.scenarios import SimulatedRun, disturbance_level, disturbed
 from homebot.scenarios.embodied import add_fidelity_option
 from homebot.sim import InteractiveResponder
@@ -28,7 +27,6 @@ __all__ = [
     "add_run_options",
     "finish_run",
     "keep_events",
-    "print_report",
     "record_final_state",
     "simulated_run",
     "write_events",
@@ -81,7 +79,7 @@ def keep_events(args: argparse.Namespace, run: SimulatedRun) -> None:
         write_events(run.simulation.events, args.events)
 
 
-def finish_run(args: argparse.Namespace, run: SimulatedRun, report: TaskReport) -> int:
+def finish_run(args: argparse.Namespace, run: SimulatedRun, report: RunReport[None]) -> int:
     """Keep the events, print the report (or its JSON); 0 when the task succeeded, else 1."""
     keep_events(args, run)
     if args.json:
@@ -109,19 +107,3 @@ def write_events(events: EventLog, path: Path) -> None:
     except OSError as error:
         raise TaskError(f"{path}: cannot write the event log ({error.strerror or error}); "
                         "check that its folder exists and is writable") from None
-
-
-def print_report(console: Console, report: TaskReport) -> None:
-    """The steps, their outcomes, and what the robot said, for a person to read."""
-    for step in report.steps:
-        colour = "green" if step.status == "verified" else (
-            "yellow" if step.status == "finished" else "red")
-        args = escape(", ".join(f"{key}={value}" for key, value in step.args.items()))
-        error = f" ({escape(step.error)})" if step.error else ""
-        recovered = f" after {escape(', '.join(step.recoveries))}" if step.recoveries else ""
-        console.print(f"  [{colour}]{step.status:9}[/] {step.skill}({args}){error}{recovered}",
-                      highlight=False)
-    for text in report.speech:
-        console.print(f"  [cyan]robot:[/] {escape(text)}", highlight=False)
-    verdict = "[green]success[/]" if report.success else f"[red]failed[/]: {escape(report.reason)}"
-    console.print(f"  {verdict} in {report.sim_time:.1f} s simulated", highlight=False)

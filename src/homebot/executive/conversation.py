@@ -19,9 +19,10 @@ from __future__ import annotations
 import re
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import Any
 
 from homebot.errors import LanguageError
-from homebot.executive.report import TaskReport
+from homebot.executive.report import RunReport
 from homebot.language import (
     Discourse,
     ParseResult,
@@ -35,7 +36,7 @@ from homebot.task import Step, Task
 
 __all__ = ["STOP_WORDS", "Conversation", "Turn", "relay_sentence"]
 
-Runner = Callable[..., TaskReport]
+Runner = Callable[..., RunReport[Any]]
 STOP_WORDS = frozenset({"stop", "cancel", "stop it", "stop that", "cancel that",
                         "never mind", "nevermind", "forget it", "abort", "halt", "wait stop"})
 _YES = frozenset({"yes", "yes please", "yeah", "sure", "ok", "okay", "go ahead", "do it"})
@@ -53,7 +54,7 @@ class Turn:
     status: str  #: done, failed, asked, refused, stopped, cancelled or relayed
     said: list[str] = field(default_factory=list)
     parse: ParseResult | None = None
-    report: TaskReport | None = None
+    report: RunReport[Any] | None = None
 
     @property
     def question(self) -> str | None:
@@ -185,7 +186,7 @@ class Conversation:
 
     # ------------------------------------------------------------------ memory
 
-    def _remember(self, report: TaskReport) -> None:
+    def _remember(self, report: RunReport[Any]) -> None:
         """What "it" and "them" mean after the task: the last object handled (held or
         not) and the last person found."""
         obj, state, person, last = (self.discourse.obj, self.discourse.obj_state,
@@ -207,7 +208,7 @@ class Conversation:
         self.discourse = Discourse(obj, state, person, last)
 
     @staticmethod
-    def _relay(report: TaskReport) -> list[str]:
+    def _relay(report: RunReport[Any]) -> list[str]:
         lines = []
         for step in report.steps:
             if step.skill != "ask" or step.status != "verified" or " said: " not in step.message:

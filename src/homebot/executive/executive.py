@@ -3,11 +3,12 @@
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
+from dataclasses import dataclass
 from typing import Any
 
 from homebot.cancel import CancelToken
 from homebot.executive.recovery import PROTOCOLS, Protocol, Recover
-from homebot.executive.report import StepReport, TaskReport
+from homebot.executive.report import DetailT, RunReport, StepReport
 from homebot.skills import (
     OPERATOR,
     ErrorCode,
@@ -20,10 +21,19 @@ from homebot.skills import (
 from homebot.skills.skill import time_left
 from homebot.task import Step, Task
 
-__all__ = ["Executive"]
+__all__ = ["Executive", "RunMark"]
 
 # How many recovery protocols one step may use before the executive gives up on it.
 _MAX_RECOVERIES = 4
+
+
+@dataclass(frozen=True, slots=True)
+class RunMark:
+    """Where a run began: robot time, the event log's length, the journal's length."""
+
+    time: float
+    event: int
+    step: int
 
 
 class Executive:
@@ -53,9 +63,10 @@ class Executive:
         self.recovery = recovery and context.monitoring
         self.inference = inference if self.recovery else None
         self.time_limit = time_limit
+        self.journal: list[StepReport] = []  #: every step ``run_step`` ran, in order
 
     def run(self, task: Task, *, interrupt: Callable[[], bool] | None = None,
-            cancel: CancelToken | None = None) -> TaskReport:
+            cancel: CancelToken | None = None) -> RunReport[None]:
         """Run every step in order; the report says whether all ended as expected.
 
         ``interrupt`` is asked before each step after the first; when it answers true
@@ -107,7 +118,22 @@ class Executive:
         context.events.record("task.end", success=success, reason=reason)
         speech = [event.data["text"] for event in context.events.since(first_event)
                   if event.kind == "speech"]
-        return TaskReport(success, reports, speech, context.robot.now() - started, reason)
+        return RunReport(success, reports, speech, context.robot.now() - started, reason, None)
+
+    def begin(self) -> RunMark:
+        """An engine's run starts: the time budget starts now; ``report`` covers what follows."""
+        self.start_budget()
+        return RunMark(self.context.robot.now(), self.context.events.count, len(self.journal))
+
+    def report(self, mark: RunMark, success: bool, reason: str,
+               detail: DetailT) -> RunReport[DetailT]:
+        """The run report of an engine's run begun at ``mark``: the steps ``run_step`` ran
+        since, what the robot said since, and the engine's own ``detail``."""
+        context = self.context
+        speech = [event.data["text"] for event in context.events.since(mark.event)
+                  if event.kind == "speech"]
+        return RunReport(success, self.journal[mark.step:], speech,
+                         context.robot.now() - mark.time, reason, detail)
 
     def start_budget(self) -> None:
         """Start the time budget now (``run`` does; engines that call ``run_step`` may)."""
@@ -132,7 +158,12 @@ class Executive:
         """
         if self.time_limit is not None and self.context.deadline is None:
             self.start_budget()
-        return self._step(skill, self._bind(args), recover=recover, retries=retries)[0]
+        args = self._bind(args)
+        outcome, recoveries = self._step(skill, args, recover=recover, retries=retries)
+        self.journal.append(StepReport(skill, dict(args), outcome.status.value,
+                                       outcome.error.value if outcome.error else None,
+                                       outcome.message, tuple(recoveries)))
+        return outcome
 
     def _step(self, skill: str, args: Mapping[str, Any], *, recover: Recover = True,
               retries: int | None = None) -> tuple[Outcome, list[str]]:

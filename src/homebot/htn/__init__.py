@@ -1,6 +1,6 @@
 """HTN planning (SHOP2/JSHOP2 style) with monitored plan execution (Care-O-bot "Jenny")."""
 
-from homebot.htn.acting import OPERATOR_SKILLS, HtnRun, OperatorReport, PlanActor, step_for
+from homebot.htn.acting import OPERATOR_SKILLS, HtnTrace, OperatorReport, PlanActor, step_for
 from homebot.htn.domain import Branch, Domain, Method, Operator, Problem
 from homebot.htn.home import (
     HOME_TASKS,
@@ -39,7 +39,7 @@ __all__ = [
     "DecompositionNode",
     "Domain",
     "Goal",
-    "HtnRun",
+    "HtnTrace",
     "Method",
     "Names",
     "Operator",

@@ -20,16 +20,19 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from homebot.executive import WAY_BLOCKED, Executive
+from rich.markup import escape
+
+from homebot.executive import WAY_BLOCKED, Executive, RunReport
 from homebot.htn.domain import Domain
 from homebot.htn.home import Goal, Names, home_domain, state_from_beliefs
+from homebot.htn.logic import term_text
 from homebot.htn.planner import Plan, Planner, PlanStep
 from homebot.htn.state import Atom, State
 from homebot.knowledge import KnowledgeBase
 from homebot.skills import ErrorCode, Outcome, Status, speak
 from homebot.task import Step
 
-__all__ = ["OPERATOR_SKILLS", "HtnRun", "OperatorReport", "PlanActor", "step_for"]
+__all__ = ["OPERATOR_SKILLS", "HtnTrace", "OperatorReport", "PlanActor", "step_for"]
 
 # Predicates the actor remembers from verified operators across replanning (no sensor
 # shows them: what the robot has told whom).
@@ -104,28 +107,37 @@ class OperatorReport:
 
 
 @dataclass
-class HtnRun:
-    """A goal carried out: success, every plan made, every operator run, and what was said."""
+class HtnTrace:
+    """What an HTN run adds to its report: the goal, every plan made, every operator run."""
 
-    success: bool
+    task: tuple[Any, ...]
     plans: list[Plan] = field(default_factory=list)
     operators: list[OperatorReport] = field(default_factory=list)
     replans: int = 0
-    speech: list[str] = field(default_factory=list)
-    reason: str = ""
-    sim_time: float = 0.0
     searched: set[str] = field(default_factory=set)  #: objects searched for everywhere in vain
     forgotten: set[str] = field(default_factory=set)  #: objects whose misses were forgotten
 
-    def __bool__(self) -> bool:
-        return self.success
-
     def to_dict(self) -> dict[str, Any]:
-        return {"success": self.success, "replans": self.replans,
+        return {"task": [term_text(item) for item in self.task], "replans": self.replans,
                 "plans": [plan.to_dicts() for plan in self.plans],
-                "operators": [report.to_dict() for report in self.operators],
-                "speech": list(self.speech), "reason": self.reason,
-                "sim_time": round(self.sim_time, 2)}
+                "operators": [report.to_dict() for report in self.operators]}
+
+    def lines(self) -> list[str]:
+        """The goal with its plans and replans, then each operator with its skill's final
+        status, error and attempts."""
+        task = escape("(" + " ".join(term_text(item) for item in self.task) + ")")
+        replans = f", {self.replans} replan{'s' * (self.replans != 1)}" if self.replans else ""
+        lines = [f"[bold]{task}[/]: {len(self.plans)} plan{'s' * (len(self.plans) != 1)}"
+                 f"{replans}"]
+        for report in self.operators:
+            colour = "green" if report.status == "verified" else (
+                "yellow" if report.status == "finished" else "red")
+            tries = f" after {report.attempts} attempts" if report.attempts > 1 else ""
+            error = f" ({report.error})" if report.error else ""
+            args = " ".join(str(arg) for arg in report.args)
+            lines.append(f"  [{colour}]{report.status:9}[/] "
+                         f"{escape(f'({report.operator} {args}) -> {report.skill}{error}{tries}')}")
+        return lines
 
 
 class PlanActor:
@@ -159,21 +171,20 @@ class PlanActor:
                                       extra=[*goal.atoms, *memory], knowledge=self.knowledge)
         return state
 
-    def run(self, goal: Goal, names: Names | None = None) -> HtnRun:
+    def run(self, goal: Goal, names: Names | None = None) -> RunReport[HtnTrace]:
         """Plan, act, monitor, replan; the robot says how it ended."""
         context = self.context
         names = names or Names()
-        started = context.robot.now()
-        self.executive.start_budget()
-        first_speech = len(list(context.events.of_kind("speech")))
+        began = self.executive.begin()
         context.events.record("htn.goal", task=list(goal.task))
-        run = HtnRun(False)
+        run = HtnTrace(goal.task)
         memory: set[Atom] = set()
+        success, reason = False, ""
         while True:
             result = self.planner.search(self._state(goal, names, memory), [goal.task])
             if result.plan is None:
-                run.reason = ("I found no plan from what I now believe"
-                              if not result.stopped else f"planning stopped ({result.stopped})")
+                reason = ("I found no plan from what I now believe"
+                          if not result.stopped else f"planning stopped ({result.stopped})")
                 break
             plan = result.plan
             for step in plan.steps:  # every operator must have a skill before the robot moves
@@ -183,30 +194,26 @@ class PlanActor:
             context.events.record("htn.plan", replan=run.replans, plan=plan.to_dicts())
             failure = self._execute(plan, names, memory, goal, run)
             if failure is None:
-                run.success = True
+                success = True
                 break
             if run.operators and run.operators[-1].error == ErrorCode.OUT_OF_TIME.value:
-                run.reason = failure  # the budget is spent: no new plan would be carried out
+                reason = failure  # the budget is spent: no new plan would be carried out
                 break
             run.replans += 1
             if run.replans > self.max_replans:
-                run.reason = failure if not self.max_replans else (
+                reason = failure if not self.max_replans else (
                     f"{failure} (and {self.max_replans} new plans did not help)")
                 break
             context.events.record("htn.replan", replan=run.replans, reason=failure)
-        if run.success and not any(s.operator == "!report" for s in run.plans[-1].steps):
+        if success and not any(s.operator == "!report" for s in run.plans[-1].steps):
             speak(context, "I have done what you asked.")
-        elif not run.success:
-            speak(context, f"I am sorry, I could not do it: {run.reason}.")
-        context.events.record("htn.end", success=run.success, replans=run.replans,
-                              reason=run.reason)
-        run.speech = [event.data["text"] for event in
-                      list(context.events.of_kind("speech"))[first_speech:]]
-        run.sim_time = context.robot.now() - started
-        return run
+        elif not success:
+            speak(context, f"I am sorry, I could not do it: {reason}.")
+        context.events.record("htn.end", success=success, replans=run.replans, reason=reason)
+        return self.executive.report(began, success, reason, run)
 
     def _execute(self, plan: Plan, names: Names, memory: set[Atom], goal: Goal,
-                 run: HtnRun) -> str | None:
+                 run: HtnTrace) -> str | None:
         """Run the plan's operators in order; the reason of the first failure, or None."""
         for step in plan.steps:
             operator = self.domain.operators[step.operator]
@@ -234,7 +241,7 @@ class PlanActor:
                 return f"after {step.operator[1:]} I do not believe {missing[0]}"
         return None
 
-    def _remember(self, skill_step: Step, outcome: Outcome, run: HtnRun) -> None:
+    def _remember(self, skill_step: Step, outcome: Outcome, run: HtnTrace) -> None:
         """What later skills need from this one, as the executive keeps it for GPSR steps.
 
         A found object's placement is bound for the grasp (a missed second look must
@@ -251,7 +258,7 @@ class PlanActor:
             run.searched.add(str(skill_step.args["object"]))
 
     def _run_operator(self, step: PlanStep, skill_step: Step,
-                      run: HtnRun) -> tuple[Outcome, int]:
+                      run: HtnTrace) -> tuple[Outcome, int]:
         context = self.context
         wanted = str(skill_step.args.get("object"))
         if _searches_everywhere(skill_step) and wanted in run.searched - run.forgotten:

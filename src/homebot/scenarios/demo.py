@@ -7,7 +7,7 @@ from dataclasses import dataclass
 
 from homebot.errors import WorldError
 from homebot.events import Event
-from homebot.executive import TaskReport
+from homebot.executive import RunReport
 from homebot.executive.taskfile import validate_task
 from homebot.navigation import Navigator
 from homebot.scenarios.embodied import Fidelity
@@ -95,7 +95,7 @@ DEMO_TASKS: tuple[DemoTask, ...] = (
 def run_demo(world: World, on_event: Callable[[Event], None] | None = None,
              on_task: Callable[[DemoTask], None] | None = None,
              level: float = 0.5, fidelity: Fidelity = Fidelity.SYMBOLIC,
-             ) -> list[tuple[DemoTask, TaskReport, SimulatedRun]]:
+             ) -> list[tuple[DemoTask, RunReport[None], SimulatedRun]]:
     """Run every demo task in a fresh home with light random disturbances on top.
 
     Raises ``WorldError`` or ``TaskError`` when ``world`` lacks what the tasks name.

@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 from homebot.beliefs import Beliefs
 from homebot.cancel import CancelToken
-from homebot.executive import Executive, TaskReport
+from homebot.executive import Executive, RunReport
 from homebot.executive.recovery import Protocol
 from homebot.navigation import Navigator
 from homebot.navigation.localisation import MonteCarloLocalisation
@@ -110,7 +110,7 @@ class SimulatedRun:
                    embodied.localisation)
 
     def run(self, task: Task, *, interrupt: Callable[[], bool] | None = None,
-            cancel: CancelToken | None = None) -> TaskReport:
+            cancel: CancelToken | None = None) -> RunReport[None]:
         """Run a task in this home; ``interrupt`` (asked between steps) or ``cancel`` can
         stop it."""
         return self.executive.run(task, interrupt=interrupt, cancel=cancel)

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from homebot.executive import TaskReport
+from homebot.executive import RunReport
 
 __all__ = ["report_actions", "scenario_summary"]
 
@@ -16,6 +16,6 @@ def scenario_summary(name: str, success: bool, actions: list[Any], speech: list[
             **figures}
 
 
-def report_actions(report: TaskReport) -> list[dict[str, Any]]:
+def report_actions(report: RunReport[Any]) -> list[dict[str, Any]]:
     """The steps of a task report as summary actions: skill, args, status, error."""
     return [step.to_dict() for step in report.steps]

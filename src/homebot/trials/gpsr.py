@@ -29,7 +29,7 @@ import re
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from homebot.executive import TaskReport
+from homebot.executive import RunReport
 from homebot.robot import PersonPercept
 from homebot.scenarios import SimulatedRun
 from homebot.skills.perception import matches_person
@@ -109,7 +109,8 @@ def _true_superlatives(run: SimulatedRun, args: Mapping[str, Any]) -> list[str]:
     return [name for name in there if float(getattr(world.objects[name], measure)) == value]
 
 
-def judge(run: SimulatedRun, steps: Sequence[Step], report: TaskReport) -> tuple[bool, str]:
+def judge(run: SimulatedRun, steps: Sequence[Step],
+          report: RunReport[Any]) -> tuple[bool, str]:
     """Whether the home shows the command done (and if not, the first effect missing)."""
     if len(report.steps) != len(steps):
         return False, "not every step ran"

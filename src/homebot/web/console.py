@@ -35,7 +35,7 @@ from homebot.cancel import CancelToken
 from homebot.errors import HomebotError
 from homebot.events import Event
 from homebot.executive.conversation import Conversation, Turn
-from homebot.executive.report import TaskReport
+from homebot.executive.report import RunReport
 from homebot.language import Vocabulary
 from homebot.robot import Body, Twist
 from homebot.scenarios import SimulatedRun
@@ -460,7 +460,7 @@ class Console:
                                                        "kind": "console.reply", "text": line}))
 
     def _run_task(self, task: Task, *, interrupt: Callable[[], bool] | None = None,
-                  helping: bool = False) -> TaskReport:
+                  helping: bool = False) -> RunReport[Any]:
         """Run a task; when it fails, offer the level below and keep it to go on with.
 
         ``helping``: a single skill the operator runs to help a failed task on; the failed

@@ -55,13 +55,13 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
         names = Names()
         done = actor.run(Goal.of(task, task_args, world, names, domain), names)
         success = success and done.success
-        actions += [report.to_dict() for report in done.operators]
+        actions += [report.to_dict() for report in done.detail.operators]
         speech += done.speech
         if console is not None:
             console.print(f"[bold]{task} {' '.join(task_args)}[/]: "
-                          f"{'done' if done else 'not done'}, {len(done.plans)} plan(s), "
-                          f"{done.replans} replan(s)", highlight=False)
-            for report in done.operators:
+                          f"{'done' if done else 'not done'}, {len(done.detail.plans)} plan(s), "
+                          f"{done.detail.replans} replan(s)", highlight=False)
+            for report in done.detail.operators:
                 tries = f" after {report.attempts} attempts" if report.attempts > 1 else ""
                 console.print(f"  {report.status:9} ({report.operator} "
                               f"{' '.join(map(str, report.args))}){tries}",
