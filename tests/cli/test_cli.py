@@ -33,7 +33,7 @@ def test_run_task_json(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> No
     assert status == 0
     assert report["success"] is True
     assert [step["status"] for step in report["steps"]] == ["verified"] * 5
-    assert set(report) == {"success", "steps", "speech", "sim_time"}
+    assert set(report) == {"success", "steps", "speech", "sim_time", "reason"}
     assert report["steps"][0] == {"skill": "navigate", "args": {"to": "fridge"},
                                   "status": "verified", "error": None}
 
