@@ -4,6 +4,8 @@ chooses the grammar. Skipped without the speech extra."""
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -108,3 +110,21 @@ def test_words_the_dictionary_lacks_are_pronounced(recognizer: Recognizer) -> No
     from homebot.speech.pronounce import build_dictionary
 
     assert build_dictionary(["pringles", "kitchen"])["pringles"] == ["P R IH NG G AH L Z"]
+
+
+def test_a_44_khz_stereo_file_is_resampled_and_heard(recognizer: Recognizer,
+                                                     tmp_path: Path) -> None:
+    # Was a "bad input" line of `homebot bench speech`: an error path belongs in the tests.
+    from homebot.speech.audio import read_wav, resample, wav_bytes
+    from homebot.speech.voice import VoiceSettings
+
+    text = "bring me a cola from the kitchen table"
+    quiet = np.zeros(SAMPLE_RATE // 2, dtype=np.int16)
+    speech = np.concatenate([quiet, espeak().synthesise(text, VoiceSettings("en-us+klatt", 125,
+                                                                            50)), quiet])
+    stereo = np.repeat(resample(speech, SAMPLE_RATE, 44_100)[:, None], 2, axis=1).reshape(-1)
+    path = tmp_path / "clip.wav"
+    path.write_bytes(wav_bytes(stereo, 44_100, channels=2))
+    hearing = recognizer.hear(read_wav(path))
+    assert hearing.text is not None, hearing
+    assert "cola" in hearing.text

@@ -272,24 +272,29 @@ def _tracking(runs: int, seconds: int) -> dict[str, Any]:
     over ``homebot sim serve --body`` (same seeds, three people walking), judged by the truth."""
     import numpy as np
 
-    from homebot.bench.localisation import _WALKERS, _Setting, _tracking_run, tracking_drive
     from homebot.navigation import Navigator
     from homebot.robot import DriveKind, VelocityLimits
     from homebot.transport.node import Node, loopback
     from homebot.transport.ros_body import RosBody
+    from homebot.trials.localisation import (
+        WALKERS,
+        LocalisationSetting,
+        tracking_drive,
+        tracking_run,
+    )
     from homebot.world import World
 
     world = World.load("apartment")
     navigator = Navigator(world)
-    setting = _Setting(world, navigator.grid, navigator)
+    setting = LocalisationSetting(world, navigator.grid, navigator)
     robot = world.robot
     errors: dict[str, list[float]] = {"in_process": [], "over_ros": []}
     for seed in range(runs):
-        errors["in_process"].extend(_tracking_run(setting, seed, seconds, 0.0)[0])
+        errors["in_process"].extend(tracking_run(setting, seed, seconds, 0.0)[0])
         domain_id = _DOMAIN - 40 - seed % 20
         server = subprocess.Popen(
             _python("import sys; from homebot.cli import main; sys.exit(main())", "sim",
-                    "serve", "--body", "--walkers", str(_WALKERS), "--seed", str(seed),
+                    "serve", "--body", "--walkers", str(WALKERS), "--seed", str(seed),
                     "--domain-id", str(domain_id)),
             stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
         try:
