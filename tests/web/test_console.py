@@ -92,3 +92,41 @@ def test_a_skill_level_grasp_of_a_clicked_object(apartment: World) -> None:
             assert home.steps.steps[-1]["status"] == "verified"
     finally:
         home.close()
+
+
+def test_the_stop_cancels_a_symbolic_drive_at_the_next_step_of_the_clock(
+        apartment: World) -> None:
+    home = Console(ConsoleSettings(world=apartment, token="test-token", speed=0.0))
+    assert "advance" not in vars(home.sim.clock)  # the console observes the clock
+    pressed: list[float] = []
+
+    def press(tick: int) -> None:  # 100 steps (5 s) into the drive to the bedroom
+        if not pressed and home.steps.current >= 0 and \
+                home.steps.steps[home.steps.current]["status"] == "running":
+            pressed.append(home.sim.clock.now())
+        elif pressed and len(pressed) == 1 and home.sim.clock.now() >= pressed[0] + 5.0:
+            pressed.append(home.sim.clock.now())
+            home.emergency_stop()
+
+    home.tick_hooks.append(press)
+    start = home.sim.robot_pose
+    home.start()
+    try:
+        home.take_control("ann")
+        home.run_steps("ann", [{"skill": "navigate", "to": "bedroom"}])
+        assert home.wait_idle(120.0)
+        with home.lock:
+            assert len(pressed) == 2
+            assert home.sim.robot_pose == start  # the symbolic robot stood where it was
+            assert home.steps.steps[0]["status"] == "failed"
+            assert home.steps.ended is False and home.steps.reason == "emergency stop"
+            assert list(home.speech)[-1] == "All right, I stopped."
+            preempted = list(home.sim.events.of_kind("console.preempted"))
+            assert [event.data["reason"] for event in preempted] == ["emergency stop"]
+            ended = next(home.sim.events.of_kind("task.end"))
+            assert ended.data == {"success": False, "reason": "emergency stop"}
+            stopped = [e for e in home.sim.events.of_kind("skill.status")
+                       if e.data["error"] == "cancelled"]
+            assert stopped and stopped[0].time == pressed[1]  # at the step of the press
+    finally:
+        home.close()
