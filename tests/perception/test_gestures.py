@@ -7,6 +7,7 @@ import math
 import numpy as np
 import pytest
 
+from homebot.geometry import Ray
 from homebot.perception.gestures import (
     Surface,
     classify_gesture,
@@ -16,7 +17,6 @@ from homebot.perception.gestures import (
     pointing_ray,
 )
 from homebot.sim.keypoints import GESTURES, gesture_keypoints
-from homebot.space.deixis import Pointing
 
 ROBOT = (2.0, 0.0)
 SURFACES = {
@@ -59,17 +59,17 @@ def test_pointing_picks_the_placement_pointed_at(target: str) -> None:
         frames = gesture_keypoints("pointing", (0.0, 0.0), ROBOT, rng,
                                    target=(*surface.center, surface.height))
         gesture = pointing_ray(frames)
-        assert isinstance(gesture, Pointing)
+        assert isinstance(gesture, Ray)
         assert pointed_target(gesture, SURFACES) == target
 
 
 def test_pointing_up_at_nothing_meets_no_placement() -> None:
-    gesture = Pointing((0.0, 0.0, 1.6), (0.0, -0.5, 2.0))
+    gesture = Ray((0.0, 0.0, 1.6), (0.0, -0.5, 2.0))
     assert pointed_target(gesture, SURFACES) is None
 
 
 def test_that_one_is_the_object_nearest_the_ray() -> None:
-    gesture = Pointing((0.0, 0.0, 1.6), (0.0, 0.5, 1.45))
+    gesture = Ray((0.0, 0.0, 1.6), (0.0, 0.5, 1.45))
     ray = np.array([0.0, 0.5, -0.15]) / math.hypot(0.5, 0.15)
     on_ray = tuple(np.array([0.0, 0.0, 1.6]) + 3.0 * ray)
     objects = {"red cup": (on_ray[0] + 0.05, on_ray[1], on_ray[2]),

@@ -4,22 +4,16 @@ from __future__ import annotations
 
 import argparse
 
-from homebot.space.deixis import Pointing, deictic_request, pointed_place, pointed_point
+from homebot.geometry import Ray
+from homebot.space.deixis import deictic_request, pointed_place
 
 PLACES = {"p1": (0.0, 0.45), "p2": (0.0, 0.15), "p3": (0.0, -0.15), "p4": (0.0, -0.45)}
 
 
-def test_the_ray_from_shoulder_through_hand_meets_the_table() -> None:
-    gesture = Pointing((1.0, 0.15, 1.4), (0.7, 0.15, 1.2))
-    x, y = pointed_point(gesture, 0.75) or (None, None)
-    assert x is not None and abs(x - 0.025) < 1e-9 and y == 0.15
-    assert pointed_point(Pointing((0, 0, 1.4), (0.3, 0, 1.6)), 0.75) is None  # pointing up
-
-
 def test_the_place_pointed_at_or_a_question_when_between_two() -> None:
-    place, _ = pointed_place(Pointing((1.0, 0.15, 1.4), (0.7, 0.15, 1.2)), PLACES, 0.75, 1.67)
+    place, _ = pointed_place(Ray((1.0, 0.15, 1.4), (0.7, 0.15, 1.2)), PLACES, 0.75, 1.67)
     assert place == "p2"
-    between = Pointing((1.0, 0.0, 1.4), (0.7, 0.0, 1.2))  # between p2 and p3
+    between = Ray((1.0, 0.0, 1.4), (0.7, 0.0, 1.2))  # between p2 and p3
     assert pointed_place(between, PLACES, 0.75, 1.67)[0] is None
 
 

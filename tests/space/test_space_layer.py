@@ -1,4 +1,4 @@
-"""``homebot.space`` is a knowledge-layer package: it imports the world and nothing above."""
+"""``homebot.space`` is a knowledge-layer package: it imports the world, the ground and nothing above."""
 
 from __future__ import annotations
 
@@ -6,7 +6,7 @@ import ast
 from pathlib import Path
 
 SPACE = Path(__file__).resolve().parents[2] / "src" / "homebot" / "space"
-ALLOWED = ("homebot.space", "homebot.world", "homebot.errors", "homebot.text")
+ALLOWED = ("homebot.space", "homebot.world", "homebot.geometry", "homebot.errors", "homebot.text")
 
 
 def test_space_imports_only_the_world_and_itself() -> None:

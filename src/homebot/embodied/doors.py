@@ -9,11 +9,9 @@ Beams that end well before the line (something in front of the door) tell nothin
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 
-from homebot.geometry import Pose
+from homebot.geometry import Pose, rays_cross_line
 from homebot.robot import LaserScan
 
 __all__ = ["door_seen_open"]
@@ -36,21 +34,13 @@ def door_seen_open(scan: LaserScan, pose: Pose, centre: tuple[float, float],
         centre: the middle of the doorway on the map; ``normal`` a unit vector across
             the wall there; ``width`` the doorway's, metres.
     """
-    cos, sin = math.cos(pose.theta), math.sin(pose.theta)
-    mount = scan.mount
-    origin = np.array([pose.x + cos * mount.x - sin * mount.y,
-                       pose.y + sin * mount.x + cos * mount.y])
-    angles = scan.angles() + mount.theta + pose.theta
+    origin = pose.apply(scan.mount.x, scan.mount.y)
+    angles = scan.angles() + scan.mount.theta + pose.theta
     rays = np.column_stack((np.cos(angles), np.sin(angles)))
     ranges = np.where(np.isfinite(scan.ranges), scan.ranges, scan.range_max)
-    along_wall = np.array([-normal[1], normal[0]])
-    # where each ray meets the door's line: origin + u·ray = centre + s·along_wall
-    towards = np.asarray(centre) - origin
+    # where each ray meets the door's line: u metres along the ray, s along the wall
+    u, s = rays_cross_line(origin, rays, centre, normal)
     facing = rays @ np.asarray(normal)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        u = (towards @ np.asarray(normal)) / facing
-        crossing = origin + u[:, None] * rays
-    s = (crossing - np.asarray(centre)) @ along_wall
     crosses = (np.abs(facing) > 1e-6) & (u > 0) & (u < scan.range_max) & (
         np.abs(s) <= width / 2 - _JAMB)
     # how far past the line each crossing beam ends (negative: in front of it)

@@ -17,7 +17,7 @@ from typing import Protocol
 
 from shapely.geometry import Point
 
-from homebot.geometry import Pose
+from homebot.geometry import Pose, wrap_angle
 from homebot.perception.recognition import ObjectEstimate, TabletopPerception
 from homebot.robot import Body, Detection
 from homebot.world import World, surface_height
@@ -77,7 +77,7 @@ class TableLook:
             self.body.point_head(pan, tilt)
             self.body.tick(max(1, round(_VIEW_SECONDS / self.body.tick_period)))
             for estimate in self.perception.perceive(self.body.camera(), height):
-                point = _on_map(pose, estimate.position)
+                point = pose.apply(estimate.position[0], estimate.position[1])
                 if where.footprint.buffer(_ON_SURFACE).contains(Point(point)):
                     seen.append((estimate, point))
         self.body.point_head(0.0, 0.0)
@@ -90,7 +90,7 @@ class TableLook:
         near edge and its far edge in one tilt when they fit, else in two."""
         footprint = self.world.placements[placement].footprint
         corners = list(footprint.exterior.coords)[:-1]
-        bearings = [_wrap(math.atan2(y - pose.y, x - pose.x) - pose.theta) for x, y in corners]
+        bearings = [wrap_angle(math.atan2(y - pose.y, x - pose.x) - pose.theta) for x, y in corners]
         drop = _CAMERA_HEIGHT - height
         near = max(footprint.exterior.distance(Point(pose.xy())), 0.1)
         far = max(math.dist(pose.xy(), corner) for corner in corners)
@@ -128,10 +128,3 @@ def _merged(seen: list[tuple[ObjectEstimate, tuple[float, float]]],
     return kept
 
 
-def _on_map(pose: Pose, position: tuple[float, float, float]) -> tuple[float, float]:
-    c, s = math.cos(pose.theta), math.sin(pose.theta)
-    return (pose.x + c * position[0] - s * position[1], pose.y + s * position[0] + c * position[1])
-
-
-def _wrap(angle: float) -> float:
-    return (angle + math.pi) % (2 * math.pi) - math.pi

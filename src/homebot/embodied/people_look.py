@@ -33,7 +33,7 @@ import numpy as np
 import shapely
 from scipy import ndimage
 
-from homebot.geometry import Pose
+from homebot.geometry import Pose, from_frame, wrap_angle
 from homebot.perception.faces import Acquaintances
 from homebot.perception.gestures import person_gesture
 from homebot.perception.people import (
@@ -208,9 +208,8 @@ class PeopleLook:
         except PartMissing:
             return None
         base, rgb = frame.points(_POINT_STEP)
-        cos, sin = math.cos(pose.theta), math.sin(pose.theta)
-        xs = pose.x + cos * base[:, 0] - sin * base[:, 1]
-        ys = pose.y + sin * base[:, 0] + cos * base[:, 1]
+        on_map = from_frame(pose, base[:, :2])
+        xs, ys = on_map[:, 0], on_map[:, 1]
         row, column = self._cells(xs, ys)
         clear = (base[:, 2] > self._tops[row, column] + _ABOVE_SURFACE) & (
             self._off_walls[row, column] > _OFF_WALL)
@@ -326,8 +325,7 @@ def _bodies(points: np.ndarray, colours: np.ndarray, edge: np.ndarray) -> list[_
 
 
 def _seen_from(pose: Pose, spot: tuple[float, float], body: _Body | None) -> _Seen:
-    bearing = math.remainder(math.atan2(spot[1] - pose.y, spot[0] - pose.x) - pose.theta,
-                             math.tau)
+    bearing = wrap_angle(math.atan2(spot[1] - pose.y, spot[0] - pose.x) - pose.theta)
     return _Seen(spot, math.dist(spot, pose.xy()), bearing, body)
 
 

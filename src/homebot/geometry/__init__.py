@@ -11,11 +11,18 @@ from homebot.geometry.angles import (
     wrap_angles,
     yaw_from_quaternion,
 )
-from homebot.geometry.pose import Pose
+from homebot.geometry.pose import Pose, from_frame, to_frame
+from homebot.geometry.rays import Point3, Ray, nearest_by_angle, rays_cross_line
 
 __all__ = [
+    "Point3",
     "Pose",
+    "Ray",
+    "from_frame",
+    "nearest_by_angle",
     "quaternion_from_yaw",
+    "rays_cross_line",
+    "to_frame",
     "wrap_angle",
     "wrap_angles",
     "yaw_from_quaternion",

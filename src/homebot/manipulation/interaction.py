@@ -30,6 +30,7 @@ from enum import StrEnum
 
 import numpy as np
 
+from homebot.geometry import wrap_angle
 from homebot.manipulation.compliance import AxisCompliance, Compliance
 from homebot.robot.body import Twist
 
@@ -426,7 +427,7 @@ class DoorMotion:
         offset = hand[:2] - self.hinge
         radius = float(np.linalg.norm(offset))
         bearing = math.atan2(float(offset[1]), float(offset[0]))
-        self.angle = self.turn * _wrap(bearing - self.start_bearing)
+        self.angle = self.turn * wrap_angle(bearing - self.start_bearing)
         step = self.speed / max(self.radius, 0.2) * dt
         ahead = self.lead / max(radius, 0.2)
         if self.phase is DoorPhase.OPENING:
@@ -456,18 +457,14 @@ class DoorMotion:
         norm = float(np.linalg.norm(local))
         if norm > self.base_speed:
             local *= self.base_speed / norm
-        heading_error = _wrap(yaw - pose[2] + self.yaw0)
+        heading_error = wrap_angle(yaw - pose[2] + self.yaw0)
         base = Twist(float(local[0]), float(local[1]), self.turn_gain * heading_error)
         if self.phase is DoorPhase.CLOSED:
             base = Twist()
         target_base = _to_base(pose, target)
-        relative_yaw = _wrap(yaw + self.yaw0 - pose[2])
+        relative_yaw = wrap_angle(yaw + self.yaw0 - pose[2])
         rotation = _yaw_matrix(relative_yaw) @ self.rotation
         return Command(target_base, rotation, self.compliance, gripper_closed=True, base=base)
-
-
-def _wrap(angle: float) -> float:
-    return (angle + math.pi) % (2.0 * math.pi) - math.pi
 
 
 def _yaw_matrix(yaw: float) -> np.ndarray:

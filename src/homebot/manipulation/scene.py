@@ -11,13 +11,14 @@ A configuration is 8 numbers: the torso lift's height, then the arm's 7 joints.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Literal
 
 import numpy as np
+
+from homebot.geometry import quaternion_from_yaw
 
 __all__ = ["ARM_JOINTS", "Obstacle", "PlanningScene"]
 
@@ -66,7 +67,7 @@ class PlanningScene:
                     "sphere": [x / 2, 0.0, 0.0]}[obstacle.shape]
             body = spec.worldbody.add_body(
                 name=obstacle.name, pos=list(obstacle.center),
-                quat=[math.cos(obstacle.yaw / 2), 0.0, 0.0, math.sin(obstacle.yaw / 2)])
+                quat=list(quaternion_from_yaw(obstacle.yaw)))
             body.add_geom(name=obstacle.name, type=kinds[obstacle.shape], size=size,
                           contype=1, conaffinity=3)
         self.model = spec.compile()
@@ -88,7 +89,7 @@ class PlanningScene:
         self.base = base
         mocap = int(m.body_mocapid[m.body("base").id])
         self.data.mocap_pos[mocap] = [base[0], base[1], 0.0]
-        self.data.mocap_quat[mocap] = [math.cos(base[2] / 2), 0.0, 0.0, math.sin(base[2] / 2)]
+        self.data.mocap_quat[mocap] = quaternion_from_yaw(base[2])
         self._jacp = np.zeros((3, m.nv))
         self._jacr = np.zeros((3, m.nv))
         self.checks = 0  #: collision checks made (for the benchmark)

@@ -25,7 +25,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from homebot.geometry import Pose
+from homebot.geometry import Pose, wrap_angles
 from homebot.navigation.localmap import (
     LocalGrid,
     LocalPlannerError,
@@ -153,7 +153,7 @@ class DynamicWindowPlanner:
         nearest = np.maximum(nearest, 0.0)
         # Heading at the arc's end towards the target (Fox et al. take the pose after braking).
         bearing = np.arctan2(target[1] - y[-1], target[0] - x[-1])
-        error = np.abs((bearing - th[-1] + np.pi) % (2 * np.pi) - np.pi)
+        error = np.abs(wrap_angles(bearing - th[-1]))
         heading = np.pi - error
         if final:
             # Near the goal, heading matters less than getting there.

@@ -33,7 +33,7 @@ from statistics import NormalDist
 
 import numpy as np
 
-from homebot.geometry import Pose
+from homebot.geometry import Pose, wrap_angle, wrap_angles
 from homebot.navigation.likelihood import LikelihoodField
 from homebot.robot.body import BodyError, DriveKind, LaserScan, Odometry
 from homebot.world import OccupancyGrid
@@ -165,25 +165,6 @@ def _tempered(prior: np.ndarray, log_likelihood: np.ndarray, floor: float) -> np
     return best
 
 
-def _wrap(angle: np.ndarray | float) -> np.ndarray:
-    wrapped: np.ndarray = (np.asarray(angle) + np.pi) % (2 * np.pi) - np.pi
-    return wrapped
-
-
-def _between(a: Pose, b: Pose) -> Pose:
-    """``b`` seen from ``a`` (a⁻¹ ⊕ b)."""
-    dx, dy = b.x - a.x, b.y - a.y
-    c, s = math.cos(a.theta), math.sin(a.theta)
-    return Pose(c * dx + s * dy, -s * dx + c * dy, float(_wrap(b.theta - a.theta)))
-
-
-def _compose(a: Pose, b: Pose) -> Pose:
-    """``b`` (relative to ``a``) in ``a``'s frame (a ⊕ b)."""
-    c, s = math.cos(a.theta), math.sin(a.theta)
-    return Pose(a.x + c * b.x - s * b.y, a.y + s * b.x + c * b.y,
-                float(_wrap(a.theta + b.theta)))
-
-
 class MonteCarloLocalisation:
     """Adaptive Monte Carlo localisation on an occupancy grid.
 
@@ -239,7 +220,7 @@ class MonteCarloLocalisation:
         count = self.parameters.max_particles
         particles = np.column_stack((
             self.rng.normal(pose.x, spread, count), self.rng.normal(pose.y, spread, count),
-            _wrap(self.rng.normal(pose.theta, angle_spread, count))))
+            wrap_angles(self.rng.normal(pose.theta, angle_spread, count))))
         self._start(particles)
 
     def initialise_globally(self) -> None:
@@ -284,7 +265,7 @@ class MonteCarloLocalisation:
         odom = odometry.pose
         self._odom_last = odom
         if self._odom_at_update is not None:
-            moved = _between(self._odom_at_update, odom)
+            moved = odom.relative_to(self._odom_at_update)
             if math.hypot(moved.x, moved.y) < self.parameters.update_min_d and \
                     abs(moved.theta) < self.parameters.update_min_a:
                 return self.estimate()
@@ -306,24 +287,24 @@ class MonteCarloLocalisation:
         theta = particles[:, 2]
         normal = self.rng.standard_normal((n, 3))
         if p.odom_model_type is DriveKind.OMNIDIRECTIONAL:
-            rot = float(_wrap(after.theta - before.theta))
+            rot = wrap_angle(after.theta - before.theta)
             trans_sd = math.sqrt(p.alpha3 * trans ** 2 + p.alpha1 * rot ** 2)
             rot_sd = math.sqrt(p.alpha4 * rot ** 2 + p.alpha2 * trans ** 2)
             strafe_sd = math.sqrt(p.alpha1 * rot ** 2 + p.alpha5 * trans ** 2)
-            bearing = theta + (float(_wrap(math.atan2(dy, dx) - before.theta))
+            bearing = theta + (wrap_angle(math.atan2(dy, dx) - before.theta)
                                if trans > 1e-9 else 0.0)
             trans_hat = trans + trans_sd * normal[:, 0]
             strafe_hat = strafe_sd * normal[:, 1]
             c, s = np.cos(bearing), np.sin(bearing)
             particles[:, 0] += trans_hat * c + strafe_hat * s
             particles[:, 1] += trans_hat * s - strafe_hat * c
-            particles[:, 2] = _wrap(theta + rot + rot_sd * normal[:, 2])
+            particles[:, 2] = wrap_angles(theta + rot + rot_sd * normal[:, 2])
             return
-        rot1 = float(_wrap(math.atan2(dy, dx) - before.theta)) if trans > 0.01 else 0.0
-        rot2 = float(_wrap(after.theta - before.theta - rot1))
+        rot1 = wrap_angle(math.atan2(dy, dx) - before.theta) if trans > 0.01 else 0.0
+        rot2 = wrap_angle(after.theta - before.theta - rot1)
         # Driving backwards is not a half turn: noise from the smaller of the two readings.
-        rot1_n = min(abs(rot1), abs(float(_wrap(rot1 - math.pi))))
-        rot2_n = min(abs(rot2), abs(float(_wrap(rot2 - math.pi))))
+        rot1_n = min(abs(rot1), abs(wrap_angle(rot1 - math.pi)))
+        rot2_n = min(abs(rot2), abs(wrap_angle(rot2 - math.pi)))
         rot1_hat = rot1 - math.sqrt(p.alpha1 * rot1_n ** 2 + p.alpha2 * trans ** 2) * normal[:, 0]
         trans_hat = trans - math.sqrt(p.alpha3 * trans ** 2 + p.alpha4 * (
             rot1_n ** 2 + rot2_n ** 2)) * normal[:, 1]
@@ -331,7 +312,7 @@ class MonteCarloLocalisation:
         heading = theta + rot1_hat
         particles[:, 0] += trans_hat * np.cos(heading)
         particles[:, 1] += trans_hat * np.sin(heading)
-        particles[:, 2] = _wrap(heading + rot2_hat)
+        particles[:, 2] = wrap_angles(heading + rot2_hat)
 
     def _table(self, range_max: float) -> np.ndarray:
         """Log-likelihood of a beam ending in each fine cell, for a laser of this range."""
@@ -370,7 +351,7 @@ class MonteCarloLocalisation:
         the wrong place, however well the particles agree.
         """
         p = self.parameters
-        origin = _compose(predicted, scan.mount)
+        origin = predicted.compose(scan.mount)
         angles = origin.theta + scan.angles()
         ranges = np.where(np.isnan(scan.ranges), 0.0, scan.ranges)
         # Only what lies within the farthest return (and the margin) can tell.
@@ -533,7 +514,7 @@ class MonteCarloLocalisation:
                              float(np.dot(weights, np.cos(theta[near]))))
         self._estimate = Pose(float(centre[0]), float(centre[1]), heading)
         offsets = np.column_stack((x[near] - centre[0], y[near] - centre[1],
-                                   _wrap(theta[near] - heading)))
+                                   wrap_angles(theta[near] - heading)))
         normalised = weights / weights.sum()
         self._covariance = (offsets * normalised[:, None]).T @ offsets
         mean_x, mean_y = float(np.dot(w, x)), float(np.dot(w, y))
@@ -547,7 +528,7 @@ class MonteCarloLocalisation:
         """The pose on the map: the filter's last estimate moved on by the odometry since."""
         if self._odom_at_update is None or self._odom_last is None:
             return self._estimate
-        return _compose(self._estimate, _between(self._odom_at_update, self._odom_last))
+        return self._estimate.compose(self._odom_last.relative_to(self._odom_at_update))
 
     @property
     def covariance(self) -> np.ndarray:

@@ -24,7 +24,7 @@ from typing import Protocol
 import numpy as np
 
 from homebot.errors import NavigationError
-from homebot.geometry import Pose
+from homebot.geometry import Pose, to_frame
 from homebot.robot import DriveKind, LaserScan, Twist, VelocityLimits
 
 _CLUSTER_JUMP = 0.1  #: metres: a bigger range step between beams starts a new cluster
@@ -39,7 +39,6 @@ __all__ = [
     "LocalPlannerError",
     "check_request",
     "lookahead",
-    "to_robot_frame",
     "visible_lookahead",
 ]
 
@@ -240,13 +239,6 @@ def _clearance(points: np.ndarray, cells: int, half: float, resolution: float) -
     return clearance
 
 
-def to_robot_frame(pose: Pose, points: np.ndarray) -> np.ndarray:
-    """Map-frame (n, 2) points in the robot's frame."""
-    cos, sin = math.cos(pose.theta), math.sin(pose.theta)
-    dx, dy = points[:, 0] - pose.x, points[:, 1] - pose.y
-    return np.column_stack((cos * dx + sin * dy, -sin * dx + cos * dy))
-
-
 def lookahead(pose: Pose, path: Sequence[tuple[float, float]],
               distance: float) -> tuple[tuple[float, float], bool]:
     """The point ``distance`` metres along ``path`` past the point nearest the robot.
@@ -254,7 +246,7 @@ def lookahead(pose: Pose, path: Sequence[tuple[float, float]],
     Returns the point in the robot's frame and whether it is the path's end
     (the goal, where the robot must stop rather than pass through).
     """
-    points = to_robot_frame(pose, np.asarray(path, dtype=float).reshape(-1, 2))
+    points = to_frame(pose, np.asarray(path, dtype=float).reshape(-1, 2))
     if len(points) == 1:
         goal = (float(points[0, 0]), float(points[0, 1]))
         return goal, True

@@ -43,6 +43,7 @@ from PIL import Image, UnidentifiedImageError
 from scipy import ndimage
 
 from homebot.errors import MapError
+from homebot.geometry import wrap_angle
 from homebot.world import OccupancyGrid, World
 from homebot.world.loading import load_yaml_document, short_repr
 
@@ -231,7 +232,7 @@ def read_map(yaml_path: str | Path) -> RosMap:
         raise MapError(f"{where('origin')}: must be [x, y, yaw] (the lower-left pixel's pose),"
                        f" got {short_repr(origin)}")
     x, y, yaw = (_finite(value, where("origin")) for value in origin)
-    if abs(math.remainder(yaw, 2 * math.pi)) > 1e-9:
+    if abs(wrap_angle(yaw)) > 1e-9:
         raise MapError(f"{where('origin')}: yaw {yaw:g} is not 0; homebot reads maps whose "
                        "rows run along x (rotate the image instead)")
     occupied_thresh = _finite(data["occupied_thresh"], where("occupied_thresh"))

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 from enum import StrEnum
 
 from homebot.errors import NavigationError
-from homebot.geometry import Pose
+from homebot.geometry import Pose, wrap_angle
 from homebot.navigation.localmap import LocalController
 from homebot.navigation.navigator import Navigator, polyline_length
 from homebot.robot import Action, ActionStatus, Body, Twist
@@ -128,15 +128,8 @@ class OdometryPose:
         self.origin = body.odometry().pose
 
     def __call__(self) -> Pose:
-        now, origin = self.body.odometry().pose, self.origin
-        dx, dy = now.x - origin.x, now.y - origin.y
-        cos, sin = math.cos(origin.theta), math.sin(origin.theta)
-        forward, left = cos * dx + sin * dy, -sin * dx + cos * dy
-        turn = now.theta - origin.theta
-        cos, sin = math.cos(self.start.theta), math.sin(self.start.theta)
-        return Pose(self.start.x + cos * forward - sin * left,
-                    self.start.y + sin * forward + cos * left,
-                    _wrap(self.start.theta + turn))
+        # the way driven since the start, by odometry, laid down at the start's map pose
+        return self.start.compose(self.body.odometry().pose.relative_to(self.origin))
 
 
 class NavigateToPose(Action[NavigationGoal, NavigationFeedback, NavigationResult]):
@@ -204,7 +197,7 @@ class NavigateToPose(Action[NavigationGoal, NavigationFeedback, NavigationResult
         """At the target: come to rest, then turn to face the target's heading."""
         body, goal = self.body, self.goal
         velocity = body.odometry().twist
-        error = _wrap(goal.target.theta - pose.theta)
+        error = wrap_angle(goal.target.theta - pose.theta)
         aligned = goal.heading_tolerance is None or abs(error) <= goal.heading_tolerance
         resting = abs(velocity.vx) < 1e-3 and abs(velocity.vy) < 1e-3
         if aligned and resting and abs(velocity.wz) < 1e-2:
@@ -274,5 +267,3 @@ def _remaining(pose: Pose, path: Sequence[tuple[float, float]], target: Pose) ->
     return best + ahead + math.dist(path[-1], target.xy())
 
 
-def _wrap(angle: float) -> float:
-    return (angle + math.pi) % (2 * math.pi) - math.pi

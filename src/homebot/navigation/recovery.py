@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from homebot.errors import NavigationError
-from homebot.geometry import Pose
+from homebot.geometry import Pose, from_frame, wrap_angle, wrap_angles
 from homebot.navigation.localmap import LocalController
 from homebot.navigation.navigate import (
     NavigateToPose,
@@ -188,7 +188,7 @@ class ObstacleMemory:
         dx, dy = points[:, 0] - origin_x, points[:, 1] - origin_y
         distance = np.hypot(dx, dy)
         bearing = np.arctan2(dy, dx) - pose.theta - scan.mount.theta
-        bearing = (bearing + math.pi) % (2 * math.pi) - math.pi
+        bearing = wrap_angles(bearing)
         beam = np.rint((bearing - scan.angle_min) / scan.angle_increment).astype(np.int64)
         seen = (beam >= 0) & (beam < len(scan.ranges))
         measured = np.full(len(points), -np.inf)
@@ -202,17 +202,12 @@ class ObstacleMemory:
 
 def _laser_origin(pose: Pose, scan: LaserScan) -> tuple[float, float]:
     """Where the laser stands on the map when the robot stands at ``pose``."""
-    cos, sin = math.cos(pose.theta), math.sin(pose.theta)
-    mount = scan.mount
-    return (pose.x + cos * mount.x - sin * mount.y, pose.y + sin * mount.x + cos * mount.y)
+    return pose.apply(scan.mount.x, scan.mount.y)
 
 
 def scan_on_map(pose: Pose, scan: LaserScan) -> np.ndarray:
     """The scan's returns as (n, 2) map points, placed by ``pose``."""
-    points = scan.points()
-    cos, sin = math.cos(pose.theta), math.sin(pose.theta)
-    return np.column_stack((pose.x + cos * points[:, 0] - sin * points[:, 1],
-                            pose.y + sin * points[:, 0] + cos * points[:, 1]))
+    return from_frame(pose, scan.points())
 
 
 @dataclass(frozen=True, slots=True)
@@ -420,8 +415,7 @@ class RecoveringNavigation:
         pose = self.localise()
         ahead = _point_along(path, pose.xy(), _FACE_AHEAD)
         for _ in range(int(2 * math.pi / (body.limits.angular * body.tick_period)) + 1):
-            error = math.remainder(math.atan2(ahead[1] - pose.y, ahead[0] - pose.x) - pose.theta,
-                                   math.tau)
+            error = wrap_angle(math.atan2(ahead[1] - pose.y, ahead[0] - pose.x) - pose.theta)
             if abs(error) <= _FACED:
                 break
             limit = math.sqrt(2 * body.limits.angular_acceleration * abs(error))

@@ -7,9 +7,9 @@ segmentation gives them.
 - **pointing**: the arm is stretched out (hand far from the shoulder), the hand
   held still, and it does not reach towards the robot. The pointing ray runs
   from the head (the eyes) through the hand: for distant targets the eye-hand
-  line is the better aim. It is returned as the ``homebot.space.deixis.Pointing``
-  the symbolic world already uses (its ``shoulder`` is the ray's origin: here the
-  head), and ``pointed_target`` intersects it with placement tops and objects.
+  line is the better aim. It is returned as a ``homebot.geometry.Ray``, as the
+  symbolic world's pointing (``homebot.space.deixis``) takes it, and ``pointed_target``
+  intersects it with placement tops and objects.
 - **waving**: the hand, raised above the shoulder, swings from side to side: its
   sideways position over the window spreads and crosses its mean several times.
 - **stop**: a raised open hand held out towards the robot, still.
@@ -28,7 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from homebot.space.deixis import Pointing
+from homebot.geometry import Point3, Ray, nearest_by_angle
 
 __all__ = [
     "Surface",
@@ -109,34 +109,25 @@ def person_gesture(frames: np.ndarray, robot: tuple[float, float]) -> str:
     return f"pointing_{side}"
 
 
-def pointing_ray(frames: np.ndarray) -> Pointing:
+def pointing_ray(frames: np.ndarray) -> Ray:
     """The pointing ray of a window of frames: from the head through the hand (means)."""
     frames = np.asarray(frames, dtype=float)
     head, hand = frames[:, 0].mean(axis=0), frames[:, 3].mean(axis=0)
-    return Pointing((float(head[0]), float(head[1]), float(head[2])),
-                    (float(hand[0]), float(hand[1]), float(hand[2])))
+    return Ray((float(head[0]), float(head[1]), float(head[2])),
+               (float(hand[0]), float(hand[1]), float(hand[2])))
 
 
-def _ray(gesture: Pointing) -> tuple[np.ndarray, np.ndarray]:
-    origin = np.asarray(gesture.shoulder, dtype=float)
-    direction = np.asarray(gesture.hand, dtype=float) - origin
-    return origin, direction / max(float(np.linalg.norm(direction)), 1e-9)
-
-
-def pointed_target(gesture: Pointing, surfaces: Mapping[str, Surface],
+def pointed_target(gesture: Ray, surfaces: Mapping[str, Surface],
                    margin: float = 0.25) -> str | None:
     """The placement whose top the ray meets first (its footprint grown by ``margin``
     metres, for aim); if it meets none, the one whose top's centre lies at the smallest
     angle from the ray, within 12°; None when nothing is near."""
-    origin, direction = _ray(gesture)
     hits = []
     for name, surface in surfaces.items():
-        if direction[2] >= -1e-6:
-            break
-        along = (surface.height - origin[2]) / direction[2]
-        if along <= 0:
+        met = gesture.meets_height(surface.height)
+        if met is None:
             continue
-        x, y = origin[0] + along * direction[0], origin[1] + along * direction[1]
+        x, y, along = met
         if abs(x - surface.center[0]) <= surface.size[0] / 2 + margin and \
                 abs(y - surface.center[1]) <= surface.size[1] / 2 + margin:
             # rank by how deep inside the grown footprint, then by distance along the ray
@@ -149,18 +140,8 @@ def pointed_target(gesture: Pointing, surfaces: Mapping[str, Surface],
     return pointed_object(gesture, points, math.radians(12.0))
 
 
-def pointed_object(gesture: Pointing, objects: Mapping[str, tuple[float, float, float]],
+def pointed_object(gesture: Ray, objects: Mapping[str, Point3],
                    within: float = math.radians(8.0)) -> str | None:
     """The object (name → map point) at the smallest angle from the pointing ray, if it
     is within ``within`` radians: "that one"."""
-    origin, direction = _ray(gesture)
-    best, best_angle = None, within
-    for name, point in objects.items():
-        offset = np.asarray(point, dtype=float) - origin
-        distance = float(np.linalg.norm(offset))
-        if distance < 1e-6:
-            continue
-        angle = math.acos(max(-1.0, min(1.0, float(offset @ direction) / distance)))
-        if angle < best_angle:
-            best, best_angle = name, angle
-    return best
+    return nearest_by_angle(gesture, objects, within)

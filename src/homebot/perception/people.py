@@ -36,7 +36,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
-from homebot.geometry import Pose
+from homebot.geometry import Pose, from_frame, wrap_angle
 from homebot.robot import LaserScan
 
 __all__ = [
@@ -105,9 +105,7 @@ def detect_legs(scan: LaserScan, pose: Pose | None = None,
     points = np.asarray(legs, dtype=float).reshape(-1, 2)
     if pose is None or len(points) == 0:
         return points
-    cos, sin = math.cos(pose.theta), math.sin(pose.theta)
-    points = np.column_stack((pose.x + cos * points[:, 0] - sin * points[:, 1],
-                              pose.y + sin * points[:, 0] + cos * points[:, 1]))
+    points = from_frame(pose, points)
     if static is not None and len(static):
         gaps = np.linalg.norm(points[:, None, :] - np.asarray(static)[None, :, :2], axis=2)
         points = points[gaps.min(axis=1) > STATIC_CLEARANCE]
@@ -409,14 +407,12 @@ class PeopleTracker:
 def _hidden(point: tuple[float, float], scan: LaserScan, pose: Pose) -> bool:
     """Whether the laser's view of ``point`` (a person's centre on the map) is blocked
     by a return well in front of it, or ``point`` lies outside the field of view."""
-    cos, sin = math.cos(pose.theta), math.sin(pose.theta)
-    sensor = (pose.x + cos * scan.mount.x - sin * scan.mount.y,
-              pose.y + sin * scan.mount.x + cos * scan.mount.y)
+    sensor = pose.apply(scan.mount.x, scan.mount.y)
     dx, dy = point[0] - sensor[0], point[1] - sensor[1]
     distance = math.hypot(dx, dy)
     if distance < 0.3:
         return False
-    bearing = math.remainder(math.atan2(dy, dx) - pose.theta - scan.mount.theta, math.tau)
+    bearing = wrap_angle(math.atan2(dy, dx) - pose.theta - scan.mount.theta)
     half = math.atan2(0.2, distance)
     first = math.floor((bearing - half - scan.angle_min) / scan.angle_increment)
     last = math.ceil((bearing + half - scan.angle_min) / scan.angle_increment)

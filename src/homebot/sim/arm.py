@@ -11,7 +11,6 @@ force-torque) is read here and offered to the robot through the ``Body`` port.
 
 from __future__ import annotations
 
-import math
 import re
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -22,6 +21,7 @@ from typing import Any, Literal
 import numpy as np
 
 from homebot.errors import WorldError
+from homebot.geometry import quaternion_from_yaw
 
 __all__ = [
     "ARM_JOINTS",
@@ -128,10 +128,6 @@ class Contact:
     force: float
 
 
-def _quat_yaw(yaw: float) -> list[float]:
-    return [math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2)]
-
-
 class ArmSimulation:
     """The arm in front of some surfaces, with objects on them, under physics.
 
@@ -172,7 +168,7 @@ class ArmSimulation:
         for obj in self.objects.values():
             body = spec.worldbody.add_body(
                 name=obj.name, pos=[*obj.position, obj.base + obj.extents[2] / 2 + 0.0005],
-                quat=_quat_yaw(obj.yaw))
+                quat=list(quaternion_from_yaw(obj.yaw)))
             body.add_freejoint(name=f"{obj.name}:free")
             geom_type = {"box": mujoco.mjtGeom.mjGEOM_BOX,
                          "cylinder": mujoco.mjtGeom.mjGEOM_CYLINDER,
@@ -222,7 +218,7 @@ class ArmSimulation:
     def set_base(self, pose: tuple[float, float, float]) -> None:
         """Put the (kinematic) base at ``pose`` (x, y, heading) on the map."""
         self.data.mocap_pos[self._base_mocap] = [pose[0], pose[1], 0.0]
-        self.data.mocap_quat[self._base_mocap] = _quat_yaw(pose[2])
+        self.data.mocap_quat[self._base_mocap] = quaternion_from_yaw(pose[2])
         self.base = pose
 
     def command(self, arm: Sequence[float], *, torso: float | None = None,
@@ -256,7 +252,7 @@ class ArmSimulation:
         approach = np.array(self.data.site_xmat[self._grasp_site]).reshape(3, 3)[:, 0]
         inward = max(self._grasp_to_palm - self.objects[name].extents[0] / 2 - 0.003, 0.0)
         self.data.qpos[position:position + 3] = self.grasp_point() - inward * approach
-        self.data.qpos[position + 3:position + 7] = _quat_yaw(self.base[2])
+        self.data.qpos[position + 3:position + 7] = quaternion_from_yaw(self.base[2])
         self.data.qvel[velocity:velocity + 6] = 0.0
         self._mj.mj_forward(self.model, self.data)
 

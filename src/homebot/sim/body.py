@@ -17,7 +17,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from homebot.geometry import Pose
+from homebot.geometry import Pose, wrap_angle
 from homebot.robot import (
     Arm,
     Body,
@@ -314,7 +314,7 @@ class SimBody(Body):
         forward, left = velocity.vx * dt, velocity.vy * dt
         new_x = x + forward * math.cos(middle) - left * math.sin(middle)
         new_y = y + forward * math.sin(middle) + left * math.cos(middle)
-        new_theta = _wrap(theta + velocity.wz * dt)
+        new_theta = wrap_angle(theta + velocity.wz * dt)
         obstacle = self._obstacle_at(new_x, new_y) if (forward or left) else None
         if obstacle is not None:
             if not self._in_contact:
@@ -356,7 +356,7 @@ class SimBody(Body):
         middle = theta + turn / 2
         self._odometry = (x + forward * math.cos(middle) - left * math.sin(middle),
                           y + forward * math.sin(middle) + left * math.cos(middle),
-                          _wrap(theta + turn))
+                          wrap_angle(theta + turn))
 
     def _note_trajectory(self, distance: float) -> None:
         self._travelled_since_point += distance
@@ -375,5 +375,3 @@ def _has_mujoco() -> bool:
     return importlib.util.find_spec("mujoco") is not None
 
 
-def _wrap(angle: float) -> float:
-    return (angle + math.pi) % (2 * math.pi) - math.pi

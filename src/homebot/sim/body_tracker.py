@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from shapely.geometry import Point as ShapelyPoint
 
-from homebot.geometry import Pose
+from homebot.geometry import Pose, to_frame, wrap_angle
 from homebot.robot import PersonView
 from homebot.sim.camera import Solid
 from homebot.sim.keypoints import gesture_keypoints
@@ -150,8 +150,7 @@ class BodyTracker:
     def __call__(self, spot: tuple[float, float]) -> PersonView | None:
         body = self.body
         pose = body.true_pose()
-        cos, sin = math.cos(pose.theta), math.sin(pose.theta)
-        target = (pose.x + cos * spot[0] - sin * spot[1], pose.y + sin * spot[0] + cos * spot[1])
+        target = pose.apply(*spot)
         near = sorted((math.dist(state.position, target), name)
                       for name, state in body.sim.people.items())
         if not near or near[0][0] > _SPOT:
@@ -161,7 +160,7 @@ class BodyTracker:
         distance = math.dist(state.position, pose.xy())
         bearing = math.atan2(state.position[1] - pose.y, state.position[0] - pose.x)
         axis = pose.theta + body.head().pan
-        if distance > _RANGE or abs(math.remainder(bearing - axis, math.tau)) > _HALF_VIEW:
+        if distance > _RANGE or abs(wrap_angle(bearing - axis)) > _HALF_VIEW:
             return None
         self._looks += 1
         rng = np.random.default_rng([body.sim.seed, zlib.crc32(name.encode()),
@@ -194,7 +193,4 @@ class BodyTracker:
 
 def _to_base(points: np.ndarray, pose: Pose) -> np.ndarray:
     """Map-frame points (n, 3) into the base frame of a robot at ``pose``."""
-    cos, sin = math.cos(pose.theta), math.sin(pose.theta)
-    dx, dy = points[:, 0] - pose.x, points[:, 1] - pose.y
-    base: np.ndarray = np.column_stack((cos * dx + sin * dy, -sin * dx + cos * dy, points[:, 2]))
-    return base
+    return to_frame(pose, points)

@@ -20,7 +20,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from homebot.geometry import Pose
+from homebot.geometry import Pose, wrap_angle
 from homebot.robot import LaserScan
 
 __all__ = ["CrowdFrame", "CrowdLaser", "CrowdScene", "crowd_scene"]
@@ -194,7 +194,7 @@ def _step(walkers: list[_Walker], dt: float, now: float, rng: np.random.Generato
         speed = float(np.linalg.norm(velocity))
         if speed > 1e-6:
             # people turn smoothly: heading follows the velocity at most 4 rad/s
-            turn = math.remainder(_heading(velocity) - walker.heading, math.tau)
+            turn = wrap_angle(_heading(velocity) - walker.heading)
             walker.heading += max(-4.0 * dt, min(4.0 * dt, turn))
         walker.phase += 2 * math.pi * speed * dt / _STEP_LENGTH
         walker.pace = speed

@@ -18,6 +18,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from homebot.geometry import wrap_angle
+
 if TYPE_CHECKING:
     from homebot.sim.body import SimBody
 
@@ -145,7 +147,7 @@ class FaceCamera:
         best, best_angle = None, math.inf
         for name, state in sorted(self.body.sim.people.items()):
             dx, dy = state.position[0] - pose.x, state.position[1] - pose.y
-            angle = abs(math.remainder(math.atan2(dy, dx) - axis, math.tau))
+            angle = abs(wrap_angle(math.atan2(dy, dx) - axis))
             if math.hypot(dx, dy) <= self.reach and angle <= self.half_angle and \
                     angle < best_angle:
                 best, best_angle = name, angle

@@ -11,7 +11,6 @@ the truth, as feet, reflections and clutter do to real lasers.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 
 import numpy as np
@@ -119,8 +118,7 @@ class LaserSimulator:
              shut_doors: frozenset[str], legs: Sequence[tuple[float, float]]) -> LaserScan:
         """A sweep from the robot's true pose, with these doors shut and these leg centres."""
         x, y, theta = robot
-        origin_x = x + self.mount.x * math.cos(theta) - self.mount.y * math.sin(theta)
-        origin_y = y + self.mount.x * math.sin(theta) + self.mount.y * math.cos(theta)
+        origin_x, origin_y = Pose(x, y, theta).apply(self.mount.x, self.mount.y)
         angles = theta + self.mount.theta + self._beam_angles
         directions = np.column_stack((np.cos(angles), np.sin(angles)))
         ranges = self._march((origin_x, origin_y), directions, shut_doors)

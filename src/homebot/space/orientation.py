@@ -21,6 +21,8 @@ from __future__ import annotations
 import math
 from typing import Final
 
+from homebot.geometry import wrap_angle
+
 __all__ = [
     "ORIENTATIONS",
     "SECTOR",
@@ -40,7 +42,7 @@ SECTOR: Final = 2 * math.pi / len(ORIENTATIONS)  #: 45°: from one sector's cent
 
 def angle_between(angle: float, reference: float) -> float:
     """``angle - reference`` wrapped into [-π, π)."""
-    return (angle - reference + math.pi) % (2 * math.pi) - math.pi
+    return wrap_angle(angle - reference)
 
 
 def orientation_memberships(angle: float) -> tuple[float, ...]:

@@ -5,10 +5,10 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from homebot.geometry import Pose
+from homebot.geometry import Pose, quaternion_from_yaw, yaw_from_quaternion
 from homebot.transport.types import MessageTypes
 
-__all__ = ["pose_of", "pose_stamped", "seconds", "stamp", "yaw_of"]
+__all__ = ["orient", "pose_of", "pose_stamped", "seconds", "stamp", "yaw_of"]
 
 
 def stamp(types: MessageTypes, time: float) -> Any:
@@ -24,9 +24,13 @@ def seconds(time: Any) -> float:
 
 
 def yaw_of(quaternion: Any) -> float:
-    """The heading of a planar orientation quaternion."""
-    return math.atan2(2.0 * (quaternion.w * quaternion.z + quaternion.x * quaternion.y),
-                      1.0 - 2.0 * (quaternion.y ** 2 + quaternion.z ** 2))
+    """The heading of a ``geometry_msgs/msg/Quaternion``."""
+    return yaw_from_quaternion(quaternion.w, quaternion.x, quaternion.y, quaternion.z)
+
+
+def orient(quaternion: Any, yaw: float) -> None:
+    """Set a ``geometry_msgs/msg/Quaternion`` to a turn by ``yaw`` about z."""
+    quaternion.w, quaternion.x, quaternion.y, quaternion.z = quaternion_from_yaw(yaw)
 
 
 def pose_stamped(types: MessageTypes, pose: Pose, time: float, frame: str = "map") -> Any:
@@ -35,8 +39,7 @@ def pose_stamped(types: MessageTypes, pose: Pose, time: float, frame: str = "map
                         header=types.new("std_msgs/msg/Header", stamp=stamp(types, time),
                                          frame_id=frame))
     message.pose.position.x, message.pose.position.y = pose.x, pose.y
-    message.pose.orientation.z = math.sin(pose.theta / 2.0)
-    message.pose.orientation.w = math.cos(pose.theta / 2.0)
+    orient(message.pose.orientation, pose.theta)
     return message
 
 

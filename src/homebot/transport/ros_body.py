@@ -23,7 +23,7 @@ import numpy as np
 
 from homebot.geometry import Pose
 from homebot.robot import Body, DriveKind, HeadState, LaserScan, Odometry, Twist, VelocityLimits
-from homebot.transport.messages import pose_of, seconds, stamp
+from homebot.transport.messages import orient, pose_of, seconds, stamp, yaw_of
 from homebot.transport.naming import DEFAULT_QOS, MAP_QOS, SENSOR_QOS
 from homebot.transport.node import Node, TransportError
 
@@ -69,7 +69,7 @@ class RosBody(Body):
                 if transform.header.frame_id == "base_link":
                     moved = transform.transform
                     self._mount = Pose(moved.translation.x, moved.translation.y,
-                                       _yaw(moved.rotation))
+                                       yaw_of(moved.rotation))
 
     # ------------------------------------------------------------ the port
 
@@ -139,11 +139,6 @@ class RosBody(Body):
     @property
     def stopped(self) -> bool:
         return self._stopped
-
-
-def _yaw(quaternion: Any) -> float:
-    return math.atan2(2.0 * (quaternion.w * quaternion.z + quaternion.x * quaternion.y),
-                      1.0 - 2.0 * (quaternion.y ** 2 + quaternion.z ** 2))
 
 
 def _odometry(message: Any) -> Odometry:
@@ -223,13 +218,11 @@ class BodyServer:
                 child_frame_id=child)
             transform.transform.translation.x = pose.x
             transform.transform.translation.y = pose.y
-            transform.transform.rotation.z = math.sin(pose.theta / 2.0)
-            transform.transform.rotation.w = math.cos(pose.theta / 2.0)
+            orient(transform.transform.rotation, pose.theta)
             transforms.append(transform)
         return types.new("tf2_msgs/msg/TFMessage", transforms=transforms)
 
 
 def _set_pose(message: Any, pose: Pose) -> None:
     message.position.x, message.position.y = pose.x, pose.y
-    message.orientation.z = math.sin(pose.theta / 2.0)
-    message.orientation.w = math.cos(pose.theta / 2.0)
+    orient(message.orientation, pose.theta)

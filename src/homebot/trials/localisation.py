@@ -22,7 +22,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from homebot.geometry import Pose
+from homebot.geometry import Pose, wrap_angle
 from homebot.navigation import Navigator
 from homebot.navigation.localisation import MclParameters, MonteCarloLocalisation
 from homebot.robot import Body, LaserScan, Twist
@@ -107,7 +107,7 @@ class _Wanderer:
 def _pursue(estimate: Pose, target: tuple[float, float], scan: LaserScan) -> Twist:
     """Turn towards ``target`` and drive when facing it; stop short of anything ahead."""
     bearing = math.atan2(target[1] - estimate.y, target[0] - estimate.x) - estimate.theta
-    bearing = (bearing + math.pi) % (2 * math.pi) - math.pi
+    bearing = wrap_angle(bearing)
     turn = max(-1.2, min(1.2, 2.0 * bearing))
     speed = 0.5 * max(0.0, math.cos(bearing)) ** 2 if abs(bearing) < 0.9 else 0.0
     # The median, so that spurious short returns do not stop the robot for nothing.

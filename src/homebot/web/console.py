@@ -36,6 +36,7 @@ from homebot.errors import HomebotError
 from homebot.events import Event
 from homebot.executive.conversation import Conversation, Turn
 from homebot.executive.report import RunReport
+from homebot.geometry import wrap_angles
 from homebot.language import Vocabulary
 from homebot.robot import Body, Twist
 from homebot.scenarios import SimulatedRun
@@ -388,7 +389,7 @@ class Console:
             return math.inf
         scan = self.body.scan()
         angles = scan.angle_min + scan.angle_increment * np.arange(len(scan.ranges))
-        angles = (angles + scan.mount.theta + math.pi) % (2 * math.pi) - math.pi
+        angles = wrap_angles(angles + scan.mount.theta)
         cone = np.abs(angles) <= _AHEAD
         ranges = np.asarray(scan.ranges)[cone]
         finite = ranges[np.isfinite(ranges)]

@@ -25,13 +25,14 @@ from typing import Any
 
 from rich.console import Console
 
+from homebot.geometry import Ray
 from homebot.golog import Interpreter, SimulatedExecutor, State
 from homebot.golog.build import do
 from homebot.golog.domains import CUPS, POSITIONS, cups_theory, minimum_moves
 from homebot.scenarios.library.order_cups import goal_order
 from homebot.scenarios.runtime import probability
 from homebot.scenarios.summary import scenario_summary
-from homebot.space.deixis import Pointing, deictic_request, pointed_place
+from homebot.space.deixis import deictic_request, pointed_place
 from homebot.space.frames import frames_of
 from homebot.world import World, object_positions
 
@@ -65,14 +66,14 @@ def position_points(world: World) -> tuple[dict[str, tuple[float, float]], tuple
 
 
 def _gesture(rng: random.Random, person: tuple[float, float], target: tuple[float, float],
-             spread: float) -> Pointing:
+             spread: float) -> Ray:
     aim = (target[0] + rng.gauss(0.0, spread), target[1] + rng.gauss(0.0, spread), TABLE_HEIGHT)
     shoulder = (person[0], person[1], SHOULDER)
     ray = tuple(a - s for a, s in zip(aim, shoulder, strict=True))
     length = math.sqrt(sum(component * component for component in ray))
     hand = tuple(s + 0.6 * component / length for s, component in zip(shoulder, ray,
                                                                           strict=True))
-    return Pointing(shoulder, (hand[0], hand[1], hand[2]))
+    return Ray(shoulder, (hand[0], hand[1], hand[2]))
 
 
 def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:

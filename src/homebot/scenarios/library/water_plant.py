@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 from rich.console import Console
 
+from homebot.geometry import quaternion_from_yaw
 from homebot.scenarios.summary import scenario_summary
 
 __all__ = ["add_arguments", "pour", "run"]
@@ -62,7 +63,7 @@ def pour(seed: int) -> dict[str, Any]:
     scene.move_base(*start)
     scene.step()
     scene.set_arm(q, gripper=0.03)  # the fingers on the handle's sides
-    scene.place_body("can", scene.hand_world(), _yaw_quaternion(start[2]))
+    scene.place_body("can", scene.hand_world(), quaternion_from_yaw(start[2]))
     scene.grip(True)
     held = reading(scene)
     controller = ComplianceController(Compliance(), held.hand_position, held.hand_rotation,
@@ -126,10 +127,6 @@ def pour(seed: int) -> dict[str, Any]:
             "tipped_deg": round(math.degrees(worst_tilt), 1),
             "drove_s": round(driven, 2), "start": [round(v, 3) for v in start],
             "seconds": round(scene.time, 2)}
-
-
-def _yaw_quaternion(yaw: float) -> tuple[float, float, float, float]:
-    return (math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2))
 
 
 def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
