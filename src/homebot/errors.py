@@ -6,6 +6,8 @@ Hierarchy::
     ├── WorldError               a world file or world reference is invalid
     ├── TaskError                a task file or task step is invalid
     ├── NavigationError          no route exists (bad target, unreachable place)
+    │   └── LocalPlannerError    a local controller asked wrongly (an empty path, a period
+    │                            that is not positive)
     ├── MapError                 a map_server map (YAML + image) is malformed or does not fit
     ├── KnowledgeError           a knowledge-base file, query or update is invalid
     ├── GologError               a Golog program or action theory is malformed
@@ -15,9 +17,17 @@ Hierarchy::
     ├── BenchmarkError           a benchmark's argument (a size, a seed, a file) is unusable
     ├── SpeechError              an audio file is unusable (empty, not WAV, too long) or the
     │                            speech extra is missing
+    ├── BodyError                a robot body set up wrongly (a limit not positive, a part
+    │   │                        out of range)
+    │   └── PartMissing          the body has no such part: a camera, an arm, a microphone
+    ├── FaceError                faces used wrongly (identifying before anyone is enrolled)
+    ├── SceneError               an interaction scene cannot be loaded (unknown name, bad MJCF)
+    ├── ConsoleError             the web console cannot do what the operator asked now
     └── TransportError           ROS 2 cannot start (bad domain id or interface, the ros extra
         │                        missing) or the other side does not answer
-        └── RobotLost            the robot's ROS 2 side stopped answering mid-task
+        ├── RobotLost            the robot's ROS 2 side stopped answering mid-task
+        └── CallError            a Robot port call over ROS 2 names no method of the port or
+                                 gives malformed arguments
 
 Every message says what is wrong and how to fix it; the CLI prints it without a
 traceback and exits with status 2. Expected failures while acting in the world
@@ -29,15 +39,22 @@ from __future__ import annotations
 
 __all__ = [
     "BenchmarkError",
+    "BodyError",
+    "CallError",
+    "ConsoleError",
     "DialogueError",
+    "FaceError",
     "GologError",
     "HomebotError",
     "KnowledgeError",
     "LanguageError",
+    "LocalPlannerError",
     "MapError",
     "NavigationError",
+    "PartMissing",
     "PlanningError",
     "RobotLost",
+    "SceneError",
     "SpeechError",
     "TaskError",
     "TransportError",
@@ -59,6 +76,10 @@ class TaskError(HomebotError):
 
 class NavigationError(HomebotError):
     """A navigation target is unknown or has no pose."""
+
+
+class LocalPlannerError(NavigationError):
+    """A local controller asked wrongly: an empty path, a radius or period that is not positive."""
 
 
 class MapError(HomebotError):
@@ -94,6 +115,30 @@ class SpeechError(HomebotError):
     or the speech extra is not installed."""
 
 
+class BodyError(HomebotError):
+    """A body set up wrongly: a limit that is not a positive number, a part out of range."""
+
+
+class PartMissing(BodyError):
+    """The body has no such part (yet): a camera, an arm, a microphone."""
+
+    def __init__(self, part: str) -> None:
+        super().__init__(f"this robot body has no {part}; it is fitted by a later module "
+                         "or a robot that has one")
+
+
+class FaceError(HomebotError):
+    """Faces used wrongly: identifying before anyone is enrolled, an empty enrolment."""
+
+
+class SceneError(HomebotError):
+    """An interaction scene cannot be loaded (an unknown name, a malformed MJCF file)."""
+
+
+class ConsoleError(HomebotError):
+    """Something the operator asked that the console cannot do now (says why)."""
+
+
 class TransportError(HomebotError):
     """The ROS 2 transport cannot start (a bad domain id, an interface that does not exist,
     the ros extra missing) or the other side does not answer in time."""
@@ -101,3 +146,7 @@ class TransportError(HomebotError):
 
 class RobotLost(TransportError):
     """The robot's ROS 2 side stopped answering (its process ended or the network went)."""
+
+
+class CallError(TransportError):
+    """A RobotCall names a method the port lacks or gives malformed arguments."""

@@ -9,10 +9,11 @@ import numpy as np
 import pytest
 from fake_body import FakeBody, wall
 
+from homebot.errors import LocalPlannerError
 from homebot.geometry import Pose
 from homebot.navigation.dwa import DynamicWindowPlanner
 from homebot.navigation.local_planner import MotionSearchPlanner
-from homebot.navigation.localmap import LocalController, LocalGrid, LocalPlannerError
+from homebot.navigation.localmap import LocalController, LocalGrid
 from homebot.robot import DriveKind, Twist
 
 PLANNERS = [MotionSearchPlanner, DynamicWindowPlanner]

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from homebot.cli import main
-from homebot.errors import HomebotError
+from homebot.errors import BodyError, HomebotError
 from homebot.geometry import Pose
 from homebot.navigation import (
     LikelihoodField,
@@ -16,7 +16,7 @@ from homebot.navigation import (
     MonteCarloLocalisation,
     Navigator,
 )
-from homebot.robot import BodyError, DriveKind, LaserScan, Odometry, Twist
+from homebot.robot import DriveKind, LaserScan, Odometry, Twist
 from homebot.sim.body import SimBody
 from homebot.sim.simulation import Simulation
 from homebot.world import LaserModel, OccupancyGrid, World

@@ -9,9 +9,9 @@ import pytest
 
 pytest.importorskip("sklearn")
 
+from homebot.errors import FaceError
 from homebot.perception.faces import (
     FaceDetector,
-    FaceError,
     FaceMemory,
     HaarFeatures,
     _overlap,

@@ -7,9 +7,10 @@ import math
 import numpy as np
 import pytest
 
+from homebot.errors import BodyError
 from homebot.geometry import Pose
 from homebot.navigation import Navigator
-from homebot.robot import BodyError, DriveKind, Twist, VelocityLimits
+from homebot.robot import DriveKind, Twist, VelocityLimits
 from homebot.sim import Simulation
 from homebot.sim.body import SimBody
 from homebot.world import LaserModel, World

@@ -6,8 +6,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from homebot.errors import BodyError
 from homebot.navigation import Navigator
-from homebot.robot import BodyError
 from homebot.sim import Simulation
 from homebot.sim.audio import AUDIO_RATE, AudioScene
 from homebot.sim.body import SimBody

@@ -1,4 +1,4 @@
-"""``homebot.space`` is a knowledge-layer package: it imports the world, the ground and nothing above."""
+"""``homebot.space`` is a knowledge-layer package: it imports the world, the ground, itself."""
 
 from __future__ import annotations
 

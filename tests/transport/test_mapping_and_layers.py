@@ -28,8 +28,8 @@ def test_a_mapping_file_names_the_robots_interfaces(tmp_path: Path) -> None:
     assert mapping.navigate_action == "/robot1/navigate_to_pose"
     assert mapping.robot_call is None and mapping.speech_topic == "/tts"
     path.write_text("navigate: /navigate_to_pose\n", encoding="utf-8")
-    with pytest.raises(HomebotError, match=r"unknown key.*navigate.*known"):
+    with pytest.raises(HomebotError, match=r"line 1: navigate: unknown key.*navigate.*known"):
         RobotMapping.load(path)
     path.write_text("timeout: -1\n", encoding="utf-8")
-    with pytest.raises(HomebotError, match="timeout must be a positive number"):
+    with pytest.raises(HomebotError, match="line 1: timeout: must be a positive number"):
         RobotMapping.load(path)

@@ -10,7 +10,8 @@ import pytest
 pytest.importorskip("mujoco")
 
 from homebot.cli import main
-from homebot.sim.hri import InteractionScene, SceneError
+from homebot.errors import SceneError
+from homebot.sim.hri import InteractionScene
 from homebot.trials.interaction import (
     DoorVariant,
     carry_table_episode,

@@ -33,6 +33,7 @@ import numpy as np
 import shapely
 from scipy import ndimage
 
+from homebot.errors import PartMissing
 from homebot.geometry import Pose, from_frame, wrap_angle
 from homebot.perception.faces import Acquaintances
 from homebot.perception.gestures import person_gesture
@@ -43,7 +44,7 @@ from homebot.perception.people import (
     detect_legs,
     posture_from_profile,
 )
-from homebot.robot import Body, PartMissing, PersonPercept, PersonView, Twist
+from homebot.robot import Body, PersonPercept, PersonView, Twist
 from homebot.world import OccupancyGrid, PlacementKind, World, surface_height
 
 __all__ = ["PeopleLook"]

@@ -31,7 +31,7 @@ from homebot.cancel import CancelToken
 from homebot.embodied.doors import door_seen_open
 from homebot.embodied.looking import TableLook
 from homebot.embodied.people_look import PeopleLook
-from homebot.errors import NavigationError, SpeechError
+from homebot.errors import NavigationError, PartMissing, SpeechError
 from homebot.events import EventLog
 from homebot.geometry import Pose
 from homebot.navigation import Navigator
@@ -46,7 +46,6 @@ from homebot.robot import (
     Detection,
     HelpRequest,
     MoveReport,
-    PartMissing,
     PersonPercept,
     Robot,
     Speaker,

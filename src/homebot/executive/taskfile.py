@@ -21,7 +21,7 @@ from homebot.errors import TaskError
 from homebot.skills import check_step, spelled_as_world
 from homebot.task import Step, Task
 from homebot.world import World
-from homebot.world.loading import LocatedDocument, load_yaml_document, parse_yaml_text
+from homebot.yamlfile import LocatedDocument, load_yaml_document, parse_yaml_text
 
 __all__ = ["load_task", "task_from_text", "validate_task"]
 

@@ -52,7 +52,7 @@ from homebot.golog.interpreter import Executor, Interpreter, Report, Run, Simula
 from homebot.golog.program import Call, Program, Seq
 from homebot.golog.semantics import ActionStep
 from homebot.golog.theory import GroundAction, State, Theory, action_text
-from homebot.world.loading import (
+from homebot.yamlfile import (
     LocatedDocument,
     field_error,
     load_yaml_document,

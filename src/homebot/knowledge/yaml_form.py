@@ -36,6 +36,7 @@ from homebot.knowledge.model import (
 )
 from homebot.knowledge.syntax import read_kb_file_text
 from homebot.knowledge.terms import format_statement, parse_statement
+from homebot.yamlfile import compose_yaml_text
 
 __all__ = ["read_kb_yaml", "read_kb_yaml_text", "write_kb_yaml", "write_kb_yaml_text"]
 
@@ -49,7 +50,6 @@ class _YamlReader:
     def __init__(self, text: str, source: str) -> None:
         self.source = source
         self.text = text
-        self.loader: yaml.SafeLoader | None = None
         self.where: dict[tuple[str, Kind | None, int | None, str | None], _Mark] = {}
 
     def fail(self, node: yaml.Node | None, message: str) -> KnowledgeError:
@@ -93,20 +93,7 @@ class _YamlReader:
         return str(node.value)
 
     def read(self) -> Taxonomy:
-        try:
-            self.loader = yaml.SafeLoader(self.text)
-            root = self.loader.get_single_node()
-        except yaml.YAMLError as error:
-            mark = getattr(error, "problem_mark", None)
-            problem = getattr(error, "problem", None) or str(error)
-            if mark is None:
-                raise KnowledgeError(f"{self.source}: {problem}") from None
-            raise KnowledgeError(
-                f"{self.source}, line {mark.line + 1}, column {mark.column + 1}: {problem}"
-            ) from None
-        finally:
-            if self.loader is not None:
-                self.loader.dispose()
+        root = compose_yaml_text(self.text, self.source, KnowledgeError)
         if root is None:
             raise KnowledgeError(f"{self.source}: expected a mapping with 'classes', found nothing")
         top = self.mapping(root, "the KB", {"classes"})

@@ -5,7 +5,7 @@ from homebot.navigation.dwa import DynamicWindowPlanner
 from homebot.navigation.likelihood import LikelihoodField
 from homebot.navigation.local_planner import MotionSearchPlanner
 from homebot.navigation.localisation import MclParameters, MonteCarloLocalisation
-from homebot.navigation.localmap import LocalController, LocalGrid, LocalPlannerError
+from homebot.navigation.localmap import LocalController, LocalGrid
 from homebot.navigation.navigate import (
     NavigateToPose,
     NavigationFeedback,
@@ -18,7 +18,7 @@ from homebot.navigation.navigator import Navigator
 from homebot.navigation.topology import TopologicalMap
 
 __all__ = ["DynamicWindowPlanner", "LikelihoodField", "LocalController", "LocalGrid",
-           "LocalPlannerError", "MclParameters", "MonteCarloLocalisation", "MotionSearchPlanner",
+           "MclParameters", "MonteCarloLocalisation", "MotionSearchPlanner",
            "NavigateToPose", "NavigationFeedback", "NavigationGoal",
            "NavigationResult", "Navigator", "OdometryPose",
            "StopReason", "TopologicalMap", "astar"]

@@ -25,14 +25,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from homebot.errors import LocalPlannerError
 from homebot.geometry import Pose, wrap_angles
-from homebot.navigation.localmap import (
-    LocalGrid,
-    LocalPlannerError,
-    check_request,
-    lookahead,
-    visible_lookahead,
-)
+from homebot.navigation.localmap import LocalGrid, check_request, lookahead, visible_lookahead
 from homebot.robot import DriveKind, LaserScan, Twist, VelocityLimits
 
 __all__ = ["DynamicWindowPlanner"]

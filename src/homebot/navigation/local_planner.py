@@ -41,8 +41,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from homebot.errors import LocalPlannerError
 from homebot.geometry import Pose
-from homebot.navigation.localmap import LocalGrid, LocalPlannerError, check_request, lookahead
+from homebot.navigation.localmap import LocalGrid, check_request, lookahead
 from homebot.robot import DriveKind, LaserScan, Twist, VelocityLimits
 
 __all__ = ["MotionSearchPlanner", "PlannerCycle"]

@@ -33,9 +33,10 @@ from statistics import NormalDist
 
 import numpy as np
 
+from homebot.errors import BodyError
 from homebot.geometry import Pose, wrap_angle, wrap_angles
 from homebot.navigation.likelihood import LikelihoodField
-from homebot.robot.body import BodyError, DriveKind, LaserScan, Odometry
+from homebot.robot.body import DriveKind, LaserScan, Odometry
 from homebot.world import OccupancyGrid
 
 __all__ = ["MclParameters", "MonteCarloLocalisation"]

@@ -23,7 +23,7 @@ from typing import Protocol
 
 import numpy as np
 
-from homebot.errors import NavigationError
+from homebot.errors import LocalPlannerError
 from homebot.geometry import Pose, to_frame
 from homebot.robot import DriveKind, LaserScan, Twist, VelocityLimits
 
@@ -36,15 +36,10 @@ _BUCKET = 0.25  #: metres: side of the buckets the returns are kept in for exact
 __all__ = [
     "LocalController",
     "LocalGrid",
-    "LocalPlannerError",
     "check_request",
     "lookahead",
     "visible_lookahead",
 ]
-
-
-class LocalPlannerError(NavigationError):
-    """A local controller asked wrongly: an empty path, a radius or period that is not positive."""
 
 
 class LocalController(Protocol):

@@ -45,7 +45,7 @@ from scipy import ndimage
 from homebot.errors import MapError
 from homebot.geometry import wrap_angle
 from homebot.world import OccupancyGrid, World
-from homebot.world.loading import load_yaml_document, short_repr
+from homebot.yamlfile import load_yaml_document, short_repr
 
 __all__ = [
     "FREE_PIXEL",

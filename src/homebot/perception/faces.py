@@ -57,9 +57,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from homebot.errors import HomebotError
+from homebot.errors import FaceError
 
-__all__ = ["Acquaintances", "FaceDetector", "FaceError", "FaceMemory", "FaceWindow",
+__all__ = ["Acquaintances", "FaceDetector", "FaceMemory", "FaceWindow",
            "HaarFeatures", "integral_image", "introduced_name"]
 
 Window = tuple[int, int, int]  #: x, y, side in pixels
@@ -77,10 +77,6 @@ _HELD_OUT = 0.95
 _SHIFTS = ((0, 0, 0), (-1, 0, 0), (1, 0, 0), (0, -1, 0), (0, 1, 0), (-1, -1, 2), (1, 1, -2))
 _LOOK_QUANTILE = 0.9  #: of the held-out enrolment looks' distances: a look's threshold
 _LOOK_DRAWS = 200  #: held-out enrolment looks drawn per person for that threshold
-
-
-class FaceError(HomebotError):
-    """Faces used wrongly: identifying before anyone is enrolled, an empty enrolment."""
 
 
 def integral_image(image: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

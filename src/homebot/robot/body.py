@@ -22,7 +22,7 @@ from pathlib import Path
 
 import numpy as np
 
-from homebot.errors import HomebotError
+from homebot.errors import BodyError, PartMissing
 from homebot.geometry import Pose
 from homebot.robot.camera import PersonView, RgbdFrame
 
@@ -30,7 +30,6 @@ __all__ = [
     "Arm",
     "ArmState",
     "Body",
-    "BodyError",
     "DriveKind",
     "Gripper",
     "GripperState",
@@ -39,24 +38,11 @@ __all__ = [
     "LaserScan",
     "Microphone",
     "Odometry",
-    "PartMissing",
     "Speaker",
     "Twist",
     "VelocityLimits",
     "Wrench",
 ]
-
-
-class BodyError(HomebotError):
-    """A body set up wrongly: a limit that is not a positive number, a part out of range."""
-
-
-class PartMissing(BodyError):
-    """The body has no such part (yet): a camera, an arm, a microphone."""
-
-    def __init__(self, part: str) -> None:
-        super().__init__(f"this robot body has no {part}; it is fitted by a later module "
-                         "or a robot that has one")
 
 
 class DriveKind(StrEnum):

@@ -18,8 +18,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from homebot.errors import BodyError
 from homebot.events import EventLog
-from homebot.robot import BodyError, Microphone, Speaker
+from homebot.robot import Microphone, Speaker
 
 __all__ = ["AUDIO_RATE", "AudioScene", "SimMicrophone", "SimSpeaker", "Sound"]
 

@@ -17,18 +17,17 @@ from dataclasses import replace
 
 import numpy as np
 
+from homebot.errors import BodyError, PartMissing
 from homebot.geometry import Pose, wrap_angle
 from homebot.robot import (
     Arm,
     Body,
-    BodyError,
     DriveKind,
     Gripper,
     HeadState,
     LaserScan,
     Microphone,
     Odometry,
-    PartMissing,
     PersonView,
     RgbdFrame,
     Speaker,

@@ -28,9 +28,9 @@ from typing import Any
 
 import numpy as np
 
-from homebot.errors import HomebotError
+from homebot.errors import SceneError
 
-__all__ = ["ARM_JOINTS", "InteractionScene", "SceneError", "scene_path"]
+__all__ = ["ARM_JOINTS", "InteractionScene", "scene_path"]
 
 ARM_JOINTS = ("shoulder_pan", "shoulder_lift", "upper_arm_roll", "elbow_flex", "forearm_roll",
               "wrist_flex", "wrist_roll")
@@ -61,10 +61,6 @@ def _with_driven_base(mujoco: Any, spec: Any) -> Any:
                    armature=heavy)
     spec.add_exclude(bodyname1="world", bodyname2="base")
     return spec.compile()
-
-
-class SceneError(HomebotError):
-    """An interaction scene cannot be loaded (an unknown name, a malformed MJCF file)."""
 
 
 def scene_path(name: str) -> Path:

@@ -26,6 +26,7 @@ from homebot.errors import DialogueError
 from homebot.sitlog.model import Arc, DialogueModel, Program, Situation, UserFunction, functor_of
 from homebot.sitlog.terms import EMPTY, Struct, Term, Var, parse_term
 from homebot.sitlog.validation import check_program
+from homebot.yamlfile import compose_yaml_text
 
 __all__ = ["load_program", "load_program_text", "shipped_dialogue_path"]
 
@@ -140,18 +141,8 @@ class _Reader:
                 raise DialogueError(f"{source}: main({found.main}) names no dialogue model")
 
     def read_text(self, text: str, source: str, base: Path) -> None:
-        try:
-            loader = yaml.SafeLoader(text)
-            try:
-                root = loader.get_single_node()
-            finally:
-                loader.dispose()
-        except yaml.YAMLError as error:
-            mark = getattr(error, "problem_mark", None)
-            where = f", line {mark.line + 1}, column {mark.column + 1}" if mark else ""
-            problem = getattr(error, "problem", None) or str(error)
-            raise DialogueError(f"{source}{where}: not valid YAML ({problem}); "
-                                "quote arcs written as \"E : A => N\"") from None
+        root = compose_yaml_text(text, source, DialogueError,
+                                 'quote arcs written as "E : A => N"')
         if root is None:
             raise DialogueError(f"{source}: the file is empty; add dialogue_models")
         file = _File(source, base)

@@ -16,7 +16,7 @@ from homebot.skills.skill import Skill
 from homebot.task import Step
 from homebot.text import closest_names, find_name
 from homebot.world import World
-from homebot.world.loading import short_repr
+from homebot.yamlfile import short_repr
 
 __all__ = ["SKILLS", "check_step", "skill_named", "spelled_as_world"]
 

@@ -12,7 +12,7 @@ import json
 from collections.abc import Callable
 from typing import Any
 
-from homebot.errors import TransportError
+from homebot.errors import CallError
 from homebot.geometry import Pose
 from homebot.robot import Blocker, Detection, HelpRequest, MoveReport, PersonPercept, Robot
 
@@ -80,10 +80,6 @@ CALLS: dict[str, tuple[Callable[[Robot, dict[str, Any]], Any], Callable[[Any], A
     "follow": (lambda robot, a: robot.follow(a["person"], None if a["goal"] is None
                                              else _pose(a["goal"])), move_report),
 }
-
-
-class CallError(TransportError):
-    """A RobotCall names a method the port lacks or gives malformed arguments."""
 
 
 def serve(robot: Robot, method: str, arguments: str) -> str:

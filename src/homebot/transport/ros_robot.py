@@ -25,8 +25,6 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-import yaml
-
 from homebot.cancel import CancelToken
 from homebot.errors import RobotLost, TransportError
 from homebot.events import EventLog
@@ -36,6 +34,7 @@ from homebot.transport.actions import ActionClient, GoalStatus
 from homebot.transport.calls import decode_result, encode, move_report
 from homebot.transport.messages import pose_of, pose_stamped
 from homebot.transport.node import Node
+from homebot.yamlfile import field_error, load_yaml_document
 
 __all__ = ["RobotLost", "RobotMapping", "RosRobot"]
 
@@ -55,21 +54,22 @@ class RobotMapping:
     @classmethod
     def load(cls, path: Path) -> RobotMapping:
         """Read a mapping file; an unknown key or a bad value names the file and the fix."""
-        try:
-            data = yaml.safe_load(path.read_text(encoding="utf-8")) or {}
-        except (OSError, yaml.YAMLError) as error:
-            raise TransportError(f"{path}: cannot read the ROS 2 mapping file ({error})") from None
+        document = load_yaml_document(path, TransportError)
+        data = document.data or {}
         if not isinstance(data, dict):
-            raise TransportError(f"{path}: a ROS 2 mapping file is a YAML mapping of names")
+            raise TransportError(f"{path}: line 1: a ROS 2 mapping file is a YAML mapping of "
+                                 "names")
         known = set(cls.__dataclass_fields__)
         unknown = sorted(set(data) - known)
         if unknown:
-            raise TransportError(f"{path}: unknown key(s) {', '.join(unknown)}; "
-                               f"known: {', '.join(sorted(known))}")
+            raise TransportError(field_error(
+                document, [unknown[0]], f"unknown key(s) {', '.join(unknown)}; "
+                f"known: {', '.join(sorted(known))}"))
         for key in ("timeout", "call_timeout", "liveness"):
             value = data.get(key, 1.0)
             if not isinstance(value, (int, float)) or not 0 < value < math.inf:
-                raise TransportError(f"{path}: {key} must be a positive number of seconds")
+                raise TransportError(field_error(document, [key],
+                                                 "must be a positive number of seconds"))
         return cls(**data)
 
 

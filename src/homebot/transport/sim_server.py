@@ -20,11 +20,12 @@ from typing import Any
 
 import numpy as np
 
+from homebot.errors import CallError
 from homebot.events import EventLog
 from homebot.geometry import Pose
 from homebot.robot import MoveReport, Robot
 from homebot.transport.actions import ActionServer, GoalContext, GoalStatus
-from homebot.transport.calls import CallError, encode, serve
+from homebot.transport.calls import encode, serve
 from homebot.transport.messages import pose_stamped, stamp, yaw_of
 from homebot.transport.naming import MAP_QOS
 from homebot.transport.node import Node

@@ -2,6 +2,6 @@
 
 from __future__ import annotations
 
-from homebot.web.console import Console, ConsoleError, ConsoleSettings, static_map
+from homebot.web.console import Console, ConsoleSettings, static_map
 
-__all__ = ["Console", "ConsoleError", "ConsoleSettings", "static_map"]
+__all__ = ["Console", "ConsoleSettings", "static_map"]

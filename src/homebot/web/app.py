@@ -30,8 +30,8 @@ from fastapi import Depends, FastAPI, Header, Query, Request, WebSocket, WebSock
 from fastapi.responses import HTMLResponse, JSONResponse
 from pydantic import BaseModel, Field
 
-from homebot.errors import HomebotError
-from homebot.web.console import Console, ConsoleError, ConsoleSettings, static_map
+from homebot.errors import ConsoleError, HomebotError
+from homebot.web.console import Console, ConsoleSettings, static_map
 
 __all__ = ["EVENT_QUEUE", "Watcher", "create_app"]
 

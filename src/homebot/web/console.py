@@ -32,7 +32,7 @@ from typing import Any
 import numpy as np
 
 from homebot.cancel import CancelToken
-from homebot.errors import HomebotError
+from homebot.errors import ConsoleError
 from homebot.events import Event
 from homebot.executive.conversation import Conversation, Turn
 from homebot.executive.report import RunReport
@@ -46,7 +46,7 @@ from homebot.skills.places import resolve_target
 from homebot.task import Step, Task
 from homebot.world import World
 
-__all__ = ["Console", "ConsoleError", "ConsoleSettings", "static_map"]
+__all__ = ["Console", "ConsoleSettings", "static_map"]
 
 _COMMAND_HOLD = 0.5  #: simulated seconds a body-level velocity command holds
 _EVENTS_KEPT = 2000  #: events the console keeps for late-joining watchers
@@ -54,10 +54,6 @@ _TERMINAL = frozenset({"verified", "failed", "aborted"})
 _AHEAD = math.radians(35.0)  #: half-width of the cone "ahead" for obstacle slowing
 _SCAN_POINTS_SHOWN = 120
 _SLICE = 0.05  #: simulated seconds: the longest single advance (one body tick at 20 Hz)
-
-
-class ConsoleError(HomebotError):
-    """Something the operator asked that the console cannot do now (says why)."""
 
 
 @dataclass

@@ -1,153 +1,21 @@
-"""Reading world files: YAML to validated models, every error with file, line and field."""
+"""Validating world files: YAML documents to pydantic models, every error with file, line
+and field (the YAML itself is read by ``homebot.yamlfile``)."""
 
 from __future__ import annotations
 
 import difflib
 import re
-import reprlib
 from collections.abc import Sequence
-from pathlib import Path
 from typing import Any, TypeVar
 
-import yaml
 from pydantic import BaseModel, ValidationError
 
-from homebot.errors import HomebotError, WorldError
+from homebot.errors import WorldError
+from homebot.yamlfile import LocatedDocument, field_error, short_repr
 
-__all__ = [
-    "LocatedDocument",
-    "field_error",
-    "load_yaml_document",
-    "parse_yaml_text",
-    "short_repr",
-    "validate_document",
-]
+__all__ = ["validate_document"]
 
 ModelT = TypeVar("ModelT", bound=BaseModel)
-
-# Values quoted in messages are cut short: a file may nest aliases into millions of items.
-_SHORT = reprlib.Repr()
-_SHORT.maxlevel, _SHORT.maxlist, _SHORT.maxdict, _SHORT.maxstring = 2, 4, 4, 60
-
-
-def short_repr(value: Any) -> str:
-    """``repr(value)``, cut short enough to quote in a one-line message."""
-    return _SHORT.repr(value)
-
-
-class LocatedDocument:
-    """A YAML document together with the line of every node, for error messages."""
-
-    def __init__(self, data: Any, root: yaml.Node | None, source: str) -> None:
-        self.data = data
-        self.root = root
-        self.source = source
-
-    def line_of(self, location: Sequence[str | int]) -> int | None:
-        """The 1-based line of the node at ``location`` (keys and list indices), if known.
-
-        When the location does not exist (a missing field) the line of its closest
-        existing parent is returned.
-        """
-        node = self.root
-        line = node.start_mark.line + 1 if node is not None else None
-        for step in location:
-            child = _child_node(node, step)
-            if child is None:
-                break
-            if isinstance(child, tuple):
-                line = _key_line(child)
-                node = child[1]
-            else:
-                line = child.start_mark.line + 1
-                node = child
-        return line
-
-
-def _key_line(pair: tuple[yaml.Node, yaml.Node]) -> int:
-    line: int = pair[0].start_mark.line
-    return line + 1
-
-
-def _child_node(
-    node: yaml.Node | None, step: str | int
-) -> yaml.Node | tuple[yaml.Node, yaml.Node] | None:
-    if isinstance(node, yaml.MappingNode) and isinstance(step, str):
-        for key, value in node.value:
-            if isinstance(key, yaml.ScalarNode) and key.value == step:
-                return (key, value)
-    if isinstance(node, yaml.SequenceNode) and isinstance(step, int) and 0 <= step < len(
-        node.value
-    ):
-        child: yaml.Node = node.value[step]
-        return child
-    return None
-
-
-def load_yaml_document(path: Path | str,
-                       error_type: type[HomebotError] = WorldError) -> LocatedDocument:
-    """Read a YAML file safely, keeping node positions. Raises ``error_type``."""
-    path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise error_type(f"{path}: no such file; check the path") from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise error_type(f"{path}: cannot be read ({error}); give a UTF-8 text file") from None
-    return parse_yaml_text(text, str(path), error_type)
-
-
-def parse_yaml_text(text: str, source: str,
-                    error_type: type[HomebotError] = WorldError) -> LocatedDocument:
-    """Parse YAML text named ``source``; a syntax error names its line and column."""
-    try:
-        root = yaml.compose(text, Loader=yaml.SafeLoader)
-        data = yaml.safe_load(text)
-    except yaml.MarkedYAMLError as error:
-        mark = error.problem_mark
-        where = f"line {mark.line + 1}, column {mark.column + 1}" if mark else "unknown line"
-        raise error_type(
-            f"{source}: {where}: YAML syntax error: {error.problem}; fix the indentation or quoting"
-        ) from None
-    except yaml.YAMLError as error:
-        raise error_type(f"{source}: YAML syntax error: {error}") from None
-    except RecursionError:
-        raise error_type(f"{source}: YAML nested too deeply; flatten the lists and mappings"
-                         ) from None
-    _check_unique_keys(root, source, error_type)
-    return LocatedDocument(data, root, source)
-
-
-def _check_unique_keys(root: yaml.Node | None, source: str,
-                       error_type: type[HomebotError]) -> None:
-    """A key written twice in one mapping is an error: YAML would keep only the last."""
-    stack, seen = [root], set()
-    while stack:
-        node = stack.pop()
-        if node is None or id(node) in seen:
-            continue
-        seen.add(id(node))
-        if isinstance(node, yaml.MappingNode):
-            keys: set[str] = set()
-            for key, value in node.value:
-                if isinstance(key, yaml.ScalarNode) and key.value != "<<":
-                    if key.value in keys:
-                        raise error_type(f"{source}: line {key.start_mark.line + 1}: "
-                                         f"'{key.value}' appears twice in one mapping; "
-                                         "keep one (YAML would drop the first)")
-                    keys.add(key.value)
-                stack.extend((key, value))
-        elif isinstance(node, yaml.SequenceNode):
-            stack.extend(node.value)
-
-
-def field_error(document: LocatedDocument, location: Sequence[str | int], message: str) -> str:
-    """Format ``message`` about the field at ``location`` with file and line."""
-    line = document.line_of(location)
-    where = f"line {line}" if line is not None else "unknown line"
-    field = ".".join(str(step) for step in location) or "(document)"
-    return f"{document.source}: {where}: {field}: {message}"
-
 
 def validate_document(document: LocatedDocument, model: type[ModelT]) -> ModelT:
     """Validate a document against a pydantic model, translating every error."""

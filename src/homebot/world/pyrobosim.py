@@ -26,16 +26,17 @@ Metadata files (``$DATA/...``) are pyrobosim's own and are not read.
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-import yaml
 from shapely.geometry import LineString, Point, Polygon
 from shapely.geometry.base import BaseGeometry
 from shapely.ops import unary_union
 
 from homebot.errors import WorldError
+from homebot.yamlfile import LocatedDocument, load_yaml_document
 
 __all__ = ["world_from_pyrobosim"]
 
@@ -57,29 +58,34 @@ def world_from_pyrobosim(path: str | Path, *, operator: str = "Alex") -> dict[st
     Raises ``WorldError`` naming the file and the entry that cannot be imported.
     """
     source = Path(path)
-    try:
-        data = yaml.safe_load(source.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError) as error:
-        raise WorldError(f"{source}: cannot be read ({error})") from None
-    except yaml.YAMLError as error:
-        raise WorldError(f"{source}: not valid YAML ({str(error).splitlines()[0]})") from None
+    document = load_yaml_document(source, WorldError)
+    data = document.data
     if not isinstance(data, Mapping) or not isinstance(data.get("rooms"), list) or not data[
             "rooms"]:
         raise WorldError(f"{source}: not a pyrobosim world; it needs a list of rooms with "
                          "footprints (pyrobosim docs: yaml/world_schema.rst)")
-    return _Importer(source, data, operator).world()
+    return _Importer(source, document, operator).world()
 
 
 class _Importer:
-    def __init__(self, source: Path, data: Mapping[str, Any], operator: str) -> None:
+    def __init__(self, source: Path, document: LocatedDocument, operator: str) -> None:
         self.source = source
-        self.data = data
+        self.document = document
+        self.data: Mapping[str, Any] = document.data
         self.operator = operator
         self.rooms: dict[str, Polygon] = {}
         self.placements: dict[str, dict[str, Any]] = {}
 
     def fail(self, where: str, message: str) -> WorldError:
-        return WorldError(f"{self.source}: {where}: {message}")
+        """An error at ``where`` (``rooms[2] (kitchen).footprint``), with its line."""
+        location: list[str | int] = []
+        for step in re.sub(r" \([^)]*\)", "", where).split("."):
+            name, _, index = step.partition("[")
+            location.append(name)
+            if index:
+                location.append(int(index.rstrip("]")))
+        line = self.document.line_of(location)
+        return WorldError(f"{self.source}: line {line}: {where}: {message}")
 
     def world(self) -> dict[str, Any]:
         for index, room in enumerate(self.data["rooms"]):

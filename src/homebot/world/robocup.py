@@ -12,9 +12,8 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
-import yaml
-
 from homebot.errors import WorldError
+from homebot.yamlfile import LocatedDocument, field_error, load_yaml_document, parse_yaml_text
 
 __all__ = ["RobocupImport", "import_robocup", "read_robocup_data", "room_table",
            "world_from_robocup"]
@@ -82,31 +81,25 @@ def room_table(rooms_file: str | Path | None = None) -> dict[str, list[str]]:
     to a room or a list of rooms.
     """
     shipped = resources.files("homebot.data").joinpath("robocup", "rooms.yaml")
-    table = _room_entries(yaml.safe_load(shipped.read_text(encoding="utf-8")), "rooms.yaml")
+    table = _room_entries(parse_yaml_text(shipped.read_text(encoding="utf-8"), "rooms.yaml",
+                                          WorldError))
     if rooms_file is None:
         return table
-    path = Path(rooms_file)
-    try:
-        loaded = yaml.safe_load(path.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError) as error:
-        raise WorldError(f"{path}: cannot be read ({error}); give a YAML file of "
-                         "'location: room' lines") from None
-    except yaml.YAMLError as error:
-        raise WorldError(f"{path}: not valid YAML ({str(error).splitlines()[0]})") from None
-    return {**table, **_room_entries(loaded, str(path))}
+    return {**table, **_room_entries(load_yaml_document(rooms_file, WorldError))}
 
 
-def _room_entries(loaded: Any, source: str) -> dict[str, list[str]]:
+def _room_entries(document: LocatedDocument) -> dict[str, list[str]]:
+    loaded = document.data
     if not isinstance(loaded, Mapping):
-        raise WorldError(f"{source}: expected a mapping of 'location: room' lines, "
-                         f"got {type(loaded).__name__}")
+        raise WorldError(f"{document.source}: line 1: expected a mapping of 'location: room' "
+                         f"lines, got {type(loaded).__name__}")
     table: dict[str, list[str]] = {}
     for key, value in loaded.items():
         rooms = [value] if isinstance(value, str) else value
         if not isinstance(key, str) or not isinstance(rooms, list) or not rooms or not all(
                 isinstance(room, str) for room in rooms):
-            raise WorldError(f"{source}: entry '{key}' needs a room or a list of rooms, "
-                             f"e.g. '{key}: kitchen'")
+            raise WorldError(field_error(document, [str(key)], "needs a room or a list of "
+                                         f"rooms, e.g. '{key}: kitchen'"))
         table[_clean(key).lower()] = [_clean(room).lower() for room in rooms]
     return table
 

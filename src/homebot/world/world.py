@@ -18,13 +18,7 @@ from shapely.prepared import prep
 from homebot.errors import WorldError
 from homebot.geometry import Pose
 from homebot.text import closest_names, fold, folded_index
-from homebot.world.loading import (
-    LocatedDocument,
-    field_error,
-    load_yaml_document,
-    parse_yaml_text,
-    validate_document,
-)
+from homebot.world.loading import validate_document
 from homebot.world.model import (
     DisturbanceModel,
     DoorModel,
@@ -35,6 +29,7 @@ from homebot.world.model import (
     RoomModel,
     WorldModel,
 )
+from homebot.yamlfile import LocatedDocument, field_error, load_yaml_document, parse_yaml_text
 
 __all__ = ["Placement", "World", "shipped_world_names", "shipped_world_path"]
 
@@ -130,13 +125,13 @@ class World:
                     f"{', '.join(shipped_world_names())}"
                 )
             candidate = shipped_world_path(str(path_or_name))
-        document = load_yaml_document(candidate)
+        document = load_yaml_document(candidate, WorldError)
         return cls(validate_document(document, WorldModel), document)
 
     @classmethod
     def from_yaml_text(cls, text: str, source: str = "<text>") -> World:
         """Load a world from YAML text (``source`` names it in errors)."""
-        document = parse_yaml_text(text, source)
+        document = parse_yaml_text(text, source, WorldError)
         return cls(validate_document(document, WorldModel), document)
 
     @classmethod
