@@ -374,6 +374,7 @@ def search(padded: np.ndarray, half_size: float, resolution: float, distances: n
                         # So near, the coarse field's slope says nothing: the way is the
                         # straight line to the target (beside the robot, it must turn).
                         way = math.atan2(target_y - y, target_x - x)
+                    # homebot.geometry.wrap_angle, written out: a compiled kernel calls no Python
                     error = (way - th + math.pi) % (2.0 * math.pi) - math.pi
                     if spin != 0.0 and abs(error) > 2.5 and error * spin < 0.0:
                         # The way lies behind: either turn will do, so keep turning the way
