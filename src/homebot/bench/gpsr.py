@@ -55,7 +55,7 @@ def execute_commands(world: World, count: int, seed: int, level: float = 0.0) ->
         began = time.perf_counter()
         report = simulated.run(parsed.to_task())
         result.wall_times.append(time.perf_counter() - began)
-        done, why = judge(simulated, parsed.steps, report)
+        done, why = judge(simulated.simulation, parsed.steps, report)
         result.reported += report.success
         result.false_claims += report.success and not done
         if done:

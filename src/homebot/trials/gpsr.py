@@ -31,7 +31,7 @@ from typing import Any
 
 from homebot.executive import RunReport
 from homebot.robot import PersonPercept
-from homebot.scenarios import SimulatedRun
+from homebot.sim import Simulation
 from homebot.skills.perception import matches_person
 from homebot.skills.wording import number
 from homebot.task import Step
@@ -42,9 +42,9 @@ __all__ = ["feasible", "judge"]
 _NUMBER_WORDS = {number(count): count for count in range(0, 13)}
 
 
-def _person_fits(run: SimulatedRun, name: str, description: Mapping[str, Any],
+def _person_fits(truth: Simulation, name: str, description: Mapping[str, Any],
                  room: str | None) -> bool:
-    world, sim = run.world, run.simulation
+    world, sim = truth.world, truth
     person = world.people.get(name)
     state = sim.people.get(name)
     if person is None or state is None:
@@ -57,11 +57,11 @@ def _person_fits(run: SimulatedRun, name: str, description: Mapping[str, Any],
     return matches_person(percept, description)
 
 
-def _room_of(run: SimulatedRun, args: Mapping[str, Any]) -> str | None:
+def _room_of(truth: Simulation, args: Mapping[str, Any]) -> str | None:
     if args.get("room"):
         return str(args["room"])
     if args.get("placement"):
-        return run.world.placements[str(args["placement"])].room
+        return truth.world.placements[str(args["placement"])].room
     return None
 
 
@@ -76,30 +76,30 @@ def _said_number(text: str) -> int | None:
     return None
 
 
-def _true_count(run: SimulatedRun, args: Mapping[str, Any]) -> int:
-    world, sim = run.world, run.simulation
+def _true_count(truth: Simulation, args: Mapping[str, Any]) -> int:
+    world, sim = truth.world, truth
     if "person" in args:
-        room = str(args.get("room") or _room_of(run, args))
-        return sum(_person_fits(run, name, dict(args["person"] or {}), room)
+        room = str(args.get("room") or _room_of(truth, args))
+        return sum(_person_fits(truth, name, dict(args["person"] or {}), room)
                    for name in world.people)
     wanted = str(args.get("object", "object"))
     return sum(1 for name, where in sim.object_location.items()
-               if where == args.get("placement") and _is(run, name, wanted))
+               if where == args.get("placement") and _is(truth, name, wanted))
 
 
-def _is(run: SimulatedRun, name: str, wanted: str) -> bool:
-    world = run.world
+def _is(truth: Simulation, name: str, wanted: str) -> bool:
+    world = truth.world
     obj = world.objects.get(name)
     if obj is None:
         return False
     return wanted in (name, obj.category, world.plural_of(obj.category), "object")
 
 
-def _true_superlatives(run: SimulatedRun, args: Mapping[str, Any]) -> list[str]:
+def _true_superlatives(truth: Simulation, args: Mapping[str, Any]) -> list[str]:
     """The objects truly on the placement with the property (several when they tie)."""
-    world, sim = run.world, run.simulation
+    world, sim = truth.world, truth
     there = [name for name, where in sim.object_location.items()
-             if where == args.get("placement") and _is(run, name, str(args.get("object")))]
+             if where == args.get("placement") and _is(truth, name, str(args.get("object")))]
     if not there:
         return []
     prop = str(args["property"])
@@ -109,13 +109,16 @@ def _true_superlatives(run: SimulatedRun, args: Mapping[str, Any]) -> list[str]:
     return [name for name in there if float(getattr(world.objects[name], measure)) == value]
 
 
-def judge(run: SimulatedRun, steps: Sequence[Step],
+def judge(truth: Simulation, steps: Sequence[Step],
           report: RunReport[Any]) -> tuple[bool, str]:
-    """Whether the home shows the command done (and if not, the first effect missing)."""
+    """Whether the home shows the command done (and if not, the first effect missing).
+
+    ``truth`` is the simulation the command ran in: where every object and person truly
+    is. ``report`` is what the robot did and said."""
     if len(report.steps) != len(steps):
         return False, "not every step ran"
-    sim = run.simulation
-    model = run.world.operator
+    sim = truth
+    model = truth.world.operator
     operator = model.name if model is not None else "operator"
     taken: str | None = None
     searched: tuple[dict[str, Any], str | None] | None = None
@@ -126,7 +129,7 @@ def judge(run: SimulatedRun, steps: Sequence[Step],
         if planned.skill == "pick":
             taken = str(args.get("object"))
         elif planned.skill == "find_person":
-            searched = (dict(planned.args.get("person") or {}), _room_of(run, planned.args))
+            searched = (dict(planned.args.get("person") or {}), _room_of(truth, planned.args))
             match = re.search(r"(?:I found|I am with) (.+)$", done.message or "")
             found_name = match.group(1) if match else None
         elif planned.skill == "give":
@@ -138,7 +141,7 @@ def judge(run: SimulatedRun, steps: Sequence[Step],
             if wanted == "operator" and person not in {operator, "operator"}:
                 return False, f"the {taken} went to {person}, not the operator"
             if wanted != "operator" and searched is not None and not _person_fits(
-                    run, person, searched[0], None):
+                    truth, person, searched[0], None):
                 return False, f"the {taken} went to {person}, who does not fit"
             if wanted not in {"", "operator"} and person != wanted:
                 return False, f"the {taken} went to {person}, not {wanted}"
@@ -151,11 +154,11 @@ def judge(run: SimulatedRun, steps: Sequence[Step],
         elif planned.skill == "say" and planned.args.get("text") == "$result" and pending:
             said = done.message or ""
             if pending.skill == "count":
-                truth = _true_count(run, pending.args)
-                if _said_number(said) != truth:
-                    return False, f"said '{said}' but there are {truth}"
+                true_number = _true_count(truth, pending.args)
+                if _said_number(said) != true_number:
+                    return False, f"said '{said}' but there are {true_number}"
             elif pending.args.get("property"):
-                best = _true_superlatives(run, pending.args)
+                best = _true_superlatives(truth, pending.args)
                 if not any(f"the {name}." in said for name in best):
                     return False, f"said '{said}' but it is the {' or the '.join(best)}"
             pending = None
@@ -163,14 +166,14 @@ def judge(run: SimulatedRun, steps: Sequence[Step],
             destination = str(planned.args.get("to"))
             if found_name is None or found_name not in sim.people:
                 return False, "nobody known was guided"
-            room = run.world.room_at(*sim.people[found_name].position)
-            target_room = run.world.placements[destination].room if (
-                destination in run.world.placements) else destination
+            room = truth.world.room_at(*sim.people[found_name].position)
+            target_room = truth.world.placements[destination].room if (
+                destination in truth.world.placements) else destination
             if room != target_room:
                 return False, f"{found_name} is in the {room}, not the {destination}"
         elif planned.skill in {"greet", "say"} and searched is not None and found_name:
             moved = any(step.skill in {"follow", "guide"} for step in steps)  # room changes
-            if not _person_fits(run, found_name, searched[0], None if moved else searched[1]):
+            if not _person_fits(truth, found_name, searched[0], None if moved else searched[1]):
                 return False, f"{found_name} does not fit the person asked for"
     if steps and steps[-1].skill == "pick" and not any(
             held == taken for held in sim.hands.values()):
