@@ -89,3 +89,18 @@ def test_a_skill_run_with_a_cancelled_token_does_not_act(
     assert outcome.status is Status.FAILED and outcome.error is ErrorCode.CANCELLED
     assert outcome.message == "emergency stop"
     assert run.simulation.robot_pose == where
+
+
+def test_an_engines_run_takes_its_token_at_its_beginning(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    run = SimulatedRun.create(apartment, navigator=apartment_navigator)
+    executive = run.executive
+    token = CancelToken()
+    token.cancel("goal cancelled")
+    assert not run.run(_TASK, cancel=token).success
+    executive.begin()  # a new run: not the cancelled one's token
+    assert executive.run_step("navigate", {"to": "kitchen"}).status is Status.VERIFIED
+    executive.begin(cancel=token)
+    outcome = executive.run_step("navigate", {"to": "bedroom"})
+    assert outcome.error is ErrorCode.CANCELLED and outcome.message == "goal cancelled"
+    assert apartment.room_at(*run.simulation.robot_pose[:2]) == "kitchen"

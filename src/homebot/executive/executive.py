@@ -120,8 +120,13 @@ class Executive:
                   if event.kind == "speech"]
         return RunReport(success, reports, speech, context.robot.now() - started, reason, None)
 
-    def begin(self) -> RunMark:
-        """An engine's run starts: the time budget starts now; ``report`` covers what follows."""
+    def begin(self, cancel: CancelToken | None = None) -> RunMark:
+        """An engine's run starts: the time budget starts now; ``report`` covers what follows.
+
+        ``cancel`` (None: a token nobody cancels) is the run's cancel token, as for ``run``:
+        once it is cancelled, ``run_step`` ends each step ``cancelled`` without recovery.
+        """
+        self.context.cancel = cancel if cancel is not None else CancelToken()
         self.start_budget()
         return RunMark(self.context.robot.now(), self.context.events.count, len(self.journal))
 
