@@ -27,7 +27,8 @@ class Clock:
     """Seconds of simulated time since the simulation started."""
 
     time: float = 0.0
-    _observers: dict[ClockObserver, float | None] = field(default_factory=dict, repr=False)
+    _observers: dict[ClockObserver, float | None] = field(
+        default_factory=dict, init=False, repr=False, compare=False)
 
     def now(self) -> float:
         return self.time
