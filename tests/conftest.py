@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from pathlib import Path
 
 import pytest
 
+from homebot.app.cache import CACHE_DIRECTORY_VARIABLE
 from homebot.navigation import Navigator
 from homebot.world import World
 
@@ -25,6 +27,22 @@ def apartment_navigator(apartment: World) -> Navigator:
 @pytest.fixture(scope="session")
 def supermarket() -> World:
     return World.load("supermarket")
+
+
+@pytest.fixture(scope="session", autouse=True)
+def _test_model_cache(request: pytest.FixtureRequest,
+                      tmp_path_factory: pytest.TempPathFactory) -> Iterator[None]:
+    """Trained models go to a folder of the tests' own, never the user's ~/.cache/homebot.
+
+    It is pytest's cache folder (``.pytest_cache/d/homebot``, emptied by
+    ``--cache-clear``), which outlives the session: teaching the robot its household's
+    faces takes tens of seconds, once. Without pytest's cache, a folder of this session.
+    """
+    cache = getattr(request.config, "cache", None)
+    folder = cache.mkdir("homebot") if cache is not None else tmp_path_factory.mktemp("models")
+    with pytest.MonkeyPatch.context() as patch:
+        patch.setenv(CACHE_DIRECTORY_VARIABLE, str(folder))
+        yield
 
 
 @pytest.fixture(autouse=True)

@@ -9,7 +9,7 @@ import pytest
 
 PACKAGES = ["homebot", "homebot.geometry", "homebot.world", "homebot.navigation",
             "homebot.robot", "homebot.sim", "homebot.skills", "homebot.executive",
-            "homebot.scenarios", "homebot.viz", "homebot.speech", "homebot.web"]
+            "homebot.scenarios", "homebot.app", "homebot.viz", "homebot.speech", "homebot.web"]
 
 
 @pytest.mark.parametrize("name", PACKAGES)

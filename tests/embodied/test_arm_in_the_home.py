@@ -81,8 +81,8 @@ def test_a_broken_arm_model_in_a_world_file_names_the_file_and_line(tmp_path: Pa
 
 
 def test_out_of_reach_the_robot_steps_beside_the_nearest_free_side_of_the_surface() -> None:
+    from homebot.app.embodied import embodied_robot
     from homebot.embodied.hands import ArmedBodyRobot
-    from homebot.scenarios.embodied import embodied_robot
 
     world = World.load("apartment")
     navigator = Navigator(world)
@@ -101,8 +101,8 @@ def test_out_of_reach_the_robot_steps_beside_the_nearest_free_side_of_the_surfac
 
 
 def test_the_arms_scene_puts_objects_where_perception_saw_them() -> None:
+    from homebot.app.embodied import embodied_robot
     from homebot.embodied.hands import ArmedBodyRobot
-    from homebot.scenarios.embodied import embodied_robot
 
     world = World.load("apartment")
     navigator = Navigator(world)

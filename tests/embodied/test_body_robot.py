@@ -10,11 +10,10 @@ import math
 
 import pytest
 
+from homebot.app import Fidelity, Run, RunSettings, build_run
 from homebot.geometry import Pose
 from homebot.navigation import Navigator
 from homebot.robot import Blocker
-from homebot.scenarios import SimulatedRun
-from homebot.scenarios.embodied import Fidelity
 from homebot.sim import PERSON_PREFIX
 from homebot.skills import Status, skill_named
 from homebot.task import Step, Task
@@ -24,9 +23,9 @@ from homebot.world import DoorState, World
 pytest.importorskip("cv2")
 
 
-def _run(world: World, navigator: Navigator, seed: int = 0, walkers: int = 0) -> SimulatedRun:
-    return SimulatedRun.create(world, seed=seed, navigator=navigator,
-                               fidelity=Fidelity.EMBODIED, walkers=walkers)
+def _run(world: World, navigator: Navigator, seed: int = 0, walkers: int = 0) -> Run:
+    return build_run(RunSettings(
+        world=world, seed=seed, navigator=navigator, fidelity=Fidelity.EMBODIED, walkers=walkers))
 
 
 def test_navigate_really_drives_and_the_pose_is_an_estimate(

@@ -6,10 +6,9 @@ import math
 
 import pytest
 
+from homebot.app import Fidelity, Run, RunSettings, build_run
 from homebot.geometry import Pose
 from homebot.navigation import Navigator
-from homebot.scenarios import SimulatedRun
-from homebot.scenarios.embodied import Fidelity
 from homebot.world import DoorState, World
 
 pytest.importorskip("cv2")
@@ -18,8 +17,9 @@ DOOR = "bedroom door"
 
 
 def _robot_before_the_door(world: World, navigator: Navigator, distance: float
-                           ) -> SimulatedRun:
-    run = SimulatedRun.create(world, seed=0, navigator=navigator, fidelity=Fidelity.EMBODIED)
+                           ) -> Run:
+    run = build_run(RunSettings(
+        world=world, seed=0, navigator=navigator, fidelity=Fidelity.EMBODIED))
     door = world.doors[DOOR]
     pose = world.point_before_door(DOOR, door.rooms[0], distance)
     run.simulation.robot_pose = (pose.x, pose.y, pose.theta)

@@ -11,22 +11,22 @@ import math
 
 import pytest
 
+from homebot.app import Fidelity, Run, RunSettings, build_run
 from homebot.geometry import Pose
 from homebot.navigation import Navigator
 from homebot.robot import PersonPercept
-from homebot.scenarios import SimulatedRun
-from homebot.scenarios.embodied import Fidelity
 from homebot.task import Step, Task
 from homebot.world import World
 
 pytest.importorskip("cv2")
 
 
-def _run(world: World, navigator: Navigator) -> SimulatedRun:
-    return SimulatedRun.create(world, seed=0, navigator=navigator, fidelity=Fidelity.EMBODIED)
+def _run(world: World, navigator: Navigator) -> Run:
+    return build_run(RunSettings(
+        world=world, seed=0, navigator=navigator, fidelity=Fidelity.EMBODIED))
 
 
-def _place_robot(run: SimulatedRun, pose: Pose) -> None:
+def _place_robot(run: Run, pose: Pose) -> None:
     run.simulation.robot_pose = (pose.x, pose.y, pose.theta)
     run.robot.localisation.initialise(pose, spread=0.01, angle_spread=0.01)  # type: ignore[attr-defined]
 
@@ -104,7 +104,7 @@ def test_find_person_goes_up_to_someone_too_far_to_recognise(
 def test_each_robot_enrols_newcomers_in_its_own_copy_of_the_household(apartment: World) -> None:
     import numpy as np
 
-    from homebot.scenarios.perceiving import household_faces
+    from homebot.app.perception import household_faces
     from homebot.sim.faces import face_identity, face_view
 
     first, second = household_faces(apartment), household_faces(apartment)

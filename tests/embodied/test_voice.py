@@ -7,9 +7,8 @@ import random
 
 import pytest
 
+from homebot.app import Fidelity, RunSettings, build_run
 from homebot.navigation import Navigator
-from homebot.scenarios import SimulatedRun
-from homebot.scenarios.embodied import Fidelity
 from homebot.world import World
 
 pytest.importorskip("cv2")
@@ -21,8 +20,8 @@ from homebot.speech import Recognizer, yes_no_grammar
 
 def test_the_robot_says_it_aloud_and_is_heard(apartment: World,
                                               apartment_navigator: Navigator) -> None:
-    run = SimulatedRun.create(apartment, seed=0, navigator=apartment_navigator,
-                              fidelity=Fidelity.EMBODIED)
+    run = build_run(RunSettings(
+        world=apartment, seed=0, navigator=apartment_navigator, fidelity=Fidelity.EMBODIED))
     body = run.robot.body  # type: ignore[attr-defined]
     microphone = body.microphone()
     start = run.simulation.clock.now()

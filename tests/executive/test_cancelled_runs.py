@@ -2,10 +2,10 @@
 
 from __future__ import annotations
 
+from homebot.app import Run, RunSettings, build_run
 from homebot.cancel import CancelToken
 from homebot.events import Event
 from homebot.navigation import Navigator
-from homebot.scenarios import SimulatedRun
 from homebot.skills import ErrorCode, Status, skill_named
 from homebot.task import Step, Task
 from homebot.world import World
@@ -14,7 +14,7 @@ _TASK = Task((Step("navigate", {"to": "kitchen"}), Step("navigate", {"to": "bedr
               Step("navigate", {"to": "office"})), "a round of the flat")
 
 
-def _pressed_during(run: SimulatedRun, token: CancelToken, target: str, after: float
+def _pressed_during(run: Run, token: CancelToken, target: str, after: float
                     ) -> dict[str, float]:
     """Cancel ``token`` ``after`` simulated seconds into the drive to ``target``."""
     times: dict[str, float] = {}
@@ -35,7 +35,7 @@ def _pressed_during(run: SimulatedRun, token: CancelToken, target: str, after: f
 
 def test_a_run_cancelled_mid_drive_stops_there_and_the_robot_says_it_stopped(
         apartment: World, apartment_navigator: Navigator) -> None:
-    run = SimulatedRun.create(apartment, navigator=apartment_navigator)
+    run = build_run(RunSettings(world=apartment, navigator=apartment_navigator))
     token = CancelToken()
     times = _pressed_during(run, token, "bedroom", after=3.0)
     report = run.run(_TASK, cancel=token)
@@ -56,7 +56,7 @@ def test_a_run_cancelled_mid_drive_stops_there_and_the_robot_says_it_stopped(
 
 def test_a_run_cancelled_between_steps_does_not_start_the_next(
         apartment: World, apartment_navigator: Navigator) -> None:
-    run = SimulatedRun.create(apartment, navigator=apartment_navigator)
+    run = build_run(RunSettings(world=apartment, navigator=apartment_navigator))
     token = CancelToken()
 
     def heard(event: Event) -> None:
@@ -72,7 +72,7 @@ def test_a_run_cancelled_between_steps_does_not_start_the_next(
 
 
 def test_each_run_takes_its_own_token(apartment: World, apartment_navigator: Navigator) -> None:
-    run = SimulatedRun.create(apartment, navigator=apartment_navigator)
+    run = build_run(RunSettings(world=apartment, navigator=apartment_navigator))
     token = CancelToken()
     token.cancel("stop pressed")
     stopped = run.run(_TASK, cancel=token)
@@ -82,7 +82,7 @@ def test_each_run_takes_its_own_token(apartment: World, apartment_navigator: Nav
 
 def test_a_skill_run_with_a_cancelled_token_does_not_act(
         apartment: World, apartment_navigator: Navigator) -> None:
-    run = SimulatedRun.create(apartment, navigator=apartment_navigator)
+    run = build_run(RunSettings(world=apartment, navigator=apartment_navigator))
     run.context.cancel.cancel("emergency stop")
     where = run.simulation.robot_pose
     outcome = skill_named("navigate").run(run.context, {"to": "bedroom"})

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from homebot.scenarios import SimulatedRun
+from homebot.app import RunSettings, build_run
 from homebot.sim import PERSON_PREFIX
 from homebot.task import Step, Task
 from homebot.world import World
@@ -28,7 +28,7 @@ def _bring_picture_frame() -> Task:
 def test_a_door_closed_in_the_world_file_on_the_only_route_is_opened(apartment: World) -> None:
     # The bedroom has one door; the world file says it is closed, so the robot believes it shut.
     world = _apartment_with("bedroom door", "closed", apartment)
-    run = SimulatedRun.create(world)
+    run = build_run(RunSettings(world=world))
     assert "bedroom door" in run.context.beliefs.closed_doors
     report = run.run(_bring_picture_frame())
     assert report.success, report.reason
@@ -47,7 +47,7 @@ def test_a_route_without_closed_doors_is_preferred(apartment: World) -> None:
     # The kitchen has a door to the corridor and an arch to the entrance: with the
     # door believed closed, the robot goes through the arch and opens nothing.
     world = _apartment_with("kitchen door", "closed", apartment)
-    run = SimulatedRun.create(world)
+    run = build_run(RunSettings(world=world))
     report = run.run(Task((Step("navigate", {"to": "fridge"}),)))
     assert report.success
     assert not any(event.kind == "skill.start" and event.data["skill"] == "open_door"
@@ -56,7 +56,7 @@ def test_a_route_without_closed_doors_is_preferred(apartment: World) -> None:
 
 def test_a_locked_door_on_the_only_route_ends_in_a_failure_naming_it(apartment: World) -> None:
     world = _apartment_with("bedroom door", "locked", apartment)
-    run = SimulatedRun.create(world)
+    run = build_run(RunSettings(world=world))
     report = run.run(Task((Step("navigate", {"to": "bed"}),)))
     assert not report.success
     assert "bedroom door" in report.reason

@@ -10,30 +10,30 @@ import math
 
 import pytest
 
+from homebot.app import Run, RunSettings, build_run
 from homebot.executive.conversation import Conversation, relay_sentence
 from homebot.language import Vocabulary
-from homebot.scenarios import SimulatedRun
 from homebot.world import World
 
 
 @pytest.fixture
-def home() -> tuple[SimulatedRun, Conversation]:
+def home() -> tuple[Run, Conversation]:
     world = World.load("family_home")
-    run = SimulatedRun.create(world, seed=3)
+    run = build_run(RunSettings(world=world, seed=3))
     return run, Conversation(Vocabulary.from_world(world), run.run)
 
 
-def _near(run: SimulatedRun, person: str, metres: float = 2.0) -> bool:
+def _near(run: Run, person: str, metres: float = 2.0) -> bool:
     sim = run.simulation
     return math.dist(sim.robot_pose[:2], sim.people[person].position) <= metres
 
 
-def _spoken(run: SimulatedRun) -> list[str]:
+def _spoken(run: Run) -> list[str]:
     return [str(event.data["text"]) for event in run.simulation.events.events
             if event.kind == "speech"]
 
 
-def test_introduce_yourself_is_not_dropped(home: tuple[SimulatedRun, Conversation]) -> None:
+def test_introduce_yourself_is_not_dropped(home: tuple[Run, Conversation]) -> None:
     run, chat = home
     turn = chat.hear("look for a person waving in the living room and introduce yourself")
     assert turn.status == "done"
@@ -43,7 +43,7 @@ def test_introduce_yourself_is_not_dropped(home: tuple[SimulatedRun, Conversatio
     assert any(text.startswith("Hello Lisa") for text in _spoken(run))
 
 
-def test_two_drinks_are_two_drinks_at_the_operator(home: tuple[SimulatedRun, Conversation]) -> None:
+def test_two_drinks_are_two_drinks_at_the_operator(home: tuple[Run, Conversation]) -> None:
     run, chat = home
     assert chat.hear("bring me two drinks").status == "done"
     sim = run.simulation
@@ -52,13 +52,13 @@ def test_two_drinks_are_two_drinks_at_the_operator(home: tuple[SimulatedRun, Con
     assert len(given) == 2
 
 
-def test_tell_a_person_finds_them_first(home: tuple[SimulatedRun, Conversation]) -> None:
+def test_tell_a_person_finds_them_first(home: tuple[Run, Conversation]) -> None:
     run, chat = home
     assert chat.hear("tell Tom that dinner is ready").status == "done"
     assert _near(run, "Tom") and "dinner is ready" in _spoken(run)
 
 
-def test_what_is_inside_says_what_truly_is(home: tuple[SimulatedRun, Conversation]) -> None:
+def test_what_is_inside_says_what_truly_is(home: tuple[Run, Conversation]) -> None:
     run, chat = home
     turn = chat.hear("go to the fridge and tell me what's inside")
     assert turn.status == "done"
@@ -69,13 +69,13 @@ def test_what_is_inside_says_what_truly_is(home: tuple[SimulatedRun, Conversatio
     assert _near(run, "Sam")
 
 
-def test_fetch_delivers(home: tuple[SimulatedRun, Conversation]) -> None:
+def test_fetch_delivers(home: tuple[Run, Conversation]) -> None:
     run, chat = home
     assert chat.hear("could you, like, fetch the beer").status == "done"
     assert run.simulation.object_location["beer"] == "person:Sam"
 
 
-def test_a_ten_turn_conversation(home: tuple[SimulatedRun, Conversation]) -> None:
+def test_a_ten_turn_conversation(home: tuple[Run, Conversation]) -> None:
     run, chat = home
     sim = run.simulation
     # 1-2: a question back, answered; the task goes on with the answer.
@@ -109,7 +109,7 @@ def test_a_ten_turn_conversation(home: tuple[SimulatedRun, Conversation]) -> Non
 
 def test_stop_preempts_a_running_task() -> None:
     world = World.load("family_home")
-    run = SimulatedRun.create(world, seed=5)
+    run = build_run(RunSettings(world=world, seed=5))
     heard = iter([None, "stop"])
     chat = Conversation(Vocabulary.from_world(world), run.run, listen=lambda: next(heard, None))
     turn = chat.hear("bring me the lemonade from the fridge")
@@ -126,7 +126,7 @@ def test_relay_sentences() -> None:
 
 
 def test_that_refers_back_to_the_thing_found_before(
-        home: tuple[SimulatedRun, Conversation]) -> None:
+        home: tuple[Run, Conversation]) -> None:
     run, chat = home
     assert chat.hear("find the beer in the kitchen").status == "done"
     assert chat.hear("bring me that").status == "done"

@@ -3,12 +3,13 @@ on their way gets the executive's door protocol, and the task's time budget stop
 
 from __future__ import annotations
 
+import homebot.app as app
+from homebot.app import RunSettings, build_run
 from homebot.events import EventLog
 from homebot.executive import RunReport
 from homebot.golog import Interpreter, Run, State, Theory, parse_program
 from homebot.golog.skill_executor import SkillExecutor
 from homebot.htn import Goal, HtnTrace, Names, PlanActor, home_domain
-from homebot.scenarios import SimulatedRun
 from homebot.sitlog import Interpreter as DialogueInterpreter
 from homebot.sitlog import RunResult, Var, format_term, load_program, parse_term
 from homebot.sitlog.robot import SkillBody, SkillPerception
@@ -17,14 +18,14 @@ from homebot.task import Step
 from homebot.world import DoorState, World
 
 
-def _shut(world: World, door: str, time_limit: float | None) -> SimulatedRun:
+def _shut(world: World, door: str, time_limit: float | None) -> app.Run:
     """A run whose robot believes ``door`` open: it was shut while the robot was away."""
-    run = SimulatedRun.create(world, time_limit=time_limit)
+    run = build_run(RunSettings(world=world, time_limit=time_limit))
     run.simulation.door_state[door] = DoorState.CLOSED
     return run
 
 
-def _door_opened_by_the_executive(events: EventLog, door: str, run: SimulatedRun) -> bool:
+def _door_opened_by_the_executive(events: EventLog, door: str, run: app.Run) -> bool:
     recovered = [event.data["error"] for event in events.of_kind("recovery")]
     opened = [event.data["status"] for event in events.of_kind("skill.status")
               if event.data["skill"] == "open_door"]
@@ -40,7 +41,7 @@ def _started_after(events: EventLog, deadline: float) -> list[str]:
 # -- HTN: guide Alex to the bedroom, whose door is shut -------------------------------------
 
 def _guide_alex(apartment: World,
-                time_limit: float | None) -> tuple[SimulatedRun, RunReport[HtnTrace]]:
+                time_limit: float | None) -> tuple[app.Run, RunReport[HtnTrace]]:
     run = _shut(apartment, "bedroom door", time_limit)
     names, domain = Names(), home_domain()
     goal = Goal.of("guide_person", ["Alex", "bedroom"], apartment, names, domain)
@@ -68,7 +69,7 @@ def test_an_htn_plan_stops_at_the_time_budget_without_replanning(apartment: Worl
 
 # -- Golog: a program that drives to the bed (behind the shut door), then to the desk ------
 
-def _errand(apartment: World, time_limit: float | None) -> tuple[SimulatedRun, Run]:
+def _errand(apartment: World, time_limit: float | None) -> tuple[app.Run, Run]:
     run = _shut(apartment, "bedroom door", time_limit)
     theory = Theory("errand")
     theory.action("goto", ["place"])
@@ -100,7 +101,7 @@ def test_a_golog_program_stops_at_the_time_budget(apartment: World) -> None:
 _FIND = "find(noodles, ['toy box', shelf_snacks], Where)"
 
 
-def _find_noodles(time_limit: float | None) -> tuple[SimulatedRun, RunResult, Var]:
+def _find_noodles(time_limit: float | None) -> tuple[app.Run, RunResult, Var]:
     run = _shut(World.load("butler_home"), "kids room door", time_limit)
     variables: dict[str, Var] = {}
     call = parse_term(_FIND, "<test>", variables)

@@ -6,12 +6,12 @@ from dataclasses import replace
 
 import pytest
 
+from homebot.app import Run, RunSettings, build_run
 from homebot.bench.robustness import compare_modes
 from homebot.cancel import CancelToken
 from homebot.geometry import Pose
 from homebot.navigation import Navigator
 from homebot.robot import Blocker, MoveReport, PersonPercept
-from homebot.scenarios import SimulatedRun
 from homebot.sim import PERSON_PREFIX
 from homebot.skills import ErrorCode
 from homebot.task import Step, Task
@@ -26,8 +26,9 @@ def _bring(obj: str, placement: str, person: str = "operator") -> Task:
                  Step("give", {"person": person})))
 
 
-def _run(world: World, navigator: Navigator, **kwargs: object) -> SimulatedRun:
-    return SimulatedRun.create(world, navigator=navigator, **kwargs)  # type: ignore[arg-type]
+def _run(world: World, navigator: Navigator, **kwargs: object) -> Run:
+    return build_run(RunSettings(
+        world=world, navigator=navigator, **kwargs))  # type: ignore[arg-type]
 
 
 def test_undisturbed_fetch_is_verified_step_by_step(apartment: World,
@@ -117,7 +118,7 @@ def test_without_monitoring_a_slip_goes_unnoticed(apartment: World,
 
 
 def test_same_seed_same_event_log(apartment: World, apartment_navigator: Navigator) -> None:
-    from homebot.scenarios import disturbed
+    from homebot.app import disturbed
 
     logs = []
     for _ in range(2):
@@ -157,7 +158,8 @@ def test_inference_is_asked_when_an_object_is_not_where_expected(
         found = run("find_object", {"object": args["object"], "placement": "coffee table"})
         return found if skill == "find_object" else True
 
-    run = SimulatedRun.create(apartment, navigator=apartment_navigator, inference=inference)
+    run = build_run(RunSettings(
+        world=apartment, navigator=apartment_navigator, inference=inference))
     run.simulation.object_location["cola"] = "coffee table"
     report = run.run(_bring("cola", "fridge"))
     assert report.success
@@ -173,7 +175,8 @@ def test_inference_gets_a_turn_when_the_protocols_give_up(
         asked.append(outcome.error)
         return False
 
-    run = SimulatedRun.create(apartment, navigator=apartment_navigator, inference=inference)
+    run = build_run(RunSettings(
+        world=apartment, navigator=apartment_navigator, inference=inference))
     run.simulation.door_state["bedroom door"] = DoorState.LOCKED
     report = run.run(Task((Step("navigate", {"to": "bed"}),)))
     assert not report.success
@@ -196,14 +199,15 @@ def test_the_report_names_the_object_a_recovery_really_picked(
         taken = run("pick", {"object": "orange juice"})
         return taken if found and taken else False
 
-    run = SimulatedRun.create(apartment, navigator=apartment_navigator, inference=offer_another)
+    run = build_run(RunSettings(
+        world=apartment, navigator=apartment_navigator, inference=offer_another))
     run.simulation.object_location["cola"] = None
     report = run.run(Task((Step("navigate", {"to": "fridge"}), Step("pick", {"object": "cola"}))))
     assert report.success
     assert report.steps[1].args == {"object": "orange juice"}
 
 
-def _obstructed(run: SimulatedRun, times: int) -> list[object]:
+def _obstructed(run: Run, times: int) -> list[object]:
     """Make the robot's first ``times`` motions stop at something nobody is known to be."""
     robot = run.executive.context.robot
     real, calls = robot.move_to, []

@@ -6,9 +6,9 @@ from pathlib import Path
 
 import pytest
 
+from homebot.app import RunSettings, build_run
 from homebot.errors import TaskError
 from homebot.executive.taskfile import task_from_text
-from homebot.scenarios import SimulatedRun
 from homebot.sim import PERSON_PREFIX
 from homebot.world import World
 
@@ -32,7 +32,7 @@ def test_names_are_bound_to_the_world_spelling_and_the_task_succeeds() -> None:
         {"to": "mesa da cozinha"}, {"object": "crème brûlée", "placement": "mesa da cozinha"},
         {"object": "crème brûlée"}, {"person": {"name": "Patrícia"}, "room": "salão"},
         {"person": "Patrícia"}]
-    run = SimulatedRun.create(world, seed=0)
+    run = build_run(RunSettings(world=world, seed=0))
     assert run.run(task).success
     assert run.simulation.object_location["crème brûlée"] == PERSON_PREFIX + "Patrícia"
 

@@ -9,10 +9,10 @@ import yaml
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from homebot.app import RunSettings, build_run, disturbed
 from homebot.errors import HomebotError
 from homebot.executive.taskfile import task_from_text
 from homebot.navigation import Navigator
-from homebot.scenarios import SimulatedRun, disturbed
 from homebot.skills import SKILLS
 from homebot.world import World
 
@@ -104,7 +104,8 @@ def test_a_valid_task_runs_to_a_report_whatever_happens(steps: list[dict[str, An
         task = task_from_text(yaml.safe_dump(steps), _WORLD)
     except HomebotError:
         return
-    run = SimulatedRun.create(_WORLD, seed=seed, navigator=_NAVIGATOR, monitoring=monitoring,
-                              disturbances=disturbed(level) if level else None)
+    run = build_run(RunSettings(
+        world=_WORLD, seed=seed, navigator=_NAVIGATOR, monitoring=monitoring,
+        disturbances=disturbed(level) if level else None))
     report = run.run(task)
     assert report.success or report.reason

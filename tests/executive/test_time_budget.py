@@ -6,18 +6,18 @@ import argparse
 
 import pytest
 
+from homebot.app import Run, RunSettings, build_run
 from homebot.cli import command_line_argument_parser
 from homebot.cli.options import GPSR_TIME_LIMIT, time_limit
 from homebot.language import Vocabulary, parse_command
 from homebot.navigation import Navigator
-from homebot.scenarios import SimulatedRun
 from homebot.task import Step, Task
 from homebot.world import World
 
 
 def _run_out_red_wine(apartment: World, navigator: Navigator,
-                      limit: float | None) -> tuple[SimulatedRun, Task]:
-    run = SimulatedRun.create(apartment, navigator=navigator, time_limit=limit)
+                      limit: float | None) -> tuple[Run, Task]:
+    run = build_run(RunSettings(world=apartment, navigator=navigator, time_limit=limit))
     run.simulation.object_location["red wine"] = None  # drunk: the world file says otherwise
     return run, parse_command("bring me the red wine", Vocabulary.from_world(apartment)).to_task()
 
@@ -49,7 +49,7 @@ def test_without_a_budget_the_search_covers_the_home_and_names_every_place(
 
 def test_a_step_is_not_started_once_the_budget_is_spent(apartment: World,
                                                         apartment_navigator: Navigator) -> None:
-    run = SimulatedRun.create(apartment, navigator=apartment_navigator, time_limit=10.0)
+    run = build_run(RunSettings(world=apartment, navigator=apartment_navigator, time_limit=10.0))
     report = run.run(Task((Step("navigate", {"to": "bed"}), Step("navigate", {"to": "desk"}))))
     assert [step.status for step in report.steps] == ["verified", "failed"]
     assert report.steps[1].error == "out_of_time"
@@ -76,7 +76,7 @@ def test_bad_time_limits_are_refused(text: str) -> None:
 
 def test_a_person_search_stops_at_the_budget_naming_the_rooms(
         apartment: World, apartment_navigator: Navigator) -> None:
-    run = SimulatedRun.create(apartment, navigator=apartment_navigator, time_limit=90.0)
+    run = build_run(RunSettings(world=apartment, navigator=apartment_navigator, time_limit=90.0))
     report = run.run(Task((Step("find_person", {"person": {"gesture": "pointing_left"}}),)))
     assert not report.success and report.sim_time <= 90.0
     assert report.steps[0].error == "out_of_time"
@@ -86,7 +86,7 @@ def test_a_person_search_stops_at_the_budget_naming_the_rooms(
 
 def test_engines_that_run_steps_themselves_get_the_budget(
         apartment: World, apartment_navigator: Navigator) -> None:
-    run = SimulatedRun.create(apartment, navigator=apartment_navigator, time_limit=60.0)
+    run = build_run(RunSettings(world=apartment, navigator=apartment_navigator, time_limit=60.0))
     run.simulation.object_location["red wine"] = None
     outcome = run.executive.run_step("find_object", {"object": "red wine"})
     assert outcome.error is not None and outcome.error.value == "out_of_time"

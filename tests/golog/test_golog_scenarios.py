@@ -7,6 +7,7 @@ import json
 
 import pytest
 
+from homebot.app import Run, RunSettings
 from homebot.bench import golog as golog_bench
 from homebot.cli import main
 from homebot.scenarios.library import cup_moved, maze, order_cups, rips
@@ -27,14 +28,14 @@ def test_rips_registers_through_the_skills_in_the_simulated_home() -> None:
 
 def test_rips_writes_golog_steps_into_the_event_log(monkeypatch: pytest.MonkeyPatch) -> None:
     logs: list[object] = []
-    original = rips.SimulatedRun.create
+    original = rips.build_run
 
-    def keep(*args: object, **kwargs: object) -> object:
-        made = original(*args, **kwargs)  # type: ignore[arg-type]
-        logs.append(made.simulation.events)
+    def keep(settings: RunSettings) -> Run:
+        made = original(settings)
+        logs.append(made.events)
         return made
 
-    monkeypatch.setattr(rips.SimulatedRun, "create", keep)
+    monkeypatch.setattr(rips, "build_run", keep)
     rips.run(argparse.Namespace(seed=0, disturb=0.0), None)
     kinds = [event.kind for event in logs[0].events]  # type: ignore[attr-defined]
     assert "golog.exogenous" in kinds and "golog.action" in kinds and "skill.start" in kinds
@@ -127,13 +128,13 @@ def test_the_benchmark_reports_nodes_and_time() -> None:
 
 
 def test_with_monitoring_off_a_finished_skill_is_a_done_action() -> None:
+    from homebot.app import RunSettings, build_run
     from homebot.golog import State
     from homebot.golog.skill_executor import SkillExecutor
-    from homebot.scenarios import SimulatedRun
     from homebot.task import Step
     from homebot.world import World
 
-    run = SimulatedRun.create(World.load("apartment"), monitoring=False)
+    run = build_run(RunSettings(world=World.load("apartment"), monitoring=False))
     executor = SkillExecutor(run.executive, {"say": lambda action: [Step("say",
                                                                        {"text": action[1]})]})
     assert executor.execute(("say", "hello"), State())

@@ -4,19 +4,20 @@ from __future__ import annotations
 
 import pytest
 
+from homebot.app import RunSettings, build_run, disturbed
 from homebot.errors import PlanningError
 from homebot.events import EventLog
 from homebot.executive import RunReport
 from homebot.htn import Goal, HtnTrace, Names, PlanActor, home_domain, read_domain_text
 from homebot.navigation import Navigator
-from homebot.scenarios import SimulatedRun, disturbed
 from homebot.world import DisturbanceModel, World
 
 
 def _carry_out(world: World, navigator: Navigator, task: str, args: list[str], *, seed: int = 0,
                disturbances: DisturbanceModel | None = None,
                **actor: object) -> tuple[RunReport[HtnTrace], EventLog]:
-    run = SimulatedRun.create(world, seed=seed, disturbances=disturbances, navigator=navigator)
+    run = build_run(RunSettings(
+        world=world, seed=seed, disturbances=disturbances, navigator=navigator))
     names = Names()
     domain = home_domain()
     done = PlanActor(run.executive, domain, **actor).run(Goal.of(task, args, world, names, domain),
@@ -134,7 +135,7 @@ def test_a_missed_second_look_keeps_the_found_placement(
 
 def test_an_object_moved_away_is_searched_for_and_found(
         apartment: World, apartment_navigator: Navigator) -> None:
-    run = SimulatedRun.create(apartment, navigator=apartment_navigator)
+    run = build_run(RunSettings(world=apartment, navigator=apartment_navigator))
     run.simulation.object_location["cup"] = "desk"  # someone took it to the office
     names = Names()
     domain = home_domain()
@@ -156,7 +157,7 @@ WRONG_MODEL = """\
 
 def test_declared_effects_are_checked_against_the_beliefs(
         apartment: World, apartment_navigator: Navigator) -> None:
-    run = SimulatedRun.create(apartment, navigator=apartment_navigator)
+    run = build_run(RunSettings(world=apartment, navigator=apartment_navigator))
     domain = read_domain_text(WRONG_MODEL)
     done = PlanActor(run.executive, domain, max_replans=1).run(Goal(("go", "robot", "desk")))
     # The robot got there (navigate verified), but the model's promise is not believed.
@@ -168,7 +169,7 @@ def test_declared_effects_are_checked_against_the_beliefs(
 
 def test_operators_without_a_skill_are_refused_before_acting(
         apartment: World, apartment_navigator: Navigator) -> None:
-    run = SimulatedRun.create(apartment, navigator=apartment_navigator)
+    run = build_run(RunSettings(world=apartment, navigator=apartment_navigator))
     domain = read_domain_text("(defdomain d ((:operator (!dance ?r) () () ((danced ?r)))))")
     with pytest.raises(PlanningError, match="no skill runs operator '!dance'"):
         PlanActor(run.executive, domain).run(Goal(("!dance", "robot")))
@@ -177,7 +178,7 @@ def test_operators_without_a_skill_are_refused_before_acting(
 
 def test_with_monitoring_off_finished_operators_go_on(apartment: World,
                                                       apartment_navigator: Navigator) -> None:
-    run = SimulatedRun.create(apartment, navigator=apartment_navigator, monitoring=False)
+    run = build_run(RunSettings(world=apartment, navigator=apartment_navigator, monitoring=False))
     names = Names()
     domain = home_domain()
     done = PlanActor(run.executive, domain).run(

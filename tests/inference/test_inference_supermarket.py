@@ -8,13 +8,13 @@ from pathlib import Path
 
 import pytest
 
+from homebot.app import RunSettings, build_run
 from homebot.bench import inference as bench
 from homebot.cli import scenario
 from homebot.inference import InferenceCycle, Inventory, fetch_task
 from homebot.knowledge.store import KnowledgeStore
 from homebot.navigation import Navigator
 from homebot.scenarios.library import supermarket as story
-from homebot.scenarios.runtime import SimulatedRun
 from homebot.sim import ScriptedResponder
 from homebot.skills import ErrorCode, Outcome, skill_named
 from homebot.task import Step, Task
@@ -86,7 +86,8 @@ def test_a_product_on_its_shelf_needs_no_inference(
         supermarket: World, supermarket_navigator: Navigator) -> None:
     inventory = Inventory.load("supermarket")
     cycle = InferenceCycle(inventory)
-    run = SimulatedRun.create(supermarket, navigator=supermarket_navigator, inference=cycle)
+    run = build_run(RunSettings(
+        world=supermarket, navigator=supermarket_navigator, inference=cycle))
     report = run.run(fetch_task(inventory, "coke"))
     assert report.success
     assert cycle.records == []
@@ -97,7 +98,8 @@ def test_a_misplaced_product_is_found_where_the_diagnosis_sends_the_robot(
         supermarket: World, supermarket_navigator: Navigator) -> None:
     inventory = Inventory.load("supermarket")
     cycle = InferenceCycle(inventory)
-    run = SimulatedRun.create(supermarket, navigator=supermarket_navigator, inference=cycle)
+    run = build_run(RunSettings(
+        world=supermarket, navigator=supermarket_navigator, inference=cycle))
     run.simulation.object_location["coke"] = "shelf food"
     report = run.run(fetch_task(inventory, "coke"))
     assert report.success
@@ -111,7 +113,7 @@ def test_a_misplaced_product_is_found_where_the_diagnosis_sends_the_robot(
 def test_other_failures_are_left_to_the_protocols(supermarket: World,
                                                   supermarket_navigator: Navigator) -> None:
     cycle = InferenceCycle(Inventory.load("supermarket"))
-    run = SimulatedRun.create(supermarket, navigator=supermarket_navigator)
+    run = build_run(RunSettings(world=supermarket, navigator=supermarket_navigator))
     failed = Outcome.failed(ErrorCode.DOOR_CLOSED, "shut")
     assert cycle(run.context, "navigate", {"to": "shelf food"}, failed, lambda *a: failed) is False
     missing = Outcome.failed(ErrorCode.NOT_FOUND, "gone")
@@ -132,10 +134,10 @@ def test_a_declined_alternative_is_put_back_and_the_request_fails(
         supermarket: World, supermarket_navigator: Navigator) -> None:
     inventory = Inventory.load("supermarket")
     cycle = InferenceCycle(inventory)
-    run = SimulatedRun.create(
-        supermarket, navigator=supermarket_navigator, inference=cycle,
+    run = build_run(RunSettings(
+        world=supermarket, navigator=supermarket_navigator, inference=cycle,
         responder=ScriptedResponder({"customer": {
-            "We ran out of heineken. Would you like malz instead?": "No, thanks."}}))
+            "We ran out of heineken. Would you like malz instead?": "No, thanks."}})))
     run.simulation.object_location["heineken"] = None
     report = run.run(fetch_task(inventory, "heineken"))
     assert not report.success
@@ -149,7 +151,8 @@ def test_a_failed_find_ends_when_the_product_is_seen(
         supermarket: World, supermarket_navigator: Navigator) -> None:
     inventory = Inventory.load("supermarket")
     cycle = InferenceCycle(inventory)
-    run = SimulatedRun.create(supermarket, navigator=supermarket_navigator, inference=cycle)
+    run = build_run(RunSettings(
+        world=supermarket, navigator=supermarket_navigator, inference=cycle))
     run.simulation.object_location["noodles"] = "shelf bread"
     task = Task((Step("find_object", {"object": "noodles", "placement": "shelf food"}),
                  Step("pick", {"object": "noodles"}), Step("navigate", {"to": "operator"}),
@@ -162,7 +165,7 @@ def test_a_failed_find_ends_when_the_product_is_seen(
 
 def test_placing_a_named_product_never_puts_down_another(
         supermarket: World, supermarket_navigator: Navigator) -> None:
-    run = SimulatedRun.create(supermarket, navigator=supermarket_navigator)
+    run = build_run(RunSettings(world=supermarket, navigator=supermarket_navigator))
     run.simulation.hands["left"] = "malz"
     run.simulation.object_location["malz"] = "hand:left"
     run.context.beliefs.took("malz", "left")

@@ -11,9 +11,9 @@ from typing import Any
 
 import pytest
 
+from homebot.app import RunSettings, build_run
 from homebot.cli import main
 from homebot.language import Vocabulary, parse_command
-from homebot.scenarios import SimulatedRun
 from homebot.world import World
 from homebot.world.robocup import world_from_robocup
 
@@ -141,7 +141,7 @@ def test_misspelt_accented_names_are_corrected_in_folded_form(casa: World) -> No
 
 def test_a_delivery_to_patricia_succeeds_by_ground_truth(casa: World) -> None:
     result = parse_command("bring the creme brulee to patricia", Vocabulary.from_world(casa))
-    run = SimulatedRun.create(casa, seed=0)
+    run = build_run(RunSettings(world=casa, seed=0))
     report = run.run(result.to_task())
     assert report.success
     assert run.simulation.object_location["crème brûlée"] == "person:Patrícia"

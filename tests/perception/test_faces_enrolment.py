@@ -38,9 +38,9 @@ def test_acquaintances_enrol_on_an_introduction_only(detector: FaceDetector) -> 
 def test_a_person_who_says_my_name_is_in_front_of_the_embodied_robot_is_recognised(
         detector: FaceDetector) -> None:
     pytest.importorskip("cv2")
+    from homebot.app.embodied import embodied_robot
     from homebot.embodied import BodyRobot
     from homebot.navigation import Navigator
-    from homebot.scenarios.embodied import embodied_robot
     from homebot.sim import Simulation
     from homebot.sim.faces import FaceCamera
     from homebot.world import World

@@ -7,11 +7,10 @@ import math
 import numpy as np
 import pytest
 
+from homebot.app import Fidelity, RunSettings, build_run
 from homebot.navigation import Navigator
 from homebot.perception.gestures import classify_gesture
 from homebot.robot import Blocker
-from homebot.scenarios import SimulatedRun
-from homebot.scenarios.embodied import Fidelity
 from homebot.sim.keypoints import gesture_keypoints
 from homebot.world import World
 
@@ -20,8 +19,8 @@ pytest.importorskip("cv2")
 
 def test_guiding_stops_within_a_second_of_the_persons_stop_gesture(
         apartment: World, apartment_navigator: Navigator) -> None:
-    run = SimulatedRun.create(apartment, seed=0, navigator=apartment_navigator,
-                              fidelity=Fidelity.EMBODIED)
+    run = build_run(RunSettings(
+        world=apartment, seed=0, navigator=apartment_navigator, fidelity=Fidelity.EMBODIED))
     robot, simulation = run.robot, run.simulation
     rng = np.random.default_rng(0)
     started = robot.now()

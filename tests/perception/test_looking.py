@@ -9,10 +9,10 @@ import pytest
 pytest.importorskip("sklearn")
 pytest.importorskip("cv2")
 
+from homebot.app.embodied import embodied_robot
 from homebot.embodied import BodyRobot
 from homebot.geometry import Pose
 from homebot.navigation import Navigator
-from homebot.scenarios.embodied import embodied_robot
 from homebot.sim import Simulation
 from homebot.world import World, catalogue_entry
 

@@ -7,6 +7,7 @@ import pytest
 
 pytest.importorskip("sklearn")
 
+from homebot.app.perception import labelled_frames
 from homebot.perception.recognition import (
     Recogniser,
     TabletopPerception,
@@ -21,7 +22,6 @@ from homebot.perception.tabletop import (
     segment_plane,
     segment_tabletop,
 )
-from homebot.scenarios.perceiving import labelled_frames
 from homebot.sim.tabletop import tabletop_scene
 from homebot.world import CatalogueEntry, Shape
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from homebot.scenarios.runtime import SimulatedRun
+from homebot.app import RunSettings, build_run
 from homebot.sitlog import Interpreter, Var, format_term, load_program, parse_term
 from homebot.sitlog.functions.behaviours import member
 from homebot.sitlog.perception import utterance_term
@@ -39,7 +39,7 @@ def test_member_compares_atoms_folded() -> None:
 
 
 def test_find_in_the_accented_world_takes_names_without_accents() -> None:
-    run = SimulatedRun.create(World.load(CASA), seed=1)
+    run = build_run(RunSettings(world=World.load(CASA), seed=1))
     variables: dict[str, Var] = {}
     term = parse_term("find('creme brulee', [etagere, 'MESA DA COZINHA'], Where)", "<test>",
                       variables)

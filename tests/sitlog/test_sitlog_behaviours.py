@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from homebot.scenarios.runtime import SimulatedRun
+from homebot.app import Run, RunSettings, build_run
 from homebot.sitlog import Interpreter, Var, format_term, load_program, parse_term
 from homebot.sitlog.robot import SkillBody, SkillPerception
 from homebot.sitlog.terms import resolve
@@ -16,8 +16,8 @@ def _home() -> World:
 
 
 def _call(world: World, call: str,
-          shut: tuple[str, ...] = ()) -> tuple[dict[str, Var], Any, SimulatedRun]:
-    run = SimulatedRun.create(world, seed=1)
+          shut: tuple[str, ...] = ()) -> tuple[dict[str, Var], Any, Run]:
+    run = build_run(RunSettings(world=world, seed=1))
     for door in shut:  # shut while the robot was not looking: it believes the door open
         run.simulation.door_state[door] = DoorState.CLOSED
     variables: dict[str, Var] = {}
@@ -57,7 +57,7 @@ def test_find_scans_placements_in_order() -> None:
 
 
 def test_move_asks_someone_in_the_doorway_to_let_it_through() -> None:
-    run = SimulatedRun.create(_home(), seed=1)
+    run = build_run(RunSettings(world=_home(), seed=1))
     run.simulation.place_person_in_doorway("kids room door", "Tom")
     variables: dict[str, Var] = {}
     term = parse_term("move('toy box', Status)", "<test>", variables)
@@ -70,7 +70,7 @@ def test_move_asks_someone_in_the_doorway_to_let_it_through() -> None:
 
 
 def test_take_then_deliver_to_a_person() -> None:
-    run = SimulatedRun.create(_home(), seed=2)
+    run = build_run(RunSettings(world=_home(), seed=2))
     variables: dict[str, Var] = {}
     program = load_program("behaviours")
     perception, body = SkillPerception(run.executive), SkillBody(run.executive)

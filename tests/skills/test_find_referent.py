@@ -2,9 +2,9 @@
 
 from __future__ import annotations
 
+from homebot.app import RunSettings, build_run
 from homebot.language.parser import parse_command
 from homebot.language.vocabulary import Vocabulary
-from homebot.scenarios.runtime import SimulatedRun
 from homebot.world import World
 
 
@@ -27,7 +27,7 @@ def _given(command: str) -> tuple[str | None, list[str]]:
     world = _world()
     parsed = parse_command(command, Vocabulary.from_world(world))
     assert parsed, parsed
-    run = SimulatedRun.create(world, seed=4)
+    run = build_run(RunSettings(world=world, seed=4))
     run.run(parsed.to_task())
     truth = run.simulation.object_location
     handed = [name for name in ("red mug", "green mug", "blue mug")

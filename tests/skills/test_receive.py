@@ -4,19 +4,19 @@ from __future__ import annotations
 
 import pytest
 
+from homebot.app import Run, RunSettings, build_run
 from homebot.navigation import Navigator
-from homebot.scenarios import SimulatedRun
 from homebot.sim import PERSON_PREFIX
 from homebot.skills import ErrorCode, Status, skill_named
 from homebot.world import World
 
 
 @pytest.fixture
-def run(apartment: World, apartment_navigator: Navigator) -> SimulatedRun:
-    return SimulatedRun.create(apartment, navigator=apartment_navigator)
+def run(apartment: World, apartment_navigator: Navigator) -> Run:
+    return build_run(RunSettings(world=apartment, navigator=apartment_navigator))
 
 
-def test_the_robot_takes_what_the_operator_hands_it(run: SimulatedRun) -> None:
+def test_the_robot_takes_what_the_operator_hands_it(run: Run) -> None:
     operator = run.world.model.operator
     thing = sorted(run.world.objects)[0]
     run.simulation.object_location[thing] = PERSON_PREFIX + operator
@@ -28,7 +28,7 @@ def test_the_robot_takes_what_the_operator_hands_it(run: SimulatedRun) -> None:
     assert run.context.beliefs.holding[hand] == thing
 
 
-def test_nothing_given_is_aborted_and_full_hands_fail(run: SimulatedRun) -> None:
+def test_nothing_given_is_aborted_and_full_hands_fail(run: Run) -> None:
     outcome = skill_named("receive").run(run.context, {"person": "operator"})
     assert outcome.status is Status.ABORTED and outcome.error is ErrorCode.NOT_GRASPED
     for hand in run.simulation.hands:

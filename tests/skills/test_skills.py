@@ -6,10 +6,10 @@ import math
 
 import pytest
 
+from homebot.app import Run, RunSettings, build_run
 from homebot.errors import TaskError
 from homebot.navigation import Navigator
 from homebot.robot import PersonPercept
-from homebot.scenarios import SimulatedRun
 from homebot.skills import SKILLS, ErrorCode, Status, check_step, skill_named
 from homebot.skills.places import HANDING_REACH
 from homebot.task import Step
@@ -17,11 +17,11 @@ from homebot.world import DisturbanceModel, DoorState, World
 
 
 @pytest.fixture
-def run(apartment: World, apartment_navigator: Navigator) -> SimulatedRun:
-    return SimulatedRun.create(apartment, navigator=apartment_navigator)
+def run(apartment: World, apartment_navigator: Navigator) -> Run:
+    return build_run(RunSettings(world=apartment, navigator=apartment_navigator))
 
 
-def _do(run: SimulatedRun, skill: str, **args: object):
+def _do(run: Run, skill: str, **args: object):
     return skill_named(skill).run(run.context, args)
 
 
@@ -31,14 +31,14 @@ def test_the_issue_lists_every_skill() -> None:
                            "describe", "open_door", "answer_question", "where_is"}
 
 
-def test_navigate_verifies_the_pose(run: SimulatedRun) -> None:
+def test_navigate_verifies_the_pose(run: Run) -> None:
     outcome = _do(run, "navigate", to="kitchen")
     assert outcome.status is Status.VERIFIED and bool(outcome)
     assert run.world.room_at(*run.robot.pose().xy()) == "kitchen"
 
 
 def test_the_middle_of_a_room_is_free_floor_even_where_its_centroid_is_under_a_table(
-        run: SimulatedRun) -> None:
+        run: Run) -> None:
     from homebot.skills.places import resolve_target
 
     table = run.world.placements["kitchen table"].footprint
@@ -51,7 +51,7 @@ def test_the_middle_of_a_room_is_free_floor_even_where_its_centroid_is_under_a_t
         assert not grid.blocked[grid.cell_of(*goal.xy())]
 
 
-def test_unknown_target_fails(run: SimulatedRun) -> None:
+def test_unknown_target_fails(run: Run) -> None:
     outcome = _do(run, "navigate", to="garage")
     assert outcome.status is Status.FAILED and outcome.error is ErrorCode.UNKNOWN_TARGET
     assert not outcome
@@ -59,9 +59,9 @@ def test_unknown_target_fails(run: SimulatedRun) -> None:
 
 def test_pick_aborts_when_the_hand_is_empty(apartment: World,
                                             apartment_navigator: Navigator) -> None:
-    run = SimulatedRun.create(apartment, navigator=apartment_navigator,
-                              disturbances=DisturbanceModel(grasp_slip=1.0),
-                              retries={"pick": 0})
+    run = build_run(RunSettings(
+        world=apartment, navigator=apartment_navigator,
+        disturbances=DisturbanceModel(grasp_slip=1.0), retries={"pick": 0}))
     outcome = skill_named("pick").run(run.context, {"object": "cola"})
     assert outcome.status is Status.ABORTED and outcome.error is ErrorCode.NOT_GRASPED
     assert run.context.beliefs.free_hand() == "left"
@@ -70,7 +70,8 @@ def test_pick_aborts_when_the_hand_is_empty(apartment: World,
 def test_pick_says_why_when_the_arm_did_not_even_try(
         apartment: World, apartment_navigator: Navigator,
         monkeypatch: pytest.MonkeyPatch) -> None:
-    run = SimulatedRun.create(apartment, navigator=apartment_navigator, retries={"pick": 0})
+    run = build_run(RunSettings(
+        world=apartment, navigator=apartment_navigator, retries={"pick": 0}))
     reason = "I cannot reach the cola from where I can stand"
     monkeypatch.setattr(run.robot, "grasp", lambda detection, hand: reason)
     outcome = skill_named("pick").run(run.context, {"object": "cola"})
@@ -80,7 +81,7 @@ def test_pick_says_why_when_the_arm_did_not_even_try(
     assert run.simulation.object_location["cola"] == "fridge"
 
 
-def test_pick_then_place_moves_the_object(run: SimulatedRun) -> None:
+def test_pick_then_place_moves_the_object(run: Run) -> None:
     assert _do(run, "pick", object="cola")
     assert run.context.beliefs.holding["left"] == "cola"
     outcome = _do(run, "place", placement="kitchen table")
@@ -92,7 +93,7 @@ def test_give_looks_first_and_a_person_gone_elsewhere_is_searched_for(
         apartment: World, apartment_navigator: Navigator) -> None:
     from homebot.task import Step, Task
 
-    run = SimulatedRun.create(apartment, navigator=apartment_navigator)
+    run = build_run(RunSettings(world=apartment, navigator=apartment_navigator))
     assert _do(run, "pick", object="cola")
     assert _do(run, "navigate", to="Maria")
     run.simulation.move_person("Maria", (9.0, 7.0))  # she leaves for the office, unseen
@@ -108,7 +109,8 @@ def test_give_looks_first_and_a_person_gone_elsewhere_is_searched_for(
 def test_give_drives_again_to_a_person_seen_farther_off_after_the_first_approach(
         apartment: World, apartment_navigator: Navigator,
         monkeypatch: pytest.MonkeyPatch) -> None:
-    run = SimulatedRun.create(apartment, navigator=apartment_navigator, retries={"give": 0})
+    run = build_run(RunSettings(
+        world=apartment, navigator=apartment_navigator, retries={"give": 0}))
     assert _do(run, "pick", object="cola")
     elsewhere = (11.0, 3.0)  # across the kitchen from where Maria stands
     assert apartment.footprint_problem(*elsewhere) is None
@@ -130,49 +132,49 @@ def test_give_drives_again_to_a_person_seen_farther_off_after_the_first_approach
     assert math.dist(run.robot.pose().xy(), elsewhere) <= HANDING_REACH
 
 
-def test_place_with_empty_hands_fails(run: SimulatedRun) -> None:
+def test_place_with_empty_hands_fails(run: Run) -> None:
     outcome = _do(run, "place", placement="kitchen table")
     assert outcome.error is ErrorCode.NOT_HOLDING
 
 
-def test_two_hands_then_full(run: SimulatedRun) -> None:
+def test_two_hands_then_full(run: Run) -> None:
     assert _do(run, "pick", object="cola")
     assert _do(run, "pick", object="milk")
     assert _do(run, "pick", object="water").error is ErrorCode.HANDS_FULL
 
 
-def test_find_object_by_category_binds_a_real_object(run: SimulatedRun) -> None:
+def test_find_object_by_category_binds_a_real_object(run: Run) -> None:
     outcome = _do(run, "find_object", object="fruit", room="kitchen")
     assert outcome and outcome.data["object"] in {"apple", "banana", "orange", "lemon", "pear"}
     assert outcome.data["placement"] == "kitchen table"
 
 
-def test_count_and_say_the_result(run: SimulatedRun) -> None:
+def test_count_and_say_the_result(run: Run) -> None:
     counted = _do(run, "count", object="drink", placement="fridge")
     assert counted and counted.data["count"] == 5
     said = _do(run, "say", text="$result")
     assert said.data["text"] == "There are five drinks in the fridge."
 
 
-def test_find_person_by_gesture_then_describe(run: SimulatedRun) -> None:
+def test_find_person_by_gesture_then_describe(run: Run) -> None:
     found = _do(run, "find_person", person={"gesture": "waving"}, room="office")
     assert found and found.data["person"] == "Sophie"
     described = _do(run, "describe", info="clothes")
     assert described and "yellow jacket" in described.data["result"]
 
 
-def test_describe_object_property(run: SimulatedRun) -> None:
+def test_describe_object_property(run: Run) -> None:
     outcome = _do(run, "describe", property="heaviest", object="object", placement="fridge")
     assert outcome and "fridge" in outcome.data["result"]
 
 
-def test_guide_brings_the_person_along(run: SimulatedRun) -> None:
+def test_guide_brings_the_person_along(run: Run) -> None:
     assert _do(run, "find_person", person={"name": "John"}, room="bedroom")
     assert _do(run, "guide", to="kitchen")
     assert run.simulation.people["John"].room == "kitchen"
 
 
-def test_ask_binds_the_answer_and_no_answer_aborts(run: SimulatedRun) -> None:
+def test_ask_binds_the_answer_and_no_answer_aborts(run: Run) -> None:
     assert _do(run, "find_person", person={"name": "Alex"})
     answer = _do(run, "ask", question="What would you like to drink?")
     assert answer.data["answer"] == "orange juice"
@@ -180,7 +182,7 @@ def test_ask_binds_the_answer_and_no_answer_aborts(run: SimulatedRun) -> None:
     assert silent.error is ErrorCode.NO_ANSWER
 
 
-def test_answer_question_from_beliefs(run: SimulatedRun) -> None:
+def test_answer_question_from_beliefs(run: Run) -> None:
     assert _do(run, "find_person", person={"name": "Alex"})
     outcome = _do(run, "answer_question")
     assert outcome and outcome.data["answer"] == "There are 7 rooms."
@@ -200,8 +202,9 @@ def test_check_step_rejects_bad_steps(apartment: World) -> None:
 
 def test_a_missed_detection_is_retried_at_the_same_place(apartment: World,
                                                           apartment_navigator: Navigator) -> None:
-    run = SimulatedRun.create(apartment, navigator=apartment_navigator, seed=0,
-                              disturbances=DisturbanceModel(detection_miss=1.0))
+    run = build_run(RunSettings(
+        world=apartment, navigator=apartment_navigator, seed=0,
+        disturbances=DisturbanceModel(detection_miss=1.0)))
     outcome = skill_named("pick").run(run.context, {"object": "cola"})
     assert outcome.error is ErrorCode.NOT_FOUND
     looks = [e for e in run.simulation.events.of_kind("skill.status")
@@ -213,7 +216,7 @@ def test_a_missed_detection_is_retried_at_the_same_place(apartment: World,
 
 def test_a_place_whose_check_missed_is_looked_at_again(apartment: World,
                                                        apartment_navigator: Navigator) -> None:
-    run = SimulatedRun.create(apartment, navigator=apartment_navigator, seed=1)
+    run = build_run(RunSettings(world=apartment, navigator=apartment_navigator, seed=1))
     assert skill_named("pick").run(run.context, {"object": "cola"})
     run.simulation.disturbances = DisturbanceModel(detection_miss=0.5)
     outcome = skill_named("place").run(run.context, {"placement": "kitchen table"})
@@ -223,8 +226,9 @@ def test_a_place_whose_check_missed_is_looked_at_again(apartment: World,
 
 def test_a_room_search_retry_searches_again(apartment: World,
                                             apartment_navigator: Navigator) -> None:
-    run = SimulatedRun.create(apartment, navigator=apartment_navigator, seed=0,
-                              disturbances=DisturbanceModel(detection_miss=1.0))
+    run = build_run(RunSettings(
+        world=apartment, navigator=apartment_navigator, seed=0,
+        disturbances=DisturbanceModel(detection_miss=1.0)))
     outcome = skill_named("find_object").run(run.context, {"object": "fruit", "room": "kitchen"})
     assert outcome.error is ErrorCode.NOT_FOUND
     # The retry searched the kitchen again (not an empty search), and says where it looked.
@@ -232,14 +236,14 @@ def test_a_room_search_retry_searches_again(apartment: World,
     assert all(f"the {place}" in outcome.message for place in outcome.data["searched"])
 
 
-def test_pick_looks_where_the_object_now_is(run: SimulatedRun) -> None:
+def test_pick_looks_where_the_object_now_is(run: Run) -> None:
     assert _do(run, "pick", object="cola")
     assert _do(run, "place", placement="kitchen table")
     assert _do(run, "pick", object="cola")
     assert run.simulation.object_location["cola"] == "hand:left"
 
 
-def test_look_greet_follow_and_open_door(run: SimulatedRun) -> None:
+def test_look_greet_follow_and_open_door(run: Run) -> None:
     looked = _do(run, "look", placement="fridge")
     assert looked.status is Status.VERIFIED
     assert _do(run, "find_person", person={"name": "Maria"}, room="kitchen")
@@ -252,7 +256,7 @@ def test_look_greet_follow_and_open_door(run: SimulatedRun) -> None:
     assert run.simulation.door_state["office door"] is DoorState.OPEN
 
 
-def test_a_person_is_a_name_or_a_description_for_every_skill(run: SimulatedRun) -> None:
+def test_a_person_is_a_name_or_a_description_for_every_skill(run: Run) -> None:
     assert _do(run, "find_person", person="Maria", room="kitchen")
     assert _do(run, "count", person="Maria", room="kitchen").data["count"] == 1
     assert _do(run, "answer_question", person={"name": "Maria"}).status is not None

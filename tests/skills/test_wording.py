@@ -7,8 +7,8 @@ from collections.abc import Callable
 
 import pytest
 
+from homebot.app import Run, RunSettings, build_run
 from homebot.navigation import Navigator
-from homebot.scenarios import SimulatedRun
 from homebot.skills import wording
 from homebot.skills.perception import looked_everywhere
 from homebot.task import Step, Task
@@ -139,21 +139,21 @@ def test_every_sentence_template_is_rendered_by_these_tests() -> None:
 # ------------------------------------------------------------- what the running robot says
 
 
-def _speech(run: SimulatedRun, task: Task) -> list[str]:
+def _speech(run: Run, task: Task) -> list[str]:
     report = run.run(task)
     return report.speech
 
 
 def test_the_robot_says_it_right_in_a_run(apartment: World,
                                           apartment_navigator: Navigator) -> None:
-    run = SimulatedRun.create(apartment, navigator=apartment_navigator)
+    run = build_run(RunSettings(world=apartment, navigator=apartment_navigator))
     said = _speech(run, Task((Step("navigate", {"to": "pantry"}),
                               Step("find_object", {"object": "biscuits", "placement": "pantry"}),
                               Step("pick", {"object": "biscuits"}),
                               Step("navigate", {"to": "operator"}),
                               Step("give", {"person": "operator"}))))
     assert "Alex, here are the biscuits." in said
-    run = SimulatedRun.create(apartment, navigator=apartment_navigator)
+    run = build_run(RunSettings(world=apartment, navigator=apartment_navigator))
     said = _speech(run, Task((Step("count", {"person": {"posture": "lying"}, "room": "bedroom"}),
                               Step("say", {"text": "$result"}),
                               Step("count", {"object": "drink", "placement": "fridge"}),
@@ -166,7 +166,7 @@ def test_the_robot_says_it_right_in_a_run(apartment: World,
 
 def test_a_plural_object_that_is_gone_is_spoken_of_in_the_plural(
         apartment: World, apartment_navigator: Navigator) -> None:
-    run = SimulatedRun.create(apartment, navigator=apartment_navigator, time_limit=200)
+    run = build_run(RunSettings(world=apartment, navigator=apartment_navigator, time_limit=200))
     run.simulation.object_location["biscuits"] = None
     report = run.run(Task((Step("find_object", {"object": "biscuits", "placement": "pantry"}),)))
     assert "The biscuits are not where I expected. I will look elsewhere." in report.speech
@@ -198,7 +198,7 @@ TASKS = [
                                                 enumerate(TASKS)])
 def test_everything_said_in_a_run_passes_the_checks(
         apartment: World, apartment_navigator: Navigator, steps: tuple[Step, ...]) -> None:
-    run = SimulatedRun.create(apartment, navigator=apartment_navigator, time_limit=300)
+    run = build_run(RunSettings(world=apartment, navigator=apartment_navigator, time_limit=300))
     report = run.run(Task(steps))
     assert report.speech
     for text in report.speech:

@@ -2,18 +2,18 @@
 
 from __future__ import annotations
 
+from homebot.app import Run, RunSettings, build_run
 from homebot.executive import RunReport
 from homebot.language import Vocabulary, parse_command
-from homebot.scenarios import SimulatedRun
 from homebot.task import Step
 from homebot.trials.gpsr import judge
 from homebot.world import World
 
 
-def _carried_out(command: str) -> tuple[SimulatedRun, list[Step], RunReport[None]]:
+def _carried_out(command: str) -> tuple[Run, list[Step], RunReport[None]]:
     world = World.load("apartment")
     parsed = parse_command(command, Vocabulary.from_world(world))
-    run = SimulatedRun.create(world, seed=2)
+    run = build_run(RunSettings(world=world, seed=2))
     return run, parsed.steps, run.run(parsed.to_task())
 
 

@@ -15,7 +15,7 @@ pytest.importorskip("fastapi")
 pytest.importorskip("uvicorn")
 playwright_api = pytest.importorskip("playwright.sync_api")
 
-from homebot.scenarios.embodied import Fidelity  # noqa: E402
+from homebot.app import Fidelity  # noqa
 from homebot.web import Console, ConsoleSettings  # noqa: E402
 from homebot.web.app import create_app  # noqa: E402
 from homebot.world import World  # noqa: E402

@@ -8,9 +8,9 @@ import pytest
 
 pytest.importorskip("cv2")
 
+from homebot.app import Fidelity
 from homebot.bench.console import estop_trials
 from homebot.errors import ConsoleError
-from homebot.scenarios.embodied import Fidelity
 from homebot.web import Console, ConsoleSettings
 from homebot.world import World
 

@@ -7,10 +7,10 @@ from pathlib import Path
 
 import pytest
 
+from homebot.app import RunSettings, build_run
 from homebot.cli import main
 from homebot.errors import WorldError
 from homebot.language import Vocabulary, parse_command
-from homebot.scenarios import SimulatedRun
 from homebot.sim import PERSON_PREFIX
 from homebot.world import DoorState, World
 from homebot.world.pyrobosim import world_from_pyrobosim
@@ -56,7 +56,7 @@ def test_a_fetch_task_succeeds_in_the_imported_world(
                  "--json"]) == 0
     assert json.loads(capsys.readouterr().out)["success"]
     world = World.load(output)
-    run = SimulatedRun.create(world)
+    run = build_run(RunSettings(world=world))
     command = parse_command("bring me the gala from my desk", Vocabulary.from_world(world))
     report = run.run(command.to_task())
     assert report.success  # through the closed hallway: both doors opened on the way

@@ -8,10 +8,10 @@ from pathlib import Path
 
 import pytest
 
+from homebot.app import RunSettings, build_run
 from homebot.cli import main
 from homebot.errors import WorldError
 from homebot.language import Vocabulary, parse_command
-from homebot.scenarios import SimulatedRun
 from homebot.sim import PERSON_PREFIX
 from homebot.world import World
 from homebot.world.robocup import import_robocup, read_robocup_data, world_from_robocup
@@ -201,7 +201,7 @@ def test_bring_me_a_coke_from_the_kitchen_table_succeeds_in_the_imported_world(
     assert report["steps"][0]["args"] == {"to": "kitchen table"}
     # Judged by ground truth, not by the report: the simulator has the coke with Adel.
     world = World.load(output)
-    run = SimulatedRun.create(world)
+    run = build_run(RunSettings(world=world))
     run.run(parse_command("bring me a coke from the kitchen table",
                           Vocabulary.from_world(world)).to_task())
     assert run.simulation.object_location["coke"] == PERSON_PREFIX + "Adel"

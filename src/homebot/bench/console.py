@@ -27,8 +27,8 @@ from typing import Any
 
 from rich.console import Console as Terminal
 
+from homebot.app import Fidelity
 from homebot.bench.arguments import count
-from homebot.scenarios.embodied import Fidelity
 from homebot.web import Console, ConsoleSettings
 from homebot.world import World
 

@@ -15,10 +15,10 @@ from typing import Any
 
 from rich.console import Console
 
+from homebot.app import RunSettings, build_run
 from homebot.bench.arguments import count, seed
+from homebot.cli.options import add_fidelity_option
 from homebot.navigation import Navigator
-from homebot.scenarios import SimulatedRun
-from homebot.scenarios.embodied import add_fidelity_option
 from homebot.sim import PlanCache
 from homebot.trials.fetch import delivered, fetch_tasks
 from homebot.world import World
@@ -50,8 +50,8 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
                 navigator._cache.clear()
                 world.forget_cached()
                 plans.clear()
-            run_ = SimulatedRun.create(world, seed=index, navigator=navigator, plans=plans,
-                                       fidelity=args.fidelity)
+            run_ = build_run(RunSettings(
+                world=world, seed=index, navigator=navigator, plans=plans, fidelity=args.fidelity))
             began = time.perf_counter()
             report = run_.run(fetch.task)
             samples.append(time.perf_counter() - began)

@@ -11,11 +11,12 @@ from typing import Any
 
 from rich.console import Console
 
+from homebot.app import RunSettings, build_run, disturbed
 from homebot.bench.arguments import count, seed
+from homebot.cli.options import disturbance_level
 from homebot.language import Vocabulary, parse_command
 from homebot.language.generator import generate_commands
 from homebot.navigation import Navigator
-from homebot.scenarios import SimulatedRun, disturbance_level, disturbed
 from homebot.trials.gpsr import feasible, judge
 from homebot.world import World
 
@@ -50,8 +51,9 @@ def execute_commands(world: World, count: int, seed: int, level: float = 0.0) ->
         if not parsed:
             result.failures[f"parse {parsed.status}"] += 1
             continue
-        simulated = SimulatedRun.create(world, seed=seed * 10_007 + index, navigator=navigator,
-                                        disturbances=disturbed(level) if level else None)
+        simulated = build_run(RunSettings(
+            world=world, seed=seed * 10_007 + index, navigator=navigator,
+            disturbances=disturbed(level) if level else None))
         began = time.perf_counter()
         report = simulated.run(parsed.to_task())
         result.wall_times.append(time.perf_counter() - began)

@@ -23,8 +23,10 @@ from typing import Any
 
 from rich.console import Console
 
+from homebot.app import RunSettings, build_run, disturbed
 from homebot.beliefs import Beliefs
 from homebot.bench.arguments import count, seed
+from homebot.cli.options import disturbance_level
 from homebot.htn import (
     Goal,
     Names,
@@ -35,7 +37,6 @@ from homebot.htn import (
     state_from_beliefs,
 )
 from homebot.navigation import Navigator
-from homebot.scenarios import SimulatedRun, disturbance_level, disturbed
 from homebot.trials.fetch import delivered, fetch_tasks
 from homebot.world import World
 
@@ -357,9 +358,9 @@ def _execution(world: World, runs: int, seed: int, level: float) -> list[dict[st
         delivered_count = verified = told = 0
         sim_times: list[float] = []
         for index, fetch in enumerate(fetch_tasks(world, runs, seed)):
-            simulation_run = SimulatedRun.create(world, seed=seed * 100_003 + index,
-                                                 disturbances=disturbed(level),
-                                                 navigator=navigator)
+            simulation_run = build_run(RunSettings(
+                world=world, seed=seed * 100_003 + index, disturbances=disturbed(level),
+                navigator=navigator))
             if mode.startswith("htn"):
                 names = Names()
                 goal = Goal.of("bring_object", [fetch.obj, fetch.person], world, names, domain)

@@ -1,6 +1,6 @@
 """A long-running simulation: memory over thousands of consecutive tasks in one home.
 
-One ``SimulatedRun`` carries out fetch-and-deliver tasks one after the other (10 000 by
+One ``Run`` carries out fetch-and-deliver tasks one after the other (10 000 by
 default) with its event log bounded (``EventLog.keep``: only the latest events stay in
 memory; give ``--events FILE`` to stream every event to a file as well). The resident
 set size is read from ``/proc/self/status`` after a warm-up and at the end; its growth is
@@ -17,9 +17,9 @@ from typing import Any
 
 from rich.console import Console
 
+from homebot.app import RunSettings, build_run
 from homebot.bench.arguments import count, seed
 from homebot.navigation import Navigator
-from homebot.scenarios import SimulatedRun
 from homebot.trials.fetch import fetch_tasks
 from homebot.world import World
 
@@ -54,7 +54,7 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
     """Run the tasks; report the resident memory after the warm-up and at the end."""
     world = World.load("apartment")
     navigator = Navigator(world)
-    simulation_run = SimulatedRun.create(world, seed=args.seed, navigator=navigator)
+    simulation_run = build_run(RunSettings(world=world, seed=args.seed, navigator=navigator))
     events = simulation_run.simulation.events
     events.keep = args.keep
     simulation_run.simulation.trail_keep = args.keep  # the robot's drawn path, likewise

@@ -11,10 +11,10 @@ from typing import Any
 from rich.console import Console
 from rich.table import Table
 
+from homebot.app import Fidelity, RunSettings, build_run, disturbed
 from homebot.bench.arguments import count, seed
+from homebot.cli.options import add_fidelity_option, disturbance_level
 from homebot.navigation import Navigator
-from homebot.scenarios import SimulatedRun, disturbance_level, disturbed
-from homebot.scenarios.embodied import Fidelity, add_fidelity_option
 from homebot.trials.fetch import delivered, fetch_tasks
 from homebot.world import World
 
@@ -53,9 +53,9 @@ def compare_modes(world: World, tasks: int, seed: int, level: float = 1.0,
     for mode, monitoring in (("monitored + recovery", True), ("plain sequence", False)):
         result = ModeResult(mode)
         for index, fetch in enumerate(fetch_tasks(world, tasks, seed)):
-            run = SimulatedRun.create(world, seed=seed * 100_003 + index,
-                                      disturbances=disturbed(level), monitoring=monitoring,
-                                      navigator=navigator, fidelity=fidelity)
+            run = build_run(RunSettings(
+                world=world, seed=seed * 100_003 + index, disturbances=disturbed(level),
+                monitoring=monitoring, navigator=navigator, fidelity=fidelity))
             started = time.perf_counter()
             report = run.run(fetch.task)
             result.wall_times.append(time.perf_counter() - started)

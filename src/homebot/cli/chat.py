@@ -14,14 +14,12 @@ from typing import Any
 from rich.console import Console
 from rich.markup import escape
 
+from homebot.app import QUESTION_COST, conversation_for
 from homebot.cli.options import GPSR_TIME_LIMIT, load_world
 from homebot.cli.simulated import add_run_options, finish_run, keep_events, simulated_run
-from homebot.executive.conversation import Conversation, Turn
-from homebot.language import ReadingModel, Vocabulary
-from homebot.scenarios import SimulatedRun
-from homebot.world import World
+from homebot.executive.conversation import Turn
 
-__all__ = ["add_question_cost_option", "believed", "converse", "register", "told"]
+__all__ = ["add_question_cost_option", "converse", "register", "show_turn"]
 
 _QUIT = frozenset({"quit", "exit", "bye", "goodbye", "q"})
 
@@ -38,9 +36,8 @@ def chat(args: argparse.Namespace) -> int:
     world = load_world(args)
     run = simulated_run(args, world)
     console = Console()
-    conversation = Conversation(Vocabulary.from_world(world), run.run,
-                                listen=_stdin_listener() if sys.stdin.isatty() else None,
-                                readings=believed(run, args.question_cost))
+    conversation = conversation_for(run, question_cost=args.question_cost,
+                                    listen=_stdin_listener() if sys.stdin.isatty() else None)
     console.print(f"  [cyan]robot:[/] Hello, I am in the {escape(world.name)}. What can I do "
                   f"for you? (quit to end)", highlight=False)
     while True:
@@ -56,7 +53,7 @@ def chat(args: argparse.Namespace) -> int:
 
 
 def add_question_cost_option(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--question-cost", type=_cost, default=0.25, metavar="COST",
+    parser.add_argument("--question-cost", type=_cost, default=QUESTION_COST, metavar="COST",
                         help="what asking back costs, where doing the right thing is worth 1 "
                              "and a wrong one costs 1 (default 0.25): an ambiguous command is "
                              "carried out on its likeliest reading when that is worth more")
@@ -70,25 +67,6 @@ def _cost(text: str) -> float:
     if not 0.0 <= value <= 10.0:
         raise argparse.ArgumentTypeError(f"a cost from 0 to 10, not '{text}'")
     return value
-
-
-def told(world: World, question_cost: float) -> ReadingModel:
-    """What the robot is told before it starts (the world file: where things are kept),
-    as a reading model for a single command."""
-    return ReadingModel(object_at={name: obj.placement for name, obj in world.objects.items()},
-                        categories={name: obj.category for name, obj in world.objects.items()},
-                        question=question_cost, places=len(world.placements))
-
-
-def believed(run: SimulatedRun, question_cost: float) -> Callable[[], ReadingModel]:
-    """The robot's current beliefs (never the simulator's truth) as a reading model."""
-    def model() -> ReadingModel:
-        beliefs = run.context.beliefs
-        return ReadingModel(
-            object_at={name: where for name, where in beliefs.object_at.items() if where},
-            categories={name: obj.category for name, obj in run.world.objects.items()},
-            question=question_cost, places=len(run.world.placements))
-    return model
 
 
 def _read(prompt: str) -> str | None:
@@ -121,8 +99,8 @@ def converse(args: argparse.Namespace, command: str, answers: Iterable[str]) -> 
     next scripted reply; exit 0 only when the command was carried out and succeeded."""
     world = load_world(args)
     run = simulated_run(args, world)
-    conversation = Conversation(Vocabulary.from_world(world), run.run,
-                                readings=believed(run, getattr(args, "question_cost", 0.25)))
+    conversation = conversation_for(
+        run, question_cost=getattr(args, "question_cost", QUESTION_COST))
     console = Console()
     replies = list(answers)
     turn = conversation.hear(command)

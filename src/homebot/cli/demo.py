@@ -8,11 +8,10 @@ from typing import Any
 from rich.console import Console
 from rich.table import Table
 
-from homebot.cli.simulated import record_final_state
+from homebot.cli.options import add_fidelity_option
 from homebot.cli.world import remember_last_run
 from homebot.events import Event
 from homebot.scenarios.demo import DemoTask, run_demo
-from homebot.scenarios.embodied import add_fidelity_option
 from homebot.world import World
 
 __all__ = ["register"]
@@ -61,6 +60,6 @@ def demo(args: argparse.Namespace) -> int:
         outcome = "[green]done[/]" if report.success else f"[red]failed[/]: {report.reason}"
         table.add_row(task.title, outcome, str(recoveries), f"{report.sim_time:.0f} s")
     console.print(table)
-    record_final_state(results[-1][2])
-    remember_last_run(results[-1][2].simulation.events)
+    results[-1][2].record_final_state()
+    remember_last_run(results[-1][2].events)
     return 0

@@ -9,7 +9,8 @@ from typing import Any
 from rich.console import Console
 from rich.markup import escape
 
-from homebot.cli.chat import add_question_cost_option, told
+from homebot.app import told
+from homebot.cli.chat import add_question_cost_option
 from homebot.cli.options import GPSR_TIME_LIMIT, load_world
 from homebot.cli.simulated import add_run_options, finish_run, keep_events, simulated_run
 from homebot.cli.voice import add_voice_options, speak_to_file, spoken_or_typed

@@ -1,4 +1,5 @@
-"""Options shared by command groups: the world, the seed, retry budgets."""
+"""Options shared by command groups: the world, the seed, the fidelity, retry budgets,
+the time limit, disturbances and probabilities."""
 
 from __future__ import annotations
 
@@ -6,12 +7,14 @@ import argparse
 import math
 import re
 
+from homebot.app import Fidelity
 from homebot.errors import HomebotError, TaskError
 from homebot.skills import SKILLS
 from homebot.world import World
 
-__all__ = ["GPSR_TIME_LIMIT", "add_retry_option", "add_time_limit_option", "add_world_options",
-           "load_world", "retry_budgets", "time_limit"]
+__all__ = ["GPSR_TIME_LIMIT", "add_fidelity_option", "add_retry_option", "add_time_limit_option",
+           "add_world_options", "disturbance_level", "fidelity_of", "load_world", "probability",
+           "retry_budgets", "time_limit"]
 
 GPSR_TIME_LIMIT = 300.0  #: seconds: the competition's 5 minutes for a GPSR command
 
@@ -81,3 +84,38 @@ def time_limit(text: str) -> float | None:
             f"'{text}' is not a time limit; give simulated seconds above 0 and at most a day "
             "(300, 90s, 5m) or none")
     return seconds
+
+
+def add_fidelity_option(parser: argparse.ArgumentParser) -> None:
+    """``--fidelity symbolic|embodied``."""
+    parser.add_argument("--fidelity", type=Fidelity, choices=list(Fidelity),
+                        default=Fidelity.SYMBOLIC,
+                        help="symbolic (fast, the default) or embodied (the robot localises "
+                             "from its laser and drives with the reactive planner)")
+
+
+def fidelity_of(args: argparse.Namespace) -> Fidelity:
+    """The ``--fidelity`` asked for (symbolic when the arguments have none)."""
+    return Fidelity(getattr(args, "fidelity", Fidelity.SYMBOLIC))
+
+
+def disturbance_level(text: str) -> float:
+    """An argparse type: a level for ``homebot.app.disturbed``, 0 (none) to 6 (90 % of
+    grasps slip)."""
+    return _number_between(text, 0.0, 6.0, "a disturbance level")
+
+
+def probability(text: str) -> float:
+    """An argparse type: a probability, 0 to 1."""
+    return _number_between(text, 0.0, 1.0, "a probability")
+
+
+def _number_between(text: str, low: float, high: float, what: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not low <= value <= high:  # also false for nan
+        raise argparse.ArgumentTypeError(f"{what} is a number from {low:g} to {high:g}, "
+                                         f"not '{text}'")
+    return value

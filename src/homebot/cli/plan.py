@@ -173,7 +173,7 @@ def carry_out_with_htn(args: argparse.Namespace, world: World, run: Any,
                        steps: list[Any]) -> int | None:
     """``homebot do --planner htn``: plan and act on the parse's goals; None if it has none.
 
-    ``run`` is a ``SimulatedRun``; with no home task for the parse, a note goes to
+    ``run`` is a ``homebot.app.Run``; with no home task for the parse, a note goes to
     stderr and the caller runs the parsed steps as usual.
     """
     names = Names()

@@ -7,9 +7,9 @@ import importlib.util
 import secrets
 from typing import Any
 
-from homebot.cli.options import add_world_options, load_world
+from homebot.app import Fidelity, require_embodied
+from homebot.cli.options import add_fidelity_option, add_world_options, load_world
 from homebot.errors import HomebotError
-from homebot.scenarios.embodied import Fidelity, add_fidelity_option, require_embodied
 
 __all__ = ["register", "serve"]
 

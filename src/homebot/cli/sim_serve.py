@@ -8,12 +8,15 @@ import sys
 import time
 from typing import TYPE_CHECKING, Any
 
-from homebot.cli.options import add_world_options, load_world
+from homebot.app import RunSettings, build_run, disturbed, require_embodied
+from homebot.cli.options import (
+    add_fidelity_option,
+    add_world_options,
+    disturbance_level,
+    load_world,
+)
 from homebot.cli.ros_options import add_transport_options, transport_node
-from homebot.cli.simulated import record_final_state
 from homebot.navigation import Navigator
-from homebot.scenarios import SimulatedRun, disturbance_level, disturbed
-from homebot.scenarios.embodied import add_fidelity_option, require_embodied
 from homebot.world import World
 
 if TYPE_CHECKING:
@@ -51,10 +54,10 @@ def _serve(args: argparse.Namespace) -> int:
     world = load_world(args)
     if args.body:
         return _serve_body(args, node, world)
-    run = SimulatedRun.create(world, seed=args.seed, fidelity=args.fidelity,
-                              disturbances=disturbed(args.disturb) if args.disturb else None)
-    server = SimServer(node, run.robot, world, run.simulation.events,
-                       final_state=lambda: record_final_state(run))
+    run = build_run(RunSettings(
+        world=world, seed=args.seed, fidelity=args.fidelity,
+        disturbances=disturbed(args.disturb) if args.disturb else None))
+    server = SimServer(node, run.robot, world, run.events, final_state=run.record_final_state)
     print(f"homebot sim serve: {world.name}, seed {args.seed}, ROS 2 domain {args.domain_id} "
           f"on {args.interface}", flush=True)
     try:

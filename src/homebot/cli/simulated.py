@@ -8,26 +8,26 @@ from pathlib import Path
 
 from rich.console import Console
 
+from homebot.app import Run, RunSettings, build_run, disturbed
 from homebot.cli.options import (
+    add_fidelity_option,
     add_retry_option,
     add_time_limit_option,
     add_world_options,
+    disturbance_level,
     retry_budgets,
 )
 from homebot.cli.world import remember_last_run
 from homebot.errors import TaskError
 from homebot.events import EventLog
 from homebot.executive import RunReport, print_report
-from homebot.scenarios import SimulatedRun, disturbance_level, disturbed
-from homebot.scenarios.embodied import add_fidelity_option
-from homebot.sim import InteractiveResponder
 from homebot.world import World
 
 __all__ = [
     "add_run_options",
     "finish_run",
     "keep_events",
-    "record_final_state",
+    "run_settings",
     "simulated_run",
     "write_events",
 ]
@@ -59,27 +59,31 @@ def _walker_count(text: str) -> int:
     return int(text)
 
 
-def simulated_run(args: argparse.Namespace, world: World, *,
-                  monitoring: bool = True) -> SimulatedRun:
-    """The simulated home the options of ``add_run_options`` ask for."""
-    return SimulatedRun.create(
-        world, seed=args.seed,
+def run_settings(args: argparse.Namespace, world: World, *,
+                 monitoring: bool = True) -> RunSettings:
+    """The settings of the simulated home the options of ``add_run_options`` ask for."""
+    return RunSettings(
+        world=world, seed=args.seed,
         disturbances=disturbed(args.disturb) if args.disturb else None,
-        monitoring=monitoring,
-        fidelity=args.fidelity, walkers=args.walkers,
-        responder=InteractiveResponder() if args.interactive else None,
-        retries=retry_budgets(args.retries), time_limit=args.time_limit)
+        monitoring=monitoring, fidelity=args.fidelity, walkers=args.walkers,
+        interactive=args.interactive, retries=retry_budgets(args.retries),
+        time_limit=args.time_limit)
 
 
-def keep_events(args: argparse.Namespace, run: SimulatedRun) -> None:
+def simulated_run(args: argparse.Namespace, world: World, *, monitoring: bool = True) -> Run:
+    """The simulated home the options of ``add_run_options`` ask for."""
+    return build_run(run_settings(args, world, monitoring=monitoring))
+
+
+def keep_events(args: argparse.Namespace, run: Run) -> None:
     """Remember the run for ``world show`` and write ``--events`` if asked."""
-    record_final_state(run)
-    remember_last_run(run.simulation.events)
+    run.record_final_state()
+    remember_last_run(run.events)
     if args.events:
-        write_events(run.simulation.events, args.events)
+        write_events(run.events, args.events)
 
 
-def finish_run(args: argparse.Namespace, run: SimulatedRun, report: RunReport[None]) -> int:
+def finish_run(args: argparse.Namespace, run: Run, report: RunReport[None]) -> int:
     """Keep the events, print the report (or its JSON); 0 when the task succeeded, else 1."""
     keep_events(args, run)
     if args.json:
@@ -87,17 +91,6 @@ def finish_run(args: argparse.Namespace, run: SimulatedRun, report: RunReport[No
     else:
         print_report(Console(), report)
     return 0 if report.success else 1
-
-
-def record_final_state(run: SimulatedRun) -> None:
-    """Log where the run left things (``sim.final``: the simulator's truth), for the map."""
-    sim = run.simulation
-    sim.events.record("sim.final", world=sim.world.name,
-                      objects=dict(sim.object_location),
-                      people={name: [round(value, 3) for value in state.position]
-                              for name, state in sim.people.items()},
-                      doors={name: str(state) for name, state in sim.door_state.items()},
-                      robot=[round(value, 4) for value in sim.robot_pose])
 
 
 def write_events(events: EventLog, path: Path) -> None:

@@ -121,11 +121,11 @@ def _prompt(text: str) -> str:
 
 
 def _on_robot(args: argparse.Namespace, spoken: ScriptedPerception) -> tuple[Any, Any, Any]:
-    from homebot.scenarios.runtime import SimulatedRun
+    from homebot.app import RunSettings, build_run
     from homebot.sitlog.robot import SkillBody, SkillPerception
     from homebot.world import World
 
-    run = SimulatedRun.create(World.load(args.world), seed=args.seed)
+    run = build_run(RunSettings(world=World.load(args.world), seed=args.seed))
     robot = SkillPerception(run.executive, person=args.person)
     perception = robot if args.person else _Mixed(spoken, robot)
     return perception, SkillBody(run.executive), run.context

@@ -10,7 +10,7 @@ between turns (the seed's dialogue, Cosero §7.2.2; CAESAR §3.3's clarification
 - "stop" or "cancel" heard while a task runs ends it between two steps; said while a
   question is open, it drops the command.
 
-The conversation runs tasks through ``run`` (a ``SimulatedRun.run`` or any callable with
+The conversation runs tasks through ``run`` (a ``Run.run`` or any callable with
 its signature) and never reads the simulator: what it knows of the world is the reports.
 """
 

@@ -48,7 +48,7 @@ class CycleRecord:
 
 
 class InferenceCycle:
-    """The daily-life inference cycle, plugged in as ``SimulatedRun.create(inference=cycle)``.
+    """The daily-life inference cycle, plugged in as ``build_run(RunSettings(inference=cycle))``.
 
     Called by the executive when a ``pick`` or ``find_object`` ends ``not_found``,
     it observes the shelf, diagnoses where things must be, decides which

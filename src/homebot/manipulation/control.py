@@ -7,7 +7,7 @@ gives a detection's position that is used; the heading of a box and the position
 other objects come from ``locate``, which the wiring layer supplies. The embodied robot's
 ``SeenObjects`` (``homebot.embodied.hands``) answers it with where its camera last saw each
 object, and falls back on the simulator's truth (labelled as such in
-``homebot.scenarios.embodied``) for what it has not seen and for box headings, which
+``homebot.app.embodied``) for what it has not seen and for box headings, which
 perception does not estimate yet.
 """
 

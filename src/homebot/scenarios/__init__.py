@@ -1,5 +1,4 @@
-"""Wiring of the layers for runs in the simulated home: the one place they meet."""
+"""The seeds' demonstrations and the stories they tell, run in homes that ``homebot.app``
+builds."""
 
-from homebot.scenarios.runtime import SimulatedRun, disturbance_level, disturbed, probability
-
-__all__ = ["SimulatedRun", "disturbance_level", "disturbed", "probability"]
+__all__: list[str] = []

@@ -22,11 +22,10 @@ from typing import Any
 
 import numpy as np
 
+from homebot.app import Fidelity, RunSettings, build_run
 from homebot.geometry import Pose
 from homebot.navigation import Navigator
 from homebot.perception.recognition import match_positions
-from homebot.scenarios import SimulatedRun
-from homebot.scenarios.embodied import Fidelity
 from homebot.world import Gesture, PlacementKind, Posture, World
 
 __all__ = ["look_figures"]
@@ -41,8 +40,8 @@ _BEDS = ("bed", "sofa", "couch")
 def look_figures(world: World, looks: int, seed: int) -> dict[str, Any]:
     """Figures over ``looks`` seeded looks in ``world``."""
     navigator = Navigator(world)
-    run = SimulatedRun.create(world, seed=seed, navigator=navigator,
-                              fidelity=Fidelity.EMBODIED)
+    run = build_run(RunSettings(
+        world=world, seed=seed, navigator=navigator, fidelity=Fidelity.EMBODIED))
     simulation, robot = run.simulation, run.robot
     originals = {name: state.model for name, state in simulation.people.items()}
     rng = np.random.default_rng([seed, 1519])

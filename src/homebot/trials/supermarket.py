@@ -14,6 +14,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
+from homebot.app import Run, RunSettings, build_run, disturbed
 from homebot.cancel import CancelToken
 from homebot.executive.recovery import Protocol, StepRunner
 from homebot.geometry import Pose
@@ -21,7 +22,6 @@ from homebot.inference import InferenceCycle, Inventory, fetch_task
 from homebot.knowledge import KnowledgeBase
 from homebot.navigation import Navigator
 from homebot.robot import Detection, MoveReport
-from homebot.scenarios.runtime import SimulatedRun, disturbed
 from homebot.sim import SimRobot, Simulation
 from homebot.skills import ErrorCode, Outcome, SkillContext
 from homebot.task import Step, Task
@@ -222,10 +222,10 @@ def _available(where: str | None, shelves: set[str]) -> bool:
 
 def _simulated(world: World, navigator: Navigator, seed: int, truth: Mapping[str, str | None],
                protocol: Protocol, shelves: set[str],
-               noise: float = 0.0) -> tuple[SimulatedRun, ShelfVisitCounter]:
-    simulated = SimulatedRun.create(world, seed=seed, navigator=navigator, inference=protocol,
-                                    responder=_agreeable,
-                                    disturbances=disturbed(noise) if noise > 0 else None)
+               noise: float = 0.0) -> tuple[Run, ShelfVisitCounter]:
+    simulated = build_run(RunSettings(
+        world=world, seed=seed, navigator=navigator, inference=protocol, responder=_agreeable,
+        disturbances=disturbed(noise) if noise > 0 else None))
     simulated.simulation.object_location.update(truth)
     robot = ShelfVisitCounter(simulated.simulation, shelves)
     simulated.robot = robot

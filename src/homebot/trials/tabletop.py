@@ -14,8 +14,8 @@ from typing import Any
 
 import numpy as np
 
+from homebot.app.perception import trained_recogniser
 from homebot.perception.recognition import TabletopPerception, match_positions
-from homebot.scenarios.perceiving import trained_recogniser
 from homebot.sim.tabletop import tabletop_scene
 from homebot.world import World, object_catalogue
 

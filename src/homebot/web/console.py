@@ -31,16 +31,14 @@ from typing import Any
 
 import numpy as np
 
+from homebot.app import Fidelity, RunSettings, build_run, conversation_for
 from homebot.cancel import CancelToken
 from homebot.errors import ConsoleError
 from homebot.events import Event
-from homebot.executive.conversation import Conversation, Turn
+from homebot.executive.conversation import Turn
 from homebot.executive.report import RunReport
 from homebot.geometry import wrap_angles
-from homebot.language import Vocabulary
 from homebot.robot import Body, Twist
-from homebot.scenarios import SimulatedRun
-from homebot.scenarios.embodied import Fidelity
 from homebot.skills.catalogue import check_step, spelled_as_world
 from homebot.skills.places import resolve_target
 from homebot.task import Step, Task
@@ -112,9 +110,9 @@ class Console:
                                "or 0 for as fast as possible")
         self.settings = settings
         self.world = settings.world
-        self.run = SimulatedRun.create(settings.world, seed=settings.seed,
-                                       fidelity=settings.fidelity, walkers=settings.walkers,
-                                       time_limit=settings.time_limit)
+        self.run = build_run(RunSettings(
+            world=settings.world, seed=settings.seed, fidelity=settings.fidelity,
+            walkers=settings.walkers, time_limit=settings.time_limit))
         self.sim = self.run.simulation
         self.body: Body | None = self.run.body
         self.lock = threading.Condition(threading.RLock())
@@ -147,7 +145,7 @@ class Console:
         self.tick_hooks: list[Callable[[int], None]] = []  #: called in the worker per advance
         self._closing = False
         self._worker: threading.Thread | None = None
-        self.conversation = Conversation(Vocabulary.from_world(self.world), self._run_task)
+        self.conversation = conversation_for(self.run, runner=self._run_task)
 
     # ------------------------------------------------------------ the worker
 

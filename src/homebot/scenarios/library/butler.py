@@ -21,11 +21,11 @@ from typing import Any
 
 from rich.console import Console
 
+from homebot.app import Fidelity, Run, RunSettings, build_run, disturbed
+from homebot.cli.options import add_fidelity_option, disturbance_level, fidelity_of
 from homebot.events import Event
 from homebot.knowledge import AddStatement, Kind, KnowledgeBase, parse_statement
 from homebot.knowledge.store import KnowledgeStore
-from homebot.scenarios.embodied import Fidelity, add_fidelity_option, fidelity_of
-from homebot.scenarios.runtime import SimulatedRun, disturbance_level, disturbed
 from homebot.scenarios.summary import scenario_summary
 from homebot.sim import InteractiveResponder, Responder, Simulation
 from homebot.sim.people import normalise_question
@@ -143,9 +143,9 @@ def run_butler(*, prefers: str = "malz", refuse_update: bool = False, tidy: bool
     """Run the dialogue once; returns the summary (``transcript``, ``speech``, KB figures)."""
     world = butler_world(tidy)
     luis = LuisScript(prefers=prefers, refuse_update=refuse_update, typed=typed)
-    run = SimulatedRun.create(world, seed=seed, responder=luis,
-                              disturbances=disturbed(level) if level else None,
-                              fidelity=fidelity)
+    run = build_run(RunSettings(
+        world=world, seed=seed, responder=luis, disturbances=disturbed(level) if level else None,
+        fidelity=fidelity))
     luis.simulation = run.simulation
     run.simulation.events.listeners.append(luis.notice)
     with tempfile.TemporaryDirectory() as scratch:
@@ -194,7 +194,7 @@ def run_butler(*, prefers: str = "malz", refuse_update: bool = False, tidy: bool
         situations=result.steps, sim_time=round(run.robot.now(), 1))
 
 
-def _transcript(run: SimulatedRun) -> list[dict[str, str]]:
+def _transcript(run: Run) -> list[dict[str, str]]:
     lines = []
     for event in run.simulation.events.events:
         if event.kind == "speech":

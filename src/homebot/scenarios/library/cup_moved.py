@@ -7,11 +7,11 @@ from typing import Any
 
 from rich.console import Console
 
+from homebot.cli.options import add_fidelity_option, fidelity_of
 from homebot.errors import GologError
 from homebot.golog import Executor, Interpreter, SimulatedExecutor, State
 from homebot.golog.build import do
 from homebot.golog.domains import CUPS, POSITIONS, cups_theory, minimum_moves
-from homebot.scenarios.embodied import add_fidelity_option, fidelity_of
 from homebot.scenarios.library.order_cups import PLACEMENTS, home_cups
 from homebot.scenarios.summary import scenario_summary
 

@@ -7,8 +7,8 @@ from typing import Any
 
 from rich.console import Console
 
-from homebot.scenarios.embodied import add_fidelity_option, fidelity_of
-from homebot.scenarios.runtime import SimulatedRun, disturbance_level, disturbed
+from homebot.app import RunSettings, build_run, disturbed
+from homebot.cli.options import add_fidelity_option, disturbance_level, fidelity_of
 from homebot.scenarios.summary import report_actions, scenario_summary
 from homebot.trials.fetch import delivered, fetch_tasks
 from homebot.world import World
@@ -25,9 +25,9 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     """One seeded fetch-and-deliver task; success is the object in the person's hands."""
     world = World.load("apartment")
     fetch = fetch_tasks(world, 1, args.seed)[0]
-    simulation_run = SimulatedRun.create(world, seed=args.seed,
-                                         disturbances=disturbed(args.level),
-                                         fidelity=fidelity_of(args))
+    simulation_run = build_run(RunSettings(
+        world=world, seed=args.seed, disturbances=disturbed(args.level),
+        fidelity=fidelity_of(args)))
     report = simulation_run.run(fetch.task)
     really = delivered(simulation_run.simulation, fetch)
     if console is not None:

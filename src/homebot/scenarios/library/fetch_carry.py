@@ -21,14 +21,14 @@ from typing import Any
 
 from rich.console import Console
 
+from homebot.app import RunSettings, build_run
+from homebot.cli.options import add_fidelity_option, fidelity_of
 from homebot.errors import WorldError
 from homebot.golog import Interpreter
 from homebot.golog.build import do
 from homebot.golog.domains.fetch_carry import fetch_carry_theory
 from homebot.golog.skill_executor import SkillExecutor
 from homebot.golog.theory import GroundAction
-from homebot.scenarios.embodied import add_fidelity_option, fidelity_of
-from homebot.scenarios.runtime import SimulatedRun
 from homebot.scenarios.summary import scenario_summary
 from homebot.space.distance import distance_category
 from homebot.space.frames import frames_of
@@ -111,7 +111,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
         return frames[name].scale, frames[name].front
 
     spots = {name: _spot(placement) for name, placement in world.placements.items()}
-    simulated = SimulatedRun.create(world, seed=args.seed, fidelity=fidelity_of(args))
+    simulated = build_run(RunSettings(world=world, seed=args.seed, fidelity=fidelity_of(args)))
     context = simulated.context
     start = context.robot.pose().xy()
     theory = fetch_carry_theory(positions, (start[0], start[1]), spots, standpoints_in(world),

@@ -11,10 +11,10 @@ from typing import Any
 
 from rich.console import Console
 
+from homebot.app import RunSettings, build_run
 from homebot.beliefs import Beliefs
+from homebot.cli.options import add_fidelity_option, fidelity_of, probability
 from homebot.htn import Goal, Names, PlanActor, Planner, home_domain, state_from_beliefs
-from homebot.scenarios.embodied import add_fidelity_option, fidelity_of
-from homebot.scenarios.runtime import SimulatedRun, probability
 from homebot.scenarios.summary import scenario_summary
 from homebot.world import DisturbanceModel, World
 
@@ -43,10 +43,10 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
         plans = planner.search(state, [Goal.of(task, task_args, world, names, domain).task],
                                limit=None).plans
         table[task] = {"plans": len(plans), "shortest": min(len(plan) for plan in plans)}
-    simulation_run = SimulatedRun.create(
-        world, seed=args.seed,
+    simulation_run = build_run(RunSettings(
+        world=world, seed=args.seed,
         disturbances=DisturbanceModel(grasp_slip=args.slip, door_closed=args.door_closed),
-        fidelity=fidelity_of(args))
+        fidelity=fidelity_of(args)))
     actor = PlanActor(simulation_run.executive, domain)
     actions: list[dict[str, Any]] = []
     speech: list[str] = []

@@ -10,6 +10,9 @@ from typing import Any
 
 from rich.console import Console
 
+import homebot.app as app
+from homebot.app import Fidelity, RunSettings, build_run
+from homebot.cli.options import add_fidelity_option, fidelity_of
 from homebot.errors import GologError
 from homebot.golog import (
     Executor,
@@ -22,8 +25,6 @@ from homebot.golog import (
 )
 from homebot.golog.build import do
 from homebot.golog.domains import CUPS, POSITIONS, cups_theory, minimum_moves
-from homebot.scenarios.embodied import Fidelity, add_fidelity_option, fidelity_of
-from homebot.scenarios.runtime import SimulatedRun
 from homebot.scenarios.summary import scenario_summary
 from homebot.task import Step
 from homebot.world import World
@@ -58,7 +59,7 @@ def goal_order(text: str) -> tuple[str, str, str]:
 class HomeCups:
     """The cups demo wired to the simulated apartment: run, executor, and where cups are."""
 
-    simulated: SimulatedRun
+    simulated: app.Run
     executor: SkillExecutor
 
     def truth(self) -> dict[str, str | None]:
@@ -78,7 +79,7 @@ def home_cups(initial: Mapping[str, str], seed: int,
     data["objects"] += [{"name": f"{cup} cup", "category": "dish",
                          "placement": PLACEMENTS[initial[cup]]} for cup in CUPS]
     world = World.from_dict(data, "apartment + three cups")
-    simulated = SimulatedRun.create(world, seed=seed, fidelity=fidelity)
+    simulated = build_run(RunSettings(world=world, seed=seed, fidelity=fidelity))
     context = simulated.context
     positions = {placement: position for position, placement in PLACEMENTS.items()}
 

@@ -25,12 +25,12 @@ from typing import Any
 
 from rich.console import Console
 
+from homebot.cli.options import probability
 from homebot.geometry import Ray
 from homebot.golog import Interpreter, SimulatedExecutor, State
 from homebot.golog.build import do
 from homebot.golog.domains import CUPS, POSITIONS, cups_theory, minimum_moves
 from homebot.scenarios.library.order_cups import goal_order
-from homebot.scenarios.runtime import probability
 from homebot.scenarios.summary import scenario_summary
 from homebot.space.deixis import deictic_request, pointed_place
 from homebot.space.frames import frames_of

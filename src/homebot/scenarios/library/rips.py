@@ -7,12 +7,12 @@ from typing import Any
 
 from rich.console import Console
 
+from homebot.app import RunSettings, build_run, disturbed
+from homebot.cli.options import add_fidelity_option, disturbance_level, fidelity_of
 from homebot.golog import Interpreter, State
 from homebot.golog.build import do
 from homebot.golog.domains import rips_theory
 from homebot.golog.skill_executor import SkillExecutor
-from homebot.scenarios.embodied import add_fidelity_option, fidelity_of
-from homebot.scenarios.runtime import SimulatedRun, disturbance_level, disturbed
 from homebot.scenarios.summary import scenario_summary
 from homebot.skills import speak
 from homebot.task import Step
@@ -63,9 +63,9 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     """Run ``rips`` from ``rips.golog``; success is the sheet with the committee, robot out."""
     world = rips_world()
     level = getattr(args, "disturb", 0.0)
-    simulation_run = SimulatedRun.create(world, seed=args.seed,
-                                         disturbances=disturbed(level) if level else None,
-                                         fidelity=fidelity_of(args))
+    simulation_run = build_run(RunSettings(
+        world=world, seed=args.seed, disturbances=disturbed(level) if level else None,
+        fidelity=fidelity_of(args)))
     context = simulation_run.context
     waits: list[int] = []
 

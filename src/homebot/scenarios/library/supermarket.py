@@ -8,6 +8,8 @@ from typing import Any
 
 from rich.console import Console
 
+from homebot.app import Run, RunSettings, build_run
+from homebot.cli.options import add_fidelity_option, fidelity_of
 from homebot.inference import (
     InferenceCycle,
     Inventory,
@@ -15,8 +17,6 @@ from homebot.inference import (
     fetch_task,
     requested_product,
 )
-from homebot.scenarios.embodied import add_fidelity_option, fidelity_of
-from homebot.scenarios.runtime import SimulatedRun
 from homebot.scenarios.summary import report_actions, scenario_summary
 from homebot.sim import ScriptedResponder
 from homebot.skills import speak
@@ -62,10 +62,9 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     inventory = Inventory.load("supermarket") if not args.kb_store else Inventory.kept_in(
         args.kb_store)
     cycle = InferenceCycle(inventory, r_max=args.r_max, seed=args.seed)
-    simulated = SimulatedRun.create(
-        world, seed=args.seed, inference=cycle,
-        responder=ScriptedResponder({"customer": _CUSTOMER_SAYS}),
-        fidelity=fidelity_of(args))
+    simulated = build_run(RunSettings(
+        world=world, seed=args.seed, inference=cycle,
+        responder=ScriptedResponder({"customer": _CUSTOMER_SAYS}), fidelity=fidelity_of(args)))
     inventory.clock = simulated.robot.now
     simulated.simulation.object_location.update(STORY_TRUTH)
     context = simulated.context
@@ -125,7 +124,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     return summary
 
 
-def _old_enough(simulated: SimulatedRun, inventory: Inventory, product: str) -> bool:
+def _old_enough(simulated: Run, inventory: Inventory, product: str) -> bool:
     """Alcohol only for adults: the KB's ``min_age`` prompts the question (Fig. 1, box 1)."""
     minimum = inventory.minimum_age(product)
     if minimum is None:
@@ -138,7 +137,7 @@ def _old_enough(simulated: SimulatedRun, inventory: Inventory, product: str) -> 
     return age is not None and age >= minimum
 
 
-def _dialogue(simulated: SimulatedRun) -> list[tuple[str, str]]:
+def _dialogue(simulated: Run) -> list[tuple[str, str]]:
     """Who said what, in order: the robot's speech acts and what people answered."""
     lines: list[tuple[str, str]] = []
     for event in simulated.simulation.events.events:

@@ -1,27 +1,27 @@
-"""Wiring table-top perception to the simulator: a recogniser trained on rendered views.
+"""A run's perception, wired to the simulator: recognisers and face memories trained on
+rendered views.
 
 The recogniser of ``homebot.perception`` learns from labelled frames; here the
 simulator renders them (``homebot.sim.tabletop``): generated table-top scenes of
 the world's catalogue objects, segmented by the same pipeline the robot runs.
 A trained recogniser is kept per catalogue for the life of the process, so the
-runs of one benchmark train once.
+runs of one benchmark train once; a household's face memory is also kept on disk
+(``homebot.app.cache``).
 """
 
 from __future__ import annotations
 
 import copy
 import functools
-import hashlib
 import math
-import os
 import pickle
 from collections.abc import Iterator, Mapping
-from pathlib import Path
 
 import numpy as np
 
 import homebot.perception.faces as faces_module
 import homebot.sim.faces as sim_faces_module
+from homebot.app.cache import cache_directory, cache_key
 from homebot.perception.faces import FaceDetector, FaceMemory, Window
 from homebot.perception.recognition import (
     LabelledFrame,
@@ -122,10 +122,9 @@ def household_faces(world: World) -> FaceMemory:
 def _taught(names: tuple[str, ...]) -> FaceMemory:
     """The taught memory, from the disk cache when this code made it before (training
     the detector and enrolling a household take tens of seconds of CPU)."""
-    key = hashlib.sha256(repr((names, _ENROLMENT_VIEWS)).encode())
-    for module in (faces_module, sim_faces_module):
-        key.update(Path(str(module.__file__)).read_bytes())  # new code, new memory
-    cached = _cache_directory() / f"household-{key.hexdigest()[:20]}.pickle"
+    key = cache_key((names, _ENROLMENT_VIEWS),
+                    (faces_module, sim_faces_module))
+    cached = cache_directory() / f"household-{key}.pickle"
     try:
         loaded = pickle.loads(cached.read_bytes())
         if isinstance(loaded, FaceMemory):
@@ -143,7 +142,3 @@ def _taught(names: tuple[str, ...]) -> FaceMemory:
         pass  # a read-only home: train again next time
     return memory
 
-
-def _cache_directory() -> Path:
-    """Where trained models are kept: ``$HOMEBOT_CACHE``, else ``~/.cache/homebot``."""
-    return Path(os.environ.get("HOMEBOT_CACHE") or Path.home() / ".cache" / "homebot")

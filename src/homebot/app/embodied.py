@@ -1,16 +1,14 @@
-"""The two fidelities, and the wiring of the embodied robot over the simulated body."""
+"""The embodied robot over the simulated body: a ``BodyRobot`` on a ``SimBody``, wired."""
 
 from __future__ import annotations
 
-import argparse
 import importlib.util
 import math
-from enum import StrEnum
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from homebot.errors import HomebotError
+from homebot.app.fidelity import require_embodied
 from homebot.navigation import Navigator
 from homebot.sim import SimRobot, Simulation
 
@@ -18,45 +16,12 @@ if TYPE_CHECKING:
     from homebot.embodied import BodyRobot
     from homebot.sim.body import SimBody
 
-__all__ = [
-    "Fidelity",
-    "add_fidelity_option",
-    "embodied_robot",
-    "fidelity_of",
-    "require_embodied",
-]
+__all__ = ["embodied_robot"]
 
 # Seed stream of the robot's own filter, apart from the simulation's and the body's.
 _LOCALISATION_STREAM = 303
 _FACE_HALF_ANGLE = 0.25  #: radians off the head's axis within which a face is the one looked at
 _HAND_REACH = 0.08  #: metres from an object's centre within which a grasp closes on it
-
-
-class Fidelity(StrEnum):
-    """How the robot under the skills is simulated."""
-
-    SYMBOLIC = "symbolic"  #: percepts are seeded dice over the truth; motion jumps along paths
-    EMBODIED = "embodied"  #: a body with a laser, localisation and reactive navigation
-
-
-def add_fidelity_option(parser: argparse.ArgumentParser) -> None:
-    """``--fidelity symbolic|embodied``."""
-    parser.add_argument("--fidelity", type=Fidelity, choices=list(Fidelity),
-                        default=Fidelity.SYMBOLIC,
-                        help="symbolic (fast, the default) or embodied (the robot localises "
-                             "from its laser and drives with the reactive planner)")
-
-
-def fidelity_of(args: argparse.Namespace) -> Fidelity:
-    """The ``--fidelity`` asked for (symbolic when the arguments have none)."""
-    return Fidelity(getattr(args, "fidelity", Fidelity.SYMBOLIC))
-
-
-def require_embodied() -> None:
-    """Raise a clear error when the ``embodied`` extra is not installed."""
-    if importlib.util.find_spec("cv2") is None:
-        raise HomebotError("--fidelity embodied needs the 'embodied' extra: "
-                           "pip install 'homebot[embodied]'")
 
 
 def embodied_robot(simulation: Simulation, navigator: Navigator, *,
@@ -68,11 +33,11 @@ def embodied_robot(simulation: Simulation, navigator: Navigator, *,
         known_start: the robot is told where it starts (else it localises globally).
     """
     require_embodied()
+    from homebot.app.perception import household_faces, perception_for
     from homebot.embodied import BodyRobot, PeopleLook, TableLook
     from homebot.navigation.local_planner import MotionSearchPlanner
     from homebot.navigation.localisation import MclParameters, MonteCarloLocalisation
     from homebot.perception.faces import Acquaintances
-    from homebot.scenarios.perceiving import household_faces, perception_for
     from homebot.sim.body import SimBody
     from homebot.sim.faces import FaceCamera
 
