@@ -93,7 +93,7 @@ def test_a_skill_run_with_a_cancelled_token_does_not_act(
 
 def test_an_engines_run_takes_its_token_at_its_beginning(
         apartment: World, apartment_navigator: Navigator) -> None:
-    run = SimulatedRun.create(apartment, navigator=apartment_navigator)
+    run = build_run(RunSettings(world=apartment, navigator=apartment_navigator))
     executive = run.executive
     token = CancelToken()
     token.cancel("goal cancelled")
