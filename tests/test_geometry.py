@@ -20,6 +20,7 @@ from homebot.geometry import (
     wrap_angle,
     wrap_angles,
     yaw_from_quaternion,
+    yaw_rotation,
 )
 
 angles = st.floats(min_value=-50.0, max_value=50.0, allow_nan=False)
@@ -68,6 +69,14 @@ def test_a_quarter_turn_is_the_textbook_quaternion() -> None:
     # a quaternion turned about x as well still gives its heading
     roll = (math.cos(0.2), math.sin(0.2), 0.0, 0.0)
     assert yaw_from_quaternion(*roll) == pytest.approx(0.0)
+
+
+@given(angles)
+def test_the_yaw_rotation_turns_as_the_pose_does(yaw: float) -> None:
+    rotation = yaw_rotation(yaw)
+    assert np.allclose(rotation @ rotation.T, np.eye(3))
+    x, y = Pose(0.0, 0.0, yaw).apply(1.0, 2.0)
+    assert np.allclose(rotation @ (1.0, 2.0, 3.0), (x, y, 3.0))
 
 
 # ------------------------------------------------------------------ poses and frames

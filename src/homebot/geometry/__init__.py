@@ -10,6 +10,7 @@ from homebot.geometry.angles import (
     wrap_angle,
     wrap_angles,
     yaw_from_quaternion,
+    yaw_rotation,
 )
 from homebot.geometry.pose import Pose, from_frame, to_frame
 from homebot.geometry.rays import Point3, Ray, nearest_by_angle, rays_cross_line
@@ -26,4 +27,5 @@ __all__ = [
     "wrap_angle",
     "wrap_angles",
     "yaw_from_quaternion",
+    "yaw_rotation",
 ]

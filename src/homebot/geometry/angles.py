@@ -12,6 +12,7 @@ __all__ = [
     "wrap_angle",
     "wrap_angles",
     "yaw_from_quaternion",
+    "yaw_rotation",
 ]
 
 
@@ -30,6 +31,13 @@ def wrap_angles(angles: npt.ArrayLike) -> npt.NDArray[np.float64]:
 def quaternion_from_yaw(yaw: float) -> tuple[float, float, float, float]:
     """The unit quaternion ``(w, x, y, z)`` of a turn by ``yaw`` radians about z (up)."""
     return (math.cos(yaw / 2), 0.0, 0.0, math.sin(yaw / 2))
+
+
+def yaw_rotation(yaw: float) -> npt.NDArray[np.float64]:
+    """The 3×3 rotation matrix of a turn by ``yaw`` radians about z (up); its transpose
+    turns back."""
+    cos, sin = math.cos(yaw), math.sin(yaw)
+    return np.array([[cos, -sin, 0.0], [sin, cos, 0.0], [0.0, 0.0, 1.0]])
 
 
 def yaw_from_quaternion(w: float, x: float, y: float, z: float) -> float:

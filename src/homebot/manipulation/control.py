@@ -20,7 +20,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from homebot.geometry import Pose
+from homebot.geometry import Pose, yaw_rotation
 from homebot.manipulation.grasps import IK_SEEDS, ObjectGeometry
 from homebot.manipulation.ik import solve_ik
 from homebot.manipulation.pick import (
@@ -301,7 +301,5 @@ def _turned(rotation: np.ndarray, base: Pose, spot: tuple[float, float]) -> np.n
     now = math.atan2(approach[1], approach[0])
     want = math.atan2(spot[1] - base.y, spot[0] - base.x)
     turn = want - now
-    c, s = math.cos(turn), math.sin(turn)
-    about_z = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
-    turned: np.ndarray = about_z @ rotation
+    turned: np.ndarray = yaw_rotation(turn) @ rotation
     return turned

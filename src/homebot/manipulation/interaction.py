@@ -30,7 +30,7 @@ from enum import StrEnum
 
 import numpy as np
 
-from homebot.geometry import wrap_angle
+from homebot.geometry import wrap_angle, yaw_rotation
 from homebot.manipulation.compliance import AxisCompliance, Compliance
 from homebot.robot.body import Twist
 
@@ -463,24 +463,19 @@ class DoorMotion:
             base = Twist()
         target_base = _to_base(pose, target)
         relative_yaw = wrap_angle(yaw + self.yaw0 - pose[2])
-        rotation = _yaw_matrix(relative_yaw) @ self.rotation
+        rotation = yaw_rotation(relative_yaw) @ self.rotation
         return Command(target_base, rotation, self.compliance, gripper_closed=True, base=base)
-
-
-def _yaw_matrix(yaw: float) -> np.ndarray:
-    c, s = math.cos(yaw), math.sin(yaw)
-    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
 
 
 def _to_odom(pose: tuple[float, float, float], point: np.ndarray) -> np.ndarray:
     """A base-frame point in the odometry frame."""
-    moved: np.ndarray = _yaw_matrix(pose[2]) @ np.asarray(point, dtype=float) + np.array(
+    moved: np.ndarray = yaw_rotation(pose[2]) @ np.asarray(point, dtype=float) + np.array(
         [pose[0], pose[1], 0.0])
     return moved
 
 
 def _to_base(pose: tuple[float, float, float], point: np.ndarray) -> np.ndarray:
     """An odometry-frame point in the base frame."""
-    local: np.ndarray = _yaw_matrix(pose[2]).T @ (np.asarray(point, dtype=float) -
+    local: np.ndarray = yaw_rotation(pose[2]).T @ (np.asarray(point, dtype=float) -
                                                   np.array([pose[0], pose[1], 0.0]))
     return local

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from homebot.geometry import yaw_rotation
 from homebot.robot import CameraIntrinsics, HeadState, RgbdFrame
 from homebot.world import PlacementKind, Shape, World, surface_height
 
@@ -149,8 +150,7 @@ class CameraSimulator:
         """The frame the camera takes with the base at ``robot`` (x, y, heading; map frame)."""
         pose = camera_pose(head)
         x, y, theta = robot
-        c, s = math.cos(theta), math.sin(theta)
-        base_to_map = np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+        base_to_map = yaw_rotation(theta)
         rotation = base_to_map @ pose[:3, :3]  # optical -> map
         origin = base_to_map @ pose[:3, 3] + (x, y, 0.0)
         # (h, w, 3) map-frame directions, unit optical depth
@@ -218,8 +218,7 @@ class CameraSimulator:
         if window is None:
             return
         if solid.shape is Shape.BOX:
-            c, s = math.cos(solid.yaw), math.sin(solid.yaw)
-            turn = np.array([[c, s, 0.0], [-s, c, 0.0], [0.0, 0.0, 1.0]])  # map -> object
+            turn = yaw_rotation(solid.yaw).T  # map -> object
             local_origin = turn @ (origin - (solid.x, solid.y, solid.z))
             local_rays = rays[window] @ turn.T
             _box(buffers, window, local_origin, local_rays, (-ex / 2, -ey / 2, 0.0),

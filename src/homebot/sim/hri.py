@@ -20,7 +20,6 @@ are) is for benchmarks and tests, never for the robot.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from importlib import resources
 from pathlib import Path
@@ -29,6 +28,7 @@ from typing import Any
 import numpy as np
 
 from homebot.errors import SceneError
+from homebot.geometry import yaw_rotation
 
 __all__ = ["ARM_JOINTS", "InteractionScene", "scene_path"]
 
@@ -176,9 +176,7 @@ class InteractionScene:
         return float(x), float(y), float(theta)
 
     def _base_rotation(self) -> np.ndarray:
-        theta = self.base_pose()[2]
-        c, s = math.cos(theta), math.sin(theta)
-        return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]])
+        return yaw_rotation(self.base_pose()[2])
 
     def to_base(self, point: np.ndarray) -> np.ndarray:
         """A world point in the base frame."""
