@@ -9,13 +9,11 @@ from pathlib import Path
 from rich.console import Console
 from rich.markup import escape
 
-from homebot.beliefs import Beliefs
 from homebot.cli.options import retry_budgets
 from homebot.cli.ros_options import add_transport_options, transport_node
 from homebot.cli.simulated import write_events
-from homebot.executive import Executive, print_report
-from homebot.navigation import Navigator
-from homebot.skills import SkillContext
+from homebot.errors import RobotLost
+from homebot.executive import print_report
 from homebot.task import Task
 from homebot.world import World
 
@@ -38,20 +36,15 @@ def run_over_ros(args: argparse.Namespace, world: World, task: Task, *,
                  monitoring: bool = True) -> int:
     """Run ``task`` on the ROS 2 robot; 0 when it succeeded, 1 when not or the robot was lost."""
     node = transport_node(args)
-    from homebot.transport.ros_robot import RobotLost, RobotMapping, RosRobot
+    from homebot.app.ros import RosRunSettings, build_ros_run
 
-    mapping = RobotMapping.load(args.mapping) if args.mapping else RobotMapping()
-    robot = RosRobot(node, mapping)
-    robot.connect(args.connect_timeout)
-    events = robot.events
-    context = SkillContext(robot=robot, world=world, navigator=Navigator(world),
-                           beliefs=Beliefs.from_world(world, events), events=events,
-                           monitoring=monitoring, retries=retry_budgets(args.retries))
-    executive = Executive(context, time_limit=args.time_limit)
+    run = build_ros_run(node, RosRunSettings(
+        world=world, mapping=args.mapping, connect_timeout=args.connect_timeout,
+        monitoring=monitoring, retries=retry_budgets(args.retries), time_limit=args.time_limit))
+    events = run.events
     console = Console()
     try:
-        report = executive.run(task)
-        robot.finish()
+        report = run.run(task)
     except RobotLost as error:
         message = ("I have lost contact with the robot, so I stopped the task; "
                    "please check the robot and start it again.")

@@ -8,7 +8,7 @@ import sys
 import time
 from typing import TYPE_CHECKING, Any
 
-from homebot.app import RunSettings, build_run, disturbed, require_embodied
+from homebot.app import RunSettings, build_run, disturbed
 from homebot.cli.options import (
     add_fidelity_option,
     add_world_options,
@@ -16,7 +16,6 @@ from homebot.cli.options import (
     load_world,
 )
 from homebot.cli.ros_options import add_transport_options, transport_node
-from homebot.navigation import Navigator
 from homebot.world import World
 
 if TYPE_CHECKING:
@@ -72,18 +71,11 @@ def _serve(args: argparse.Namespace) -> int:
 
 
 def _serve_body(args: argparse.Namespace, node: Node, world: World) -> int:
-    require_embodied()
-    from homebot.sim import Simulation
-    from homebot.sim.body import SimBody
-    from homebot.transport.ros_body import BodyServer
+    from homebot.app.ros import serve_simulated_body
 
-    simulation = Simulation(world, navigator=Navigator(world), seed=args.seed,
-                            disturbances=disturbed(args.disturb) if args.disturb else None)
-    body = SimBody(simulation, walkers=max(0, min(args.walkers, 50)))
-    # The first sweep compiles the laser's kernel (seconds on a fresh install): do it
-    # before the drivers appear on the network, not in a client's first tick.
-    body.scan()
-    server = BodyServer(node, body, truth=body.true_pose)
+    server = serve_simulated_body(node, RunSettings(
+        world=world, seed=args.seed, walkers=args.walkers,
+        disturbances=disturbed(args.disturb) if args.disturb else None))
     print(f"homebot sim serve --body: {world.name}, seed {args.seed}, ROS 2 domain "
           f"{args.domain_id} on {args.interface}", flush=True)
     try:
