@@ -22,6 +22,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 
 from homebot.errors import WorldError
+from homebot.geometry import Pose
 from homebot.world import World, front_heading
 
 __all__ = ["Frame", "FrameKind", "Frames", "frames_of"]
@@ -41,17 +42,17 @@ class Frame:
     scale: float  #: maximum distance: qualitative distances are read as d / scale
     parent: str | None = None
 
+    def pose(self) -> Pose:
+        """The frame as a map pose: its origin, heading towards its front."""
+        return Pose(self.origin[0], self.origin[1], self.front)
+
     def to_local(self, point: tuple[float, float]) -> tuple[float, float]:
         """A map point in this frame: x towards the front, y to the frame's left."""
-        dx, dy = point[0] - self.origin[0], point[1] - self.origin[1]
-        cos, sin = math.cos(self.front), math.sin(self.front)
-        return (dx * cos + dy * sin, -dx * sin + dy * cos)
+        return Pose(point[0], point[1]).relative_to(self.pose()).xy()
 
     def to_map(self, point: tuple[float, float]) -> tuple[float, float]:
         """A point of this frame in the map frame (``to_local`` undone)."""
-        cos, sin = math.cos(self.front), math.sin(self.front)
-        return (self.origin[0] + point[0] * cos - point[1] * sin,
-                self.origin[1] + point[0] * sin + point[1] * cos)
+        return self.pose().apply(point[0], point[1])
 
 
 class Frames:
