@@ -8,6 +8,7 @@ import pytest
 
 pytest.importorskip("sklearn")
 
+from homebot.app.perception import trained_recogniser
 from homebot.cli import main
 from homebot.trials.tabletop import object_figures
 from homebot.world import World
@@ -28,7 +29,7 @@ robot:
 
 
 def test_object_figures_are_judged_against_the_truth() -> None:
-    figures = object_figures(World.from_yaml_text(WORLD), 4, 11)
+    figures = object_figures(World.from_yaml_text(WORLD), 4, 11, train=trained_recogniser)
     assert figures["scenes"] == 4 and figures["objects"] >= 4
     assert 0.0 <= figures["precision"] <= 1.0 and figures["recall"] >= 0.75
     assert figures["category_accuracy"] >= 0.75
@@ -39,7 +40,8 @@ def test_object_figures_are_judged_against_the_truth() -> None:
 
 def test_a_world_without_objects_says_so() -> None:
     empty = WORLD.split("objects:")[0] + "robot:\n  pose: [1, 1, 0]\n"
-    assert "no objects" in object_figures(World.from_yaml_text(empty), 2, 1)["status"]
+    assert "no objects" in object_figures(World.from_yaml_text(empty), 2, 1,
+                                     train=trained_recogniser)["status"]
 
 
 def test_bad_arguments_exit_2(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

@@ -1,4 +1,4 @@
-"""Argument types for benchmarks: sizes, seeds and files, each refused in one line when unusable.
+"""Argument types for benchmarks: sizes, seeds, files, disturbance levels and the fidelity.
 
 They raise ``BenchmarkError`` (a ``HomebotError``), which the command line prints as one
 line with exit status 2, so ``--count 0`` never reaches ``statistics.median([])`` and
@@ -7,12 +7,15 @@ line with exit status 2, so ``--count 0`` never reaches ``statistics.median([])`
 
 from __future__ import annotations
 
+import argparse
+import math
 from collections.abc import Callable
 from pathlib import Path
 
 from homebot.errors import BenchmarkError
 
-__all__ = ["MAX_SEED", "count", "readable_file", "seed"]
+__all__ = ["MAX_SEED", "add_fidelity_option", "count", "disturbance_level", "readable_file",
+           "seed"]
 
 MAX_SEED = 2**32 - 1
 
@@ -53,3 +56,26 @@ def readable_file(option: str) -> Callable[[str], Path]:
         return candidate
     path.__name__ = option.lstrip("-")
     return path
+
+
+def disturbance_level(text: str) -> float:
+    """An argument type for ``--level``: a level for ``homebot.app.disturbed``, 0 (none) to 6
+    (90 % of grasps slip); argparse refuses anything else as a usage error."""
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not 0.0 <= value <= 6.0:  # also false for nan
+        raise argparse.ArgumentTypeError(f"a disturbance level is a number from 0 to 6, "
+                                         f"not '{text}'")
+    return value
+
+
+def add_fidelity_option(parser: argparse.ArgumentParser) -> None:
+    """``--fidelity symbolic|embodied``: the robot a benchmark's runs are built with."""
+    from homebot.app import Fidelity  # only the benchmarks that build runs load the app
+
+    parser.add_argument("--fidelity", type=Fidelity, choices=list(Fidelity),
+                        default=Fidelity.SYMBOLIC,
+                        help="symbolic (fast, the default) or embodied (the robot localises "
+                             "from its laser and drives with the reactive planner)")

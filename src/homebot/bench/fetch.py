@@ -16,8 +16,7 @@ from typing import Any
 from rich.console import Console
 
 from homebot.app import RunSettings, build_run
-from homebot.bench.arguments import count, seed
-from homebot.cli.options import add_fidelity_option
+from homebot.bench.arguments import add_fidelity_option, count, seed
 from homebot.navigation import Navigator
 from homebot.sim import PlanCache
 from homebot.trials.fetch import delivered, fetch_tasks

@@ -12,8 +12,7 @@ from typing import Any
 from rich.console import Console
 
 from homebot.app import RunSettings, build_run, disturbed
-from homebot.bench.arguments import count, seed
-from homebot.cli.options import disturbance_level
+from homebot.bench.arguments import count, disturbance_level, seed
 from homebot.language import Vocabulary, parse_command
 from homebot.language.generator import generate_commands
 from homebot.navigation import Navigator

@@ -25,8 +25,7 @@ from rich.console import Console
 
 from homebot.app import RunSettings, build_run, disturbed
 from homebot.beliefs import Beliefs
-from homebot.bench.arguments import count, seed
-from homebot.cli.options import disturbance_level
+from homebot.bench.arguments import count, disturbance_level, seed
 from homebot.htn import (
     Goal,
     Names,

@@ -33,6 +33,7 @@ from typing import Any
 
 from rich.console import Console
 
+from homebot.app.perception import trained_recogniser
 from homebot.bench.arguments import count, seed
 from homebot.trials.people import (
     face_figures,
@@ -69,7 +70,7 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
     figures: dict[str, Any] = {}
     parts: dict[str, Callable[[], dict[str, Any]]] = {
         "objects": lambda: object_figures(World.load(args.world), args.scenes, args.seed,
-                                          gap=args.gap / 100,
+                                          train=trained_recogniser, gap=args.gap / 100,
                                           whole_in_view=not args.partial_views),
         "people": lambda: people_figures(args.seed, args.scenes),
         "faces": lambda: face_figures(args.seed),
@@ -86,7 +87,14 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
 
 
 def _look(world: World, looks: int, look_seed: int) -> dict[str, Any]:
-    """The embodied robot's looks at people (``homebot.trials.looks``)."""
+    """The embodied robot's looks at people (``homebot.trials.looks``), in a run the app
+    builds."""
+    from homebot.app import Fidelity, RunSettings, build_run
+    from homebot.navigation import Navigator
     from homebot.trials.looks import look_figures
 
-    return look_figures(world, looks, look_seed)
+    navigator = Navigator(world)
+    run = build_run(RunSettings(world=world, seed=look_seed, navigator=navigator,
+                                fidelity=Fidelity.EMBODIED))
+    return look_figures(world, looks, look_seed, simulation=run.simulation, robot=run.robot,
+                        navigator=navigator)

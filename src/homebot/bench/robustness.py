@@ -12,8 +12,7 @@ from rich.console import Console
 from rich.table import Table
 
 from homebot.app import Fidelity, RunSettings, build_run, disturbed
-from homebot.bench.arguments import count, seed
-from homebot.cli.options import add_fidelity_option, disturbance_level
+from homebot.bench.arguments import add_fidelity_option, count, disturbance_level, seed
 from homebot.navigation import Navigator
 from homebot.trials.fetch import delivered, fetch_tasks
 from homebot.world import World

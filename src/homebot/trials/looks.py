@@ -22,10 +22,11 @@ from typing import Any
 
 import numpy as np
 
-from homebot.app import Fidelity, RunSettings, build_run
 from homebot.geometry import Pose
 from homebot.navigation import Navigator
 from homebot.perception.recognition import match_positions
+from homebot.robot import Robot
+from homebot.sim import Simulation
 from homebot.world import Gesture, PlacementKind, Posture, World
 
 __all__ = ["look_figures"]
@@ -37,12 +38,13 @@ _TOPS = ("red", "green", "blue", "yellow", "black", "white", "orange", "purple")
 _BEDS = ("bed", "sofa", "couch")
 
 
-def look_figures(world: World, looks: int, seed: int) -> dict[str, Any]:
-    """Figures over ``looks`` seeded looks in ``world``."""
-    navigator = Navigator(world)
-    run = build_run(RunSettings(
-        world=world, seed=seed, navigator=navigator, fidelity=Fidelity.EMBODIED))
-    simulation, robot = run.simulation, run.robot
+def look_figures(world: World, looks: int, seed: int, *, simulation: Simulation, robot: Robot,
+                 navigator: Navigator) -> dict[str, Any]:
+    """Figures over ``looks`` seeded looks in ``world``.
+
+    ``robot`` is the embodied robot over ``simulation`` (built by the caller, with
+    ``homebot.app``, from ``seed``); the trial places the people and the robot in the
+    simulation and judges each look against it."""
     originals = {name: state.model for name, state in simulation.people.items()}
     rng = np.random.default_rng([seed, 1519])
     rooms = [room for room in world.rooms if _free_cells(navigator, world, room)]

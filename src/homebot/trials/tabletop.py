@@ -10,14 +10,14 @@ from __future__ import annotations
 
 import statistics
 import time
+from collections.abc import Callable, Mapping
 from typing import Any
 
 import numpy as np
 
-from homebot.app.perception import trained_recogniser
-from homebot.perception.recognition import TabletopPerception, match_positions
+from homebot.perception.recognition import Recogniser, TabletopPerception, match_positions
 from homebot.sim.tabletop import tabletop_scene
-from homebot.world import World, object_catalogue
+from homebot.world import CatalogueEntry, World, object_catalogue
 
 __all__ = ["TARGETS", "object_figures"]
 
@@ -27,14 +27,19 @@ TARGETS = {"precision": 0.95, "recall": 0.90, "category_accuracy": 0.90,
 _MATCH = 0.05  #: metres
 
 
-def object_figures(world: World, scenes: int, scene_seed: int, *, gap: float = 0.03,
-                   whole_in_view: bool = True) -> dict[str, Any]:
-    """Detection, recognition and position figures over generated table-top scenes."""
+def object_figures(world: World, scenes: int, scene_seed: int, *,
+                   train: Callable[[Mapping[str, CatalogueEntry]], Recogniser],
+                   gap: float = 0.03, whole_in_view: bool = True) -> dict[str, Any]:
+    """Detection, recognition and position figures over generated table-top scenes.
+
+    ``train`` gives the recogniser for the world's catalogue, trained as the robot's is
+    (``homebot.app.perception.trained_recogniser``: the caller's, since the app builds
+    what the robot runs); its time is reported as ``training_s``."""
     catalogue = object_catalogue(world)
     if not catalogue:
         return {"status": f"the world {world.name} has no objects"}
     began = time.perf_counter()
-    recogniser = trained_recogniser(catalogue)  # its own views, not the scenes' seed
+    recogniser = train(catalogue)  # its own views, not the scenes' seed
     training_s = time.perf_counter() - began
     perception = TabletopPerception(recogniser, np.random.default_rng([scene_seed, 7]))
     entries = list(catalogue.values())
