@@ -12,10 +12,11 @@ from typing import Any
 
 from rich.console import Console
 
+from homebot.app import RunSettings, build_run, disturbed
 from homebot.bench.arguments import count, seed
 from homebot.inference import Inventory
 from homebot.navigation import Navigator
-from homebot.trials.supermarket import SupermarketTrial, run_world
+from homebot.trials.supermarket import RunParts, SupermarketTrial, run_world
 from homebot.world import World
 
 __all__ = ["add_arguments", "run"]
@@ -40,15 +41,22 @@ def _mean(values: list[int]) -> float:
     return round(statistics.fmean(values), 3) if values else 0.0
 
 
+def _run_parts(world: World, navigator: Navigator) -> RunParts:
+    """The trial's runs, built by the app in ``world`` with one shared navigator."""
+    return lambda seed, inference, responder, noise: build_run(RunSettings(
+        world=world, seed=seed, navigator=navigator, inference=inference, responder=responder,
+        disturbances=disturbed(noise) if noise > 0 else None))
+
+
 def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, Any]:
     """Figures over ``--worlds`` seeded supermarkets."""
     world = World.load("supermarket")
-    navigator = Navigator(world)
     kb_text = Inventory.load("supermarket").kb.to_text()
     began = time.perf_counter()
     trial = SupermarketTrial(requests=args.requests, misplaced=args.misplaced,
                              missing=args.missing, r_max=args.r_max, noise=args.noise)
-    results = [run_world(world, navigator, args.seed + index, trial, kb_text)
+    build = _run_parts(world, Navigator(world))
+    results = [run_world(world, args.seed + index, trial, kb_text, build)
                for index in range(args.worlds)]
     wall = time.perf_counter() - began
     requests = sum(r.requests for r in results)

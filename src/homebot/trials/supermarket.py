@@ -10,25 +10,25 @@ simulator's truth. ``homebot bench inference`` runs many worlds and prints the f
 from __future__ import annotations
 
 import random
-from collections.abc import Mapping
+import typing
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
-from homebot.app import Run, RunSettings, build_run, disturbed
 from homebot.cancel import CancelToken
+from homebot.executive import Executive, RunReport
 from homebot.executive.recovery import Protocol, StepRunner
 from homebot.geometry import Pose
 from homebot.inference import InferenceCycle, Inventory, fetch_task
 from homebot.knowledge import KnowledgeBase
-from homebot.navigation import Navigator
 from homebot.robot import Detection, MoveReport
-from homebot.sim import SimRobot, Simulation
+from homebot.sim import Responder, SimRobot, Simulation
 from homebot.skills import ErrorCode, Outcome, SkillContext
 from homebot.task import Step, Task
 from homebot.world import PersonModel, World
 
-__all__ = ["ShelfVisitCounter", "SupermarketTrial", "WorldResult", "fixed_order_search",
-           "random_supermarket", "run_world"]
+__all__ = ["BuiltRun", "RunParts", "ShelfVisitCounter", "SupermarketTrial", "WorldResult",
+           "fixed_order_search", "random_supermarket", "run_world"]
 
 
 class ShelfVisitCounter(SimRobot):
@@ -150,9 +150,42 @@ class SupermarketTrial:
     noise: float = 0.0  #: disturbance level (0: only the assistant's misplacements)
 
 
-def run_world(world: World, navigator: Navigator, seed: int, trial: SupermarketTrial,
-              kb_text: str) -> WorldResult:
-    """One seeded supermarket: the same requests served with the cycle and with the baseline."""
+class BuiltRun(typing.Protocol):
+    """What the trial uses of a run (``homebot.app.Run`` is one)."""
+
+    @property
+    def simulation(self) -> Simulation: ...
+
+    @property
+    def context(self) -> SkillContext: ...
+
+    @property
+    def executive(self) -> Executive: ...
+
+
+#: Builds a run in the trial's world for ``seed``, with ``inference`` as its recovery
+#: protocol of last resort, ``responder`` answering for the people, and disturbances at
+#: ``noise`` (0: none). The caller's, since ``homebot.app`` wires runs.
+RunParts = Callable[[int, Protocol, Responder, float], BuiltRun]
+
+
+@dataclass
+class _Served:
+    """A run's parts, with the shelf-visit counter as its robot."""
+
+    simulation: Simulation
+    context: SkillContext
+    executive: Executive
+    robot: ShelfVisitCounter
+
+    def run(self, task: Task) -> RunReport[None]:
+        return self.executive.run(task)
+
+
+def run_world(world: World, seed: int, trial: SupermarketTrial, kb_text: str,
+              build: RunParts) -> WorldResult:
+    """One seeded supermarket: the same requests served with the cycle and with the baseline,
+    each in a run ``build`` makes."""
     inventory = Inventory(KnowledgeBase.from_text(kb_text))
     truth = random_supermarket(world, inventory, seed, trial.misplaced, trial.missing)
     requests = random.Random(seed + 1).sample(sorted(world.objects), trial.requests)
@@ -160,7 +193,7 @@ def run_world(world: World, navigator: Navigator, seed: int, trial: SupermarketT
     shelves = {inventory.place(s) for s in inventory.shelves}
 
     cycle = InferenceCycle(inventory, r_max=trial.r_max, seed=seed)
-    simulated, robot = _simulated(world, navigator, seed, truth, cycle, shelves, trial.noise)
+    simulated, robot = _simulated(build, seed, truth, cycle, shelves, trial.noise)
     for product in requests:
         present = _available(simulated.simulation.object_location.get(product), shelves)
         substitute = inventory.substitute(product)
@@ -191,7 +224,7 @@ def run_world(world: World, navigator: Navigator, seed: int, trial: SupermarketT
 
     quiet = InferenceCycle(Inventory(KnowledgeBase.from_text(kb_text)), r_max=0.0,
                            seed=seed)  # no put-backs while a client waits
-    searching, searcher = _simulated(world, navigator, seed, truth, quiet, shelves,
+    searching, searcher = _simulated(build, seed, truth, quiet, shelves,
                                       trial.noise)
     for product in requests:
         before = len(searcher.visits)
@@ -201,7 +234,7 @@ def run_world(world: World, navigator: Navigator, seed: int, trial: SupermarketT
             if step.skill == "give" and step.status == "verified":
                 quiet.handed_over(str(step.args["object"]))
 
-    baseline, counter = _simulated(world, navigator, seed, truth,
+    baseline, counter = _simulated(build, seed, truth,
                                    fixed_order_search(sorted(shelves)), shelves, trial.noise)
     for product in requests:
         present = _available(baseline.simulation.object_location.get(product), shelves)
@@ -220,17 +253,15 @@ def _available(where: str | None, shelves: set[str]) -> bool:
     return where is not None and (where in shelves or where.startswith("hand:"))
 
 
-def _simulated(world: World, navigator: Navigator, seed: int, truth: Mapping[str, str | None],
+def _simulated(build: RunParts, seed: int, truth: Mapping[str, str | None],
                protocol: Protocol, shelves: set[str],
-               noise: float = 0.0) -> tuple[Run, ShelfVisitCounter]:
-    simulated = build_run(RunSettings(
-        world=world, seed=seed, navigator=navigator, inference=protocol, responder=_agreeable,
-        disturbances=disturbed(noise) if noise > 0 else None))
-    simulated.simulation.object_location.update(truth)
-    robot = ShelfVisitCounter(simulated.simulation, shelves)
-    simulated.robot = robot
-    simulated.context.robot = robot
-    return simulated, robot
+               noise: float = 0.0) -> tuple[_Served, ShelfVisitCounter]:
+    built = build(seed, protocol, _agreeable, noise)
+    simulation, context, executive = built.simulation, built.context, built.executive
+    simulation.object_location.update(truth)
+    robot = ShelfVisitCounter(simulation, shelves)
+    context.robot = robot
+    return _Served(simulation, context, executive, robot), robot
 
 
 def _kb_agrees(inventory: Inventory, cycle: InferenceCycle, simulation: Simulation,
