@@ -14,9 +14,10 @@ imported only when the command line names it. To add a command group:
    as the module's ``add_parser`` (``tests/cli`` checks that they agree);
 3. keep the module's top-level imports to what its sub-commands need.
 
-A new flag needs nothing of this: add it in the group's ``register``. A new benchmark or
-scenario is a module of ``homebot.bench`` / ``homebot.scenarios.library`` (see
-``homebot.cli.modules``), imported only when chosen; its help line is its docstring's first.
+A new flag needs nothing of this: add it in the group's ``register``. A new scenario is a
+module of ``homebot.scenarios.library`` (see ``homebot.cli.modules``), imported only when
+chosen; its help line is its docstring's first. A new benchmark is a module of
+``homebot.bench`` with a line in its registry, ``homebot.bench.BENCHMARKS``.
 """
 
 from __future__ import annotations

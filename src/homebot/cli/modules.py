@@ -4,10 +4,11 @@
 is declared by name and help line, and its module is imported only when the command line
 chooses it, so ``homebot --help`` imports no engine and each command imports what it uses.
 
-``add_module_commands`` makes one sub-command per module of a package (benchmarks,
-scenarios). Each module exposes ``add_arguments(parser)`` and ``run(args, console) -> dict``;
-the sub-command prints the dict as JSON under ``--json`` (``console`` is then None). The help
-line is the first line of the module's docstring, read from its source without importing it.
+``add_module_commands`` makes one sub-command per module of a package (the scenarios; the
+benchmarks have an explicit registry, ``homebot.bench.BENCHMARKS``). Each module exposes
+``add_arguments(parser)`` and ``run(args, console) -> dict``; the sub-command prints the
+dict as JSON under ``--json`` (``console`` is then None). The help line is the first line
+of the module's docstring, read from its source without importing it.
 """
 
 from __future__ import annotations
