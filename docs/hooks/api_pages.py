@@ -6,6 +6,7 @@ removed changes the reference without anyone editing a list.
 
 from __future__ import annotations
 
+import ast
 from pathlib import Path
 from typing import Any
 
@@ -28,6 +29,27 @@ def api_modules() -> list[str]:
     return names
 
 
+def exposes_nothing(module: str) -> bool:
+    """Whether a package's ``__init__`` exposes nothing (no ``__all__``, or an empty one):
+    its modules are imported one by one, so its page shows them."""
+    init = SOURCE / module.removeprefix("homebot.") / "__init__.py"
+    if not init.exists():
+        return False
+    for node in ast.parse(init.read_text(encoding="utf-8")).body:
+        target = (node.targets[0] if isinstance(node, ast.Assign)
+                  else node.target if isinstance(node, ast.AnnAssign) else None)
+        if isinstance(target, ast.Name) and target.id == "__all__" and node.value is not None:
+            return not ast.literal_eval(node.value)
+    return True
+
+
+def page_text(module: str) -> str:
+    """The page's Markdown: mkdocstrings' directive for the module."""
+    if exposes_nothing(module):
+        return f"::: {module}\n    options:\n      show_submodules: true\n"
+    return f"::: {module}\n"
+
+
 def _page_path(module: str) -> str:
     return "api/" + module.removeprefix("homebot.") + ".md"
 
@@ -43,5 +65,5 @@ def on_config(config: MkDocsConfig) -> MkDocsConfig:
 
 def on_files(files: Files, config: MkDocsConfig) -> Files:
     for module in api_modules():
-        files.append(File.generated(config, _page_path(module), content=f"::: {module}\n"))
+        files.append(File.generated(config, _page_path(module), content=page_text(module)))
     return files
