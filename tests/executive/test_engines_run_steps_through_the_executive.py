@@ -3,15 +3,17 @@ on their way gets the executive's door protocol, and the task's time budget stop
 
 from __future__ import annotations
 
+from typing import Any
+
 import homebot.app as app
 from homebot.app import RunSettings, build_run
 from homebot.events import EventLog
 from homebot.executive import RunReport
-from homebot.golog import Interpreter, Run, State, Theory, parse_program
+from homebot.golog import Interpreter, ProgramTrace, State, Theory, parse_program
 from homebot.golog.skill_executor import SkillExecutor
 from homebot.htn import Goal, HtnTrace, Names, PlanActor, home_domain
+from homebot.sitlog import DialogueTrace, Var, format_term, load_program, parse_term
 from homebot.sitlog import Interpreter as DialogueInterpreter
-from homebot.sitlog import RunResult, Var, format_term, load_program, parse_term
 from homebot.sitlog.robot import SkillBody, SkillPerception
 from homebot.sitlog.terms import resolve
 from homebot.task import Step
@@ -48,10 +50,16 @@ def _guide_alex(apartment: World,
     return run, PlanActor(run.executive, domain).run(goal, names)
 
 
+def _recovered(report: RunReport[Any]) -> list[tuple[str, tuple[str, ...]]]:
+    """The steps of the run's report that went through recovery, with what was mended."""
+    return [(step.skill, step.recoveries) for step in report.steps if step.recoveries]
+
+
 def test_an_htn_plan_gets_the_door_protocol(apartment: World) -> None:
     run, done = _guide_alex(apartment, None)
     assert done
     assert _door_opened_by_the_executive(run.simulation.events, "bedroom door", run)
+    assert _recovered(done) == [("guide", ("door_closed",))]
 
 
 def test_an_htn_plan_stops_at_the_time_budget_without_replanning(apartment: World) -> None:
@@ -69,7 +77,8 @@ def test_an_htn_plan_stops_at_the_time_budget_without_replanning(apartment: Worl
 
 # -- Golog: a program that drives to the bed (behind the shut door), then to the desk ------
 
-def _errand(apartment: World, time_limit: float | None) -> tuple[app.Run, Run]:
+def _errand(apartment: World,
+            time_limit: float | None) -> tuple[app.Run, RunReport[ProgramTrace]]:
     run = _shut(apartment, "bedroom door", time_limit)
     theory = Theory("errand")
     theory.action("goto", ["place"])
@@ -83,6 +92,7 @@ def test_a_golog_program_gets_the_door_protocol(apartment: World) -> None:
     run, done = _errand(apartment, None)
     assert done
     assert _door_opened_by_the_executive(run.simulation.events, "bedroom door", run)
+    assert _recovered(done) == [("navigate", ("door_closed",))]
 
 
 def test_a_golog_program_stops_at_the_time_budget(apartment: World) -> None:
@@ -91,7 +101,7 @@ def test_a_golog_program_stops_at_the_time_budget(apartment: World) -> None:
     events = run.simulation.events
     assert _door_opened_by_the_executive(events, "bedroom door", run)
     assert not done
-    assert done.actions == ["goto(bed)"]
+    assert done.detail.actions == ["goto(bed)"]
     assert "ran out of time" in done.reason
     assert _started_after(events, 20.0) == []
 
@@ -101,13 +111,14 @@ def test_a_golog_program_stops_at_the_time_budget(apartment: World) -> None:
 _FIND = "find(noodles, ['toy box', shelf_snacks], Where)"
 
 
-def _find_noodles(time_limit: float | None) -> tuple[app.Run, RunResult, Var]:
+def _find_noodles(
+        time_limit: float | None) -> tuple[app.Run, RunReport[DialogueTrace], Var]:
     run = _shut(World.load("butler_home"), "kids room door", time_limit)
     variables: dict[str, Var] = {}
     call = parse_term(_FIND, "<test>", variables)
     result = DialogueInterpreter(load_program("behaviours"), SkillPerception(run.executive),
-                                 body=SkillBody(run.executive),
-                                 application=run.context).run(call)
+                                 body=SkillBody(run.executive), application=run.context,
+                                 executive=run.executive).run(call)
     return run, result, variables["Where"]
 
 
@@ -115,8 +126,9 @@ def test_a_sitlog_dialogue_gets_the_door_protocol() -> None:
     run, result, where = _find_noodles(None)
     # The model's look situation names no door: the executive opened it, the look went on.
     assert _door_opened_by_the_executive(run.simulation.events, "kids room door", run)
-    assert format_term(result.final) == "ok"
+    assert result and format_term(result.detail.final) == "ok"
     assert resolve(where) == "shelf_snacks"
+    assert _recovered(result) == [("look", ("door_closed",))]
 
 
 def test_a_sitlog_dialogue_stops_at_the_time_budget() -> None:
@@ -124,6 +136,7 @@ def test_a_sitlog_dialogue_stops_at_the_time_budget() -> None:
     run, result, where = _find_noodles(15.0)
     events = run.simulation.events
     assert _door_opened_by_the_executive(events, "kids room door", run)
-    assert format_term(result.final) == "stopped(out_of_time)"
+    assert format_term(result.detail.final) == "stopped(out_of_time)"
+    assert not result and "ran out of time" in result.reason
     assert isinstance(resolve(where), Var)
     assert _started_after(events, 15.0) == []

@@ -32,12 +32,12 @@ def test_the_executed_policy_uses_the_fewest_moves_for_every_arrangement(
         truth = State({("pos", cup): at for cup, at in initial.items()})
         executor = SimulatedExecutor(theory, truth=truth)
         run = Interpreter(theory, executor).run(do("order_cups_demo", *goal, 4), State())
-        moves = [action for action in run.history if action[0] == "move_cup"]
+        moves = [action for action in run.detail.history if action[0] == "move_cup"]
         assert run.success, (initial, goal, run.reason)
         assert len(moves) == minimum_moves(initial, goal), (initial, goal, moves)
         assert [executor.truth.get(("pos", cup)) for cup in goal] == list(POSITIONS[:3])
-        assert run.history[0] == ("perceive_cups",)
-        assert run.history[-1] == ("say", "That is it. I am done.")
+        assert run.detail.history[0] == ("perceive_cups",)
+        assert run.detail.history[-1] == ("say", "That is it. I am done.")
 
 
 def test_the_brute_force_agrees_with_hand_counts() -> None:
@@ -93,12 +93,12 @@ def test_a_cup_moved_by_a_person_breaks_a_marker_and_the_robot_replans() -> None
     executor = SimulatedExecutor(theory, events=person)
     run = Interpreter(theory, executor).run(do("sort_cups", "red", "green", "blue", 4))
     assert run.success
-    replans = [entry for entry in run.log if entry["kind"] == "replan"]
+    replans = [entry for entry in run.detail.log if entry["kind"] == "replan"]
     assert replans and replans[0]["marker"].startswith("poss(move_cup(red")
-    assert len(run.plans) == 2
+    assert len(run.detail.plans) == 2
     # after the disturbance the robot again uses the fewest moves
     after = {"red": "p2", "green": "p1", "blue": "p4"}
-    assert len(run.history) - 1 == minimum_moves(after, ("red", "green", "blue"))
+    assert len(run.detail.history) - 1 == minimum_moves(after, ("red", "green", "blue"))
     assert [executor.truth.get(("pos", c)) for c in ("red", "green", "blue")] == [
         "p1", "p2", "p3"]
 
@@ -113,10 +113,10 @@ def test_an_unseen_move_is_found_by_sensing_or_by_the_failed_action() -> None:
     executor = SimulatedExecutor(theory, events=person, observed=False)
     run = Interpreter(theory, executor).run(do("sort_cups", "red", "green", "blue", 4))
     assert run.success
-    assert not any(entry["kind"] == "exogenous" for entry in run.log)  # never seen happening
-    failed = [entry for entry in run.log if entry["kind"] == "action" and not entry["ok"]]
+    assert not any(entry["kind"] == "exogenous" for entry in run.detail.log)  # never seen happening
+    failed = [entry for entry in run.detail.log if entry["kind"] == "action" and not entry["ok"]]
     assert [entry["action"] for entry in failed] == ["move_cup(red, p2, p1)"]
-    replans = [entry for entry in run.log if entry["kind"] == "replan"]
+    replans = [entry for entry in run.detail.log if entry["kind"] == "replan"]
     assert [entry["marker"] for entry in replans] == ["done(move_cup(red, p2, p1))"]
     assert [executor.truth.get(("pos", c)) for c in ("red", "green", "blue")] == [
         "p1", "p2", "p3"]
@@ -130,4 +130,4 @@ def test_a_move_that_keeps_failing_ends_the_run_after_the_replan_budget() -> Non
     run = Interpreter(theory, executor, max_replans=3).run(
         do("sort_cups", "red", "green", "blue", 4))
     assert not run.success and "not possible" in run.reason
-    assert run.replans == 3
+    assert run.detail.replans == 3

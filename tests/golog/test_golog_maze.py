@@ -131,7 +131,7 @@ def test_stochastic_execution_reaches_the_goal(seed: int) -> None:
     run = Interpreter(theory, executor, seed=seed).run(do("reach_goal", 8))
     assert run.success, run.reason
     assert executor.truth.get(("loc",)) == (5, 1)
-    assert any(entry["kind"] == "sensed" for entry in run.log)
+    assert any(entry["kind"] == "sensed" for entry in run.detail.log)
 
 
 def test_the_same_seed_gives_the_same_walk() -> None:
@@ -140,5 +140,5 @@ def test_the_same_seed_gives_the_same_walk() -> None:
         theory = maze_theory()
         run = Interpreter(theory, SimulatedExecutor(theory, seed=11), seed=11).run(
             do("reach_goal", 8))
-        walks.append(run.history)
+        walks.append(run.detail.history)
     assert walks[0] == walks[1]

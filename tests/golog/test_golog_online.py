@@ -44,9 +44,9 @@ def test_the_elevator_serves_every_lit_floor_and_parks() -> None:
     theory = elevator_theory(floors=6, start=3, lit=(2, 5))
     run = Interpreter(theory, SimulatedExecutor(theory)).run(do("control"))
     assert run.success, run.reason
-    assert _served(run.history) == [2, 5]
-    assert run.state.get(("floor",)) == 1 and run.state.get(("door_open",)) is True
-    assert run.actions[:3] == ["down", "turnoff(2)", "open"]
+    assert _served(run.detail.history) == [2, 5]
+    assert run.detail.state.get(("floor",)) == 1 and run.detail.state.get(("door_open",)) is True
+    assert run.detail.actions[:3] == ["down", "turnoff(2)", "open"]
 
 
 def test_calls_arriving_while_it_runs_are_served_too() -> None:
@@ -57,8 +57,8 @@ def test_calls_arriving_while_it_runs_are_served_too() -> None:
 
     run = Interpreter(theory, SimulatedExecutor(theory, events=people)).run(do("control"))
     assert run.success
-    assert sorted(_served(run.history)) == [4, 5]
-    assert {"kind": "exogenous", "action": "call(4)"} in run.log
+    assert sorted(_served(run.detail.history)) == [4, 5]
+    assert {"kind": "exogenous", "action": "call(4)"} in run.detail.log
 
 
 def test_the_alarm_interrupts_with_priority() -> None:
@@ -69,8 +69,8 @@ def test_the_alarm_interrupts_with_priority() -> None:
 
     run = Interpreter(theory, SimulatedExecutor(theory, events=fire)).run(do("control"))
     assert run.success
-    assert run.actions[:4] == ["up", "up", "ring", "reset_alarm"]
-    assert _served(run.history) == [6]
+    assert run.detail.actions[:4] == ["up", "up", "ring", "reset_alarm"]
+    assert _served(run.detail.history) == [6]
 
 
 def _switch() -> Theory:
@@ -90,8 +90,8 @@ def test_wait_for_blocks_until_an_exogenous_action_makes_it_true() -> None:
     executor = SimulatedExecutor(theory, events=lambda clock, truth: [("press",)]
                                  if clock == 3 else [])
     run = Interpreter(theory, executor).run(seq(wait_for(f("light")), "tick"))
-    assert run.success and run.actions == ["tick"]
-    assert [entry["kind"] for entry in run.log].count("wait") == 3
+    assert run.success and run.detail.actions == ["tick"]
+    assert [entry["kind"] for entry in run.detail.log].count("wait") == 3
 
 
 def test_a_blocked_program_fails_when_nothing_more_will_happen() -> None:
@@ -106,14 +106,14 @@ def test_with_ctrl_advances_only_while_its_guard_holds() -> None:
     body = while_(lt(f("count"), 5), "tick")
     program = conc(with_ctrl(lt(f("count"), 2), body), seq("toggle", "toggle", "toggle"))
     run = Interpreter(theory, SimulatedExecutor(theory)).run(program)
-    assert run.actions[:2] == ["tick", "tick"] and run.actions[2] == "toggle"
+    assert run.detail.actions[:2] == ["tick", "tick"] and run.detail.actions[2] == "toggle"
 
 
 def test_with_pol_ends_when_the_program_ends() -> None:
     theory = _switch()
     program = with_pol(seq(wait_for(f("light")), "toggle"), seq("tick", "tick"))
     run = Interpreter(theory, SimulatedExecutor(theory)).run(program)
-    assert run.success and run.actions == ["tick", "tick"]
+    assert run.success and run.detail.actions == ["tick", "tick"]
 
 
 def test_recursive_procedures_run() -> None:
@@ -121,7 +121,7 @@ def test_recursive_procedures_run() -> None:
     theory.define(proc("count_to", ["N"], if_(lt(f("count"), "N"),
                                               seq("tick", do("count_to", "N")))))
     run = Interpreter(theory, SimulatedExecutor(theory)).run(do("count_to", 4))
-    assert run.success and run.state.get(("count",)) == 4
+    assert run.success and run.detail.state.get(("count",)) == 4
 
 
 def test_a_procedure_that_recurses_without_acting_is_an_error() -> None:
@@ -136,13 +136,13 @@ def test_sensing_actions_update_what_the_robot_believes() -> None:
     truth = State({("seen",): "a cat"})
     run = Interpreter(theory, SimulatedExecutor(theory, truth=truth)).run(
         seq("look", if_(eq(f("seen"), "a cat"), "toggle")))
-    assert run.success and run.actions == ["look", "toggle"]
+    assert run.success and run.detail.actions == ["look", "toggle"]
 
 
 def test_prob_is_resolved_by_the_seeded_generator() -> None:
     theory = _switch()
     program = seq(*[prob(0.5, "tick", "toggle") for _ in range(20)])
-    runs = [Interpreter(theory, SimulatedExecutor(theory), seed=seed).run(program).actions
+    runs = [Interpreter(theory, SimulatedExecutor(theory), seed=seed).run(program).detail.actions
             for seed in (5, 5, 6)]
     assert runs[0] == runs[1] and runs[0] != runs[2]
     assert set(runs[0]) == {"tick", "toggle"}
@@ -155,7 +155,7 @@ def test_an_action_the_world_refuses_fails_the_run_with_the_reason() -> None:
     executor = SimulatedExecutor(theory, truth=State())  # in truth the light is off
     run = Interpreter(theory, executor).run(seq("tick", "enter", "tick"), believed_on)
     assert not run.success and run.reason == "enter failed: enter is not possible"
-    assert run.situation.history == (("tick",),)
+    assert run.detail.situation.history == (("tick",),)
 
 
 @pytest.mark.parametrize(("text", "words"), [
@@ -182,21 +182,22 @@ def test_the_listener_sees_the_log_as_it_happens_and_history_replays() -> None:
     seen: list[dict[str, Any]] = []
     run = Interpreter(theory, SimulatedExecutor(theory), listener=seen.append).run(
         seq("tick", "toggle", "tick"))
-    assert seen == run.log and [entry["action"] for entry in seen] == ["tick", "toggle", "tick"]
-    assert theory.state_after(run.situation.history) == run.state
+    assert seen == run.detail.log
+    assert [entry["action"] for entry in seen] == ["tick", "toggle", "tick"]
+    assert theory.state_after(run.detail.situation.history) == run.detail.state
 
 
 def test_search_looks_ahead_where_plain_choice_commits_blindly() -> None:
     theory = _switch()
     program = seq(choice("tick", "toggle"), guard(f("light")))
     blind = Interpreter(theory, SimulatedExecutor(theory, patience=0)).run(program)
-    assert not blind.success and blind.actions == ["tick"]
+    assert not blind.success and blind.detail.actions == ["tick"]
     looked = Interpreter(theory, SimulatedExecutor(theory)).run(search(program))
-    assert looked.success and looked.actions == ["toggle"]
+    assert looked.success and looked.detail.actions == ["toggle"]
 
 
 def test_search_finds_the_floor_whose_button_is_lit() -> None:
     theory = elevator_theory(floors=4, start=1, lit=(3,))
     program = parse_program("search(pi(n, floors, go_floor(n); ?(lit(n)); turnoff(n)))")
     run = Interpreter(theory, SimulatedExecutor(theory)).run(program)
-    assert run.success and run.actions == ["up", "up", "turnoff(3)"]
+    assert run.success and run.detail.actions == ["up", "up", "turnoff(3)"]

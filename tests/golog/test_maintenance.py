@@ -141,7 +141,7 @@ def test_the_transformed_rips_program_starts_what_driving_needs_first() -> None:
     interpreter = _projected()
     run = interpreter.run(do("rips"))
     assert run.success
-    actions = run.actions
+    actions = run.detail.actions
     first_goto = actions.index("goto_place(Registration Desk)")
     assert actions[:first_goto].index("start(laser)") < actions.index(
         "start(collision_avoidance)") < first_goto
@@ -161,25 +161,26 @@ def test_crashes_are_repaired_before_the_dependent_action_and_no_constraint_is_b
         result = run_maintained(seed=seed, mean_time_to_failure=120.0, restart_failure=0.0,
                                 start_failure=0.0)
         assert result.success, result.reason
-        assert result.verdict.violations == []
-        assert result.verdict.unrepaired == []
-        crashes += result.verdict.crashes
-        interrupted += sum(e["kind"] == "maintenance.interrupted" for e in result.log)
+        assert result.detail.verdict.violations == []
+        assert result.detail.verdict.unrepaired == []
+        crashes += result.detail.verdict.crashes
+        interrupted += sum(e["kind"] == "maintenance.interrupted" for e in result.detail.log)
     assert crashes > 6 and interrupted > 0  # there were crashes, some in the middle of actions
 
 
 def test_the_same_seed_gives_the_same_run() -> None:
-    assert run_maintained(seed=4).events == run_maintained(seed=4).events
+    assert run_maintained(seed=4).detail.events == run_maintained(seed=4).detail.events
 
 
 def test_a_module_that_does_not_restart_is_named_to_the_operator() -> None:
     result = run_maintained(seed=1, mean_time_to_failure=40.0, restart_failure=1.0,
                             start_failure=0.0)
     assert not result.success
-    assert result.operator and "does not come back after 3 restart(s)" in result.operator[0]
-    component = result.operator[0].split()[1]
+    told = result.detail.operator
+    assert told and "does not come back after 3 restart(s)" in told[0]
+    component = result.detail.operator[0].split()[1]
     assert component in shipped_maintenance("rips").components
-    assert result.reason == result.operator[0]
+    assert result.reason == result.detail.operator[0]
 
 
 def test_the_judge_sees_violations_when_nothing_maintains_the_components() -> None:

@@ -45,10 +45,10 @@ def test_fetch_and_carry_approaches_until_close_then_delivers() -> None:
     run = Interpreter(theory, SimulatedExecutor(theory, seed=0), seed=0).run(
         do("fetch_and_carry", "cup", "shelf"))
     assert run.success
-    gotos = [action for action in run.history if action[0] == "goto"]
+    gotos = [action for action in run.detail.history if action[0] == "goto"]
     # the first standpoint 0.1 m off is "very close" in a 6 m frame; 0.5 m is "close"
     assert gotos == [("goto", (1.5, 1.0)), ("goto", (4.5, 1.0))]
-    assert [a[0] for a in run.history] == ["goto", "pickup", "goto", "putdown"]
+    assert [a[0] for a in run.detail.history] == ["goto", "pickup", "goto", "putdown"]
 
 
 def test_fetch_and_carry_fails_when_nothing_is_close_or_the_object_is_unknown() -> None:

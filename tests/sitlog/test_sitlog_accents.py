@@ -45,7 +45,7 @@ def test_find_in_the_accented_world_takes_names_without_accents() -> None:
                       variables)
     result = Interpreter(load_program("behaviours"), SkillPerception(run.executive),
                          body=SkillBody(run.executive), application=run.context).run(term)
-    assert format_term(result.final) == "ok"
+    assert format_term(result.detail.final) == "ok"
     assert resolve(variables["Where"]) == "MESA DA COZINHA"
     looked = [event.data for event in run.simulation.events.of_kind("skill.start")
               if event.data.get("skill") == "look"]

@@ -21,8 +21,9 @@ from homebot.sitlog import (
 def _session() -> tuple[str, list[str]]:
     body = RecordingBody()
     result = Interpreter(load_program("appendix_a"), ScriptedPerception(INPUTS), body=body).run()
-    text = (render_history(result.history) + f"\n\nOut Arg: {format_term(result.out_arg)}\n"
-            f"Out Global Vars: {render_globals(result.globals)}\n")
+    trace = result.detail
+    text = (render_history(trace.history) + f"\n\nOut Arg: {format_term(trace.out_arg)}\n"
+            f"Out Global Vars: {render_globals(trace.globals)}\n")
     return text, body.said
 
 
@@ -48,13 +49,13 @@ def test_screen_actions_are_spoken_in_order() -> None:
 
 def test_the_embedded_model_sees_the_pipe_and_leaves_it_unchanged() -> None:
     result = Interpreter(load_program("appendix_a"), ScriptedPerception(INPUTS)).run()
-    waits = [t for t in result.transitions() if t.model == "wait" and t.situation == "is"]
+    waits = [t for t in result.detail.transitions() if t.model == "wait" and t.situation == "is"]
     assert [format_term(t.expectation) for t in waits] == ["loop", "tuesday"]
 
 
 def test_the_history_is_nested_for_embedded_models() -> None:
     result = Interpreter(load_program("appendix_a"), ScriptedPerception(INPUTS)).run()
-    nested = [item for item in result.history if isinstance(item, list)]
+    nested = [item for item in result.detail.history if isinstance(item, list)]
     assert len(nested) == 2
     assert all(t.model == "wait" for part in nested for t in part)
 

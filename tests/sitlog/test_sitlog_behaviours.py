@@ -30,7 +30,7 @@ def _call(world: World, call: str,
 def test_move_opens_a_closed_door_on_the_way() -> None:
     variables, result, run = _call(_home(), "move('toy box', Status)", shut=("kids room door",))
     assert resolve(variables["Status"]) == "ok"
-    situations = [format_term(t.situation) for t in result.transitions()]
+    situations = [format_term(t.situation) for t in result.detail.transitions()]
     assert situations[:3] == ["is", "open('kids room door')", "is"]
     assert run.simulation.door_state["kids room door"].value == "open"
 
@@ -50,10 +50,10 @@ def test_take_ends_with_the_error_status_when_the_object_is_not_there() -> None:
 def test_find_scans_placements_in_order() -> None:
     variables, result, _ = _call(_home(), "find(noodles, [shelf_food, shelf_snacks], Where)")
     assert resolve(variables["Where"]) == "shelf_snacks"
-    assert format_term(result.final) == "ok"
+    assert format_term(result.detail.final) == "ok"
     variables, result, _ = _call(_home(), "find(noodles, [shelf_food], Where)")
     assert resolve(variables["Where"]) == "none"
-    assert format_term(result.final) == "not_found"
+    assert format_term(result.detail.final) == "not_found"
 
 
 def test_move_asks_someone_in_the_doorway_to_let_it_through() -> None:

@@ -39,7 +39,7 @@ def test_any_inputs_end_the_run_or_stop_it_with_a_dialogue_error(inputs: list[st
                              max_steps=200).run()
     except DialogueError:
         return
-    assert result.final == "fs"
+    assert result.detail.final == "fs"
 
 
 _ANSWERS = ["Yes.", "No.", "I like coke.", "Noodles.", "I had a bad day!", "Great day.",

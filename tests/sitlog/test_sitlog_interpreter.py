@@ -78,7 +78,7 @@ dialogue_models:
 def test_an_unmet_situation_repeats_then_runs_the_recovery_model() -> None:
     result, said = _run(_program(REPEAT), ["maybe", "perhaps"])
     assert said == ["Please say yes or no", "I give up"]
-    assert format_term(result.final) == "fs"
+    assert format_term(result.detail.final) == "fs"
 
 
 def test_the_situation_is_met_again_before_the_recovery() -> None:
@@ -116,8 +116,8 @@ dialogue_models:
 def test_models_pass_results_by_reference_and_share_globals() -> None:
     result, said = _run(_program(SCOPES), [])
     assert said == ["7"]
-    assert result.out_arg == 3
-    assert result.globals == {"total": 7}
+    assert result.detail.out_arg == 3
+    assert result.detail.globals == {"total": 7}
 
 
 def test_locals_of_an_embedding_model_are_not_visible_in_the_embedded_one() -> None:
@@ -148,7 +148,7 @@ def test_the_pipe_runs_from_in_arg_to_out_arg_and_propagates_when_unset() -> Non
 
     program = _program(PIPE, {"twice": twice})
     result = Interpreter(program, ScriptedPerception([])).run(pipe=21)
-    assert result.out_arg == 42
+    assert result.detail.out_arg == 42
 
 
 HISTORY = """
@@ -177,7 +177,7 @@ def test_a_model_built_in_python_runs_like_a_loaded_one() -> None:
     model = DialogueModel("main", (hello, Situation("fs", "final")))
     program = Program.build([model])
     result, said = _run(program, ["hi(ada)"])
-    assert said == ["ada"] and format_term(result.final) == "fs"
+    assert said == ["ada"] and format_term(result.detail.final) == "fs"
     with pytest.raises(DialogueError, match="no final situation"):
         Program.build([DialogueModel("main", (hello,))])
 
@@ -259,7 +259,7 @@ dialogue_models:
       - {id: fs, type: final}
 """)
     result, said = _run(program, ["no", "maybe", "yes"])
-    assert said == ["3"] and result.globals["visits"] == 3
+    assert said == ["3"] and result.detail.globals["visits"] == 3
 
 
 def test_speech_is_read_against_the_expectations() -> None:
@@ -291,7 +291,7 @@ dialogue_models:
         arcs: ["said(X) : assign(Out, X) => fs"]
       - {id: fs, type: final}
 """)
-    assert _run(program, ["said(hello)"])[0].out_arg == "hello"
+    assert _run(program, ["said(hello)"])[0].detail.out_arg == "hello"
 
 
 def test_running_a_program_leaves_it_unchanged_for_the_next_run() -> None:
@@ -306,7 +306,7 @@ dialogue_models:
 """)
     _run(program, ["one"])
     second, _ = _run(program, ["two"])
-    assert format_term(second.transitions()[0].expectation) == "two"
+    assert format_term(second.detail.transitions()[0].expectation) == "two"
     assert format_term(program.main_model.head) == "main(Heard)"
 
 

@@ -35,8 +35,8 @@ def test_a_dm_file_loads_and_runs(tmp_path: Path) -> None:
     path.write_text(DM)
     program = load_program(path)
     result = Interpreter(program, ScriptedPerception(["what", "hi"])).run("hello(ada)")
-    assert result.globals == {"greeted": "yes"}
-    assert [format_term(t.action) for t in result.transitions()][:2] == ["say(what)",
+    assert result.detail.globals == {"greeted": "yes"}
+    assert [format_term(t.action) for t in result.detail.transitions()][:2] == ["say(what)",
                                                                          "[say(ada),yes]"]
 
 
@@ -59,8 +59,9 @@ def test_errors_name_line_and_column(tmp_path: Path, damage: str, place: str,
 
 def test_the_shipped_appendix_a_in_sitlog_notation_gives_listing_a6() -> None:
     result = Interpreter(load_program("appendix_a.dm"), ScriptedPerception(INPUTS)).run()
-    text = (render_history(result.history) + f"\n\nOut Arg: {format_term(result.out_arg)}\n"
-            f"Out Global Vars: {render_globals(result.globals)}\n")
+    trace = result.detail
+    text = (render_history(trace.history) + f"\n\nOut Arg: {format_term(trace.out_arg)}\n"
+            f"Out Global Vars: {render_globals(trace.globals)}\n")
     assert re.sub(r"\s+", "", text) == re.sub(r"\s+", "", LISTING_A6)
 
 
@@ -76,5 +77,5 @@ def test_the_papers_listings_verbatim_are_checked_and_then_run(golem_paper: str,
         load_program(printed)  # Listing A3 embeds sample_wait; Listing A4 defines wait
     printed.write_text(text.replace("sample_wait", "wait"))
     result = Interpreter(load_program(printed), ScriptedPerception(INPUTS)).run()
-    assert format_term(result.out_arg) == "monday"
-    assert render_globals(result.globals) == "[g_count_fs1==>1,g_count_fs2==>1]"
+    assert format_term(result.detail.out_arg) == "monday"
+    assert render_globals(result.detail.globals) == "[g_count_fs1==>1,g_count_fs2==>1]"

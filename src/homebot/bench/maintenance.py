@@ -125,7 +125,7 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
     sim_time = []
     for index in range(runs):
         result = run_maintained(seed=first + index, mean_time_to_failure=mttf)
-        verdict = result.verdict
+        verdict = result.detail.verdict
         completed += result.success
         actions += verdict.actions
         violations += len(verdict.violations)
@@ -134,11 +134,12 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
         unneeded += verdict.not_needed_again
         unrepaired += len(verdict.unrepaired)
         examples += (verdict.violations + verdict.unrepaired)[:1]
-        interruptions += sum(e["kind"] == "maintenance.interrupted" for e in result.log)
-        for message in result.operator:
+        interruptions += sum(e["kind"] == "maintenance.interrupted" for e in result.detail.log)
+        for message in result.detail.operator:
             told[message.split()[1]] += 1
         if not result.success:
-            failures[result.reason.split(":")[0] if not result.operator else "operator told"] += 1
+            failures[result.reason.split(":")[0] if not result.detail.operator
+                     else "operator told"] += 1
         sim_time.append(result.sim_time)
     repairs = {
         "program": "rips", "runs": runs, "first_seed": first, "mttf_s": mttf,

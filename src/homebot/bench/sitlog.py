@@ -70,10 +70,11 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
         began = time.perf_counter()
         Interpreter(program, ScriptedPerception(inputs)).run()
         samples.append((time.perf_counter() - began) * 1000)
-    text = (render_history(result.history) + f"\n\nOut Arg: {format_term(result.out_arg)}\n"
-            f"Out Global Vars: {render_globals(result.globals)}\n")
+    trace = result.detail
+    text = (render_history(trace.history) + f"\n\nOut Arg: {format_term(trace.out_arg)}\n"
+            f"Out Global Vars: {render_globals(trace.globals)}\n")
     exact = None if listings is None else _squeezed(text) == _squeezed(listings.LISTING_A6)
-    situations = len(list(result.transitions()))
+    situations = len(list(trace.transitions()))
     figures: dict[str, Any] = {
         "benchmark": "sitlog", "situations": situations,
         "listing_a6_exact": exact,

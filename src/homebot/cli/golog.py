@@ -9,6 +9,7 @@ from typing import Any
 from rich.console import Console
 
 from homebot.errors import GologError
+from homebot.executive import print_report
 from homebot.golog import Interpreter, SimulatedExecutor, parse_program, policy_text
 from homebot.golog.checking import check_theory
 from homebot.golog.domains import domain_names, domain_theory
@@ -107,13 +108,7 @@ def _run(args: argparse.Namespace) -> int:
     run = Interpreter(theory, SimulatedExecutor(theory, seed=args.seed),
                       seed=args.seed).run(program)
     if args.json:
-        print(json.dumps({"success": run.success, "actions": run.actions, "log": run.log,
-                          "replans": run.replans, "reason": run.reason}, ensure_ascii=False))
+        print(json.dumps(run.to_dict(), ensure_ascii=False))
     else:
-        console = Console(highlight=False)
-        for entry in run.log:
-            if entry["kind"] in ("action", "exogenous", "replan", "sensed"):
-                detail = entry.get("action") or entry.get("outcome") or entry.get("marker")
-                console.print(f"{entry['kind']}: {detail}")
-        console.print("done" if run.success else f"failed: {run.reason}")
+        print_report(Console(highlight=False), run)
     return 0 if run.success else 1

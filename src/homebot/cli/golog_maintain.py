@@ -9,6 +9,7 @@ from typing import Any
 from rich.console import Console
 
 from homebot.errors import GologError
+from homebot.executive import print_report
 from homebot.golog.domains import domain_names, domain_theory
 from homebot.golog.maintenance import (
     Maintenance,
@@ -65,28 +66,9 @@ def _maintain(args: argparse.Namespace) -> int:
     result = run_maintained(program, domain=args.domain, maintenance=maintenance,
                             seed=args.seed)
     if args.json:
-        print(json.dumps({"success": result.success, "reason": result.reason,
-                          "sim_time": round(result.sim_time, 3), "operator": result.operator,
-                          "judged": result.verdict.to_dict(), "log": result.log},
-                         ensure_ascii=False))
+        print(json.dumps(result.to_dict(), ensure_ascii=False))
     else:
-        console = Console(highlight=False)
-        for entry in result.log:
-            if entry["kind"] in ("action", "maintenance.noticed", "maintenance.interrupted",
-                                 "maintenance.operator"):
-                detail = entry.get("action") or entry.get("component")
-                if entry["kind"] == "action" and not entry["ok"]:
-                    detail = f"{detail} (failed: {entry['message']})"
-                elif entry["kind"] == "maintenance.noticed":
-                    detail = f"{detail} is {entry['state']}"
-                elif entry["kind"] == "maintenance.operator":
-                    detail = f"told the operator: {entry['message']}"
-                console.print(f"{entry['kind']}: {detail}", markup=False)
-        verdict = result.verdict
-        console.print(f"{'done' if result.success else 'failed: ' + result.reason} after "
-                      f"{result.sim_time:.1f} s; {verdict.crashes} crash(es), "
-                      f"{len(verdict.violations)} action(s) with a violated constraint",
-                      markup=False)
+        print_report(Console(highlight=False), result)
     return 0 if result.success else 1
 
 
@@ -103,7 +85,8 @@ def _show(args: argparse.Namespace, theory: Theory, maintenance: Maintenance,
     steps = [{"action": step.action, "prefix": step.prefix, "markers": step.markers,
               "todo": step.todo, "program": step.program}
              for step in interpreter.transformations]
-    executed = [entry["action"] for entry in run.log if entry["kind"] == "action" and entry["ok"]]
+    executed = [entry["action"] for entry in run.detail.log
+                if entry["kind"] == "action" and entry["ok"]]
     if args.json:
         print(json.dumps({"success": run.success, "steps": steps, "transformed": executed},
                          ensure_ascii=False))

@@ -13,6 +13,7 @@ from typing import Any
 from rich.console import Console
 
 from homebot.errors import DialogueError
+from homebot.executive import print_report
 from homebot.sitlog import (
     Environment,
     Interpreter,
@@ -23,8 +24,6 @@ from homebot.sitlog import (
     dot_diagram,
     format_term,
     load_program,
-    render_globals,
-    render_history,
 )
 from homebot.sitlog.model import FINAL
 
@@ -94,25 +93,20 @@ def _run(args: argparse.Namespace) -> int:
         lambda text: console.print(f"robot asks ({text})")) if console else None)
     body = RecordingBody(echo=(lambda text: console.print(f"robot: {text}")) if console else None)
     perception: Any = spoken
-    application = None
+    application = executive = None
     if args.person and not args.world:
         raise DialogueError("--person needs --world (the simulated home the person is in)")
     if args.world:
-        perception, body_on_robot, application = _on_robot(args, spoken)
+        perception, body_on_robot, application, executive = _on_robot(args, spoken)
         body = body_on_robot
     trace = (lambda step: console.print(f"  {step}")) if console and args.trace else None
     result = Interpreter(program, perception, body=body, application=application,
-                         on_transition=trace).run(args.call)
-    history = render_history(result.history)
+                         on_transition=trace, executive=executive).run(args.call)
     if args.json:
-        print(json.dumps({"final": format_term(result.final), "out_arg": format_term(
-            result.out_arg), "globals": {k: format_term(v) for k, v in result.globals.items()},
-            "history": history.split("\n"), "situations": result.steps}, ensure_ascii=False))
+        print(json.dumps(result.to_dict(), ensure_ascii=False))
         return 0
-    assert console is not None
-    console.print(history)
-    console.print(f"\nOut Arg: {format_term(result.out_arg)}")
-    console.print(f"Out Global Vars: {render_globals(result.globals)}")
+    # what the robot said was shown as it said it
+    print_report(Console(highlight=False), result, speech=False)
     return 0
 
 
@@ -120,7 +114,8 @@ def _prompt(text: str) -> str:
     return input(text)
 
 
-def _on_robot(args: argparse.Namespace, spoken: ScriptedPerception) -> tuple[Any, Any, Any]:
+def _on_robot(args: argparse.Namespace,
+              spoken: ScriptedPerception) -> tuple[Any, Any, Any, Any]:
     from homebot.app import RunSettings, build_run
     from homebot.sitlog.robot import SkillBody, SkillPerception
     from homebot.world import World
@@ -128,7 +123,7 @@ def _on_robot(args: argparse.Namespace, spoken: ScriptedPerception) -> tuple[Any
     run = build_run(RunSettings(world=World.load(args.world), seed=args.seed))
     robot = SkillPerception(run.executive, person=args.person)
     perception = robot if args.person else _Mixed(spoken, robot)
-    return perception, SkillBody(run.executive), run.context
+    return perception, SkillBody(run.executive), run.context, run.executive
 
 
 def _show(args: argparse.Namespace) -> int:

@@ -128,6 +128,10 @@ class Executive:
         """
         self.context.cancel = cancel if cancel is not None else CancelToken()
         self.start_budget()
+        return self.mark()
+
+    def mark(self) -> RunMark:
+        """Where things stand now (robot time, events, steps), for ``report``."""
         return RunMark(self.context.robot.now(), self.context.events.count, len(self.journal))
 
     def report(self, mark: RunMark, success: bool, reason: str,

@@ -92,4 +92,6 @@ def print_report(console: Console, report: RunReport[Any], *, speech: bool = Tru
         for text in report.speech:
             console.print(f"  [cyan]robot:[/] {escape(text)}", highlight=False)
     verdict = "[green]success[/]" if report.success else f"[red]failed[/]: {escape(report.reason)}"
-    console.print(f"  {verdict} in {report.sim_time:.1f} s simulated", highlight=False)
+    # a pure simulation of a program (no robot) takes no simulated time to speak of
+    took = f" in {report.sim_time:.1f} s simulated" if report.sim_time else ""
+    console.print(f"  {verdict}{took}", highlight=False)

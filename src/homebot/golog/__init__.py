@@ -10,7 +10,13 @@ in ``planner`` and ``policy``; Trans/Final in ``semantics``; the online
 ``skill_executor`` (the home's skills); shipped domains in ``domains``.
 """
 
-from homebot.golog.interpreter import Executor, Interpreter, Report, Run, SimulatedExecutor
+from homebot.golog.interpreter import (
+    Executor,
+    Interpreter,
+    ProgramTrace,
+    Report,
+    SimulatedExecutor,
+)
 from homebot.golog.planner import Planner, plan, project
 from homebot.golog.policy import Policy, Result, policy_actions, policy_text
 from homebot.golog.program import Procedure, Program
@@ -28,9 +34,9 @@ __all__ = [
     "Policy",
     "Procedure",
     "Program",
+    "ProgramTrace",
     "Report",
     "Result",
-    "Run",
     "SimulatedExecutor",
     "Situation",
     "SkillExecutor",

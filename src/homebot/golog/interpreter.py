@@ -17,6 +17,9 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any
 
+from rich.markup import escape
+
+from homebot.executive.report import RunReport
 from homebot.golog.checking import check_program, check_theory
 from homebot.golog.policy import Result, policy_actions
 from homebot.golog.program import Program
@@ -32,7 +35,7 @@ from homebot.golog.semantics import (
 )
 from homebot.golog.theory import GroundAction, Situation, State, Theory, action_text
 
-__all__ = ["Executor", "Interpreter", "Report", "Run", "SimulatedExecutor"]
+__all__ = ["Executor", "Interpreter", "ProgramTrace", "Report", "SimulatedExecutor"]
 
 ExogenousSource = Callable[[int, State], list[GroundAction]]
 
@@ -61,6 +64,12 @@ class Executor(ABC):
     def begin(self) -> None:
         """A run starts (an executor on a robot starts the task's time budget)."""
         return None
+
+    def report(self, success: bool, reason: str,
+               trace: ProgramTrace) -> RunReport[ProgramTrace]:
+        """The run's report; an executor on a robot adds the steps it ran, what the robot
+        said and the time it took."""
+        return RunReport(success, reason=reason, detail=trace)
 
     @abstractmethod
     def execute(self, action: GroundAction, state: State) -> Report:
@@ -145,19 +154,15 @@ class SimulatedExecutor(Executor):
 
 
 @dataclass
-class Run:
-    """How an online execution went."""
+class ProgramTrace:
+    """What a Golog run adds to its report: the state reached, the actions done (the
+    history), the log of actions, plans, re-plans, sensing and waits, and the plans made."""
 
-    success: bool
     state: State
-    history: list[GroundAction]
-    log: list[dict[str, Any]]
-    plans: list[Result]
-    replans: int
-    reason: str = ""
-
-    def __bool__(self) -> bool:
-        return self.success
+    history: list[GroundAction] = field(default_factory=list)
+    log: list[dict[str, Any]] = field(default_factory=list)
+    plans: list[Result] = field(default_factory=list)
+    replans: int = 0
 
     @property
     def situation(self) -> Situation:
@@ -168,6 +173,18 @@ class Run:
     def actions(self) -> list[str]:
         """The executed actions as text."""
         return [action_text(action) for action in self.history]
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"actions": self.actions, "log": self.log, "replans": self.replans}
+
+    def lines(self) -> list[str]:
+        """Each action, exogenous action, re-plan and sensing result, in order."""
+        lines = []
+        for entry in self.log:
+            if entry["kind"] in ("action", "exogenous", "replan", "sensed"):
+                detail = entry.get("action") or entry.get("outcome") or entry.get("marker")
+                lines.append(escape(f"{entry['kind']}: {detail}"))
+        return lines
 
 
 class Interpreter:
@@ -187,7 +204,7 @@ class Interpreter:
         self.max_steps = max_steps
         self.max_replans = max_replans
 
-    def run(self, program: Program, state: State | None = None) -> Run:
+    def run(self, program: Program, state: State | None = None) -> RunReport[ProgramTrace]:
         """Execute ``program`` from ``state`` (the theory's initial state by default).
 
         The program and the theory's procedures are checked first: an unknown
@@ -196,16 +213,22 @@ class Interpreter:
         theory = self.theory
         check_theory(theory)
         check_program(theory, program)
-        state = state if state is not None else theory.initial
-        run = Run(False, state, [], [], [], 0)
-        configuration = program
+        trace = ProgramTrace(state if state is not None else theory.initial)
         self.executor.begin()
+        failure = self._run(program, trace)
+        return self.executor.report(not failure, failure, trace)
+
+    def _run(self, program: Program, run: ProgramTrace) -> str:
+        """Run ``program`` from the trace's state to its end; why it failed, or ""."""
+        theory = self.theory
+        state = run.state
+        configuration = program
         for _ in range(self.max_steps):
             for action in self.executor.exogenous(state):
                 state = self._exogenous(run, action, state)
             if final(configuration, state, theory):
-                run.success, run.state = True, state
-                return run
+                run.state = state
+                return ""
             found = transitions(configuration, state, theory)
             if not found:
                 happened = self.executor.wait(state)
@@ -225,7 +248,7 @@ class Interpreter:
                 return self._failed(run, state, failure)
         return self._failed(run, state, f"no end after {self.max_steps} steps")
 
-    def _execute(self, run: Run, step: ActionStep, state: State,
+    def _execute(self, run: ProgramTrace, step: ActionStep, state: State,
                  remaining: Program) -> tuple[State, Program, str]:
         """Have the executor do an action; the new state, what remains, and any failure."""
         report = self.executor.execute(step.action, state)
@@ -244,7 +267,7 @@ class Interpreter:
                         "message": report.message})
         return state, step.fallback, ""
 
-    def _note(self, run: Run, step: Step) -> str:
+    def _note(self, run: ProgramTrace, step: Step) -> str:
         """Log a step that is not an action; the failure it means, if any."""
         if isinstance(step, PlanStep):
             run.plans.append(step.result)
@@ -262,7 +285,7 @@ class Interpreter:
             self._log(run, {"kind": "sensed", "outcome": action_text(step.nature)})
         return ""
 
-    def _log(self, run: Run, entry: dict[str, Any]) -> None:
+    def _log(self, run: ProgramTrace, entry: dict[str, Any]) -> None:
         """Keep a log entry with the run and pass it to the listener (an event log, say)."""
         run.log.append(entry)
         if self.listener is not None:
@@ -289,11 +312,11 @@ class Interpreter:
             state = theory.do(action, state)
         return state.progressed(report.sensed) if report.sensed else state
 
-    def _exogenous(self, run: Run, action: GroundAction, state: State) -> State:
+    def _exogenous(self, run: ProgramTrace, action: GroundAction, state: State) -> State:
         self._log(run, {"kind": "exogenous", "action": action_text(action)})
         return self.theory.do(action, state)
 
     @staticmethod
-    def _failed(run: Run, state: State, reason: str) -> Run:
-        run.success, run.state, run.reason = False, state, reason
-        return run
+    def _failed(run: ProgramTrace, state: State, reason: str) -> str:
+        run.state = state
+        return reason

@@ -48,7 +48,13 @@ from homebot.golog.allen import (
     network_of,
 )
 from homebot.golog.expressions import Const, Expr, Fn
-from homebot.golog.interpreter import Executor, Interpreter, Report, Run, SimulatedExecutor
+from homebot.golog.interpreter import (
+    Executor,
+    Interpreter,
+    ProgramTrace,
+    Report,
+    SimulatedExecutor,
+)
 from homebot.golog.program import Call, Program, Seq
 from homebot.golog.semantics import ActionStep
 from homebot.golog.theory import GroundAction, State, Theory, action_text
@@ -610,20 +616,16 @@ class MaintenanceInterpreter(Interpreter):
         self.seen: set[str] = set()
         self.transformations: list[Transformation] = []
 
-    def run(self, program: Program, state: State | None = None) -> Run:
+    def _run(self, program: Program, run: ProgramTrace) -> str:
         self.todo, self.transformations = [], []
-        start = state if state is not None else self.theory.initial
-        self.seen = {f"{key[1]}={value}" for key, value in start.values.items()
+        self.seen = {f"{key[1]}={value}" for key, value in run.state.values.items()
                      if key[0] == "component"}
-        run = super().run(program, state)
-        if run.success and any(c.kind == "after" for c in self.todo):
-            state, failure = self._discharge(run, run.state)
-            run.state = state
-            if failure:
-                return self._failed(run, state, failure)
-        return run
+        failure = super()._run(program, run)
+        if not failure and any(c.kind == "after" for c in self.todo):
+            run.state, failure = self._discharge(run, run.state)
+        return failure
 
-    def _execute(self, run: Run, step: ActionStep, state: State,
+    def _execute(self, run: ProgramTrace, step: ActionStep, state: State,
                  remaining: Program) -> tuple[State, Program, str]:
         name = str(step.action[0])
         if name in MANAGEMENT_ACTIONS:
@@ -652,7 +654,7 @@ class MaintenanceInterpreter(Interpreter):
         state, failure = self._discharge(run, state)
         return state, rest, failure
 
-    def _sync(self, run: Run, state: State) -> tuple[State, dict[str, str]]:
+    def _sync(self, run: ProgramTrace, state: State) -> tuple[State, dict[str, str]]:
         """Read the components' heartbeats; note what changed unseen (a crash)."""
         states = self.components.component_states()
         changed = {}
@@ -664,7 +666,7 @@ class MaintenanceInterpreter(Interpreter):
         self.seen |= {f"{c}={v}" for c, v in states.items()}
         return (state.progressed(changed) if changed else state), states
 
-    def _prepare(self, run: Run, action: GroundAction, requirements: Requirements,
+    def _prepare(self, run: ProgramTrace, action: GroundAction, requirements: Requirements,
                  state: State, remaining: Program) -> tuple[State, str]:
         """Transform and run δ′'s prefix until the requirements hold (or repair fails)."""
         attempts: dict[str, int] = {}
@@ -697,7 +699,7 @@ class MaintenanceInterpreter(Interpreter):
                 state = self.theory.do(management, state)
         return state, self._tell_operator(run, "", "")
 
-    def _discharge(self, run: Run, state: State) -> tuple[State, str]:
+    def _discharge(self, run: ProgramTrace, state: State) -> tuple[State, str]:
         """Make the 'after' commitments on the todo list hold now."""
         pending = [c for c in self.todo if c.kind == "after"]
         if not pending:
@@ -709,7 +711,7 @@ class MaintenanceInterpreter(Interpreter):
             self.todo = [c for c in self.todo if c.kind != "after"]
         return state, failure
 
-    def _tell_operator(self, run: Run, component: str, value: str) -> str:
+    def _tell_operator(self, run: ProgramTrace, component: str, value: str) -> str:
         message = (f"my {component} has {value} and does not come back after "
                    f"{self.maintenance.restart_attempts} restart(s); please check it"
                    if component else "my components do not settle into the states my task "

@@ -19,9 +19,9 @@ from collections.abc import Callable, Mapping
 from typing import Any
 
 from homebot.errors import GologError
-from homebot.executive import Executive
+from homebot.executive import Executive, RunReport
 from homebot.executive.recovery import Recover
-from homebot.golog.interpreter import Executor, Report
+from homebot.golog.interpreter import Executor, ProgramTrace, Report
 from homebot.golog.theory import GroundAction, State, action_text
 from homebot.skills import ErrorCode, Status
 from homebot.task import Step
@@ -52,9 +52,14 @@ class SkillExecutor(Executor):
         self.noticing = noticing
         self.recover = recover
         self.steps: list[dict[str, Any]] = []
+        self._began = executive.mark()  # until a run begins
 
     def begin(self) -> None:
-        self.executive.start_budget()
+        self._began = self.executive.begin()
+
+    def report(self, success: bool, reason: str,
+               trace: ProgramTrace) -> RunReport[ProgramTrace]:
+        return self.executive.report(self._began, success, reason, trace)
 
     def execute(self, action: GroundAction, state: State) -> Report:
         binding = self.bindings.get(str(action[0]))

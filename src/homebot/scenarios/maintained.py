@@ -15,10 +15,13 @@ from dataclasses import dataclass, field
 from importlib import resources
 from typing import Any
 
+from rich.markup import escape
+
+from homebot.executive import RunReport
 from homebot.golog.allen import DISJOINT, Constraint, converse, mask_of, relation_of
 from homebot.golog.build import do
 from homebot.golog.domains import domain_theory
-from homebot.golog.interpreter import Report, SimulatedExecutor
+from homebot.golog.interpreter import ProgramTrace, Report, SimulatedExecutor
 from homebot.golog.maintenance import (
     BEGINS_AFTER,
     ENDED_BEFORE,
@@ -37,7 +40,7 @@ from homebot.sim.components import ComponentSimulation, SimulatedComponent
 __all__ = [
     "DURATIONS",
     "ComponentExecutor",
-    "MaintainedRun",
+    "MaintenanceTrace",
     "Verdict",
     "judge",
     "run_maintained",
@@ -215,16 +218,41 @@ def judge(events: Sequence[Mapping[str, Any]], maintenance: Maintenance) -> Verd
 
 
 @dataclass
-class MaintainedRun:
-    """One run: did the program end, what the log says, what was said to the operator."""
+class MaintenanceTrace:
+    """What a self-maintenance run adds to its report: the program's trace, what the
+    simulator's event log says about it, those events, and what the operator was told."""
 
-    success: bool
-    reason: str
+    program: ProgramTrace
     verdict: Verdict
-    log: list[dict[str, Any]]
     events: list[dict[str, Any]]
-    sim_time: float
     operator: list[str]
+
+    @property
+    def log(self) -> list[dict[str, Any]]:
+        """The interpreter's log: actions, noticed states, repairs, interruptions."""
+        return self.program.log
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"operator": self.operator, "judged": self.verdict.to_dict(), "log": self.log}
+
+    def lines(self) -> list[str]:
+        """Each action (failed ones with why), what was noticed and interrupted, what the
+        operator was told; then the crashes and the violated constraints."""
+        lines = []
+        for entry in self.log:
+            if entry["kind"] in ("action", "maintenance.noticed", "maintenance.interrupted",
+                                 "maintenance.operator"):
+                detail = entry.get("action") or entry.get("component")
+                if entry["kind"] == "action" and not entry["ok"]:
+                    detail = f"{detail} (failed: {entry['message']})"
+                elif entry["kind"] == "maintenance.noticed":
+                    detail = f"{detail} is {entry['state']}"
+                elif entry["kind"] == "maintenance.operator":
+                    detail = f"told the operator: {entry['message']}"
+                lines.append(escape(f"{entry['kind']}: {detail}"))
+        lines.append(f"{self.verdict.crashes} crash(es), {len(self.verdict.violations)} "
+                     "action(s) with a violated constraint")
+        return lines
 
 
 def simulated_components(maintenance: Maintenance, *, seed: int,
@@ -242,7 +270,7 @@ def simulated_components(maintenance: Maintenance, *, seed: int,
 def run_maintained(program: Program | None = None, *, domain: str = "rips",
                    maintenance: Maintenance | None = None, seed: int = 0,
                    mean_time_to_failure: float = 150.0, start_failure: float = 0.05,
-                   restart_failure: float = 0.1) -> MaintainedRun:
+                   restart_failure: float = 0.1) -> RunReport[MaintenanceTrace]:
     """Run ``program`` (the domain's own procedure by default) with crashing components."""
     maintenance = maintenance if maintenance is not None else shipped_maintenance(domain)
     theory = add_management(domain_theory(domain), maintenance)
@@ -255,7 +283,7 @@ def run_maintained(program: Program | None = None, *, domain: str = "rips",
     interpreter = MaintenanceInterpreter(theory, executor, maintenance, seed=seed)
     result = interpreter.run(program if program is not None else do(domain))
     verdict = judge(simulation.events, maintenance)
-    operator = [entry["message"] for entry in result.log
+    operator = [entry["message"] for entry in result.detail.log
                 if entry["kind"] == "maintenance.operator"]
-    return MaintainedRun(result.success, result.reason, verdict, result.log, simulation.events,
-                         simulation.now, operator)
+    return RunReport(result.success, sim_time=simulation.now, reason=result.reason,
+                     detail=MaintenanceTrace(result.detail, verdict, simulation.events, operator))

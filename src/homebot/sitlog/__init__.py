@@ -2,7 +2,7 @@
 
 from homebot.sitlog.diagram import dot_diagram
 from homebot.sitlog.history import History, Transition, render_globals, render_history
-from homebot.sitlog.interpreter import Environment, Interpreter, RunResult, RunStopped
+from homebot.sitlog.interpreter import DialogueTrace, Environment, Interpreter, RunStopped
 from homebot.sitlog.loading import load_program, load_program_text, shipped_dialogue_path
 from homebot.sitlog.model import Arc, DialogueModel, Program, Situation, UserFunction
 from homebot.sitlog.perception import Body, Perception, RecordingBody, ScriptedPerception
@@ -12,13 +12,13 @@ __all__ = [
     "Arc",
     "Body",
     "DialogueModel",
+    "DialogueTrace",
     "Environment",
     "History",
     "Interpreter",
     "Perception",
     "Program",
     "RecordingBody",
-    "RunResult",
     "RunStopped",
     "ScriptedPerception",
     "Situation",

@@ -19,9 +19,19 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any
 
+from rich.markup import escape
+
 from homebot.errors import DialogueError, HomebotError
+from homebot.executive import Executive, RunReport
 from homebot.sitlog.evaluation import evaluate
-from homebot.sitlog.history import History, Transition, last_transition, transitions
+from homebot.sitlog.history import (
+    History,
+    Transition,
+    last_transition,
+    render_globals,
+    render_history,
+    transitions,
+)
 from homebot.sitlog.model import FINAL, RECURSIVE, DialogueModel, Program, Situation, functor_of
 from homebot.sitlog.perception import Body, Perception, RecordingBody, utterance_term
 from homebot.sitlog.terms import (
@@ -39,7 +49,7 @@ from homebot.sitlog.terms import (
     unify,
 )
 
-__all__ = ["Environment", "Frame", "Interpreter", "RunResult", "RunStopped"]
+__all__ = ["DialogueTrace", "Environment", "Frame", "Interpreter", "RunStopped"]
 
 _MAX_RECOVERIES = 3  #: recovery models run for one situation before the run gives up
 _MAX_DEPTH = 50  #: dialogue models embedded in one another before the run gives up
@@ -69,18 +79,30 @@ class Frame:
 
 
 @dataclass
-class RunResult:
-    """How a run ended: the final situation, the pipe, the globals and the whole history."""
+class DialogueTrace:
+    """What a SitLog run adds to its report: the final situation reached, the pipe's
+    value, the globals, the whole history and how many situations were interpreted."""
 
     final: Term
     out_arg: Term
     globals: dict[str, Term]
     history: History
-    steps: int
-    stopped: str = ""  #: why the run was stopped before its end (its message), or ""
+    situations: int
 
     def transitions(self) -> list[Transition]:
         return transitions(self.history)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"final": format_term(self.final), "out_arg": format_term(self.out_arg),
+                "globals": {k: format_term(v) for k, v in self.globals.items()},
+                "history": render_history(self.history).split("\n"),
+                "situations": self.situations}
+
+    def lines(self) -> list[str]:
+        """The history as SitLog prints it, then the pipe and the globals."""
+        return [escape(render_history(self.history)), "",
+                escape(f"Out Arg: {format_term(self.out_arg)}"),
+                escape(f"Out Global Vars: {render_globals(self.globals)}")]
 
 
 class Environment:
@@ -170,8 +192,10 @@ class Interpreter:
 
     def __init__(self, program: Program, perception: Perception, *, body: Body | None = None,
                  application: Any = None, max_steps: int = 10_000,
-                 on_transition: Callable[[Transition], object] | None = None) -> None:
+                 on_transition: Callable[[Transition], object] | None = None,
+                 executive: Executive | None = None) -> None:
         self.program = program
+        self.executive = executive
         self.perception = perception
         self.body: Body = body if body is not None else RecordingBody()
         self.application = application
@@ -183,19 +207,30 @@ class Interpreter:
         self.stack: list[Frame] = []
         self.steps = 0
 
-    def run(self, call: Term | str | None = None, pipe: Term | None = None) -> RunResult:
-        """Run the main model (or ``call``, e.g. ``take(malz, Status)``) to its end."""
+    def run(self, call: Term | str | None = None,
+            pipe: Term | None = None) -> RunReport[DialogueTrace]:
+        """Run the main model (or ``call``, e.g. ``take(malz, Status)``) to its end.
+
+        The run succeeds when it reaches a final situation; stopped (``RunStopped``), it
+        ends in ``stopped(Why)`` and fails with the stop's message. With an ``executive``
+        (the one the robot's skills run through) the run starts its time budget and the
+        report holds the steps it ran, what the robot said and the time it took.
+        """
         if isinstance(call, str):
             call = parse_term(call, "<call>")
         call = call if call is not None else copy_term(self.program.main_model.head)
         pipe = pipe if pipe is not None else Var("_Pipe")
+        began = self.executive.begin() if self.executive is not None else None
+        reason = ""
         try:
             final, pipe = self._run_model(call, pipe, self.history)
         except RunStopped as stop:
-            return RunResult(Struct("stopped", (stop.why,)), resolve(pipe), dict(self.globals),
-                             self.history, self.steps, stop.message or stop.why)
-        return RunResult(resolve(final), resolve(pipe), dict(self.globals), self.history,
-                         self.steps)
+            final, reason = Struct("stopped", (stop.why,)), stop.message or stop.why
+        trace = DialogueTrace(resolve(final), resolve(pipe), dict(self.globals), self.history,
+                              self.steps)
+        if self.executive is None or began is None:
+            return RunReport(not reason, reason=reason, detail=trace)
+        return self.executive.report(began, not reason, reason, trace)
 
     # -- dialogue models -------------------------------------------------------------------
 

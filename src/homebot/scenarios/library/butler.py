@@ -165,6 +165,7 @@ def run_butler(*, prefers: str = "malz", refuse_update: bool = False, tidy: bool
             interpreter = Interpreter(load_program("butler"),
                                       SkillPerception(run.executive, person="Luis"),
                                       body=SkillBody(run.executive), application=home,
+                                      executive=run.executive,
                                       on_transition=lambda step: run.context.events.record(
                                           "sitlog.transition", transition=str(step)))
             result = interpreter.run()
@@ -176,14 +177,14 @@ def run_butler(*, prefers: str = "malz", refuse_update: bool = False, tidy: bool
         persisted = reopened.kb.to_text() == home.kb.to_text()
         reopened.close()
     truth = run.simulation.object_location
-    ordered = result.globals.get("order", ())
+    ordered = result.detail.globals.get("order", ())
     order = [str(item) for item in ordered] if isinstance(ordered, tuple) else []
     delivered = all(truth.get(item) == "person:Luis" for item in order)
     transcript = _transcript(run)
     return scenario_summary(
         "butler", delivered and bool(order) and persisted,
         [{"model": t.model, "situation": str(t.situation), "expectation": str(t.expectation),
-          "action": str(t.action)} for t in result.transitions()],
+          "action": str(t.action)} for t in result.detail.transitions()],
         [line["text"] for line in transcript if line["who"] == "robot"],
         transcript=transcript, order=order,
         objects={name: truth[name] for name in ("malz", "coke", "noodles", "bisquits")},
@@ -191,7 +192,7 @@ def run_butler(*, prefers: str = "malz", refuse_update: bool = False, tidy: bool
                     for entry in log[first_update:]],
         kb_persisted=persisted, kb_store=str(kb_store) if kb_store else None,
         why_user=why_user,
-        situations=result.steps, sim_time=round(run.robot.now(), 1))
+        situations=result.detail.situations, sim_time=round(run.robot.now(), 1))
 
 
 def _transcript(run: Run) -> list[dict[str, str]]:

@@ -87,11 +87,11 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
         executor = simulated
         outcome = Interpreter(theory, executor, seed=args.seed).run(do("sort_cups", *GOAL, 4))
         final = {cup: simulated.truth.get(("pos", cup)) for cup in CUPS}
-    replans = [entry for entry in outcome.log if entry["kind"] == "replan"]
+    replans = [entry for entry in outcome.detail.log if entry["kind"] == "replan"]
     in_order = all(final[cup] == position for cup, position in zip(GOAL, POSITIONS,
                                                                     strict=False))
     if console is not None:
-        for entry in outcome.log:
+        for entry in outcome.detail.log:
             if entry["kind"] == "plan":
                 console.print(f"plan: {', '.join(entry['actions'])}", highlight=False)
             elif entry["kind"] == "action" and entry["ok"]:
@@ -107,12 +107,14 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
                               highlight=False)
         console.print("the cups are in order" if in_order else "the cups are not in order")
     noticed = bool(replans) or not moved
+    history = outcome.detail.history
     return scenario_summary("cup_moved", outcome.success and in_order and noticed,
-                            outcome.actions, [], exogenous=[" ".join(map(str, m)) for m in moved],
+                            outcome.detail.actions, [],
+                            exogenous=[" ".join(map(str, m)) for m in moved],
                             replans=len(replans), markers=[entry["marker"] for entry in replans],
-                            moves_after_disturbance=len(outcome.history) - after if moved
+                            moves_after_disturbance=len(history) - after if moved
                             else None,
-                            fewest_after_disturbance=_fewest_after(moved, after, outcome.history),
+                            fewest_after_disturbance=_fewest_after(moved, after, history),
                             **figures)
 
 

@@ -153,7 +153,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
         console.print(f"fetch_and_carry({obj}, {destination}): the {obj} is at "
                       f"({positions[obj][0]:.2f}, {positions[obj][1]:.2f}) "
                       f"on the {world.objects[obj].placement}")
-        for entry in outcome.log:
+        for entry in outcome.detail.log:
             if entry["kind"] == "action":
                 console.print(f"  {entry['action']}", highlight=False)
         for record in approached:
@@ -164,5 +164,5 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
                       f"{'; ' + outcome.reason if outcome.reason else ''}")
     return scenario_summary("fetch_carry", success, executor.steps, [],
                             object=obj, destination=destination, delivered=delivered,
-                            approached=approached, golog_actions=outcome.actions,
+                            approached=approached, golog_actions=outcome.detail.actions,
                             reason=outcome.reason, sim_time=round(context.robot.now(), 2))

@@ -31,9 +31,9 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     outcome = Interpreter(theory, executor, seed=args.seed).run(do("reach_goal", horizon))
     at = executor.truth.get(("loc",), maze.start)
     reached = at == maze.goal
-    first = outcome.plans[0] if outcome.plans else None
+    first = outcome.detail.plans[0] if outcome.detail.plans else None
     if console is not None:
-        visited = {maze.start} | {(a[1], a[2]) for a in _arrivals(outcome.log)}
+        visited = {maze.start} | {(a[1], a[2]) for a in _arrivals(outcome.detail.log)}
         for y, row in enumerate(maze.rows):
             console.print("".join("*" if (x, y) in visited and char == "." else char
                                   for x, char in enumerate(row)), highlight=False)
@@ -42,10 +42,10 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
                           f"{first.probability:.4f}")
         fell = at in maze.stairs
         console.print(f"{'reached the goal' if reached else 'did not reach the goal'} after "
-                      f"{len(outcome.history)} moves and {len(outcome.plans)} plans"
+                      f"{len(outcome.detail.history)} moves and {len(outcome.detail.plans)} plans"
                       f"{' (it slipped and fell down the stairs)' if fell else ''}")
-    return scenario_summary("maze", outcome.success and reached, outcome.actions, [],
-                            moves=len(outcome.history), plans=len(outcome.plans),
+    return scenario_summary("maze", outcome.success and reached, outcome.detail.actions, [],
+                            moves=len(outcome.detail.history), plans=len(outcome.detail.plans),
                             value=first.value if first else None,
                             success_probability=first.probability if first else None,
                             end=list(at), fell=at in maze.stairs)

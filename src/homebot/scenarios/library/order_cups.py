@@ -14,10 +14,11 @@ import homebot.app as app
 from homebot.app import Fidelity, RunSettings, build_run
 from homebot.cli.options import add_fidelity_option, fidelity_of
 from homebot.errors import GologError
+from homebot.executive import RunReport
 from homebot.golog import (
     Executor,
     Interpreter,
-    Run,
+    ProgramTrace,
     SimulatedExecutor,
     SkillExecutor,
     State,
@@ -126,7 +127,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     if getattr(args, "home", False):
         home = home_cups(initial, args.seed, fidelity=fidelity_of(args))
         executor = home.executor
-        outcome: Run = Interpreter(theory, executor, seed=args.seed).run(
+        outcome: RunReport[ProgramTrace] = Interpreter(theory, executor, seed=args.seed).run(
             do("order_cups_demo", *goal, horizon), State())
         final = home.truth()
         figures = {"skills": home.executor.steps,
@@ -138,20 +139,21 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
         outcome = Interpreter(theory, executor, seed=args.seed).run(
             do("order_cups_demo", *goal, horizon), State())
         final = {cup: simulated.truth.get(("pos", cup)) for cup in CUPS}
-    moves = [action for action in outcome.history if action[0] == "move_cup"]
+    moves = [action for action in outcome.detail.history if action[0] == "move_cup"]
     fewest = minimum_moves(initial, goal)
     in_order = all(final[cup] == position for cup, position in zip(goal, POSITIONS,
                                                                     strict=False))
-    speech = [str(action[1]) for action in outcome.history if action[0] == "say"]
+    speech = [str(action[1]) for action in outcome.detail.history if action[0] == "say"]
     if console is not None:
         console.print(f"cups at {initial}; wanted at p1, p2, p3: {', '.join(goal)}")
-        if outcome.plans:
-            console.print(policy_text(outcome.plans[0].policy, markers=False), highlight=False)
+        if outcome.detail.plans:
+            console.print(policy_text(outcome.detail.plans[0].policy, markers=False),
+                          highlight=False)
         console.print(f"{len(moves)} move{'' if len(moves) == 1 else 's'} (fewest possible: "
                       f"{fewest}); {'in order' if in_order else 'not in order'}"
                       f"{': ' + outcome.reason if outcome.reason else ''}")
     return scenario_summary("order_cups", outcome.success and in_order and len(moves) == fewest,
-                            outcome.actions, speech, initial=initial, goal=list(goal),
-                            moves=len(moves), fewest_moves=fewest, replans=outcome.replans,
-                            value=outcome.plans[0].value if outcome.plans else None,
+                            outcome.detail.actions, speech, initial=initial, goal=list(goal),
+                            moves=len(moves), fewest_moves=fewest, replans=outcome.detail.replans,
+                            value=outcome.detail.plans[0].value if outcome.detail.plans else None,
                             **figures)

@@ -115,7 +115,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
             {("pos", cup): at for cup, at in initial.items()}))
         outcome = Interpreter(theory, executor, seed=args.seed).run(
             do("order_cups_demo", *goal, getattr(args, "horizon", 4)), State())
-        moves = [action for action in outcome.history if action[0] == "move_cup"]
+        moves = [action for action in outcome.detail.history if action[0] == "move_cup"]
         in_order = all(executor.truth.get(("pos", cup)) == position
                        for cup, position in zip(wanted, POSITIONS, strict=False))
     success = bool(outcome and outcome.success) and right_goal and in_order and (
@@ -129,6 +129,6 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
                       f"{fewest}); {'in order' if in_order else 'not in order'}")
     speech = [line.removeprefix("robot: ") for line in dialogue if line.startswith("robot: ")]
     return scenario_summary("order_cups_pointing", success,
-                            outcome.actions if outcome else [], speech, initial=initial,
+                            outcome.detail.actions if outcome else [], speech, initial=initial,
                             goal=list(wanted), understood=list(goal), asked_again=asked,
                             moves=len(moves), fewest_moves=fewest)

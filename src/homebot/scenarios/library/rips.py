@@ -93,7 +93,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     speech = [event.data["text"] for event in context.events.of_kind("speech")]
     success = outcome.success and out and with_committee
     if console is not None:
-        for entry in outcome.log:
+        for entry in outcome.detail.log:
             if entry["kind"] in ("action", "exogenous", "wait"):
                 console.print(f"  {entry['kind']}: {entry.get('action', '')}", highlight=False)
         for text in speech:
@@ -101,6 +101,6 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
         console.print(f"RIPS {'done' if success else 'failed'}"
                       f"{': ' + outcome.reason if outcome.reason else ''}")
     return scenario_summary("rips", success, executor.steps, speech,
-                            golog_actions=outcome.actions, reason=outcome.reason,
+                            golog_actions=outcome.detail.actions, reason=outcome.reason,
                             handed_over=with_committee,
                             sim_time=round(context.robot.now(), 2))
