@@ -1,4 +1,10 @@
-"""``Executive``: runs a task step by step with retries, recovery, and a word for the operator."""
+"""``Executive``: the one acting loop. Every skill in homebot runs through it.
+
+``run`` carries out a task of steps (a GPSR parse, a task file); ``run_step`` runs one
+step for an engine that sequences skills itself (HTN, Golog, SitLog, the inference
+cycle), with the same retries, recovery protocols, inference fallback and time budget.
+``begin`` and ``report`` frame an engine's run into the one ``RunReport``.
+"""
 
 from __future__ import annotations
 
@@ -37,7 +43,7 @@ class RunMark:
 
 
 class Executive:
-    """Runs tasks on one robot.
+    """Runs tasks, and the steps of every engine, on one robot.
 
     With ``recovery`` on, a step that fails or is aborted after its own retries
     goes through the recovery protocols (door closed, path blocked, object or
