@@ -42,11 +42,19 @@ class Patch:
         return f"{self.where}: {self.text} ({self.why})"
 
 
+def _is_property(function: ast.FunctionDef | ast.AsyncFunctionDef) -> bool:
+    """Whether ``function`` is read as a field (``@property``, ``@cached_property``)."""
+    return any(ast.unparse(decorator).split(".")[-1] in ("property", "cached_property")
+               for decorator in function.decorator_list)
+
+
 def _methods(trees: dict[str, ast.Module]) -> set[str]:
-    """Every name a class in src defines with ``def``."""
+    """Every name a class in src defines with ``def``, properties apart: reading a
+    property (``run.simulation``) gives a value, not a bound method."""
     return {item.name for tree in trees.values() for node in ast.walk(tree)
             if isinstance(node, ast.ClassDef) for item in node.body
-            if isinstance(item, ast.FunctionDef | ast.AsyncFunctionDef)}
+            if isinstance(item, ast.FunctionDef | ast.AsyncFunctionDef)
+            and not _is_property(item)}
 
 
 def _functions(tree: ast.Module) -> set[str]:
@@ -162,11 +170,14 @@ def test_the_check_finds_the_patches_it_is_meant_to_find() -> None:
             "        setattr(sim, 'now', lambda: 0.0)\n"
             "        sim.stop_shown = lambda person: False  # a hook field: fine\n"
             "        self.listener = self._heard  # its own field: fine\n"
+            "        arm.run = navigation.run  # a property's value, not a method: fine\n"
             "    def _paced(self, before, after): ...\n"
             "    def _locate(self, name): ...\n"
             "    def _heard(self, event): ...\n"
             "class Navigation:\n"
-            "    def plan_wide(self, *args): ...\n"),
+            "    def plan_wide(self, *args): ...\n"
+            "    @property\n"
+            "    def run(self): ...\n"),
     }
     found = {(patch.where, patch.why) for patch in _all_patches(sources)}
     assert found == {
