@@ -10,13 +10,14 @@ import pytest
 from homebot.app import Run, RunSettings
 from homebot.bench import golog as golog_bench
 from homebot.cli import main
+from homebot.cli.scenario import run_builder
 from homebot.scenarios.library import cup_moved, maze, order_cups, rips
 
 SUMMARY_KEYS = {"scenario", "success", "actions", "speech"}
 
 
 def test_rips_registers_through_the_skills_in_the_simulated_home() -> None:
-    summary = rips.run(argparse.Namespace(seed=0, disturb=0.0), None)
+    summary = rips.run(argparse.Namespace(seed=0, disturb=0.0), None, run_builder())
     assert summary["success"] and summary["handed_over"]
     skills = [step["skill"] for step in summary["actions"]]
     assert skills[0] == "pick" and "give" in skills and skills[-1] == "navigate"
@@ -36,7 +37,7 @@ def test_rips_writes_golog_steps_into_the_event_log(monkeypatch: pytest.MonkeyPa
         return made
 
     monkeypatch.setattr(rips, "build_run", keep)
-    rips.run(argparse.Namespace(seed=0, disturb=0.0), None)
+    rips.run(argparse.Namespace(seed=0, disturb=0.0), None, run_builder())
     kinds = [event.kind for event in logs[0].events]  # type: ignore[attr-defined]
     assert "golog.exogenous" in kinds and "golog.action" in kinds and "skill.start" in kinds
     assert kinds.index("golog.exogenous") < kinds.index("golog.action", kinds.index(
@@ -44,35 +45,35 @@ def test_rips_writes_golog_steps_into_the_event_log(monkeypatch: pytest.MonkeyPa
 
 
 def test_rips_is_the_same_run_for_the_same_seed() -> None:
-    first = rips.run(argparse.Namespace(seed=4, disturb=1.0), None)
-    second = rips.run(argparse.Namespace(seed=4, disturb=1.0), None)
+    first = rips.run(argparse.Namespace(seed=4, disturb=1.0), None, run_builder())
+    second = rips.run(argparse.Namespace(seed=4, disturb=1.0), None, run_builder())
     assert first == second
 
 
 @pytest.mark.parametrize("seed", range(4))
 def test_order_cups_uses_the_fewest_moves(seed: int) -> None:
     summary = order_cups.run(argparse.Namespace(seed=seed, goal="blue,green,red", horizon=4),
-                             None)
+                             None, run_builder())
     assert summary["success"]
     assert summary["moves"] == summary["fewest_moves"]
     assert summary["speech"] == ["That is it. I am done."]
 
 
 def test_cup_moved_is_detected_by_a_marker_and_replanned() -> None:
-    summary = cup_moved.run(argparse.Namespace(seed=0, after=1), None)
+    summary = cup_moved.run(argparse.Namespace(seed=0, after=1), None, run_builder())
     assert summary["success"] and summary["replans"] == 1
     assert summary["markers"][0].startswith("poss(move_cup(")
     assert summary["moves_after_disturbance"] == summary["fewest_after_disturbance"]
 
 
 def test_cup_moved_unseen_is_found_when_the_next_move_fails() -> None:
-    summary = cup_moved.run(argparse.Namespace(seed=0, after=1, unseen=True), None)
+    summary = cup_moved.run(argparse.Namespace(seed=0, after=1, unseen=True), None, run_builder())
     assert summary["success"] and summary["markers"] == ["done(move_cup(red, p2, p1))"]
 
 
 def test_order_cups_through_the_skills_in_the_home() -> None:
     summary = order_cups.run(argparse.Namespace(seed=1, goal="red,green,blue", horizon=4,
-                                                home=True), None)
+                                                home=True), None, run_builder())
     assert summary["success"] and summary["moves"] == summary["fewest_moves"] == 4
     skills = [step["skill"] for step in summary["skills"]]
     assert skills[:4] == ["look"] * 4 and skills[4:6] == ["pick", "place"]
@@ -83,19 +84,19 @@ def test_order_cups_through_the_skills_in_the_home() -> None:
     (False, "poss(move_cup(red, p2, p1))"), (True, "done(move_cup(red, p2, p1))")])
 def test_cup_moved_in_the_home_is_noticed_and_replanned(unseen: bool, marker: str) -> None:
     summary = cup_moved.run(argparse.Namespace(seed=0, after=1, unseen=unseen, home=True),
-                            None)
+                            None, run_builder())
     assert summary["success"] and summary["markers"] == [marker]
     assert summary["moves_after_disturbance"] == summary["fewest_after_disturbance"]
 
 
 def test_maze_reaches_the_goal() -> None:
-    summary = maze.run(argparse.Namespace(seed=0, horizon=8), None)
+    summary = maze.run(argparse.Namespace(seed=0, horizon=8), None, run_builder())
     assert summary["success"] and summary["end"] == [5, 1]
     assert 0 < summary["success_probability"] < 1
 
 
 def test_in_the_maze_the_robot_can_slip_down_the_stairs() -> None:
-    summary = maze.run(argparse.Namespace(seed=10, horizon=8), None)
+    summary = maze.run(argparse.Namespace(seed=10, horizon=8), None, run_builder())
     assert not summary["success"] and summary["fell"] and summary["end"] == [3, 1]
 
 

@@ -7,6 +7,7 @@ import math
 
 import pytest
 
+from homebot.cli.scenario import run_builder
 from homebot.errors import GologError
 from homebot.golog import Interpreter, SimulatedExecutor, State
 from homebot.golog.build import do
@@ -69,7 +70,7 @@ def test_the_program_reads_like_alg_1() -> None:
 def test_scenario_fetch_carry_delivers_by_the_truth(seed: int) -> None:
     from homebot.scenarios.library import fetch_carry
 
-    summary = fetch_carry.run(argparse.Namespace(seed=seed, fidelity="symbolic"), None)
+    summary = fetch_carry.run(argparse.Namespace(seed=seed), None, run_builder())
     assert summary["success"], summary
     assert summary["delivered"]
     assert all(record["category"] == "close" and math.isfinite(record["metres"])

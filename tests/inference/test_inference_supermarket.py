@@ -11,6 +11,7 @@ import pytest
 from homebot.app import RunSettings, build_run
 from homebot.bench import inference as bench
 from homebot.cli import scenario
+from homebot.cli.scenario import run_builder
 from homebot.inference import InferenceCycle, Inventory, fetch_task
 from homebot.knowledge.store import KnowledgeStore
 from homebot.navigation import Navigator
@@ -31,7 +32,7 @@ def _story(seed: int = 0, *options: str) -> dict:
     story.add_arguments(parser)
     args = parser.parse_args(list(options))
     args.seed = seed
-    return story.run(args, None)
+    return story.run(args, None, run_builder())
 
 
 def test_the_fig1_story_ends_with_malz_and_a_message_to_the_manager() -> None:

@@ -9,6 +9,7 @@ from typing import Any
 import pytest
 
 from homebot.cli import main
+from homebot.cli.scenario import run_builder
 from homebot.knowledge import KnowledgeBase
 from homebot.knowledge.store import KnowledgeStore
 from homebot.scenarios.library.butler import run_butler
@@ -65,7 +66,7 @@ def _same(said: str, paper: str) -> bool:
 
 @pytest.fixture(scope="module")
 def paper_run() -> dict[str, Any]:
-    return run_butler()
+    return run_butler(run_builder())
 
 
 def test_the_robot_says_the_papers_lines_in_order(paper_run: dict[str, Any]) -> None:
@@ -104,7 +105,7 @@ def test_the_task_is_done_in_the_simulated_home(paper_run: dict[str, Any]) -> No
 
 def test_every_kb_change_is_persisted(tmp_path: Path) -> None:
     store_path = tmp_path / "butler.db"
-    summary = run_butler(kb_store=store_path)
+    summary = run_butler(run_builder(), kb_store=store_path)
     assert summary["kb_persisted"]
     whys = [update["why"] for update in summary["kb_updates"]]
     assert "Luis agreed that the noodles belong on shelf_snacks" in whys
@@ -121,7 +122,7 @@ def test_every_kb_change_is_persisted(tmp_path: Path) -> None:
 
 
 def test_luis_prefers_coke_and_refuses_the_update() -> None:
-    summary = run_butler(prefers="coke", refuse_update=True)
+    summary = run_butler(run_builder(), prefers="coke", refuse_update=True)
     said = [_words(line) for line in summary["speech"]]
     assert _words("Ok. I will bring you coke, your favorite drink.") in said
     assert _words("The coke is not in the shelf of drinks.") in said
@@ -136,7 +137,7 @@ def test_luis_prefers_coke_and_refuses_the_update() -> None:
 
 
 def test_with_nothing_misplaced_the_dialogue_skips_the_repairs() -> None:
-    summary = run_butler(tidy=True)
+    summary = run_butler(run_builder(), tidy=True)
     said = [_words(line) for line in summary["speech"]]
     assert not any("not in the shelf" in line or "not in its right place" in line
                    for line in said)
@@ -146,7 +147,7 @@ def test_with_nothing_misplaced_the_dialogue_skips_the_repairs() -> None:
 
 
 def test_runs_are_deterministic() -> None:
-    first, second = run_butler(seed=3), run_butler(seed=3)
+    first, second = run_butler(run_builder(), seed=3), run_butler(run_builder(), seed=3)
     assert first["transcript"] == second["transcript"]
     assert first["actions"] == second["actions"]
 
@@ -160,8 +161,8 @@ def test_the_scenario_command(capsys: pytest.CaptureFixture[str], tmp_path: Path
 
 def test_the_next_day_the_robot_remembers(tmp_path: Path) -> None:
     store = tmp_path / "luis.db"
-    run_butler(kb_store=store)
-    second = run_butler(kb_store=store)
+    run_butler(run_builder(), kb_store=store)
+    second = run_butler(run_builder(), kb_store=store)
     said = [_words(line) for line in second["speech"]]
     assert not any("what do you like best" in line for line in said)  # preferences known
     assert said[:2] == [_words("Hi, Luis."), _words("Hi, Luis, how was your day?")]
@@ -201,7 +202,7 @@ def test_an_answer_not_understood_is_recovered_and_the_question_asked_again(
         return original(self, question)
 
     monkeypatch.setattr(butler.LuisScript, "_answer", mumbling)
-    said = [_words(line) for line in run_butler()["speech"]]
+    said = [_words(line) for line in run_butler(run_builder())["speech"]]
     asked = _words(PAPER_ROBOT_LINES[5])
     at = said.index(asked)
     assert said[at + 1: at + 3] == [_words("Sorry, I did not understand you."), asked]
@@ -219,7 +220,7 @@ def test_after_a_good_day_luis_is_looked_for_in_the_dining_room_first(
             self, question)
 
     monkeypatch.setattr(butler.LuisScript, "_answer", cheerful)
-    summary = run_butler()
+    summary = run_butler(run_builder())
     said = [_words(line) for line in summary["speech"]]
     assert _words("Glad to hear that; do you want me to do something for you?") in said
     assert summary["success"]  # not in the dining room the KB prefers now: on the couch
@@ -232,7 +233,7 @@ def test_after_a_good_day_luis_is_looked_for_in_the_dining_room_first(
 def test_a_person_can_answer_for_luis() -> None:
     answers = iter(["I like coke.", "Noodles.", "No.", "Fine, thanks.", "Bring me a drink.",
                     "Yes.", "No.", "No, leave them there."])
-    summary = run_butler(typed=lambda person, question: next(answers, None))
+    summary = run_butler(run_builder(), typed=lambda person, question: next(answers, None))
     said = [_words(line) for line in summary["speech"]]
     assert _words("Glad to hear that; do you want me to do something for you?") in said
     assert summary["order"] == ["coke"] and summary["success"]
@@ -241,7 +242,7 @@ def test_a_person_can_answer_for_luis() -> None:
 
 @pytest.mark.parametrize("seed", range(6))
 def test_under_disturbances_the_dialogue_always_comes_to_an_end(seed: int) -> None:
-    summary = run_butler(seed=seed, level=1.0)
+    summary = run_butler(run_builder(), seed=seed, level=1.0)
     assert summary["speech"][-1] == "Goodbye."
     assert summary["kb_persisted"]
 
@@ -258,7 +259,7 @@ def test_an_object_off_every_shelf_is_sought_elsewhere(monkeypatch: pytest.Monke
         return World.from_dict(data, source="malz on the dining table")
 
     monkeypatch.setattr(butler, "butler_world", moved_malz)
-    summary = run_butler()
+    summary = run_butler(run_builder())
     said = [_words(line) for line in summary["speech"]]
     assert _words("Let me look for the malz again.") in said
     assert _words("Let me look for the malz elsewhere.") in said

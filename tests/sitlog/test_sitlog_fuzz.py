@@ -5,6 +5,7 @@ from __future__ import annotations
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+from homebot.cli.scenario import run_builder
 from homebot.errors import DialogueError
 from homebot.sitlog import load_program_text, shipped_dialogue_path
 
@@ -54,7 +55,8 @@ def test_whatever_luis_says_the_butler_ends_or_says_why_it_cannot_go_on(rng: obj
 
     choose = rng.choice  # type: ignore[attr-defined]
     try:
-        summary = run_butler(typed=lambda person, question: choose(_ANSWERS) or None)
+        summary = run_butler(run_builder(),
+                             typed=lambda person, question: choose(_ANSWERS) or None)
     except DialogueError as error:
         assert "cannot go on" in str(error)
         return

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 
+from homebot.cli.scenario import run_builder
 from homebot.geometry import Ray
 from homebot.space.deixis import deictic_request, pointed_place
 
@@ -28,6 +29,6 @@ def test_order_cups_from_speech_and_pointing_takes_the_fewest_moves() -> None:
 
     for seed in (1, 3):
         summary = order_cups_pointing.run(argparse.Namespace(
-            seed=seed, goal="green,blue,red", spread=0.04, horizon=4), None)
+            seed=seed, goal="green,blue,red", spread=0.04, horizon=4), None, run_builder())
         assert summary["understood"] == ["green", "blue", "red"]
         assert summary["success"] and summary["moves"] == summary["fewest_moves"]

@@ -8,7 +8,8 @@ from typing import Any
 from rich.console import Console
 from rich.table import Table
 
-from homebot.cli.options import add_fidelity_option
+from homebot.cli.options import add_fidelity_option, fidelity_of
+from homebot.cli.scenario import run_builder
 from homebot.cli.world import remember_last_run
 from homebot.events import Event
 from homebot.scenarios.demo import DemoTask, run_demo
@@ -50,8 +51,8 @@ def demo(args: argparse.Namespace) -> int:
     def announce(task: DemoTask) -> None:
         console.rule(f"[bold]{task.title}")
 
-    results = run_demo(world, None if args.quiet else narrate,
-                       None if args.quiet else announce, fidelity=args.fidelity)
+    results = run_demo(world, run_builder(fidelity_of(args)), None if args.quiet else narrate,
+                       None if args.quiet else announce)
     table = Table(title="homebot demo: tasks, outcomes and simulated durations")
     for column in ("task", "outcome", "recoveries", "simulated time"):
         table.add_column(column)

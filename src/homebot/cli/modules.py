@@ -5,9 +5,10 @@ is declared by name and help line, and its module is imported only when the comm
 chooses it, so ``homebot --help`` imports no engine and each command imports what it uses.
 
 ``add_module_commands`` makes one sub-command per module of a package (the scenarios; the
-benchmarks have an explicit registry, ``homebot.bench.BENCHMARKS``). Each module exposes
-``add_arguments(parser)`` and ``run(args, console) -> dict``; the sub-command prints the
-dict as JSON under ``--json`` (``console`` is then None). The help line is the first line
+benchmarks have an explicit registry, ``homebot.bench.BENCHMARKS``). The caller says how a
+module declares its arguments (``add_arguments(module, parser)``) and how it runs
+(``run(module, args, console) -> dict``); the sub-command prints the dict as JSON under
+``--json`` (``console`` is then None). The help line is the first line
 of the module's docstring, read from its source without importing it.
 """
 
@@ -27,6 +28,8 @@ __all__ = ["LazySubcommands", "add_module_commands", "lazy_subparsers", "module_
 
 
 if TYPE_CHECKING:
+    from rich.console import Console
+
     _SubParsers = argparse._SubParsersAction[argparse.ArgumentParser]
 else:
     _SubParsers = argparse._SubParsersAction
@@ -103,35 +106,37 @@ def module_help(module_name: str) -> str:
     return docstring.strip().splitlines()[0] if docstring.strip() else ""
 
 
+AddArguments = Callable[[ModuleType, argparse.ArgumentParser], None]
+RunModule = Callable[[ModuleType, argparse.Namespace, "Console | None"], dict[str, Any]]
+
+
 def add_module_commands(subparsers: LazySubcommands, package: ModuleType, names: list[str], *,
-                        add_common: Callable[[argparse.ArgumentParser], None],
+                        add_arguments: AddArguments, run: RunModule,
                         exit_status: Callable[[dict[str, Any]], int]) -> None:
-    """One lazily built sub-command per module, with its own arguments and the common ones."""
+    """One lazily built sub-command per module, with the arguments ``add_arguments`` gives it."""
     for name in names:
         qualified = f"{package.__name__}.{name}"
         subparsers.add_lazy(name, module_help(qualified),
-                            _module_register(qualified, name, add_common, exit_status))
+                            _module_register(qualified, name, add_arguments, run, exit_status))
 
 
-def _module_register(qualified: str, name: str,
-                     add_common: Callable[[argparse.ArgumentParser], None],
+def _module_register(qualified: str, name: str, add_arguments: AddArguments, run: RunModule,
                      exit_status: Callable[[dict[str, Any]], int],
                      ) -> Callable[[LazySubcommands], None]:
     def register(subparsers: LazySubcommands) -> None:
         module = importlib.import_module(qualified)
         sub = subparsers.add_parser(name, help=module_help(qualified))
-        add_common(sub)
-        module.add_arguments(sub)
-        sub.set_defaults(handler=_runner(module, exit_status))
+        add_arguments(module, sub)
+        sub.set_defaults(handler=_runner(module, run, exit_status))
     return register
 
 
-def _runner(module: ModuleType,
+def _runner(module: ModuleType, run: RunModule,
             exit_status: Callable[[dict[str, Any]], int]) -> Callable[[argparse.Namespace], int]:
     def handler(args: argparse.Namespace) -> int:
         from rich.console import Console
 
-        result: dict[str, Any] = module.run(args, None if args.json else Console())
+        result = run(module, args, None if args.json else Console())
         if args.json:
             print(json.dumps(result, ensure_ascii=False))
         return exit_status(result)

@@ -1,15 +1,31 @@
-"""``homebot scenario NAME``: run one of the seeds' demonstrations and print its summary."""
+"""``homebot scenario NAME``: run one of the seeds' demonstrations and print its summary.
+
+The command line declares each scenario's shared options (``SHARED_OPTIONS``) with its own
+checks and builds its runs with the composition root, ``homebot.app``; the scenario gets
+typed values and a run builder (``homebot.scenarios.running``).
+"""
 
 from __future__ import annotations
 
 import argparse
-from typing import Any
+from collections.abc import Callable
+from types import ModuleType
+from typing import TYPE_CHECKING, Any
 
 import homebot.scenarios.library
+from homebot.app import Fidelity, Run, RunSettings, build_run, disturbed
 from homebot.cli.modules import add_module_commands, lazy_subparsers, module_names
+from homebot.cli.options import add_fidelity_option, disturbance_level, fidelity_of, probability
 from homebot.errors import HomebotError
+from homebot.executive.recovery import Protocol
+from homebot.navigation import Navigator
+from homebot.scenarios.running import OptionKind, RunBuilder, SharedOption
+from homebot.world import DisturbanceModel, PersonModel, World
 
-__all__ = ["register", "scenario_names"]
+if TYPE_CHECKING:
+    from rich.console import Console
+
+__all__ = ["register", "run_builder", "scenario_names"]
 
 
 def scenario_names() -> list[str]:
@@ -17,18 +33,48 @@ def scenario_names() -> list[str]:
     return module_names(homebot.scenarios.library)
 
 
+def run_builder(fidelity: Fidelity = Fidelity.SYMBOLIC) -> RunBuilder:
+    """A scenario's run builder: ``homebot.app.build_run`` in ``fidelity``."""
+    def build(world: World, *, seed: int, level: float | None = None,
+              disturbances: DisturbanceModel | None = None,
+              # a ``homebot.sim.Responder``, spelt out: the simulator is not the CLI's to import
+              responder: Callable[[PersonModel, str], str | None] | None = None,
+              inference: Protocol | None = None,
+              navigator: Navigator | None = None) -> Run:
+        return build_run(RunSettings(
+            world=world, seed=seed, fidelity=fidelity,
+            disturbances=disturbed(level) if level is not None else disturbances,
+            responder=responder, inference=inference, navigator=navigator))
+    return build
+
+
 def register(subparsers: Any) -> None:
     parser = subparsers.add_parser("scenario", help="run a demonstration from the seed papers")
     scenarios = lazy_subparsers(parser, dest="scenario", metavar="NAME")
     add_module_commands(scenarios, homebot.scenarios.library, scenario_names(),
-                        add_common=_add_common,
+                        add_arguments=_add_arguments, run=_run,
                         exit_status=lambda summary: 0 if summary["success"] else 1)
     parser.set_defaults(handler=lambda args: _missing())
 
 
-def _add_common(parser: argparse.ArgumentParser) -> None:
+def _add_arguments(module: ModuleType, parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--seed", type=int, default=0, help="seed for every random choice")
     parser.add_argument("--json", action="store_true", help="print the summary as JSON")
+    shared: tuple[SharedOption, ...] = getattr(module, "SHARED_OPTIONS", ())
+    for option in shared:
+        if option.kind is OptionKind.FIDELITY:
+            add_fidelity_option(parser)
+            continue
+        check = disturbance_level if option.kind is OptionKind.DISTURBANCE_LEVEL else probability
+        parser.add_argument(option.flag, type=check, default=option.default,
+                            help=option.help or None)
+    module.add_arguments(parser)
+
+
+def _run(module: ModuleType, args: argparse.Namespace,
+         console: Console | None) -> dict[str, Any]:
+    summary: dict[str, Any] = module.run(args, console, run_builder(fidelity_of(args)))
+    return summary
 
 
 def _missing() -> int:

@@ -5,12 +5,12 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from homebot.app import Fidelity, Run, RunSettings, build_run, disturbed
 from homebot.errors import WorldError
 from homebot.events import Event
 from homebot.executive import RunReport
 from homebot.executive.taskfile import validate_task
 from homebot.navigation import Navigator
+from homebot.scenarios.running import RunBuilder, ScenarioRun
 from homebot.sim import Simulation
 from homebot.task import Step, Task
 from homebot.world import DoorState, World
@@ -91,11 +91,12 @@ DEMO_TASKS: tuple[DemoTask, ...] = (
 )
 
 
-def run_demo(world: World, on_event: Callable[[Event], None] | None = None,
-             on_task: Callable[[DemoTask], None] | None = None,
-             level: float = 0.5, fidelity: Fidelity = Fidelity.SYMBOLIC,
-             ) -> list[tuple[DemoTask, RunReport[None], Run]]:
-    """Run every demo task in a fresh home with light random disturbances on top.
+def run_demo(world: World, build: RunBuilder,
+             on_event: Callable[[Event], None] | None = None,
+             on_task: Callable[[DemoTask], None] | None = None, level: float = 0.5,
+             ) -> list[tuple[DemoTask, RunReport[None], ScenarioRun]]:
+    """Run every demo task in a fresh home (built by ``build``) with light random
+    disturbances on top.
 
     Raises ``WorldError`` or ``TaskError`` when ``world`` lacks what the tasks name.
     """
@@ -109,10 +110,8 @@ def run_demo(world: World, on_event: Callable[[Event], None] | None = None,
     navigator = Navigator(world)
     results = []
     for demo in DEMO_TASKS:
-        run = build_run(RunSettings(
-            world=world, seed=demo.seed,
-            disturbances=disturbed(level) if demo.setup is _nothing else disturbed(0.0),
-            navigator=navigator, fidelity=fidelity))
+        run = build(world, seed=demo.seed, level=level if demo.setup is _nothing else 0.0,
+                    navigator=navigator)
         demo.setup(run.simulation)
         if on_task is not None:
             on_task(demo)

@@ -21,11 +21,10 @@ from typing import Any
 
 from rich.console import Console
 
-from homebot.app import Fidelity, Run, RunSettings, build_run, disturbed
-from homebot.cli.options import add_fidelity_option, disturbance_level, fidelity_of
 from homebot.events import Event
 from homebot.knowledge import AddStatement, Kind, KnowledgeBase, parse_statement
 from homebot.knowledge.store import KnowledgeStore
+from homebot.scenarios.running import OptionKind, RunBuilder, ScenarioRun, SharedOption
 from homebot.scenarios.summary import scenario_summary
 from homebot.sim import InteractiveResponder, Responder, Simulation
 from homebot.sim.people import normalise_question
@@ -34,7 +33,12 @@ from homebot.sitlog.functions.butler import ButlerHome
 from homebot.sitlog.robot import SkillBody, SkillPerception
 from homebot.world import PersonModel, World
 
-__all__ = ["LuisScript", "add_arguments", "butler_world", "run", "run_butler"]
+__all__ = ["SHARED_OPTIONS", "LuisScript", "add_arguments", "butler_world", "run", "run_butler"]
+
+SHARED_OPTIONS = (
+    SharedOption(OptionKind.FIDELITY),
+    SharedOption(OptionKind.DISTURBANCE_LEVEL, "--level", 0.0,
+                 "disturbance level (0: none, as in the paper; 1: the demo's)"))
 
 _WORK_DAY = 9 * 3600.0  #: how long Luis is away at work (simulated seconds)
 _AT_THE_DOOR = (11.4, 2.8)
@@ -42,7 +46,6 @@ _ON_THE_COUCH = (1.3, 2.6)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    add_fidelity_option(parser)
     parser.add_argument("--prefers", choices=("malz", "coke"), default="malz",
                         help="the drink Luis likes best (default malz, as in the paper)")
     parser.add_argument("--refuse-update", action="store_true",
@@ -52,8 +55,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--kb-store", metavar="FILE", default=None,
                         help="SQLite file that keeps the KB and its updates; run again with "
                         "the same file for another day with what the robot learnt")
-    parser.add_argument("--level", type=disturbance_level, default=0.0,
-                        help="disturbance level (0: none, as in the paper; 1: the demo's)")
     parser.add_argument("--interactive", action="store_true",
                         help="you answer for Luis at a prompt (his day goes on as scripted)")
 
@@ -136,16 +137,13 @@ def butler_world(tidy: bool = False) -> World:
     return World.from_dict(data, source="butler_home (tidy)")
 
 
-def run_butler(*, prefers: str = "malz", refuse_update: bool = False, tidy: bool = False,
-               kb_store: Path | None = None, seed: int = 0,
-               typed: Responder | None = None, level: float = 0.0,
-               fidelity: Fidelity = Fidelity.SYMBOLIC) -> dict[str, Any]:
+def run_butler(build: RunBuilder, *, prefers: str = "malz", refuse_update: bool = False,
+               tidy: bool = False, kb_store: Path | None = None, seed: int = 0,
+               typed: Responder | None = None, level: float = 0.0) -> dict[str, Any]:
     """Run the dialogue once; returns the summary (``transcript``, ``speech``, KB figures)."""
     world = butler_world(tidy)
     luis = LuisScript(prefers=prefers, refuse_update=refuse_update, typed=typed)
-    run = build_run(RunSettings(
-        world=world, seed=seed, responder=luis, disturbances=disturbed(level) if level else None,
-        fidelity=fidelity))
+    run = build(world, seed=seed, responder=luis, level=level if level else None)
     luis.simulation = run.simulation
     run.simulation.events.listeners.append(luis.notice)
     with tempfile.TemporaryDirectory() as scratch:
@@ -195,7 +193,7 @@ def run_butler(*, prefers: str = "malz", refuse_update: bool = False, tidy: bool
         situations=result.detail.situations, sim_time=round(run.robot.now(), 1))
 
 
-def _transcript(run: Run) -> list[dict[str, str]]:
+def _transcript(run: ScenarioRun) -> list[dict[str, str]]:
     lines = []
     for event in run.simulation.events.events:
         if event.kind == "speech":
@@ -205,11 +203,11 @@ def _transcript(run: Run) -> list[dict[str, str]]:
     return lines
 
 
-def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
+def run(args: argparse.Namespace, console: Console | None, build: RunBuilder) -> dict[str, Any]:
     """The dialogue of §9 with the variant the arguments choose."""
-    summary = run_butler(prefers=args.prefers, refuse_update=args.refuse_update,
+    summary = run_butler(build, prefers=args.prefers, refuse_update=args.refuse_update,
                          tidy=args.tidy, kb_store=Path(args.kb_store) if args.kb_store else None,
-                         seed=args.seed, level=args.level, fidelity=fidelity_of(args),
+                         seed=args.seed, level=args.level,
                          typed=InteractiveResponder() if args.interactive else None)
     if console is not None:
         for number, line in enumerate(summary["transcript"], start=1):

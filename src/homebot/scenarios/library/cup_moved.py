@@ -7,15 +7,17 @@ from typing import Any
 
 from rich.console import Console
 
-from homebot.cli.options import add_fidelity_option, fidelity_of
 from homebot.errors import GologError
 from homebot.golog import Executor, Interpreter, SimulatedExecutor, State
 from homebot.golog.build import do
 from homebot.golog.domains import CUPS, POSITIONS, cups_theory, minimum_moves
 from homebot.scenarios.library.order_cups import PLACEMENTS, home_cups
+from homebot.scenarios.running import OptionKind, RunBuilder, SharedOption
 from homebot.scenarios.summary import scenario_summary
 
-__all__ = ["add_arguments", "run"]
+__all__ = ["SHARED_OPTIONS", "add_arguments", "run"]
+
+SHARED_OPTIONS = (SharedOption(OptionKind.FIDELITY),)
 
 #: the cups' start (a 3-cycle: four moves) and the goal order
 START = {"red": "p2", "green": "p3", "blue": "p1"}
@@ -23,7 +25,6 @@ GOAL = ("red", "green", "blue")
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    add_fidelity_option(parser)
     parser.add_argument("--after", type=int, default=1,
                         help="how many robot actions before the person moves a cup")
     parser.add_argument("--unseen", action="store_true",
@@ -33,7 +34,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="run through the skills in the simulated apartment")
 
 
-def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
+def run(args: argparse.Namespace, console: Console | None, build: RunBuilder) -> dict[str, Any]:
     """The person puts the red cup into the free position after the robot's first move.
 
     Seen, the exogenous action updates the robot's model at once and the next
@@ -75,7 +76,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
             seen.extend(happened)
             return [] if unseen else happened
 
-        home = home_cups(START, args.seed, noticing=noticing, fidelity=fidelity_of(args))
+        home = home_cups(START, args.seed, build, noticing=noticing)
         executor = home.executor
         outcome = Interpreter(theory, executor, seed=args.seed).run(do("sort_cups", *GOAL, 4))
         final = home.truth()

@@ -7,27 +7,26 @@ from typing import Any
 
 from rich.console import Console
 
-from homebot.app import RunSettings, build_run, disturbed
-from homebot.cli.options import add_fidelity_option, disturbance_level, fidelity_of
+from homebot.scenarios.running import OptionKind, RunBuilder, SharedOption
 from homebot.scenarios.summary import report_actions, scenario_summary
 from homebot.trials.fetch import delivered, fetch_tasks
 from homebot.world import World
 
-__all__ = ["add_arguments", "run"]
+__all__ = ["SHARED_OPTIONS", "add_arguments", "run"]
+
+SHARED_OPTIONS = (SharedOption(OptionKind.FIDELITY),
+                  SharedOption(OptionKind.DISTURBANCE_LEVEL, "--level", 1.0, "disturbance level"))
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    add_fidelity_option(parser)
-    parser.add_argument("--level", type=disturbance_level, default=1.0, help="disturbance level")
+    """No options of its own."""
 
 
-def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
+def run(args: argparse.Namespace, console: Console | None, build: RunBuilder) -> dict[str, Any]:
     """One seeded fetch-and-deliver task; success is the object in the person's hands."""
     world = World.load("apartment")
     fetch = fetch_tasks(world, 1, args.seed)[0]
-    simulation_run = build_run(RunSettings(
-        world=world, seed=args.seed, disturbances=disturbed(args.level),
-        fidelity=fidelity_of(args)))
+    simulation_run = build(world, seed=args.seed, level=args.level)
     report = simulation_run.run(fetch.task)
     really = delivered(simulation_run.simulation, fetch)
     if console is not None:

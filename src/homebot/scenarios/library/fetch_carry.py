@@ -21,21 +21,22 @@ from typing import Any
 
 from rich.console import Console
 
-from homebot.app import RunSettings, build_run
-from homebot.cli.options import add_fidelity_option, fidelity_of
 from homebot.errors import WorldError
 from homebot.golog import Interpreter
 from homebot.golog.build import do
 from homebot.golog.domains.fetch_carry import fetch_carry_theory
 from homebot.golog.skill_executor import SkillExecutor
 from homebot.golog.theory import GroundAction
+from homebot.scenarios.running import OptionKind, RunBuilder, SharedOption
 from homebot.scenarios.summary import scenario_summary
 from homebot.space.distance import distance_category
 from homebot.space.frames import frames_of
 from homebot.task import Step
 from homebot.world import Placement, PlacementKind, World, front_heading, object_positions
 
-__all__ = ["add_arguments", "run", "standpoints_in"]
+__all__ = ["SHARED_OPTIONS", "add_arguments", "run", "standpoints_in"]
+
+SHARED_OPTIONS = (SharedOption(OptionKind.FIDELITY),)
 
 Point = tuple[float, float]
 _RINGS = tuple(round(0.3 + 0.1 * step, 2) for step in range(14))  #: 0.3 … 1.6 m
@@ -44,7 +45,6 @@ _INSET = 0.15  #: metres from a placement's front edge to where things are put o
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    add_fidelity_option(parser)
     parser.add_argument("--object", help="the object to fetch (default: chosen by the seed)")
     parser.add_argument("--to", dest="destination",
                         help="the placement to carry it to (default: chosen by the seed)")
@@ -97,7 +97,7 @@ def _spot(placement: Placement) -> Point:
     return (round(cx + inset * math.cos(heading), 3), round(cy + inset * math.sin(heading), 3))
 
 
-def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
+def run(args: argparse.Namespace, console: Console | None, build: RunBuilder) -> dict[str, Any]:
     """Fetch a seeded object and carry it to a seeded placement with ``fetch_and_carry``."""
     world = World.load("apartment")
     rng = random.Random(args.seed)
@@ -111,7 +111,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
         return frames[name].scale, frames[name].front
 
     spots = {name: _spot(placement) for name, placement in world.placements.items()}
-    simulated = build_run(RunSettings(world=world, seed=args.seed, fidelity=fidelity_of(args)))
+    simulated = build(world, seed=args.seed)
     context = simulated.context
     start = context.robot.pose().xy()
     theory = fetch_carry_theory(positions, (start[0], start[1]), spots, standpoints_in(world),

@@ -11,28 +11,30 @@ from typing import Any
 
 from rich.console import Console
 
-from homebot.app import RunSettings, build_run
 from homebot.beliefs import Beliefs
-from homebot.cli.options import add_fidelity_option, fidelity_of, probability
 from homebot.htn import Goal, Names, PlanActor, Planner, home_domain, state_from_beliefs
+from homebot.scenarios.running import OptionKind, RunBuilder, SharedOption
 from homebot.scenarios.summary import scenario_summary
 from homebot.world import DisturbanceModel, World
 
-__all__ = ["add_arguments", "run"]
+__all__ = ["SHARED_OPTIONS", "add_arguments", "run"]
+
+SHARED_OPTIONS = (
+    SharedOption(OptionKind.FIDELITY),
+    SharedOption(OptionKind.PROBABILITY, "--slip", 0.5,
+                 "probability that a grasp slips (the paper's retried grasp)"),
+    SharedOption(OptionKind.PROBABILITY, "--door-closed", 0.0,
+                 "probability that each door starts closed"))
 
 # The paper's two scenarios: (task, arguments) in the apartment; the guest is Alex.
 _SCENARIOS = (("bring_object", ["pringles", "Alex"]), ("guide_person", ["Alex", "bedroom"]))
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    add_fidelity_option(parser)
-    parser.add_argument("--slip", type=probability, default=0.5,
-                        help="probability that a grasp slips (the paper's retried grasp)")
-    parser.add_argument("--door-closed", type=probability, default=0.0,
-                        help="probability that each door starts closed")
+    """No options of its own."""
 
 
-def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
+def run(args: argparse.Namespace, console: Console | None, build: RunBuilder) -> dict[str, Any]:
     """Table 1 from the planner, then both scenarios run through the monitored skills."""
     world = World.load("apartment")
     domain = home_domain()
@@ -43,10 +45,9 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
         plans = planner.search(state, [Goal.of(task, task_args, world, names, domain).task],
                                limit=None).plans
         table[task] = {"plans": len(plans), "shortest": min(len(plan) for plan in plans)}
-    simulation_run = build_run(RunSettings(
-        world=world, seed=args.seed,
-        disturbances=DisturbanceModel(grasp_slip=args.slip, door_closed=args.door_closed),
-        fidelity=fidelity_of(args)))
+    simulation_run = build(
+        world, seed=args.seed,
+        disturbances=DisturbanceModel(grasp_slip=args.slip, door_closed=args.door_closed))
     actor = PlanActor(simulation_run.executive, domain)
     actions: list[dict[str, Any]] = []
     speech: list[str] = []

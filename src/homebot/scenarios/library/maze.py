@@ -11,6 +11,7 @@ from homebot.errors import GologError
 from homebot.golog import Interpreter, SimulatedExecutor
 from homebot.golog.build import do
 from homebot.golog.domains import Maze, maze_theory
+from homebot.scenarios.running import RunBuilder
 from homebot.scenarios.summary import scenario_summary
 
 __all__ = ["add_arguments", "run"]
@@ -20,7 +21,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--horizon", type=int, default=8, help="horizon of each solve")
 
 
-def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
+def run(args: argparse.Namespace, console: Console | None, build: RunBuilder) -> dict[str, Any]:
     """From S to G; moves slip sideways with probability 0.2; falling down the stairs fails."""
     horizon = getattr(args, "horizon", 8)
     if horizon < 1:

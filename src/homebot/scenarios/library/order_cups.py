@@ -10,9 +10,6 @@ from typing import Any
 
 from rich.console import Console
 
-import homebot.app as app
-from homebot.app import Fidelity, RunSettings, build_run
-from homebot.cli.options import add_fidelity_option, fidelity_of
 from homebot.errors import GologError
 from homebot.executive import RunReport
 from homebot.golog import (
@@ -26,11 +23,15 @@ from homebot.golog import (
 )
 from homebot.golog.build import do
 from homebot.golog.domains import CUPS, POSITIONS, cups_theory, minimum_moves
+from homebot.scenarios.running import OptionKind, RunBuilder, ScenarioRun, SharedOption
 from homebot.scenarios.summary import scenario_summary
 from homebot.task import Step
 from homebot.world import World
 
-__all__ = ["PLACEMENTS", "HomeCups", "add_arguments", "goal_order", "home_cups", "run"]
+__all__ = ["PLACEMENTS", "SHARED_OPTIONS", "HomeCups", "add_arguments", "goal_order", "home_cups",
+           "run"]
+
+SHARED_OPTIONS = (SharedOption(OptionKind.FIDELITY),)
 
 #: the four positions as placements of the apartment's kitchen (``--home``)
 PLACEMENTS = {"p1": "kitchen table", "p2": "kitchen counter", "p3": "dishwasher",
@@ -38,7 +39,6 @@ PLACEMENTS = {"p1": "kitchen table", "p2": "kitchen counter", "p3": "dishwasher"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    add_fidelity_option(parser)
     parser.add_argument("--goal", default="red,green,blue",
                         help="the cups wanted at p1, p2, p3, comma separated")
     parser.add_argument("--horizon", type=int, default=4, help="horizon of solve")
@@ -60,7 +60,7 @@ def goal_order(text: str) -> tuple[str, str, str]:
 class HomeCups:
     """The cups demo wired to the simulated apartment: run, executor, and where cups are."""
 
-    simulated: app.Run
+    simulated: ScenarioRun
     executor: SkillExecutor
 
     def truth(self) -> dict[str, str | None]:
@@ -70,9 +70,8 @@ class HomeCups:
         return {cup: positions.get(str(where.get(f"{cup} cup"))) for cup in CUPS}
 
 
-def home_cups(initial: Mapping[str, str], seed: int,
-              noticing: Callable[[], list[tuple[Any, ...]]] | None = None,
-              fidelity: Fidelity = Fidelity.SYMBOLIC) -> HomeCups:
+def home_cups(initial: Mapping[str, str], seed: int, build: RunBuilder,
+              noticing: Callable[[], list[tuple[Any, ...]]] | None = None) -> HomeCups:
     """The apartment with a red, a green and a blue cup at ``initial`` positions, and a
     skill executor for the cups theory: moves are pick and place, perceiving is looking at
     the four placements; positions are read from the robot's beliefs after each action."""
@@ -80,7 +79,7 @@ def home_cups(initial: Mapping[str, str], seed: int,
     data["objects"] += [{"name": f"{cup} cup", "category": "dish",
                          "placement": PLACEMENTS[initial[cup]]} for cup in CUPS]
     world = World.from_dict(data, "apartment + three cups")
-    simulated = build_run(RunSettings(world=world, seed=seed, fidelity=fidelity))
+    simulated = build(world, seed=seed)
     context = simulated.context
     positions = {placement: position for position, placement in PLACEMENTS.items()}
 
@@ -115,7 +114,7 @@ def home_cups(initial: Mapping[str, str], seed: int,
     return HomeCups(simulated, executor)
 
 
-def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
+def run(args: argparse.Namespace, console: Console | None, build: RunBuilder) -> dict[str, Any]:
     """Cups stand in a seeded order; the robot perceives them, plans, and re-orders them."""
     goal = goal_order(getattr(args, "goal", "red,green,blue"))
     horizon = getattr(args, "horizon", 4)
@@ -125,7 +124,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     executor: Executor
     figures: dict[str, Any] = {}
     if getattr(args, "home", False):
-        home = home_cups(initial, args.seed, fidelity=fidelity_of(args))
+        home = home_cups(initial, args.seed, build)
         executor = home.executor
         outcome: RunReport[ProgramTrace] = Interpreter(theory, executor, seed=args.seed).run(
             do("order_cups_demo", *goal, horizon), State())

@@ -25,18 +25,22 @@ from typing import Any
 
 from rich.console import Console
 
-from homebot.cli.options import probability
 from homebot.geometry import Ray
 from homebot.golog import Interpreter, SimulatedExecutor, State
 from homebot.golog.build import do
 from homebot.golog.domains import CUPS, POSITIONS, cups_theory, minimum_moves
 from homebot.scenarios.library.order_cups import goal_order
+from homebot.scenarios.running import OptionKind, RunBuilder, SharedOption
 from homebot.scenarios.summary import scenario_summary
 from homebot.space.deixis import deictic_request, pointed_place
 from homebot.space.frames import frames_of
 from homebot.world import World, object_positions
 
-__all__ = ["TABLE", "add_arguments", "position_points", "run"]
+__all__ = ["SHARED_OPTIONS", "TABLE", "add_arguments", "position_points", "run"]
+
+SHARED_OPTIONS = (SharedOption(OptionKind.PROBABILITY, "--spread", 0.04,
+                               "how far off a pointing gesture aims (standard deviation, "
+                               "metres)"),)
 
 TABLE = "kitchen table"
 TABLE_HEIGHT = 0.75  #: metres: the table top's plane
@@ -48,8 +52,6 @@ _TRIES = 3  #: points per cup before the robot gives up
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--goal", default="red,green,blue",
                         help="the cups the person wants at p1, p2, p3, comma separated")
-    parser.add_argument("--spread", type=probability, default=0.04,
-                        help="how far off a pointing gesture aims (standard deviation, metres)")
     parser.add_argument("--horizon", type=int, default=4, help="horizon of solve")
 
 
@@ -76,7 +78,7 @@ def _gesture(rng: random.Random, person: tuple[float, float], target: tuple[floa
     return Ray(shoulder, (hand[0], hand[1], hand[2]))
 
 
-def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
+def run(args: argparse.Namespace, console: Console | None, build: RunBuilder) -> dict[str, Any]:
     """Understand the goal from speech and pointing, then re-order the cups with solve."""
     wanted = goal_order(getattr(args, "goal", "red,green,blue"))
     spread = getattr(args, "spread", 0.04)

@@ -14,6 +14,7 @@ from typing import Any
 
 from rich.console import Console
 
+from homebot.scenarios.running import RunBuilder
 from homebot.scenarios.summary import scenario_summary
 
 __all__ = ["add_arguments", "run"]
@@ -23,7 +24,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     del parser  # --seed and --json only
 
 
-def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
+def run(args: argparse.Namespace, console: Console | None, build: RunBuilder) -> dict[str, Any]:
     """Hold the hand out and take the bottle."""
     from homebot.trials.interaction import receive_episode
 

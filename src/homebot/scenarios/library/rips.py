@@ -7,18 +7,21 @@ from typing import Any
 
 from rich.console import Console
 
-from homebot.app import RunSettings, build_run, disturbed
-from homebot.cli.options import add_fidelity_option, disturbance_level, fidelity_of
 from homebot.golog import Interpreter, State
 from homebot.golog.build import do
 from homebot.golog.domains import rips_theory
 from homebot.golog.skill_executor import SkillExecutor
+from homebot.scenarios.running import OptionKind, RunBuilder, SharedOption
 from homebot.scenarios.summary import scenario_summary
 from homebot.skills import speak
 from homebot.task import Step
 from homebot.world import World
 
-__all__ = ["PLACES", "add_arguments", "rips_world", "run"]
+__all__ = ["PLACES", "SHARED_OPTIONS", "add_arguments", "rips_world", "run"]
+
+SHARED_OPTIONS = (SharedOption(OptionKind.FIDELITY),
+                  SharedOption(OptionKind.DISTURBANCE_LEVEL, "--disturb", 0.0,
+                               "disturbance level (0: a perfect world)"))
 
 #: the test's names for things, and what they are in the apartment
 PLACES = {"Registration Desk": "desk", "Door B": "office door", "Door C": "entrance door",
@@ -28,9 +31,7 @@ COMMITTEE = "Sophie"  #: the Technical Committee member, at the registration des
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    add_fidelity_option(parser)
-    parser.add_argument("--disturb", type=disturbance_level, default=0.0,
-                        help="disturbance level (0: a perfect world)")
+    """No options of its own."""
 
 
 def rips_world() -> World:
@@ -59,13 +60,11 @@ def _bindings() -> dict[str, Any]:
     }
 
 
-def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
+def run(args: argparse.Namespace, console: Console | None, build: RunBuilder) -> dict[str, Any]:
     """Run ``rips`` from ``rips.golog``; success is the sheet with the committee, robot out."""
     world = rips_world()
     level = getattr(args, "disturb", 0.0)
-    simulation_run = build_run(RunSettings(
-        world=world, seed=args.seed, disturbances=disturbed(level) if level else None,
-        fidelity=fidelity_of(args)))
+    simulation_run = build(world, seed=args.seed, level=level if level else None)
     context = simulation_run.context
     waits: list[int] = []
 

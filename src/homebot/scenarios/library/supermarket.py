@@ -8,8 +8,6 @@ from typing import Any
 
 from rich.console import Console
 
-from homebot.app import Run, RunSettings, build_run
-from homebot.cli.options import add_fidelity_option, fidelity_of
 from homebot.inference import (
     InferenceCycle,
     Inventory,
@@ -17,12 +15,15 @@ from homebot.inference import (
     fetch_task,
     requested_product,
 )
+from homebot.scenarios.running import OptionKind, RunBuilder, ScenarioRun, SharedOption
 from homebot.scenarios.summary import report_actions, scenario_summary
 from homebot.sim import ScriptedResponder
 from homebot.skills import speak
 from homebot.world import World
 
-__all__ = ["STORY_TRUTH", "add_arguments", "run"]
+__all__ = ["SHARED_OPTIONS", "STORY_TRUTH", "add_arguments", "run"]
+
+SHARED_OPTIONS = (SharedOption(OptionKind.FIDELITY),)
 
 GREETING = "Hello, I am the supermarket assistant. How can I help you?"
 
@@ -38,7 +39,6 @@ _CUSTOMER_SAYS = {
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    add_fidelity_option(parser)
     parser.add_argument("--r-max", type=_budget, default=240.0,
                         help="the most (expected) seconds a decision may cost (r_max)")
     parser.add_argument("--kb-store", metavar="FILE", default=None,
@@ -56,15 +56,14 @@ def _budget(text: str) -> float:
     return value
 
 
-def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
+def run(args: argparse.Namespace, console: Console | None, build: RunBuilder) -> dict[str, Any]:
     """The Fig. 1 story; success is the Malz in the customer's hands and the KB up to date."""
     world = World.load("supermarket")
     inventory = Inventory.load("supermarket") if not args.kb_store else Inventory.kept_in(
         args.kb_store)
     cycle = InferenceCycle(inventory, r_max=args.r_max, seed=args.seed)
-    simulated = build_run(RunSettings(
-        world=world, seed=args.seed, inference=cycle,
-        responder=ScriptedResponder({"customer": _CUSTOMER_SAYS}), fidelity=fidelity_of(args)))
+    simulated = build(world, seed=args.seed, inference=cycle,
+                      responder=ScriptedResponder({"customer": _CUSTOMER_SAYS}))
     inventory.clock = simulated.robot.now
     simulated.simulation.object_location.update(STORY_TRUTH)
     context = simulated.context
@@ -124,7 +123,7 @@ def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
     return summary
 
 
-def _old_enough(simulated: Run, inventory: Inventory, product: str) -> bool:
+def _old_enough(simulated: ScenarioRun, inventory: Inventory, product: str) -> bool:
     """Alcohol only for adults: the KB's ``min_age`` prompts the question (Fig. 1, box 1)."""
     minimum = inventory.minimum_age(product)
     if minimum is None:
@@ -137,7 +136,7 @@ def _old_enough(simulated: Run, inventory: Inventory, product: str) -> bool:
     return age is not None and age >= minimum
 
 
-def _dialogue(simulated: Run) -> list[tuple[str, str]]:
+def _dialogue(simulated: ScenarioRun) -> list[tuple[str, str]]:
     """Who said what, in order: the robot's speech acts and what people answered."""
     lines: list[tuple[str, str]] = []
     for event in simulated.simulation.events.events:

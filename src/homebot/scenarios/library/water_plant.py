@@ -24,6 +24,7 @@ import numpy as np
 from rich.console import Console
 
 from homebot.geometry import quaternion_from_yaw
+from homebot.scenarios.running import RunBuilder
 from homebot.scenarios.summary import scenario_summary
 
 __all__ = ["add_arguments", "pour", "run"]
@@ -129,7 +130,7 @@ def pour(seed: int) -> dict[str, Any]:
             "seconds": round(scene.time, 2)}
 
 
-def run(args: argparse.Namespace, console: Console | None) -> dict[str, Any]:
+def run(args: argparse.Namespace, console: Console | None, build: RunBuilder) -> dict[str, Any]:
     """Water the plant; print what happened."""
     figures = pour(args.seed)
     success = figures.pop("success")
