@@ -4,14 +4,17 @@ from __future__ import annotations
 
 import argparse
 import json
+from typing import Any
 
 import pytest
 
-from homebot.app import Run, RunSettings
+from homebot.app import RunSettings
 from homebot.bench import golog as golog_bench
 from homebot.cli import main
 from homebot.cli.scenario import run_builder
 from homebot.scenarios.library import cup_moved, maze, order_cups, rips
+from homebot.scenarios.running import ScenarioRun
+from homebot.world import World
 
 SUMMARY_KEYS = {"scenario", "success", "actions", "speech"}
 
@@ -27,17 +30,16 @@ def test_rips_registers_through_the_skills_in_the_simulated_home() -> None:
     assert summary["speech"][0] == "I am ready. Please press my start button."
 
 
-def test_rips_writes_golog_steps_into_the_event_log(monkeypatch: pytest.MonkeyPatch) -> None:
+def test_rips_writes_golog_steps_into_the_event_log() -> None:
     logs: list[object] = []
-    original = rips.build_run
+    build = run_builder()
 
-    def keep(settings: RunSettings) -> Run:
-        made = original(settings)
+    def keep(world: World, **options: Any) -> ScenarioRun:
+        made = build(world, **options)
         logs.append(made.events)
         return made
 
-    monkeypatch.setattr(rips, "build_run", keep)
-    rips.run(argparse.Namespace(seed=0, disturb=0.0), None, run_builder())
+    rips.run(argparse.Namespace(seed=0, disturb=0.0), None, keep)
     kinds = [event.kind for event in logs[0].events]  # type: ignore[attr-defined]
     assert "golog.exogenous" in kinds and "golog.action" in kinds and "skill.start" in kinds
     assert kinds.index("golog.exogenous") < kinds.index("golog.action", kinds.index(
@@ -129,7 +131,7 @@ def test_the_benchmark_reports_nodes_and_time() -> None:
 
 
 def test_with_monitoring_off_a_finished_skill_is_a_done_action() -> None:
-    from homebot.app import RunSettings, build_run
+    from homebot.app import build_run
     from homebot.golog import State
     from homebot.golog.skill_executor import SkillExecutor
     from homebot.task import Step
