@@ -131,7 +131,7 @@ def test_same_seed_same_event_log(apartment: World, apartment_navigator: Navigat
 @pytest.mark.parametrize("seed", [1])
 def test_two_hundred_disturbed_fetches(apartment: World, seed: int) -> None:
     """The issue's robustness test: ≥ 95 % verified with recovery, measurably worse without."""
-    monitored, plain = compare_modes(apartment, 200, seed)
+    monitored, plain = compare_modes(apartment, 200, seed, mix="fetch")
     assert monitored.verified / monitored.tasks >= 0.95
     assert plain.delivered / plain.tasks <= monitored.verified / monitored.tasks - 0.2
     assert monitored.told_why == monitored.failed

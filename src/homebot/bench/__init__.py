@@ -65,8 +65,8 @@ BENCHMARKS: tuple[Benchmark, ...] = (
            "missing products"),
     _bench("gpsr", "GPSR end to end: generated commands the world can satisfy, parsed and "
            "carried out"),
-    _bench("robustness", "fetch-and-deliver under disturbances: monitoring and recovery "
-           "against a plain sequence"),
+    _bench("robustness", "everyday errands (fetch, take, ask) under disturbances: monitoring "
+           "and recovery against a plain sequence"),
     _bench("fetch", "wall time of one simulated fetch-and-deliver task, cold (every cache "
            "cleared) and warm"),
     _bench("long_run", "a long-running simulation: memory over thousands of consecutive tasks "

@@ -1,4 +1,10 @@
-"""Fetch-and-deliver under disturbances: monitoring and recovery against a plain sequence."""
+"""Errands under disturbances: monitoring and recovery against a plain sequence.
+
+``--errands fetch`` runs fetch-and-deliver tasks only (``homebot.trials.fetch``);
+``--errands everyday`` (the default) mixes in taking an object from a person's hand and
+putting it away, and asking someone a question and telling the operator the answer
+(``homebot.trials.errands``). The referee is the simulator's truth.
+"""
 
 from __future__ import annotations
 
@@ -14,10 +20,11 @@ from rich.table import Table
 from homebot.app import Fidelity, RunSettings, build_run, disturbed
 from homebot.bench.arguments import add_fidelity_option, count, disturbance_level, seed
 from homebot.navigation import Navigator
-from homebot.trials.fetch import delivered, fetch_tasks
+from homebot.trials.errands import Errand, ErrandKind, errands
+from homebot.trials.fetch import fetch_tasks
 from homebot.world import World
 
-__all__ = ["ModeResult", "add_arguments", "compare_modes", "run"]
+__all__ = ["ModeResult", "add_arguments", "compare_modes", "errand_set", "run"]
 
 
 @dataclass
@@ -32,6 +39,8 @@ class ModeResult:
     failed: int = 0
     sim_times: list[float] = field(default_factory=list)
     wall_times: list[float] = field(default_factory=list)
+    #: per errand kind: [tasks, verified done]
+    by_kind: dict[str, list[int]] = field(default_factory=dict)
 
     def to_dict(self) -> dict[str, Any]:
         return {
@@ -41,28 +50,43 @@ class ModeResult:
             "failed": self.failed, "failed_and_told_why": self.told_why,
             "median_sim_time_s": round(statistics.median(self.sim_times or [0.0]), 1),
             "median_wall_ms": round(1000 * statistics.median(self.wall_times or [0.0]), 3),
+            "by_kind": {kind: {"tasks": tasks, "verified": verified}
+                        for kind, (tasks, verified) in sorted(self.by_kind.items())},
         }
 
 
+def errand_set(world: World, tasks: int, seed: int, mix: str = "everyday") -> list[Errand]:
+    """The seeded errands of a run: fetches only (``fetch``) or the everyday mix."""
+    if mix == "fetch":
+        return [Errand(ErrandKind.FETCH, fetch.task, fetch.person, fetch.obj)
+                for fetch in fetch_tasks(world, tasks, seed)]
+    return errands(world, tasks, seed)
+
+
 def compare_modes(world: World, tasks: int, seed: int, level: float = 1.0,
-                  fidelity: Fidelity = Fidelity.SYMBOLIC) -> list[ModeResult]:
-    """Run the same seeded tasks with monitoring and recovery, and as a plain sequence."""
+                  fidelity: Fidelity = Fidelity.SYMBOLIC,
+                  mix: str = "everyday") -> list[ModeResult]:
+    """Run the same seeded errands with monitoring and recovery, and as a plain sequence."""
     navigator = Navigator(world)
     results = []
     for mode, monitoring in (("monitored + recovery", True), ("plain sequence", False)):
         result = ModeResult(mode)
-        for index, fetch in enumerate(fetch_tasks(world, tasks, seed)):
+        for index, errand in enumerate(errand_set(world, tasks, seed, mix)):
             run = build_run(RunSettings(
                 world=world, seed=seed * 100_003 + index, disturbances=disturbed(level),
                 monitoring=monitoring, navigator=navigator, fidelity=fidelity))
+            errand.arrange(run.simulation)
             started = time.perf_counter()
-            report = run.run(fetch.task)
+            report = run.run(errand.task)
             result.wall_times.append(time.perf_counter() - started)
             result.tasks += 1
             result.sim_times.append(report.sim_time)
-            really = delivered(run.simulation, fetch)
+            really = errand.done(run.simulation)
             result.delivered += really
             result.verified += really and report.success
+            counts = result.by_kind.setdefault(str(errand.kind), [0, 0])
+            counts[0] += 1
+            counts[1] += really and report.success
             if not report.success:
                 result.failed += 1
                 result.told_why += any(text.startswith("I am sorry") for text in report.speech)
@@ -77,6 +101,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--world", default="apartment", help="world file or shipped name")
     parser.add_argument("--level", type=disturbance_level, default=1.0,
                         help="disturbance level (1 = default)")
+    parser.add_argument("--errands", choices=("everyday", "fetch"), default="everyday",
+                        help="everyday: fetch, take from a person, ask and tell (the default); "
+                             "fetch: fetch-and-deliver only")
     add_fidelity_option(parser)
 
 
@@ -84,9 +111,10 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
     """Compare the modes and print a table; returns the figures."""
     world = World.load(args.world)
     results = [result.to_dict() for result in compare_modes(world, args.tasks, args.seed,
-                                                            args.level, args.fidelity)]
+                                                            args.level, args.fidelity,
+                                                            args.errands)]
     if console is not None:
-        table = Table(title=f"Fetch-and-deliver, {args.tasks} tasks, disturbances "
+        table = Table(title=f"Errands ({args.errands}), {args.tasks} tasks, disturbances "
                             f"x{args.level}, {args.fidelity} robot")
         for column in ("mode", "verified delivery", "delivered", "failed", "told why",
                        "median sim time", "median wall time"):
@@ -97,5 +125,6 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
                           str(result["failed_and_told_why"]),
                           f"{result['median_sim_time_s']} s", f"{result['median_wall_ms']} ms")
         console.print(table)
-    return {"benchmark": "robustness", "tasks": args.tasks, "seed": args.seed,
+    return {"benchmark": "robustness", "errands": args.errands, "tasks": args.tasks,
+            "seed": args.seed,
             "fidelity": str(args.fidelity), "modes": results}

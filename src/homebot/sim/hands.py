@@ -302,6 +302,7 @@ class SimHands:
                 free = [hand for hand, held in truth.hands.items() if held is None]
                 if free:
                     truth.hands[free[0]] = name
+                    truth.handled.add(name)
                     truth.object_location[name] = HAND_PREFIX + free[0]
                     truth.events.record("sim.arm", what="lifted", object=name, hand=free[0])
                 continue

@@ -200,6 +200,7 @@ class SimRobot(Robot):
             sim.events.record("sim.disturbance", what="grasp_slip", object=name)
             return
         sim.hands[hand] = name
+        sim.handled.add(name)
         sim.object_location[name] = HAND_PREFIX + hand
 
     def held(self, hand: str) -> Detection | None:
@@ -242,6 +243,7 @@ class SimRobot(Robot):
         if not given:
             return None
         sim.hands[hand] = given[0]
+        sim.handled.add(given[0])
         sim.object_location[given[0]] = HAND_PREFIX + hand
         return self.held(hand)
 

@@ -143,6 +143,9 @@ class Simulation:
         self.collisions: list[dict[str, object]] = []
         self.hands: dict[str, str | None] = {hand: None for hand in world.robot.hands}
         self._looked_at: set[str] = set()
+        #: objects that have been in the robot's hand: nobody moves what the robot just put
+        #: down while it looks (``maybe_move_during_task``)
+        self.handled: set[str] = set()
         self._apply_start_disturbances()
 
     # ------------------------------------------------------------ disturbances
@@ -210,11 +213,13 @@ class Simulation:
         return name
 
     def maybe_move_during_task(self, placement: str) -> None:
-        """The first time the robot looks at a placement, someone may just have moved an object."""
+        """The first time the robot looks at a placement, someone may just have moved an object
+        (not one the robot itself has held)."""
         if placement in self._looked_at:
             return
         self._looked_at.add(placement)
-        here = sorted(name for name, where in self.object_location.items() if where == placement)
+        here = sorted(name for name, where in self.object_location.items()
+                      if where == placement and name not in self.handled)
         if here and self.random.random() < self.disturbances.object_moved_during_task:
             self._move_object_elsewhere(self.random.choice(here), self.furniture,
                                         "object_moved_during_task")

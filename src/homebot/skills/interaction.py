@@ -61,7 +61,8 @@ def answer_about_home(context: SkillContext, question: str) -> str:
 
 
 class Say(Skill):
-    """Say literal text, a talk topic (``info``), or ``$result`` (the last count or description)."""
+    """Say literal text, a talk topic (``info``), ``$result`` (the last count or description)
+    or ``$answer`` (what the last ``ask`` heard)."""
 
     name = "say"
     optional = ("text", "info")
@@ -73,6 +74,9 @@ class Say(Skill):
             text = str(args.get("text", ""))
             if text == "$result":
                 text = str(context.bindings.get("result", "I have nothing to report."))
+            elif text == "$answer":  # what the last ``ask`` heard
+                answer = context.bindings.get("answer")
+                text = f"The answer was: {answer}." if answer else "I got no answer."
         if not text:
             return Outcome.failed(ErrorCode.UNKNOWN_TARGET, "I have nothing to say")
         speak(context, text)
