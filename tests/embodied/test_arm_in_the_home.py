@@ -81,12 +81,12 @@ def test_a_broken_arm_model_in_a_world_file_names_the_file_and_line(tmp_path: Pa
 
 
 def test_out_of_reach_the_robot_steps_beside_the_nearest_free_side_of_the_surface() -> None:
-    from homebot.app.embodied import embodied_robot
+    from homebot.app.embodied import embodied_robot_in
     from homebot.embodied.hands import ArmedBodyRobot
 
     world = World.load("apartment")
     navigator = Navigator(world)
-    robot = embodied_robot(Simulation(world, navigator=navigator, seed=1), navigator)
+    robot = embodied_robot_in(Simulation(world, navigator=navigator, seed=1), navigator)
     assert isinstance(robot, ArmedBodyRobot)
     # The desk (x 9.2-10.8, y 9.15-9.85) stands against the office's wall at y = 10: an
     # object at its back-left corner is reached from its left side, never from behind.
@@ -101,13 +101,13 @@ def test_out_of_reach_the_robot_steps_beside_the_nearest_free_side_of_the_surfac
 
 
 def test_the_arms_scene_puts_objects_where_perception_saw_them() -> None:
-    from homebot.app.embodied import embodied_robot
+    from homebot.app.embodied import embodied_robot_in
     from homebot.embodied.hands import ArmedBodyRobot
 
     world = World.load("apartment")
     navigator = Navigator(world)
     sim = Simulation(world, navigator=navigator, seed=1)
-    robot = embodied_robot(sim, navigator)
+    robot = embodied_robot_in(sim, navigator)
     assert isinstance(robot, ArmedBodyRobot)
     truth = _locate(sim, robot.body)  # type: ignore[arg-type]
     unseen = robot.arm.locate("crisps")

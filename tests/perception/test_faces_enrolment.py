@@ -38,18 +38,18 @@ def test_acquaintances_enrol_on_an_introduction_only(detector: FaceDetector) -> 
 def test_a_person_who_says_my_name_is_in_front_of_the_embodied_robot_is_recognised(
         detector: FaceDetector) -> None:
     pytest.importorskip("cv2")
-    from homebot.app.embodied import embodied_robot
+    from homebot.app.embodied import embodied_robot_in
     from homebot.embodied import BodyRobot
     from homebot.navigation import Navigator
     from homebot.sim import Simulation
-    from homebot.sim.faces import FaceCamera
     from homebot.world import World
 
     world = World.load("apartment")
     sim = Simulation(world, navigator=Navigator(world), seed=3)
-    robot = embodied_robot(sim, Navigator(world))
+    robot = embodied_robot_in(sim, Navigator(world))
     assert isinstance(robot, BodyRobot)
-    assert isinstance(robot.face_images, FaceCamera) and robot.acquaintances is not None
+    # the face close-ups come through the body's port
+    assert robot.face_images == robot.body.face_crops and robot.acquaintances is not None
     # the wiring trains its detector on first use; a small one keeps the test quick
     robot.acquaintances = Acquaintances(lambda: FaceMemory(detector, trees=60, features=800))
     x, y, theta = sim.robot_pose

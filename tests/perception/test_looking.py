@@ -9,7 +9,7 @@ import pytest
 pytest.importorskip("sklearn")
 pytest.importorskip("cv2")
 
-from homebot.app.embodied import embodied_robot
+from homebot.app.embodied import embodied_robot_in
 from homebot.embodied import BodyRobot
 from homebot.geometry import Pose
 from homebot.navigation import Navigator
@@ -41,7 +41,7 @@ robot:
 def test_the_embodied_robot_sees_what_stands_on_the_table() -> None:
     world = World.from_yaml_text(WORLD)
     simulation = Simulation(world, navigator=Navigator(world), seed=1)
-    robot = embodied_robot(simulation, Navigator(world))
+    robot = embodied_robot_in(simulation, Navigator(world))
     before = simulation.clock.now()
     detections = robot.perceive_objects("table")
     assert simulation.clock.now() > before  # looking takes time
@@ -62,7 +62,7 @@ def test_the_embodied_robot_sees_what_stands_on_the_table() -> None:
 def test_a_robot_lost_elsewhere_sees_nothing_on_the_table() -> None:
     world = World.from_yaml_text(WORLD)
     simulation = Simulation(world, navigator=Navigator(world), seed=1)
-    robot = embodied_robot(simulation, Navigator(world))
+    robot = embodied_robot_in(simulation, Navigator(world))
     assert isinstance(robot, BodyRobot)
     robot.localisation.initialise(Pose(1.0, 1.0, 0.0), spread=0.01, angle_spread=0.01)
     assert robot.perceive_objects("table") == []
@@ -75,7 +75,7 @@ def test_objects_at_the_near_edge_are_seen_from_an_imprecise_approach(closer: fl
                          "position: [3.4, 1.72]}\n  - {name: soup,")
     world = World.from_yaml_text(text)
     simulation = Simulation(world, navigator=Navigator(world), seed=3)
-    robot = embodied_robot(simulation, Navigator(world))
+    robot = embodied_robot_in(simulation, Navigator(world))
     assert isinstance(robot, BodyRobot)
     stand = world.placements["table"].approach
     x, y, theta = stand.x, stand.y, stand.theta
@@ -90,7 +90,7 @@ def test_the_table_is_seen_from_its_far_side_too() -> None:
     # Stepping round a table to reach an object, the robot looks again from there.
     world = World.from_yaml_text(WORLD)
     simulation = Simulation(world, navigator=Navigator(world), seed=1)
-    robot = embodied_robot(simulation, Navigator(world))
+    robot = embodied_robot_in(simulation, Navigator(world))
     assert isinstance(robot, BodyRobot)
     pose = Pose(3.0, 2.75, -math.pi / 2)
     simulation.robot_pose = (pose.x, pose.y, pose.theta)

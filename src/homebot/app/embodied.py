@@ -1,4 +1,11 @@
-"""The embodied robot over the simulated body: a ``BodyRobot`` on a ``SimBody``, wired."""
+"""The embodied robot: a ``BodyRobot`` wired over a ``Body``, and over a ``SimBody``.
+
+``embodied_robot`` builds the robot from a body and what the robot was told (the
+world file: the map, the names of places and people, where things were put; never
+where they are now), with its own perception, localisation and arm control. The
+simulation reaches the robot only through the ``SimBody``
+(``embodied_robot_in``): everything it believes comes through the Body port.
+"""
 
 from __future__ import annotations
 
@@ -9,14 +16,17 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from homebot.app.fidelity import require_embodied
+from homebot.events import EventLog
 from homebot.navigation import Navigator
-from homebot.sim import SimRobot, Simulation
+from homebot.robot import Body
+from homebot.sim import Simulation
+from homebot.world import World
 
 if TYPE_CHECKING:
     from homebot.embodied import BodyRobot
     from homebot.sim.body import SimBody
 
-__all__ = ["embodied_robot"]
+__all__ = ["embodied_robot", "embodied_robot_in"]
 
 # Seed stream of the robot's own filter, apart from the simulation's and the body's.
 _LOCALISATION_STREAM = 303
@@ -24,13 +34,35 @@ _FACE_HALF_ANGLE = 0.25  #: radians off the head's axis within which a face is t
 _HAND_REACH = 0.08  #: metres from an object's centre within which a grasp closes on it
 
 
-def embodied_robot(simulation: Simulation, navigator: Navigator, *,
-                   walkers: int = 0, known_start: bool = True) -> BodyRobot:
-    """A ``BodyRobot`` on a ``SimBody`` in ``simulation``.
+def embodied_robot_in(simulation: Simulation, navigator: Navigator, *, walkers: int = 0,
+                      known_start: bool = True) -> BodyRobot:
+    """A ``BodyRobot`` on a ``SimBody`` in ``simulation``: the body is all of the
+    simulation the robot is given.
 
     Args:
         walkers: how many people walk about on their own.
         known_start: the robot is told where it starts (else it localises globally).
+    """
+    require_embodied()
+    from homebot.sim.body import SimBody
+
+    body = SimBody(simulation, walkers=walkers, face_half_angle=_FACE_HALF_ANGLE)
+    robot = embodied_robot(body, simulation.world, navigator, seed=simulation.seed,
+                           events=simulation.events, known_start=known_start)
+    _wire_simulated_objects(robot, simulation, body)
+    return robot
+
+
+def embodied_robot(body: Body, world: World, navigator: Navigator, *, seed: int,
+                   events: EventLog, known_start: bool = True) -> BodyRobot:
+    """A ``BodyRobot`` over ``body``.
+
+    Args:
+        world: what the robot was told: the map, the places, the people's names.
+        seed: the robot's own random streams (its particle filter, its perception).
+        events: where the robot records what it does and sees (it never reads it).
+        known_start: the robot is told where it starts (the world file's pose), else it
+            localises globally.
     """
     require_embodied()
     from homebot.app.perception import household_faces, perception_for
@@ -38,43 +70,67 @@ def embodied_robot(simulation: Simulation, navigator: Navigator, *,
     from homebot.navigation.local_planner import MotionSearchPlanner
     from homebot.navigation.localisation import MclParameters, MonteCarloLocalisation
     from homebot.perception.faces import Acquaintances
-    from homebot.sim.body import SimBody
-    from homebot.sim.faces import FaceCamera
 
-    world = simulation.world
-    body = SimBody(simulation, walkers=walkers)
     localisation = MonteCarloLocalisation(
-        navigator.grid, np.random.default_rng([simulation.seed, _LOCALISATION_STREAM]),
+        navigator.grid, np.random.default_rng([seed, _LOCALISATION_STREAM]),
         MclParameters(odom_model_type=body.drive))
     if known_start:
         localisation.initialise(world.robot.pose, spread=0.05, angle_spread=0.05)
     else:
         localisation.initialise_globally()
-    percepts = SimRobot(simulation)
-    looking = TableLook(body, world, perception_for(world, simulation.seed),
-                        _SimulatedObjects(simulation))
+    looking = TableLook(body, world, perception_for(world, seed), _UnwiredObjects())
     robot: BodyRobot
     if importlib.util.find_spec("mujoco") is None:  # no physics: grasps stay symbolic
         robot = BodyRobot(body, world, navigator, localisation, MotionSearchPlanner(),
-                          percepts, percepts, simulation.events, looking=looking)
+                          events, looking=looking)
     else:
         from homebot.embodied.hands import ArmedBodyRobot, SeenObjects
         from homebot.manipulation.control import ArmControl
 
-        seen = SeenObjects(world, _TrueObjectPoses(simulation, body))
-        arm = ArmControl(body, world, seen, seed=simulation.seed)
+        seen = SeenObjects(world, _unseen)
+        arm = ArmControl(body, world, seen, seed=seed)
         robot = ArmedBodyRobot(body, world, navigator, localisation, MotionSearchPlanner(),
-                               percepts, percepts, simulation.events, looking=looking, arm=arm,
-                               seen=seen)
+                               events, looking=looking, arm=arm, seen=seen)
     # faces: the household is known by face; "my name is ..." enrols the head camera's
     # views of someone new in front
     robot.acquaintances = Acquaintances(lambda: household_faces(world))
-    # the head turns to each person seen: the close-up is of whoever is on its axis
-    robot.face_images = FaceCamera(body, half_angle=_FACE_HALF_ANGLE)
+    robot.face_images = body.face_crops
     robot.people_look = PeopleLook(body, world, navigator.grid, robot.localise,
                                    acquaintances=robot.acquaintances,
                                    face_images=robot.face_images)
     return robot
+
+
+def _unseen(name: str) -> tuple[float, float, float, float] | None:
+    """The arm's planning scene has only what perception saw."""
+    return None
+
+
+class _UnwiredObjects:
+    """No world behind the camera decides which object a hand meets: detections get no
+    handle of the simulator's, and looking changes nothing."""
+
+    def object_at(self, point: tuple[float, float], placement: str) -> int | None:
+        return None
+
+    def looked_at(self, placement: str) -> None:
+        return None
+
+
+def _wire_simulated_objects(robot: BodyRobot, simulation: Simulation, body: SimBody) -> None:
+    """Stand-ins over the simulation's truth for what the body does not do yet (issue 42
+    removes them one by one): the symbolic robot for hands, doors and conversation, and the
+    simulator's object poses and handles."""
+    from homebot.embodied.hands import ArmedBodyRobot, SeenObjects
+    from homebot.sim import SimRobot
+
+    percepts = SimRobot(simulation)
+    robot._percepts = percepts
+    robot._companions = percepts
+    if robot.looking is not None:
+        robot.looking.objects = _SimulatedObjects(simulation)
+    if isinstance(robot, ArmedBodyRobot) and isinstance(robot.arm.locate, SeenObjects):
+        robot.arm.locate.fallback = _TrueObjectPoses(simulation, body)
 
 
 class _TrueObjectPoses:

@@ -9,7 +9,7 @@ from __future__ import annotations
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 
-from homebot.app.embodied import embodied_robot
+from homebot.app.embodied import embodied_robot_in
 from homebot.app.fidelity import Fidelity
 from homebot.beliefs import Beliefs
 from homebot.cancel import CancelToken
@@ -115,7 +115,7 @@ def build_run(settings: RunSettings) -> Run:
     simulation = Simulation(world, seed=settings.seed, disturbances=settings.disturbances,
                             responder=responder, navigator=navigator, plans=settings.plans)
     embodied = None if settings.fidelity is Fidelity.SYMBOLIC else \
-        embodied_robot(simulation, navigator, walkers=settings.walkers)
+        embodied_robot_in(simulation, navigator, walkers=settings.walkers)
     robot: Robot = SimRobot(simulation) if embodied is None else embodied
     beliefs = Beliefs.from_world(world, simulation.events)
     context = SkillContext(robot=robot, world=world, navigator=navigator, beliefs=beliefs,

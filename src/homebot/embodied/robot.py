@@ -92,25 +92,27 @@ class BodyRobot(Robot):
         navigator: stage 1, on the static map.
         localisation: the particle filter, already initialised (or left for a global start).
         controller: stage 2, the local planner.
-        percepts: the symbolic robot that still answers perception, manipulation and
-            conversation.
-        companions: moves people who walk with the robot (guide, follow).
-        events: where the robot's laser, particles and motions are recorded.
+        events: where the robot's laser, particles and motions are recorded (it never
+            reads them).
         looking: sees objects on placements with the head camera and the table-top
-            pipeline (None: ``percepts`` answers, symbolically).
+            pipeline.
+        percepts: a stand-in for what the body does not do yet (None: nothing stands in;
+            what needs it raises ``PartMissing``).
+        companions: a stand-in that moves people who walk with the robot (None: nobody
+            does).
     """
 
     def __init__(self, body: Body, world: World, navigator: Navigator,
                  localisation: MonteCarloLocalisation, controller: LocalController,
-                 percepts: Robot, companions: Companions, events: EventLog, *,
-                 looking: TableLook | None = None) -> None:
+                 events: EventLog, *, looking: TableLook | None = None,
+                 percepts: Robot | None = None, companions: Companions | None = None) -> None:
         self.body = body
         self.world = world
         self.navigator = navigator
         self.localisation = localisation
         self.controller = controller
-        self.percepts = percepts
-        self.companions = companions
+        self._percepts = percepts
+        self._companions = companions
         self.events = events
         self.looking = looking
         #: whether a person shows the stop gesture now (``homebot.perception.gestures``
@@ -133,8 +135,22 @@ class BodyRobot(Robot):
     # ------------------------------------------------------------ state
 
     @property
+    def percepts(self) -> Robot:
+        """The stand-in for what the body does not do yet."""
+        if self._percepts is None:
+            raise PartMissing("a way to do this through the body")
+        return self._percepts
+
+    @property
+    def companions(self) -> Companions:
+        """The stand-in that moves people who walk with the robot."""
+        if self._companions is None:
+            raise PartMissing("a way to have people walk with the robot")
+        return self._companions
+
+    @property
     def hands(self) -> tuple[str, ...]:
-        return self.percepts.hands
+        return tuple(self.world.robot.hands)
 
     def now(self) -> float:
         return self.body.now()

@@ -308,6 +308,12 @@ class Body(ABC):
         None when nobody stands there or they are out of the camera's sight."""
         raise PartMissing("body tracker")
 
+    def face_crops(self, views: int) -> list[np.ndarray]:
+        """The head camera's close-ups of the face of the person in front (grey images), so
+        many ``views`` as a face tracker crops over a second or two; none when nobody
+        stands in front of the head."""
+        raise PartMissing("face tracker")
+
     def arm(self) -> Arm:
         """The arm's joint interface."""
         raise PartMissing("arm")

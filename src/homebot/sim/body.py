@@ -39,6 +39,7 @@ from homebot.sim.audio import AudioScene, SimMicrophone, SimSpeaker
 from homebot.sim.body_tracker import BodyTracker, person_solids
 from homebot.sim.camera import CameraSimulator, SceneGeometry, Solid, object_yaw
 from homebot.sim.components import ComponentSimulation
+from homebot.sim.faces import FaceCamera
 from homebot.sim.geometry import TrueGeometry
 from homebot.sim.hands import ArmDriver, SimHands
 from homebot.sim.laser import LaserSimulator
@@ -84,12 +85,15 @@ class SimBody(Body):
         components: the robot's own components (``homebot.sim.components``), if modelled:
             they crash on the body's clock, and no laser beam returns unless the
             component ``laser`` is running.
+        face_half_angle: radians off the head's axis within which a face is the one the
+            face tracker crops (``face_crops``).
     """
 
     def __init__(self, simulation: Simulation, *, walkers: int | Sequence[str] = 0,
                  tick_rate: float = 20.0, laser: LaserModel | None = None,
                  odometry_noise: OdometryNoise | None = None,
-                 components: ComponentSimulation | None = None) -> None:
+                 components: ComponentSimulation | None = None,
+                 face_half_angle: float = 0.25) -> None:
         if not (math.isfinite(tick_rate) and tick_rate >= 20.0):
             raise BodyError(f"tick_rate must be at least 20 Hz, not {tick_rate!r}")
         self.sim = simulation
@@ -122,6 +126,7 @@ class SimBody(Body):
         self.camera_simulator = CameraSimulator(
             SceneGeometry.of(world), np.random.default_rng([simulation.seed, _CAMERA_STREAM]))
         self._body_tracker = BodyTracker(self)
+        self._face_camera = FaceCamera(self, half_angle=face_half_angle)
         self._travelled_since_point = 0.0
         self._trajectory: list[tuple[float, float]] = [self._rounded_position()]
         #: the simulation's sounds: what the speaker plays and the microphone hears
@@ -199,6 +204,10 @@ class SimBody(Body):
         """The skeleton tracker's view of the person standing at ``spot``
         (``homebot.sim.body_tracker``)."""
         return self._body_tracker(spot)
+
+    def face_crops(self, views: int) -> list[np.ndarray]:
+        """Rendered views of the face of the person in front (``homebot.sim.faces``)."""
+        return self._face_camera(views)
 
     def arm(self) -> Arm:
         """The arm (MuJoCo physics where the robot stands)."""
