@@ -94,10 +94,9 @@ def embodied_robot(body: Body, world: World, navigator: Navigator, *, seed: int,
     # faces: the household is known by face; "my name is ..." enrols the head camera's
     # views of someone new in front
     robot.acquaintances = Acquaintances(lambda: household_faces(world))
-    robot.face_images = body.face_crops
     robot.people_look = PeopleLook(body, world, navigator.grid, robot.localise,
                                    acquaintances=robot.acquaintances,
-                                   face_images=robot.face_images)
+                                   face_images=robot.face_views)
     return robot
 
 

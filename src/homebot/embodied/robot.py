@@ -119,11 +119,9 @@ class BodyRobot(Robot):
         #: over their arm keypoints); follow and guide stop when the person they walk
         #: with does. None: nobody's gestures are seen.
         self.stop_shown: Callable[[str], bool] | None = None
-        #: the people met by name ("my name is ...") and the head camera's close-ups of
-        #: the face in front, so many views a call (``introduce``, ``face_in_front``).
+        #: the people met by name ("my name is ...") (``introduce``, ``face_in_front``).
         #: None: faces unseen.
         self.acquaintances: Acquaintances | None = None
-        self.face_images: Callable[[int], list[np.ndarray]] | None = None
         #: sees people with the laser and the head camera (None: ``percepts`` answers,
         #: symbolically)
         self.people_look: PeopleLook | None = None
@@ -436,9 +434,9 @@ class BodyRobot(Robot):
         is Maria"), their face is enrolled from the head camera's views under it, to be
         recognised afterwards (``face_in_front``). The name enrolled, or None (no name
         given, nobody in front, or no face seen)."""
-        if self.acquaintances is None or self.face_images is None:
+        if self.acquaintances is None:
             return None
-        name = self.acquaintances.introduce(utterance, self.face_images(_INTRODUCTION_VIEWS))
+        name = self.acquaintances.introduce(utterance, self.face_views(_INTRODUCTION_VIEWS))
         if name is not None:
             self.events.record("robot.met", person=name)
         return name
@@ -446,9 +444,17 @@ class BodyRobot(Robot):
     def face_in_front(self) -> str | None:
         """The name of the person in front, recognised by face among the people met;
         None for nobody in front, a stranger, or no faces seen."""
-        if self.acquaintances is None or self.face_images is None:
+        if self.acquaintances is None:
             return None
-        return self.acquaintances.recognise(self.face_images(_RECOGNITION_VIEWS))
+        return self.acquaintances.recognise(self.face_views(_RECOGNITION_VIEWS))
+
+    def face_views(self, views: int) -> list[np.ndarray]:
+        """The head camera's close-ups of the face in front (``Body.face_crops``); none
+        from a body without a face tracker."""
+        try:
+            return self.body.face_crops(views)
+        except PartMissing:
+            return []
 
     def request(self, person: str, request: HelpRequest, target: str) -> bool:
         if request is HelpRequest.STEP_ASIDE:
