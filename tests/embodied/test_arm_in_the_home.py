@@ -144,12 +144,19 @@ def test_what_a_person_puts_in_the_offered_hand_is_held_by_the_fingers() -> None
     # Nothing put in it: the fingers close on nothing, and the hand opens again.
     assert not control.close_on_handed("cola", stand)
     assert control.holding is None
-    # The person puts the cola in (the truth's hand-over), and holds it there until the
-    # fingers close on it.
+    # A person beside the hand, holding the cola and asked for it, puts it in and holds it
+    # there until the fingers close on it; then it is the robot's.
     control.offer_hand(stand)
-    sim.object_location["cola"] = "hand:left"
-    sim.hands["left"] = "cola"
+    person = sorted(sim.people)[0]
+    hand = body.hands.driver().sim.grasp_point()
+    sim.move_person(person, (float(hand[0]) + 0.4 * math.cos(stand.theta),
+                             float(hand[1]) + 0.4 * math.sin(stand.theta)))
+    sim.object_location["cola"] = f"person:{person}"
+    body.hearing.asked_to_give = (person, "cola")
+    body.tick(10)
+    assert sim.object_location["cola"] == f"person:{person}"  # not the robot's yet
     assert control.close_on_handed("cola", stand)
+    assert sim.hands["left"] == "cola" and sim.object_location["cola"] == "hand:left"
     body.tick(20)  # tucked in, it stays in the hand
     assert control.gripper_holds() and sim.hands["left"] == "cola"
     assert body.hands.driver().sim.held_object() == "cola"

@@ -11,11 +11,13 @@ from __future__ import annotations
 
 import importlib.util
 import math
+import zlib
 from typing import TYPE_CHECKING
 
 import numpy as np
 
 from homebot.app.fidelity import require_embodied
+from homebot.errors import SpeechError
 from homebot.events import EventLog
 from homebot.navigation import Navigator
 from homebot.robot import Body
@@ -25,6 +27,7 @@ from homebot.world import World
 if TYPE_CHECKING:
     from homebot.embodied import BodyRobot
     from homebot.sim.body import SimBody
+    from homebot.sim.hearing import PersonVoice
 
 __all__ = ["embodied_robot", "embodied_robot_in"]
 
@@ -46,11 +49,28 @@ def embodied_robot_in(simulation: Simulation, navigator: Navigator, *, walkers: 
     require_embodied()
     from homebot.sim.body import SimBody
 
-    body = SimBody(simulation, walkers=walkers, face_half_angle=_FACE_HALF_ANGLE)
+    body = SimBody(simulation, walkers=walkers, face_half_angle=_FACE_HALF_ANGLE,
+                   voice=_people_voice())
     robot = embodied_robot(body, simulation.world, navigator, seed=simulation.seed,
                            events=simulation.events, known_start=known_start)
     _wire_simulated_objects(robot, simulation, body)
     return robot
+
+
+def _people_voice() -> PersonVoice | None:
+    """How the simulated people sound: each person one of espeak-ng's Klatt voices, by
+    name (None without the ``speech`` extra: people then answer nobody aloud)."""
+    try:
+        from homebot.speech.voice import HELD_OUT_VOICES, VOICES, espeak
+
+        voice = espeak()
+    except (ImportError, SpeechError):
+        return None
+    voices = (*VOICES, *HELD_OUT_VOICES)
+
+    def speak(person: str, text: str) -> np.ndarray:
+        return voice.synthesise(text, voices[zlib.crc32(person.encode()) % len(voices)])
+    return speak
 
 
 def embodied_robot(body: Body, world: World, navigator: Navigator, *, seed: int,
@@ -125,7 +145,6 @@ def _wire_simulated_objects(robot: BodyRobot, simulation: Simulation, body: SimB
 
     percepts = SimRobot(simulation)
     robot._percepts = percepts
-    robot._companions = percepts
     if robot.looking is not None:
         robot.looking.objects = _SimulatedObjects(simulation)
     if isinstance(robot, ArmedBodyRobot) and isinstance(robot.arm.locate, SeenObjects):

@@ -44,6 +44,11 @@ _NOT_TRIED = {
     PickOutcome.TOO_HEAVY: "the {} is too heavy for my arm",
 }
 _BIN_CATEGORIES = ("bin", "trash", "trash can", "waste bin")
+_PULL = 3.0  #: newtons more at the wrist than when held out: the person pulls
+_PUT_IN = 0.8  #: newtons of change at the wrist: something was pushed into the palm
+_FELT = 0.15  #: seconds a force must last to count (not a bump)
+_WAIT_FOR_TAKER = 8.0  #: seconds the robot holds an object out before keeping it
+_WAIT_FOR_GIVER = 6.0  #: seconds the robot holds its open hand out before closing it
 
 
 class SeenObjects:
@@ -95,6 +100,8 @@ class ArmedBodyRobot(BodyRobot):
         super().__init__(*args, **kwargs)
         self.arm = arm
         self._holding: dict[str, Detection] = {}
+        self._asked_for: str | None = None  #: the object last asked to be put in the hand
+        self._handles = 0  #: the robot's own handles for what it was handed
         #: where perception last saw each object: (placement, map position)
         self.seen = seen.places
 
@@ -180,25 +187,79 @@ class ArmedBodyRobot(BodyRobot):
             self.arm.holding = None
 
     def receive(self, hand: str, person: str) -> Detection | None:
-        """Hold the open hand out; once the person has put the object in, close on it.
-        Whether the robot then holds it is what its fingers sense."""
+        """Hold the open hand out (the person was asked to put the object in); once the
+        wrist feels something pushed into the palm, or after a while, close; whether the
+        robot then holds something is what its fingers sense (Cosero §7.3.1)."""
         if hand in self._holding or self.arm.holding is not None:
             return None
+        self._face(person)
         self.arm.offer_hand(self.pose())
-        given = super().receive(hand, person)
-        if given is None or not self.arm.close_on_handed(given.label, self.pose()):
-            self.events.record("robot.receive", person=person, held=False)
+        wanted = self._asked_for or "object"
+        felt = self._wait_for_wrench(_PUT_IN, _WAIT_FOR_GIVER)
+        if not self.arm.close_on_handed(wanted, self.pose()):
+            self.events.record("robot.receive", person=person, held=False, felt=felt)
+            self.arm.tuck(self.pose())
             return None
-        self.events.record("robot.receive", person=person, held=True, object=given.label)
-        self._holding[hand] = given
-        return given
+        received = Detection(wanted, self.world.objects[wanted].category if wanted in
+                             self.world.objects else "", self._next_handle())
+        self.events.record("robot.receive", person=person, held=True, object=wanted,
+                           felt=felt)
+        self._holding[hand] = received
+        return received
 
     def hand_over(self, hand: str, person: str) -> bool:
-        given = super().hand_over(hand, person)
-        if given and self._holding.pop(hand, None) is not None:
-            self.body.gripper().command(0.2)  # the person holds it: open the fingers
-            self.arm.holding = None
-        return given
+        """Hold the object out to ``person``, compliant; let go once the wrist feels them
+        pull (Cosero §7.3.1), and never before; a person who does not pull within a while
+        leaves it in the hand. Whether it is gone is what the fingers sense."""
+        if hand not in self._holding or self.arm.holding is None:
+            return False
+        self._face(person)
+        self.arm.hold_out(self.pose())
+        pulled = self._wait_for_wrench(_PULL, _WAIT_FOR_TAKER)
+        if not pulled:
+            self.events.record("robot.hand_over", person=person, released=False)
+            self.arm.tuck(self.pose())
+            return False
+        self.arm.let_go()
+        del self._holding[hand]
+        self.events.record("robot.hand_over", person=person, released=True)
+        self.arm.tuck(self.pose())
+        return True
+
+    def say(self, text: str) -> None:
+        # what the robot asks for, it expects in its hand ("please put the cup in my hand")
+        if "in my hand" in text:
+            named = [name for name in self.world.objects if name in text.lower()]
+            self._asked_for = max(named, key=len) if named else None
+        super().say(text)
+
+    def _wait_for_wrench(self, threshold: float, seconds: float) -> bool:
+        """Tick until the wrist's force differs from what it was by more than ``threshold``
+        newtons for ``_FELT`` seconds; False after ``seconds`` without."""
+        start = self.body.wrist_wrench().force
+        step = max(1, round(0.05 / self.body.tick_period))
+        waited = held = 0.0
+        while waited < seconds:
+            self.body.tick(step)
+            waited += step * self.body.tick_period
+            change = float(np.linalg.norm(self.body.wrist_wrench().force - start))
+            held = held + step * self.body.tick_period if change > threshold else 0.0
+            if held >= _FELT:
+                return True
+        return False
+
+    def _face(self, person: str) -> None:
+        """Turn to where ``person`` is seen, to hold the hand out to them."""
+        seen = [p for p in self.perceive_people() if p.name == person]
+        if not seen:
+            return
+        here = self.pose()
+        x, y = seen[0].position
+        self.move_to(Pose(here.x, here.y, math.atan2(y - here.y, x - here.x)))
+
+    def _next_handle(self) -> int:
+        self._handles += 1
+        return -self._handles
 
     def _stands_before(self, name: str, seen_at: tuple[float, float] | None) -> list[Pose]:
         """Poses beside the object's surface, facing the object, nearest to it first.

@@ -21,17 +21,18 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Protocol
+from typing import TYPE_CHECKING
 
 import numpy as np
 from shapely.geometry import LineString
 from shapely.geometry import Point as ShapelyPoint
 
 from homebot.cancel import CancelToken
+from homebot.embodied.conversation import Conversation
 from homebot.embodied.doors import door_seen_open
 from homebot.embodied.looking import TableLook
 from homebot.embodied.people_look import PeopleLook
-from homebot.errors import NavigationError, PartMissing, SpeechError
+from homebot.errors import NavigationError, PartMissing
 from homebot.events import EventLog
 from homebot.geometry import Pose
 from homebot.navigation import Navigator
@@ -48,11 +49,13 @@ from homebot.robot import (
     MoveReport,
     PersonPercept,
     Robot,
-    Speaker,
 )
 from homebot.world import World
 
-__all__ = ["BodyRobot", "Companions"]
+if TYPE_CHECKING:
+    from homebot.speech.answers import AnswerRecognizer
+
+__all__ = ["BodyRobot"]
 
 _STOP_BEFORE_DOOR = 0.6  #: metres in front of a door where the robot stops to look at it
 _SEES_THE_DOOR = 3.0  #: metres within which the robot, stopped short, looks at a door ahead
@@ -66,13 +69,6 @@ _FOLLOWING_REACH = 2.0  #: metres within which the person to follow must stand
 _ASKING_DISTANCE = 1.2  #: metres from a person where the robot stops to ask them something
 _INTRODUCTION_VIEWS = 20  #: face views enrolled while a person says their name (2 s at 10 Hz)
 _RECOGNITION_VIEWS = 10  #: face views weighed together to name the person in front
-
-
-class Companions(Protocol):
-    """People who walk with the robot: a guided person keeps behind it, a followed one leads."""
-
-    def walk_to(self, person: str, point: tuple[float, float]) -> None:
-        """``person`` walks to ``point``."""
 
 
 @dataclass(frozen=True, slots=True)
@@ -96,25 +92,27 @@ class BodyRobot(Robot):
             reads them).
         looking: sees objects on placements with the head camera and the table-top
             pipeline.
+        conversation: speaks and hears through the body (default: answers heard by an
+            ``AnswerRecognizer`` for ``world``, built on the first question).
         percepts: a stand-in for what the body does not do yet (None: nothing stands in;
             what needs it raises ``PartMissing``).
-        companions: a stand-in that moves people who walk with the robot (None: nobody
-            does).
     """
 
     def __init__(self, body: Body, world: World, navigator: Navigator,
                  localisation: MonteCarloLocalisation, controller: LocalController,
                  events: EventLog, *, looking: TableLook | None = None,
-                 percepts: Robot | None = None, companions: Companions | None = None) -> None:
+                 conversation: Conversation | None = None,
+                 percepts: Robot | None = None) -> None:
         self.body = body
         self.world = world
         self.navigator = navigator
         self.localisation = localisation
         self.controller = controller
         self._percepts = percepts
-        self._companions = companions
         self.events = events
         self.looking = looking
+        self.conversation = conversation or Conversation(body, events,
+                                                         lambda: _answer_recogniser(world))
         #: whether a person shows the stop gesture now (``homebot.perception.gestures``
         #: over their arm keypoints); follow and guide stop when the person they walk
         #: with does. None: nobody's gestures are seen.
@@ -138,13 +136,6 @@ class BodyRobot(Robot):
         if self._percepts is None:
             raise PartMissing("a way to do this through the body")
         return self._percepts
-
-    @property
-    def companions(self) -> Companions:
-        """The stand-in that moves people who walk with the robot."""
-        if self._companions is None:
-            raise PartMissing("a way to have people walk with the robot")
-        return self._companions
 
     @property
     def hands(self) -> tuple[str, ...]:
@@ -203,10 +194,6 @@ class BodyRobot(Robot):
                     return MoveReport(False, self.pose(), travelled, blocked[0], leg.door,
                                       blocked[1], tuple(passed))
                 passed.append(leg.door)
-        if escort is not None:
-            here = self.pose()
-            self.companions.walk_to(escort, (here.x - 0.6 * math.cos(here.theta),
-                                             here.y - 0.6 * math.sin(here.theta)))
         self._record_view()
         return MoveReport(True, self.pose(), travelled, doors_passed=tuple(passed))
 
@@ -341,8 +328,11 @@ class BodyRobot(Robot):
         plan = self.navigator.plan(self.pose().xy(), destination)
         if plan is None:
             return MoveReport(False, self.pose(), 0.0, Blocker.NO_PATH)
-        # The person walks ahead; the robot keeps behind, stopping short of where they stop.
-        self.companions.walk_to(person, destination)
+        # The person is asked to walk ahead to the room; the robot keeps behind, stopping
+        # short of where it was told they go.
+        room = self.world.room_at(*destination) if goal is not None else None
+        if room is not None:
+            self.say(f"{person}, please go ahead to the {room}, I will follow you.")
         behind = plan.waypoints[-2] if len(plan.waypoints) > 1 else self.pose().xy()
         dx, dy = destination[0] - behind[0], destination[1] - behind[1]
         norm = math.hypot(dx, dy) or 1.0
@@ -400,32 +390,18 @@ class BodyRobot(Robot):
 
     def say(self, text: str) -> None:
         """Speak ``text`` through the body's speaker (espeak-ng, the ``speech`` extra): the
-        body's clock runs for as long as it sounds. Without a speaker or the extra, as the
-        symbolic robot says it."""
-        spoken = self._spoken(text)
-        if spoken is None:
-            self.percepts.say(text)
-            return
-        speaker, samples = spoken
-        speaker.play(samples, text=text)
-
-    def _spoken(self, text: str) -> tuple[Speaker, np.ndarray] | None:
-        """The body's speaker and ``text`` synthesised at its rate; None when it cannot."""
-        try:
-            speaker = self.body.speaker()
-        except PartMissing:
-            return None
-        try:
-            from homebot.speech.audio import SAMPLE_RATE, resample
-            from homebot.speech.voice import espeak
-
-            samples = espeak().synthesise(text)
-        except (ImportError, SpeechError):
-            return None
-        return speaker, resample(samples, SAMPLE_RATE, speaker.rate)
+        body's clock runs for as long as it sounds. A body without a speaker says nothing
+        (the log keeps what it would have said)."""
+        self.conversation.say(text)
 
     def ask(self, person: str, question: str) -> str | None:
-        return self.percepts.ask(person, question)
+        """Ask ``person`` aloud (by name) and hear their answer in the microphone, in the
+        dialogue state the question calls for; None when nobody answers, twice, or the
+        answer is off the point, twice."""
+        from homebot.speech.answers import answer_state
+
+        spoken = f"{person}, {question}" if person else question
+        return self.conversation.ask(spoken, answer_state(question))
 
     # ------------------------------------------------------------ faces
 
@@ -457,15 +433,19 @@ class BodyRobot(Robot):
             return []
 
     def request(self, person: str, request: HelpRequest, target: str) -> bool:
-        if request is HelpRequest.STEP_ASIDE:
-            self._come_near(person, target)
-        return self.percepts.request(person, request, target)
+        """The request was just made aloud: listen for the yes. Asked to let the robot by
+        from across a room, the robot first comes near and asks again."""
+        if request is HelpRequest.STEP_ASIDE and self._come_near(person, target):
+            self.say(f"Excuse me{f', {person}' if person else ''}, could you please let me "
+                     "through?")
+        return self.conversation.agreed()
 
-    def _come_near(self, person: str, door: str) -> None:
+    def _come_near(self, person: str, door: str) -> bool:
         """Come up to ``person`` (unnamed, or not known by face from here: whoever the
         robot cannot name and sees nearest the ``door``, or itself) before asking them to
         let the robot by, as far as the way allows: stopped by someone in a doorway across
-        the room, the robot would otherwise ask from where they cannot hear it."""
+        the room, the robot would otherwise ask from where they cannot hear it. Whether
+        it moved."""
         here = self.pose()
         where = self.world.doors[door].position if door in self.world.doors else here.xy()
         people = self.perceive_people()
@@ -474,14 +454,15 @@ class BodyRobot(Robot):
         seen = sorted(named or [p for p in people if p.name is None],
                       key=lambda p: math.dist(p.position, where))
         if not seen or math.dist(seen[0].position, here.xy()) <= _ASKING_DISTANCE + 0.3:
-            return
+            return False
         plan = self.navigator.plan(here.xy(), seen[0].position)
         if plan is None or len(plan.waypoints) < 2:
-            return
+            return False
         way = LineString(plan.waypoints)
         spot = way.interpolate(max(way.length - _ASKING_DISTANCE, 0.0))
         self.move_to(Pose(spot.x, spot.y, math.atan2(seen[0].position[1] - spot.y,
                                                      seen[0].position[0] - spot.x)))
+        return True
 
 
 def _distance_to_path(point: tuple[float, float],
@@ -490,3 +471,18 @@ def _distance_to_path(point: tuple[float, float],
     if len(path) == 1:
         return math.dist(point, path[0])
     return float(LineString(path).distance(ShapelyPoint(point)))
+
+
+#: answer recognisers by the names and objects they were built for (each takes seconds)
+_RECOGNISERS: dict[tuple[tuple[str, ...], tuple[tuple[str, str], ...]], AnswerRecognizer] = {}
+
+
+def _answer_recogniser(world: World) -> AnswerRecognizer:
+    """The answer recogniser for ``world``'s names and drinks, built once per process."""
+    from homebot.speech.answers import AnswerRecognizer
+
+    key = (tuple(sorted(world.people)),
+           tuple(sorted((name, obj.category) for name, obj in world.objects.items())))
+    if key not in _RECOGNISERS:
+        _RECOGNISERS[key] = AnswerRecognizer(world)
+    return _RECOGNISERS[key]

@@ -56,6 +56,7 @@ _BEST_REACH = 0.72  #: metres: spots about this far in front of the robot are tr
 _OFFER = np.array([0.2, 0.0, 0.5, 0.0, -1.2, 0.0, 0.7, 0.0])
 _OPEN = 0.2  #: a gripper command wider than the fingers open: fully open
 _CLOSING = 1.0  #: seconds the fingers get to close on what a person put in the hand
+_UNKNOWN_EXTENT = (0.08, 0.08, 0.12)  #: metres: what the robot assumes an unnamed thing is
 
 
 @dataclass(frozen=True)
@@ -190,19 +191,40 @@ class ArmControl:
         path = plan_motion(scene, here, _OFFER, self.rng, gripper=_OPEN)
         follow(self.body, path or [here, _OFFER])
 
+    def hold_out(self, base: Pose) -> None:
+        """Hold what the hand holds out in front, at the offering pose, for a person to
+        take (Cosero §7.3.1)."""
+        scene = self._scene(base)
+        here = current_configuration(self.body)
+        path = plan_motion(scene, here, _OFFER, self.rng, gripper=0.2,
+                           allowed=scene.without(scene.obstacles))
+        follow(self.body, path or [here, _OFFER])
+
+    def let_go(self) -> None:
+        """Open the fingers on what the hand holds: someone has taken it."""
+        self.body.gripper().command(_OPEN)
+        self.body.tick(max(1, round(_CLOSING / self.body.tick_period)))
+        self.holding = None
+
+    def tuck(self, base: Pose) -> None:
+        """Bring the arm back in (with whatever it holds)."""
+        self._tuck(self._scene(base))
+
     def close_on_handed(self, name: str, base: Pose) -> bool:
-        """Close the offered hand on ``name``, which a person put in it: whether the fingers
-        then hold something (sensed: they stand apart). If they do, the arm tucks it in."""
+        """Close the offered hand on ``name``, which a person put in it (a name the world's
+        catalogue does not know: something of a cup's size): whether the fingers then hold
+        something (sensed: they stand apart). If they do, the arm tucks it in."""
         if self.holding is not None:
             return False
         self.body.gripper().command(0.0, GRIP_FORCE)
         self.body.tick(max(1, round(_CLOSING / self.body.tick_period)))
-        entry = catalogue_entry(self.world, name)
-        scene = self._scene(base, leave_out=name)
+        known = name in self.world.objects
+        extent = catalogue_entry(self.world, name).extent if known else _UNKNOWN_EXTENT
+        scene = self._scene(base, leave_out=name if known else None)
         _, rotation = scene.grasp_frame(current_configuration(self.body))
         # Held out to the robot, it sits centred between the fingertips.
-        self.holding = _Holding(name, entry.extent[2] / 2, rotation,
-                                math.hypot(entry.extent[0], entry.extent[1]) / 2)
+        self.holding = _Holding(name, extent[2] / 2, rotation,
+                                math.hypot(extent[0], extent[1]) / 2)
         if not self.gripper_holds():
             self.holding = None
             self.body.gripper().command(_OPEN)

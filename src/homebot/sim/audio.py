@@ -4,10 +4,11 @@
 speaking) is kept with the simulated time it started and who made it, and ``mix(start,
 end)`` gives what a listener at the robot hears over that span, the sounds summed over a
 seeded noise floor. ``SimSpeaker`` plays into it: the sound starts now, the body ticks
-for its duration (time passes as the robot speaks), and a ``sim.speech`` event records
-the text and the seconds. ``SimMicrophone`` reads the scene from where it last stopped to
-the body's clock. The scene keeps only numpy arrays (16 kHz mono int16); speech synthesis
-and recognition live in ``homebot.speech``.
+for its duration (time passes as the robot speaks), a ``sim.speech`` event records
+the text and the seconds, and whoever listens (``homebot.sim.hearing``) hears it.
+``SimMicrophone`` reads the scene from where it last stopped to the body's clock.
+The scene keeps only numpy arrays (16 kHz mono int16); speech synthesis and recognition
+live in ``homebot.speech``.
 """
 
 from __future__ import annotations
@@ -92,16 +93,19 @@ class SimSpeaker(Speaker):
     as it lasts."""
 
     def __init__(self, scene: AudioScene, events: EventLog, tick: Callable[[int], None],
-                 tick_period: float) -> None:
+                 tick_period: float, heard: Callable[[Sound], None] | None = None) -> None:
         self.rate = AUDIO_RATE
         self._scene, self._events = scene, events
         self._tick, self._tick_period = tick, tick_period
+        self._heard = heard
 
     def play(self, samples: np.ndarray, *, text: str | None = None) -> float:
         sound = self._scene.emit(samples, source="robot", text=text)
         self._events.record("sim.speech", text=text or "", seconds=round(sound.seconds, 3),
                             start=round(sound.start, 3))
         self._tick(math.ceil(sound.seconds / self._tick_period - 1e-9))
+        if self._heard is not None:  # the people who heard it react once it is said
+            self._heard(sound)
         return sound.seconds
 
 

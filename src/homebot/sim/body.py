@@ -42,6 +42,7 @@ from homebot.sim.components import ComponentSimulation
 from homebot.sim.faces import FaceCamera
 from homebot.sim.geometry import TrueGeometry
 from homebot.sim.hands import ArmDriver, SimHands
+from homebot.sim.hearing import PeopleHearing, PersonVoice
 from homebot.sim.laser import LaserSimulator
 from homebot.sim.simulation import Simulation
 from homebot.sim.walkers import PeopleWalking
@@ -87,13 +88,15 @@ class SimBody(Body):
             component ``laser`` is running.
         face_half_angle: radians off the head's axis within which a face is the one the
             face tracker crops (``face_crops``).
+        voice: how people sound when they answer the robot aloud (``homebot.sim.hearing``;
+            None: they hear it and act, but say nothing).
     """
 
     def __init__(self, simulation: Simulation, *, walkers: int | Sequence[str] = 0,
                  tick_rate: float = 20.0, laser: LaserModel | None = None,
                  odometry_noise: OdometryNoise | None = None,
                  components: ComponentSimulation | None = None,
-                 face_half_angle: float = 0.25) -> None:
+                 face_half_angle: float = 0.25, voice: PersonVoice | None = None) -> None:
         if not (math.isfinite(tick_rate) and tick_rate >= 20.0):
             raise BodyError(f"tick_rate must be at least 20 Hz, not {tick_rate!r}")
         self.sim = simulation
@@ -131,11 +134,14 @@ class SimBody(Body):
         self._trajectory: list[tuple[float, float]] = [self._rounded_position()]
         #: the simulation's sounds: what the speaker plays and the microphone hears
         self.audio = AudioScene(simulation.clock.now, simulation.seed)
-        self._speaker = SimSpeaker(self.audio, simulation.events, self.tick, self.tick_period)
+        #: the people hearing the robot, answering aloud and doing what it asks
+        self.hearing = PeopleHearing(simulation, self.audio, voice)
+        self._speaker = SimSpeaker(self.audio, simulation.events, self.tick, self.tick_period,
+                                   self.hearing.robot_said)
         self._microphone = SimMicrophone(self.audio, simulation.clock.now)
         #: the arm, gripper and wrist sensor in MuJoCo where the robot stands
         arm_model = world.arm_model_path()
-        self.hands = SimHands(simulation, self.tick_period, arm_model)
+        self.hands = SimHands(simulation, self.tick_period, arm_model, self.hearing)
         if arm_model is not None and _has_mujoco():
             from homebot.sim.arm import load_arm_spec
 
@@ -275,6 +281,7 @@ class SimBody(Body):
                                    points=[list(p) for p in points])
             self.sim.trail.extend(points[1:])
         self._trajectory = [here]
+        self.hearing.robot_stopped(self.sim.robot_pose)
 
     # ------------------------------------------------------------ one tick
 

@@ -8,6 +8,7 @@ joint states, position targets (with optional torques), the gripper, the wrist's
 
 from __future__ import annotations
 
+import zlib
 from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any
@@ -24,7 +25,8 @@ from homebot.sim.arm import (
     SurfaceBox,
 )
 from homebot.sim.camera import object_yaw
-from homebot.sim.simulation import HAND_PREFIX
+from homebot.sim.hearing import PeopleHearing
+from homebot.sim.simulation import HAND_PREFIX, PERSON_PREFIX
 from homebot.world import World, catalogue_entry, surface_height
 
 __all__ = ["PAYLOAD", "ArmDriver", "SimHands", "object_body", "world_scene"]
@@ -147,6 +149,9 @@ _HELD_RISE = 0.02  #: metres above its resting height for a held object to count
 _AT_REST = 0.02  #: m/s: an object slower than this has come to rest
 _SETTLE_LIMIT = 3.0  #: seconds of physics for objects to come to rest when the robot leaves
 _SETTLE_STEP = 0.1
+_PERSON_REACH = 0.9  #: metres from where a person stands to a hand they reach into
+_OPEN_ENOUGH = 0.05  #: metres between the fingers for a person to put something in
+_STILL = 0.2  #: rad/s over the joints: the arm has stopped moving
 
 
 class SimHands:
@@ -168,10 +173,17 @@ class SimHands:
     """
 
     def __init__(self, simulation: Any, tick_period: float,
-                 model_path: Path | None = None) -> None:
+                 model_path: Path | None = None, hearing: PeopleHearing | None = None) -> None:
         self.simulation = simulation
         self.tick_period = tick_period
         self.model_path = model_path
+        #: what people were asked: to take what the robot holds out, to put something in
+        #: its hand (None: nobody hands anything over)
+        self.hearing = hearing
+        #: the person pulling at what the robot holds out, and their pull (newtons)
+        self._taker: tuple[str, str, float] | None = None
+        #: seconds the hand has stood held out near the person who is to take from it
+        self._held_out = 0.0
         self._driver: ArmDriver | None = None
         self._base: tuple[float, float, float] | None = None
         self._arm: tuple[float, ...] = HOME
@@ -181,26 +193,19 @@ class SimHands:
         self._held: tuple[ObjectBody, np.ndarray] | None = None
         self._surfaces: dict[str, SurfaceBox] = {}
         self._gone: set[str] = set()
-        #: what a person holds out into the open hand until both fingers touch it
+        #: what a person holds out into the open hand until both fingers touch it, and who
         self._handing: str | None = None
+        self._giver: str | None = None
         #: how objects physics moved stand turned now (radians, map frame)
         self.headings: dict[str, float] = {}
 
     def driver(self) -> ArmDriver:
         """The arm's drivers where the robot stands now (built when it has moved)."""
         pose = tuple(self.simulation.robot_pose)
-        if self._driver is None or pose != self._base or self._handed_in() is not None:
+        if self._driver is None or pose != self._base:
             self._build((float(pose[0]), float(pose[1]), float(pose[2])))
         assert self._driver is not None
         return self._driver
-
-    def _handed_in(self) -> str | None:
-        """What the truth has a person put in the robot's hand that the scene lacks."""
-        if self._driver is None:
-            return None
-        scene = self._driver.sim.objects
-        return next((name for name in self.simulation.hands.values()
-                     if name and name not in scene), None)
 
     def advance(self, seconds: float) -> None:
         """Physics for ``seconds`` while the base stands where the scene was built."""
@@ -209,6 +214,9 @@ class SimHands:
         if tuple(self.simulation.robot_pose) != self._base:
             self._leave()
             return
+        if self._handing is None and self._giving() is not None:
+            self._build(self._base)  # the person's object comes into the scene, in their hand
+        assert self._driver is not None
         sim = self._driver.sim
         handing = self._handing
         if handing is not None:
@@ -216,10 +224,13 @@ class SimHands:
             # fingers both touch it; then it lets go.
             sim.hold_at_grasp(handing)
             sim.push(handing, -sim.objects[handing].mass * sim.model.opt.gravity)
+        pulled = self._pull(seconds)
         sim.step(seconds)
         if handing is not None and sim.touching_fingers(handing) == 2:
             sim.push(handing, (0.0, 0.0, 0.0))
-            self._handing = None
+            self._let_go_into_hand(handing)
+        if pulled is not None and sim.touching_fingers(pulled) < 2:
+            self._taken(pulled)  # out of the fingers (they opened, or it was pulled out)
         self._follow_physics()
 
     # ------------------------------------------------------------ building
@@ -229,9 +240,12 @@ class SimHands:
         ``_SETTLE_LIMIT`` s more of physics); the truth takes every object as it then lies."""
         assert self._driver is not None
         sim = self._driver.sim
-        if self._handing is not None:  # driven off before closing the hand: it falls
-            sim.push(self._handing, (0.0, 0.0, 0.0))
-            self._handing = None
+        if self._handing is not None:  # driven off before closing the hand: they keep it
+            self._take_away(self._handing)
+            self._handing = self._giver = None
+        if self._taker is not None:  # driven off before letting go: they let go of it
+            self._driver.sim.push(self._taker[1], (0.0, 0.0, 0.0))
+            self._taker = None
         held = sim.held_object()
         for _ in range(round(_SETTLE_LIMIT / _SETTLE_STEP)):
             if all(self._resting(name) for name in sim.objects
@@ -267,19 +281,105 @@ class SimHands:
         holding = {name for name in truth.hands.values() if name}
         held = self._held if self._held is not None and self._held[0].name in holding \
             else None
-        # Something in a hand that physics did not carry here: a person puts it in.
-        handed = sorted(holding - {held[0].name} if held else holding)
+        # What a person was asked for and holds: they put it into the open hand.
+        giving = self._giving()
+        handed = [giving[1]] if giving is not None and held is None else []
         objects += [object_body(world, name, pose[:2], 0.0) for name in handed]
         sim = ArmSimulation(base=pose, surfaces=surfaces, objects=objects,
                             model_path=self.model_path, arm=self._arm, torso=self._torso,
                             gripper=self._gripper if held or handed else MAX_GRIPPER_WIDTH,
                             held=held, grip=self._grip if held or handed else None)
         self._handing = handed[0] if handed else None
+        self._giver = giving[0] if handed and giving is not None else None
         if self._handing is not None:
             sim.hold_at_grasp(self._handing)
+            truth.events.record("sim.person", person=self._giver, did="holds out",
+                                object=self._handing)
         self._driver = ArmDriver(sim, self.tick_period, start=truth.clock.now())
         self._base = pose
         self._gone = set()
+
+    # ------------------------------------------------------------ people handing over
+
+    def _giving(self) -> tuple[str, str] | None:
+        """(person, object) when a person asked to put something in the robot's hand holds
+        it, stands within reach of the hand and the hand is open and empty."""
+        hearing = self.hearing
+        if hearing is None or hearing.asked_to_give is None or self._driver is None:
+            return None
+        person, wanted = hearing.asked_to_give
+        truth = self.simulation
+        state = truth.people.get(person)
+        owned = sorted(name for name, where in truth.object_location.items()
+                       if where == PERSON_PREFIX + person)
+        if state is None or not owned or any(truth.hands.values()):
+            return None
+        sim = self._driver.sim
+        if sim.gripper_width() < _OPEN_ENOUGH or sim.held_object() is not None or \
+                _reach(state.position, sim.grasp_point()) > _PERSON_REACH:
+            return None
+        return person, wanted if wanted in owned else owned[0]
+
+    def _let_go_into_hand(self, name: str) -> None:
+        """Both fingers touch what the person holds out: they let go; it is the robot's."""
+        truth = self.simulation
+        free = [hand for hand, held in truth.hands.items() if held is None]
+        if free:
+            truth.hands[free[0]] = name
+            truth.handled.add(name)
+            truth.object_location[name] = HAND_PREFIX + free[0]
+        truth.events.record("sim.person", person=self._giver, did="let go", object=name)
+        if self.hearing is not None:
+            self.hearing.asked_to_give = None
+        self._handing = self._giver = None
+
+    def _pull(self, seconds: float) -> str | None:
+        """The person the robot hands something to pulls at it once the hand has stood
+        held out within their reach a moment; the object pulled, if any."""
+        assert self._driver is not None
+        sim, truth, hearing = self._driver.sim, self.simulation, self.hearing
+        # once they have hold of it, they keep it, whatever the fingers do
+        held = self._taker[1] if self._taker is not None else sim.held_object()
+        taker = hearing.asked_to_take if hearing is not None else None
+        state = truth.people.get(taker or "")
+        hand = sim.grasp_point()
+        moving = self._taker is None and float(np.linalg.norm(sim.arm_velocities())) > _STILL
+        if held is None or taker is None or state is None or moving or \
+                _reach(state.position, hand) > _PERSON_REACH:
+            self._held_out = 0.0
+            if self._taker is not None:
+                sim.push(self._taker[1], (0.0, 0.0, 0.0))
+                self._taker = None
+            return None
+        self._held_out += seconds
+        rng = np.random.default_rng([truth.seed, zlib.crc32(taker.encode()), 909])
+        delay, strength = float(rng.uniform(0.3, 1.5)), float(rng.uniform(6.0, 14.0))
+        if self._held_out < delay:
+            return None
+        towards = np.array([state.position[0] - hand[0], state.position[1] - hand[1], 0.0])
+        towards /= max(float(np.linalg.norm(towards)), 1e-6)
+        # they take its weight and pull it towards them, harder over half a second
+        ramp = min(1.0, (self._held_out - delay) / 0.5)
+        weight = -sim.objects[held].mass * sim.model.opt.gravity
+        sim.push(held, weight + ramp * strength * towards)
+        self._taker = (taker, held, strength)
+        return held
+
+    def _taken(self, name: str) -> None:
+        """The person the robot let go to has ``name``: it leaves the robot's scene."""
+        assert self._taker is not None
+        truth = self.simulation
+        person = self._taker[0]
+        for hand, held in truth.hands.items():
+            if held == name:
+                truth.hands[hand] = None
+        truth.object_location[name] = PERSON_PREFIX + person
+        truth.events.record("sim.person", person=person, did="took", object=name)
+        self._taker = None
+        self._held_out = 0.0
+        if self.hearing is not None:
+            self.hearing.asked_to_take = None
+        self._take_away(name)
 
     # ------------------------------------------------------------ truth follows physics
 
@@ -358,3 +458,8 @@ def _point(xy: tuple[float, ...]) -> Any:
     from shapely.geometry import Point
 
     return Point(xy)
+
+
+def _reach(person: tuple[float, float], hand: np.ndarray) -> float:
+    """Metres from where a person stands to the hand, on the floor plan."""
+    return float(np.hypot(hand[0] - person[0], hand[1] - person[1]))

@@ -22,7 +22,8 @@ from typing import Any
 from homebot.language.generator import _GARMENTS, _GESTURES, _TOPICS, _VERBS
 from homebot.language.vocabulary import phrase_tokens
 
-__all__ = ["Grammar", "command_grammar", "drink_grammar", "words_of", "yes_no_grammar"]
+__all__ = ["COMMON_NAMES", "Grammar", "command_grammar", "drink_grammar", "name_grammar",
+           "words_of", "yes_no_grammar"]
 
 _DRINK_CATEGORIES = {"drink", "drinks", "beverage", "beverages"}
 
@@ -215,9 +216,31 @@ def yes_no_grammar() -> Grammar:
     """What a person answers to a yes/no question."""
     return Grammar("yes_no", "answer", {
         "answer": "<yes> | <no>",
-        "yes": "yes [please] | yeah | sure | of course | correct | that is right | right",
-        "no": "no [thanks | thank you] | nope | not now | that is wrong | wrong",
+        "yes": "yes [please | sure] | yeah | sure | of course | correct | that is right "
+               "| right",
+        "no": "no [thanks | thank you | sorry] | nope | not now | that is wrong | wrong",
     }, slots=("yes", "no"))
+
+
+#: First names a robot expects besides its household's when it asks someone their name
+#: (common English first names; RoboCup@Home's guests come from such a list).
+COMMON_NAMES = (
+    "adam", "alex", "amelia", "angel", "anna", "axel", "ben", "charlie", "chris", "daniel",
+    "david", "emma", "eric", "grace", "hannah", "jack", "jane", "james", "john", "jules",
+    "julia", "kim", "laura", "leo", "lisa", "lucy", "maria", "mark", "mary", "max", "mia",
+    "michael", "morgan", "noah", "olivia", "oscar", "paris", "paul", "peter", "robin", "sam",
+    "sara", "simone", "sophie", "thomas", "tom", "zoe",
+)
+
+
+def name_grammar(world: Any) -> Grammar:
+    """What a person answers to "what is your name?": their name, alone or in a sentence;
+    the household's names and ``COMMON_NAMES``."""
+    names = sorted({words_of(person) for person in world.people} | set(COMMON_NAMES))
+    return Grammar("names", "answer", {
+        "answer": "[my name is | i am | i'm | call me | it is | it's] <name> [thank you]",
+        "name": _alternatives(names),
+    }, slots=("name",))
 
 
 def drink_grammar(world: Any) -> Grammar:

@@ -78,12 +78,15 @@ class Errand:
         if not answer:
             return False
         wanted = _words(answer)
-        said = [event for event in simulation.events.events if event.kind == "sim.speech"]
-        # Only what the robot said once it stood near the operator counts, and the last
-        # robot position the truth knows is where it said it.
+        said = [_words(str(event.data.get("text", "")))
+                for event in simulation.events.events if event.kind == "sim.speech"]
+        # Words after the robot last asked the question carry the answer (not the question
+        # itself, which may hold the answer: "Sophie, what is your name?"), and the robot
+        # ends near the operator.
+        question = _words(self.question)
+        asked = max((index for index, text in enumerate(said) if question in text), default=-1)
         near = math.dist(simulation.robot_pose[:2], operator.position) <= _TELLING_DISTANCE
-        return near and any(wanted in _words(str(event.data.get("text", "")))
-                            for event in said[-3:])
+        return near and asked >= 0 and any(wanted in text for text in said[asked + 1:])
 
 
 def _words(text: str) -> str:

@@ -1,0 +1,116 @@
+"""Talking through the body: the robot's voice out of its speaker, answers from its microphone.
+
+``say`` synthesises the text (espeak-ng, the ``speech`` extra) and plays it on the body's
+speaker; the body's clock runs while it sounds. ``listen`` lets the body tick while the
+microphone fills, until an utterance has ended (``_END_OF_TURN`` seconds of quiet after
+speech) or nobody has begun within ``_WAIT`` seconds, and hears it in a dialogue state
+(``homebot.speech.answers``). ``ask`` asks, listens and, when nobody answers or the answer
+is off the point, says so and asks once more. Nothing here knows who is in the home: what
+was said comes only through the microphone.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from homebot.errors import PartMissing, SpeechError
+from homebot.events import EventLog
+from homebot.robot import Body
+
+if TYPE_CHECKING:
+    from homebot.speech.answers import AnswerRecognizer
+    from homebot.speech.recognizer import Hearing
+
+__all__ = ["Conversation"]
+
+_WAIT = 6.0  #: seconds the robot waits for someone to begin answering
+_LONGEST_ANSWER = 12.0  #: seconds of answer the robot listens to at most
+_END_OF_TURN = 0.9  #: seconds of quiet after speech that end an answer
+_LISTEN_STEP = 0.25  #: seconds the body ticks between looks at what the microphone heard
+_ATTEMPTS = 2  #: a question is asked at most twice
+_YES = {"yes", "yeah", "sure", "of", "correct", "that", "right"}  #: first words of a yes
+
+
+class Conversation:
+    """The robot's voice and ears on ``body``.
+
+    Args:
+        body: the speaker and the microphone.
+        events: where what was said and heard is recorded.
+        recogniser: builds the answer recogniser on first use (building it takes seconds).
+    """
+
+    def __init__(self, body: Body, events: EventLog,
+                 recogniser: Callable[[], AnswerRecognizer]) -> None:
+        self.body = body
+        self.events = events
+        self._make_recogniser = recogniser
+        self._recogniser: AnswerRecognizer | None = None
+
+    def say(self, text: str) -> bool:
+        """Speak ``text`` aloud; False when the body has no speaker or no voice."""
+        try:
+            speaker = self.body.speaker()
+            from homebot.speech.audio import SAMPLE_RATE, resample
+            from homebot.speech.voice import espeak
+
+            samples = espeak().synthesise(text)
+        except (PartMissing, ImportError, SpeechError):
+            self.events.record("robot.unspoken", text=text)
+            return False
+        speaker.play(resample(samples, SAMPLE_RATE, speaker.rate), text=text)
+        return True
+
+    def ask(self, question: str, state: str) -> str | None:
+        """Ask ``question`` and hear the answer in ``state``; once more after silence or
+        an answer off the point; None when there is still no answer."""
+        for attempt in range(_ATTEMPTS):
+            if not self.say(question):
+                return None
+            heard = self.listen(state)
+            if heard.text is not None:
+                return heard.text
+            if attempt + 1 < _ATTEMPTS and heard.reason != "no_speech":
+                self.say("Sorry, I did not understand.")
+        return None
+
+    def agreed(self) -> bool:
+        """Listen for the answer to a request just made: whether it was a yes."""
+        heard = self.listen("yes_no")
+        return heard.text is not None and heard.text.split()[0] in _YES
+
+    def listen(self, state: str) -> Hearing:
+        """What the microphone hears next, as one answer in ``state``."""
+        from homebot.speech.audio import SAMPLE_RATE, resample
+        from homebot.speech.recognizer import Hearing
+
+        try:
+            microphone = self.body.microphone()
+            recogniser = self._ears()
+        except (PartMissing, ImportError, SpeechError):
+            return Hearing(None, "no_microphone", state)
+        microphone.read()  # what was heard before the question (the robot's own voice)
+        chunks: list[np.ndarray] = []
+        waited = 0.0
+        ticks = max(1, round(_LISTEN_STEP / self.body.tick_period))
+        while waited < _WAIT + _LONGEST_ANSWER:
+            self.body.tick(ticks)
+            waited += ticks * self.body.tick_period
+            chunks.append(resample(microphone.read(), microphone.rate, SAMPLE_RATE))
+            audio = np.concatenate(chunks)
+            utterances = recogniser.segmenter.utterances(audio)
+            if not utterances and waited >= _WAIT:
+                break
+            if utterances and audio.size - utterances[-1].end >= _END_OF_TURN * SAMPLE_RATE:
+                break
+        heard = recogniser.hear(np.concatenate(chunks), state)
+        self.events.record("robot.heard", text=heard.text, state=state, reason=heard.reason)
+        return heard
+
+    def _ears(self) -> AnswerRecognizer:
+        if self._recogniser is None:
+            self._recogniser = self._make_recogniser()
+        return self._recogniser

@@ -1,0 +1,183 @@
+"""People in the simulated home hear the robot and answer aloud.
+
+Everything the robot's speaker plays goes into the ``AudioScene`` with its text. The
+people within earshot (``EARSHOT`` metres of the robot, in its room or not further than
+``THROUGH_A_DOOR``) hear it; the one it names, else the nearest, takes it as said to
+them. The simulator understands English for them (it has the text) and has them:
+
+- answer a question (a sentence with a question mark) with ``simulation.responder``,
+  aloud, after a human pause: the answer is synthesised with the voice the wiring gives
+  (``PersonVoice``) and put into the scene, where the robot's microphone hears it. Someone
+  the responder gives no answer for stays silent.
+- take what the robot holds out to them ("here is your cup": ``homebot.sim.hands`` has them
+  pull at it), and put what they hold into its open hand when asked ("please put the cup
+  in my hand");
+- do what they are asked, if they are cooperative: open a door the request names, step
+  off the robot's way ("let me through", "step aside"), come along behind the robot
+  ("follow me": they stand behind it whenever it comes to rest, ``robot_stopped``) or go
+  ahead to a room it names ("go ahead to the kitchen"); and say "yes, sure" or "no, sorry".
+
+Moving a person is a jump (``Simulation.move_person``) until people walk on their own.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Callable
+
+import numpy as np
+
+from homebot.sim.audio import AudioScene, Sound
+from homebot.sim.simulation import Simulation
+from homebot.text import fold
+from homebot.world import DoorState
+
+__all__ = ["EARSHOT", "PeopleHearing", "PersonVoice"]
+
+#: A person's voice: (their name, what they say) -> 16 kHz int16 samples.
+PersonVoice = Callable[[str, str], np.ndarray]
+
+EARSHOT = 3.5  #: metres within which a person hears the robot in its room
+THROUGH_A_DOOR = 1.5  #: metres within which a person in another room hears it
+_PAUSE = 0.6  #: seconds between the robot's last word and the person's first
+_BEHIND = 0.6  #: metres behind the robot where someone who comes along stands
+_STEP_ASIDE = ("let me through", "let me pass", "let me by", "step aside", "make way")
+_COME_ALONG = ("follow me",)
+_HERE_IS = ("here is", "here are", "here you are", "here you go", "this is for you")
+_GO_AHEAD = re.compile(r"go ahead to (?:the )?(.+?)(?:,|\.|$)")
+_YES, _NO = "Yes, sure.", "No, sorry."
+
+
+class PeopleHearing:
+    """The people of ``simulation`` listening to the robot (see the module docstring).
+
+    Args:
+        simulation: the truth: people, doors, how they answer.
+        audio: the home's sounds, where the robot's voice is and the answers go.
+        voice: how each person sounds; None: people hear but cannot answer aloud.
+    """
+
+    def __init__(self, simulation: Simulation, audio: AudioScene,
+                 voice: PersonVoice | None) -> None:
+        self.sim = simulation
+        self.audio = audio
+        self.voice = voice
+        #: who comes along behind the robot (asked to "follow me")
+        self.coming_along: str | None = None
+        #: who was asked to put something in the robot's hand, and what ("please put the
+        #: cup in my hand"); ``homebot.sim.hands`` has them do it
+        self.asked_to_give: tuple[str, str] | None = None
+        #: who is handed something ("here is your cup"): they take it when held out
+        self.asked_to_take: str | None = None
+
+    # ------------------------------------------------------------ hearing
+
+    def robot_said(self, sound: Sound) -> None:
+        """The robot said ``sound.text``: whoever it is meant for reacts."""
+        text = fold(sound.text or "")
+        listener = self._listener(text)
+        if listener is None:
+            return
+        model = self.sim.people[listener].model
+        self.sim.events.record("sim.heard", person=listener, text=sound.text)
+        if listener == self.coming_along and not any(p in text for p in _COME_ALONG):
+            self.coming_along = None  # spoken to about something else: the walk is over
+        reply: str | None
+        if "in my hand" in text:
+            named = [obj for obj in self.sim.world.objects if fold(obj) in text]
+            self.asked_to_give = (listener, max(named, key=len) if named else "")
+            return
+        if any(phrase in text for phrase in _HERE_IS):
+            self.asked_to_take = listener
+            return
+        if "?" in text and not self._is_request(text):
+            question = _without_address(text, listener)
+            reply = self.sim.responder(model, question)
+        elif self._is_request(text):
+            reply = _YES if model.cooperative and self._do(listener, text) else _NO
+        elif any(phrase in text for phrase in _COME_ALONG):
+            if model.cooperative:
+                self.coming_along = listener
+            reply = _YES if model.cooperative else _NO
+        else:
+            return
+        if reply:
+            self._say(listener, reply, sound.end + _PAUSE)
+
+    def robot_stopped(self, pose: tuple[float, float, float]) -> None:
+        """The robot's base came to rest: someone coming along stands behind it."""
+        name = self.coming_along
+        if name is None or name not in self.sim.people:
+            return
+        x, y, theta = pose
+        self.sim.move_person(name, self.sim.free_floor_near(
+            (x - _BEHIND * math.cos(theta), y - _BEHIND * math.sin(theta))))
+
+    def _listener(self, text: str) -> str | None:
+        """Who takes ``text`` as said to them: the person named among those who hear it,
+        else the nearest who does; None: nobody hears it."""
+        sim = self.sim
+        here = sim.robot_pose[:2]
+        room = sim.robot_room()
+        hearing = sorted((math.dist(here, state.position), name)
+                         for name, state in sim.people.items()
+                         if math.dist(here, state.position) <= (
+                             EARSHOT if state.room == room else THROUGH_A_DOOR))
+        named = [name for _, name in hearing if re.search(rf"\b{re.escape(fold(name))}\b", text)]
+        if named:
+            return named[0]
+        return hearing[0][1] if hearing else None
+
+    # ------------------------------------------------------------ requests
+
+    def _is_request(self, text: str) -> bool:
+        return (self._door_named(text) is not None and "open" in text) or \
+            any(phrase in text for phrase in _STEP_ASIDE) or _GO_AHEAD.search(text) is not None
+
+    def _door_named(self, text: str) -> str | None:
+        named = [door for door in self.sim.door_state if fold(door) in text]
+        return max(named, key=len) if named else None
+
+    def _do(self, person: str, text: str) -> bool:
+        """Do what the robot asked; whether it is done."""
+        sim = self.sim
+        door = self._door_named(text)
+        if door is not None and "open" in text:
+            if sim.door_state[door] is DoorState.LOCKED:
+                return False
+            sim.door_state[door] = DoorState.OPEN
+            sim.events.record("sim.person", person=person, did="opened", door=door)
+            return True
+        ahead = _GO_AHEAD.search(text)
+        if ahead is not None:
+            room = next((name for name in sim.world.room_polygons if fold(name) == ahead.group(1)),
+                        None)
+            if room is None:
+                return False
+            middle = sim.world.room_polygons[room].centroid
+            sim.move_person(person, sim.free_floor_near((middle.x, middle.y)))
+            return True
+        state = sim.people[person]
+        spot = sim.spot_aside(state.position)
+        if spot is None and state.blocking_door:
+            middle = sim.world.room_polygons[state.room].centroid
+            spot = sim.free_floor_near((middle.x, middle.y))
+        if spot is None:
+            return False
+        sim.move_person(person, spot)
+        sim.events.record("sim.person", person=person, did="stepped aside")
+        return True
+
+    # ------------------------------------------------------------ speaking
+
+    def _say(self, person: str, text: str, start: float) -> None:
+        self.sim.events.record("sim.person_said", person=person, text=text)
+        if self.voice is None:
+            return
+        self.audio.emit(self.voice(person, text), source=person, text=text, start=start)
+
+
+def _without_address(text: str, person: str) -> str:
+    """The question without the name it was addressed with ("maria, what is ...")."""
+    return re.sub(rf"^\s*{re.escape(fold(person))}\s*,?\s*", "", text).strip()
