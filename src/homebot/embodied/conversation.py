@@ -5,7 +5,9 @@ speaker; the body's clock runs while it sounds. ``listen`` lets the body tick wh
 microphone fills, until an utterance has ended (``_END_OF_TURN`` seconds of quiet after
 speech) or nobody has begun within ``_WAIT`` seconds, and hears it in a dialogue state
 (``homebot.speech.answers``). ``ask`` asks, listens and, when nobody answers or the answer
-is off the point, says so and asks once more. Nothing here knows who is in the home: what
+is off the point, says so and asks once more. A name, a drink or an open answer is
+confirmed ("Did you say John?"); on a "no" the robot asks once more and hears the answer
+as anything but what was denied. Nothing here knows who is in the home: what
 was said comes only through the microphone.
 """
 
@@ -32,6 +34,9 @@ _END_OF_TURN = 0.9  #: seconds of quiet after speech that end an answer
 _LISTEN_STEP = 0.25  #: seconds the body ticks between looks at what the microphone heard
 _ATTEMPTS = 2  #: a question is asked at most twice
 _YES = {"yes", "yeah", "sure", "of", "correct", "that", "right"}  #: first words of a yes
+#: dialogue states whose answers the robot confirms ("Did you say John?"): a misheard name
+#: or wish comes back as a "no", and the question is asked again
+_CONFIRMED = {"name", "drink", "open"}
 
 
 class Conversation:
@@ -65,25 +70,44 @@ class Conversation:
         return True
 
     def ask(self, question: str, state: str) -> str | None:
-        """Ask ``question`` and hear the answer in ``state``; once more after silence or
-        an answer off the point; None when there is still no answer."""
+        """Ask ``question`` and hear the answer in ``state``; once more after silence, an
+        answer off the point, or one the person says the robot misheard; None when there
+        is still no answer."""
+        denied: list[str] = []
         for attempt in range(_ATTEMPTS):
             if not self.say(question):
                 return None
-            heard = self.listen(state)
-            if heard.text is not None:
+            heard = self.listen(state, denied=tuple(denied))
+            last = attempt + 1 == _ATTEMPTS
+            if heard.text is None:
+                if not last and heard.reason != "no_speech":
+                    self.say("Sorry, I did not understand.")
+                continue
+            if state not in _CONFIRMED or self._confirmed(heard.text):
                 return heard.text
-            if attempt + 1 < _ATTEMPTS and heard.reason != "no_speech":
-                self.say("Sorry, I did not understand.")
+            denied.append(heard.text)
+            if not last:
+                self.say("Sorry, I misheard.")
         return None
+
+    def _confirmed(self, answer: str) -> bool:
+        """Ask whether ``answer`` is what was said: False on a "no" (or an answer not
+        understood); True on a yes, and when nobody objects."""
+        if not self.say(f"Did you say {answer}?"):
+            return True
+        heard = self.listen("yes_no")
+        if heard.reason == "no_speech":
+            return True
+        return heard.text is not None and heard.text.split()[0] in _YES
 
     def agreed(self) -> bool:
         """Listen for the answer to a request just made: whether it was a yes."""
         heard = self.listen("yes_no")
         return heard.text is not None and heard.text.split()[0] in _YES
 
-    def listen(self, state: str) -> Hearing:
-        """What the microphone hears next, as one answer in ``state``."""
+    def listen(self, state: str, denied: tuple[str, ...] = ()) -> Hearing:
+        """What the microphone hears next, as one answer in ``state``, not one of the
+        answers ``denied`` (the person said the robot misheard them)."""
         from homebot.speech.audio import SAMPLE_RATE, resample
         from homebot.speech.recognizer import Hearing
 
@@ -106,7 +130,7 @@ class Conversation:
                 break
             if utterances and audio.size - utterances[-1].end >= _END_OF_TURN * SAMPLE_RATE:
                 break
-        heard = recogniser.hear(np.concatenate(chunks), state)
+        heard = recogniser.hear(np.concatenate(chunks), state, denied=denied)
         self.events.record("robot.heard", text=heard.text, state=state, reason=heard.reason)
         return heard
 

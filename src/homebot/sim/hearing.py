@@ -47,6 +47,11 @@ _COME_ALONG = ("follow me",)
 _HERE_IS = ("here is", "here are", "here you are", "here you go", "this is for you")
 _GO_AHEAD = re.compile(r"go ahead to (?:the )?(.+?)(?:,|\.|$)")
 _YES, _NO = "Yes, sure.", "No, sorry."
+_DID_YOU_SAY = re.compile(r"\s*did you say (.+?)\s*\?*\s*$")
+#: words that frame an answer without carrying it ("my name is", "i said", "a")
+_FRAME_WORDS = {"my", "name", "is", "i", "am", "i'm", "it", "it's", "call", "me", "said",
+                "a", "an", "some", "the", "please", "thank", "you", "would", "like", "from",
+                "come", "want", "years", "old", "favourite", "say"}
 
 
 class PeopleHearing:
@@ -70,6 +75,9 @@ class PeopleHearing:
         self.asked_to_give: tuple[str, str] | None = None
         #: who is handed something ("here is your cup"): they take it when held out
         self.asked_to_take: str | None = None
+        #: what each person was last asked and answered (a question asked again, "did you
+        #: say ...?")
+        self._last: dict[str, tuple[str, str]] = {}
 
     # ------------------------------------------------------------ hearing
 
@@ -81,22 +89,22 @@ class PeopleHearing:
             return
         model = self.sim.people[listener].model
         self.sim.events.record("sim.heard", person=listener, text=sound.text)
-        if listener == self.coming_along and not any(p in text for p in _COME_ALONG):
+        if listener == self.coming_along and not _says(text, _COME_ALONG):
             self.coming_along = None  # spoken to about something else: the walk is over
         reply: str | None
         if "in my hand" in text:
             named = [obj for obj in self.sim.world.objects if fold(obj) in text]
             self.asked_to_give = (listener, max(named, key=len) if named else "")
             return
-        if any(phrase in text for phrase in _HERE_IS):
+        if _says(text, _HERE_IS):
             self.asked_to_take = listener
             return
         if "?" in text and not self._is_request(text):
             question = _without_address(text, listener)
-            reply = self.sim.responder(model, question)
+            reply = self._answer(listener, question)
         elif self._is_request(text):
             reply = _YES if model.cooperative and self._do(listener, text) else _NO
-        elif any(phrase in text for phrase in _COME_ALONG):
+        elif _says(text, _COME_ALONG):
             if model.cooperative:
                 self.coming_along = listener
             reply = _YES if model.cooperative else _NO
@@ -104,6 +112,28 @@ class PeopleHearing:
             return
         if reply:
             self._say(listener, reply, sound.end + _PAUSE)
+
+    def _answer(self, person: str, question: str) -> str | None:
+        """What ``person`` answers to ``question``: the responder's answer, their name at
+        times in a sentence ("My name is John."), an answer asked for again at times as
+        "I said ..." (seeded); to "did you say ...?" after answering, whether the robot
+        repeated the words of their answer ("Yes." or "No.")."""
+        model = self.sim.people[person].model
+        asked = _DID_YOU_SAY.match(question)
+        last = self._last.get(person)
+        if asked is not None and last is not None:
+            return "Yes." if _content(asked.group(1)) == _content(last[1]) else "No."
+        reply = self.sim.responder(model, question)
+        if not reply:
+            return reply
+        forms = [reply]
+        if fold(reply) == fold(person):
+            forms += [f"My name is {reply}.", f"I am {reply}."]
+        elif last is not None and last[0] == fold(question):
+            forms += [f"I said {reply}."]
+        self._last[person] = (fold(question), reply)
+        choice = np.random.default_rng([self.sim.seed, len(self.audio.sounds)])
+        return forms[int(choice.integers(len(forms)))]
 
     def robot_stopped(self, pose: tuple[float, float, float]) -> None:
         """The robot's base came to rest: someone coming along stands behind it."""
@@ -133,7 +163,7 @@ class PeopleHearing:
 
     def _is_request(self, text: str) -> bool:
         return (self._door_named(text) is not None and "open" in text) or \
-            any(phrase in text for phrase in _STEP_ASIDE) or _GO_AHEAD.search(text) is not None
+            _says(text, _STEP_ASIDE) or _GO_AHEAD.search(text) is not None
 
     def _door_named(self, text: str) -> str | None:
         named = [door for door in self.sim.door_state if fold(door) in text]
@@ -176,6 +206,17 @@ class PeopleHearing:
         if self.voice is None:
             return
         self.audio.emit(self.voice(person, text), source=person, text=text, start=start)
+
+
+def _content(text: str) -> set[str]:
+    """The words of an answer that carry it ("my name is john" -> {"john"})."""
+    return set(re.findall(r"[\w']+", fold(text))) - _FRAME_WORDS
+
+
+def _says(text: str, phrases: tuple[str, ...]) -> bool:
+    """Whether ``text`` says one of ``phrases`` as words ("where are you from?" does not
+    say "here are")."""
+    return any(re.search(rf"\b{re.escape(phrase)}\b", text) for phrase in phrases)
 
 
 def _without_address(text: str, person: str) -> str:
