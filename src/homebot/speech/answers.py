@@ -8,7 +8,9 @@ your name?", ``question`` for "what is your question?" (a question about the hom
 (``AnswerRecognizer``, the ``Recognizer`` of CAESAR's two decoders), so what is off the
 point is rejected. An ``open`` answer (where someone is from, what they like) is heard
 with ``open_grammar``: everyday answers, numbers and the home's names; one it rejects
-goes to pocketsphinx's general US English model and dictionary, taken as heard.
+goes to pocketsphinx's general US English model and dictionary, taken as heard. A name
+is heard first among the home's own people (``household_grammar``), then among common
+names too: a visitor misheard as someone of the home says no when the robot checks.
 """
 
 from __future__ import annotations
@@ -32,11 +34,12 @@ from homebot.speech.grammar import (
 from homebot.speech.recognizer import Hearing, Recognizer, state_for_question
 from homebot.speech.segmentation import Segmenter
 
-__all__ = ["EVERYDAY_ANSWERS", "OPEN", "AnswerRecognizer", "answer_state", "open_grammar",
-           "question_grammar"]
+__all__ = ["EVERYDAY_ANSWERS", "OPEN", "AnswerRecognizer", "answer_state", "household_grammar",
+           "open_grammar", "question_grammar"]
 
 OPEN = "open"
 QUESTION = "question"
+_HOUSEHOLD = "household_name"
 #: What people commonly answer about themselves, beside the home's own names: foods,
 #: where they come from, their age. A robot for homes is given this vocabulary as CAESAR's
 #: and Cosero's were given their tasks' words; words outside it go to the open model.
@@ -73,6 +76,15 @@ def answer_state(question: str) -> str:
         return QUESTION
     state = state_for_question(question)
     return OPEN if state == "command" else state
+
+
+def household_grammar(world: Any) -> Grammar:
+    """A name answer naming one of the home's own people (``name_grammar`` without the
+    common names of visitors)."""
+    names = name_grammar(world)
+    return Grammar("household", "answer", {
+        "answer": names.rules["answer"], "name": _alternatives(world.people)},
+        slots=("name",))
 
 
 def question_grammar(world: Any) -> Grammar:
@@ -123,6 +135,7 @@ class AnswerRecognizer:
     def __init__(self, world: Any, *, seed: int = 0,
                  segmenter: Segmenter | None = None) -> None:
         grammars = {"yes_no": yes_no_grammar(), "name": name_grammar(world),
+                    _HOUSEHOLD: household_grammar(world),
                     QUESTION: question_grammar(world), OPEN: open_grammar(world)}
         drinks = drink_grammar(world)
         if "<VOID>" not in drinks.rules["drink"]:
@@ -141,7 +154,7 @@ class AnswerRecognizer:
 
     @property
     def states(self) -> tuple[str, ...]:
-        return tuple(self._states.grammars)
+        return tuple(state for state in self._states.grammars if state != _HOUSEHOLD)
 
     def hear(self, audio: Audio, state: str, denied: tuple[str, ...] = ()) -> Hearing:
         """The answer in ``audio`` (found by the VAD), heard in ``state``; a state this
@@ -149,8 +162,15 @@ class AnswerRecognizer:
         grammar rejects is heard by the general model, taken as heard. An answer that
         names what a ``denied`` answer named (the person said it was misheard) gives way
         to the trigram decoder's best other hypothesis the grammar can produce whole."""
-        if state not in self._states.grammars:
+        if state not in self.states:
             state = OPEN
+        if state == "name":
+            # the people of the home first: far likelier than any other name
+            known = self._states.hear(audio, _HOUSEHOLD)
+            if known.text is not None and denied:
+                known = self._not_denied(known, _HOUSEHOLD, denied)
+            if known.text is not None:
+                return replace(known, state="name")
         heard = self._states.hear(audio, state)
         if heard.text is not None and denied:
             heard = self._not_denied(heard, state, denied)
