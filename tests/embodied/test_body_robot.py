@@ -56,14 +56,17 @@ def test_a_fetch_and_deliver_task_succeeds_by_ground_truth(
     assert run.simulation.collisions == []
 
 
-def test_a_closed_door_stops_the_robot_in_front_and_the_protocol_opens_it(
+def test_a_closed_door_stops_the_robot_in_front_and_someone_asked_opens_it(
         apartment: World, apartment_navigator: Navigator) -> None:
     run = _run(apartment, apartment_navigator)
     run.simulation.door_state["bedroom door"] = DoorState.CLOSED
+    # someone in the corridor, a step from the door, hears the robot ask
+    run.simulation.move_person("Sophie", run.simulation.free_floor_near((2.8, 5.4)))
     report = run.run(Task((Step("navigate", {"to": "bed"}),)))
-    assert report.success
+    assert report.success, report.reason
     kinds = [(event.kind, event.data.get("door")) for event in run.simulation.events.events]
     assert ("robot.blocked", "bedroom door") in kinds
+    assert ("sim.person", "bedroom door") in kinds  # she opened it, asked aloud
     assert run.simulation.door_state["bedroom door"] is DoorState.OPEN
     assert run.simulation.collisions == []
 

@@ -221,8 +221,6 @@ def _filled(cell: types.CellType) -> bool:
     return True
 
 
-@pytest.mark.xfail(strict=True, reason="issue 42 in progress: app.embodied still wires the "
-                   "simulation's stand-ins (_wire_simulated_objects)")
 def test_the_embodied_robot_reaches_the_simulation_only_through_its_body() -> None:
     """What ``build_run`` hands the embodied robot holds nothing of ``homebot.sim`` (a
     ``Simulation``, a ``SimRobot``, the simulator's hands or people) but the ``SimBody``."""

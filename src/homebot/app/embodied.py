@@ -10,7 +10,6 @@ simulation reaches the robot only through the ``SimBody``
 from __future__ import annotations
 
 import importlib.util
-import math
 import zlib
 from typing import TYPE_CHECKING
 
@@ -26,7 +25,6 @@ from homebot.world import World
 
 if TYPE_CHECKING:
     from homebot.embodied import BodyRobot
-    from homebot.sim.body import SimBody
     from homebot.sim.hearing import PersonVoice
 
 __all__ = ["embodied_robot", "embodied_robot_in"]
@@ -34,7 +32,6 @@ __all__ = ["embodied_robot", "embodied_robot_in"]
 # Seed stream of the robot's own filter, apart from the simulation's and the body's.
 _LOCALISATION_STREAM = 303
 _FACE_HALF_ANGLE = 0.25  #: radians off the head's axis within which a face is the one looked at
-_HAND_REACH = 0.08  #: metres from an object's centre within which a grasp closes on it
 
 
 def embodied_robot_in(simulation: Simulation, navigator: Navigator, *, walkers: int = 0,
@@ -53,7 +50,6 @@ def embodied_robot_in(simulation: Simulation, navigator: Navigator, *, walkers: 
                    voice=_people_voice())
     robot = embodied_robot(body, simulation.world, navigator, seed=simulation.seed,
                            events=simulation.events, known_start=known_start)
-    _wire_simulated_objects(robot, simulation, body)
     return robot
 
 
@@ -98,16 +94,16 @@ def embodied_robot(body: Body, world: World, navigator: Navigator, *, seed: int,
         localisation.initialise(world.robot.pose, spread=0.05, angle_spread=0.05)
     else:
         localisation.initialise_globally()
-    looking = TableLook(body, world, perception_for(world, seed), _UnwiredObjects())
+    looking = TableLook(body, world, perception_for(world, seed))
     robot: BodyRobot
-    if importlib.util.find_spec("mujoco") is None:  # no physics: grasps stay symbolic
+    if importlib.util.find_spec("mujoco") is None:  # no arm in physics: an armless robot
         robot = BodyRobot(body, world, navigator, localisation, MotionSearchPlanner(),
                           events, looking=looking)
     else:
         from homebot.embodied.hands import ArmedBodyRobot, SeenObjects
         from homebot.manipulation.control import ArmControl
 
-        seen = SeenObjects(world, _unseen)
+        seen = SeenObjects(world)
         arm = ArmControl(body, world, seen, seed=seed)
         robot = ArmedBodyRobot(body, world, navigator, localisation, MotionSearchPlanner(),
                                events, looking=looking, arm=arm, seen=seen)
@@ -118,73 +114,3 @@ def embodied_robot(body: Body, world: World, navigator: Navigator, *, seed: int,
                                    acquaintances=robot.acquaintances,
                                    face_images=robot.face_views)
     return robot
-
-
-def _unseen(name: str) -> tuple[float, float, float, float] | None:
-    """The arm's planning scene has only what perception saw."""
-    return None
-
-
-class _UnwiredObjects:
-    """No world behind the camera decides which object a hand meets: detections get no
-    handle of the simulator's, and looking changes nothing."""
-
-    def object_at(self, point: tuple[float, float], placement: str) -> int | None:
-        return None
-
-    def looked_at(self, placement: str) -> None:
-        return None
-
-
-def _wire_simulated_objects(robot: BodyRobot, simulation: Simulation, body: SimBody) -> None:
-    """Stand-ins over the simulation's truth for what the body does not do yet (issue 42
-    removes them one by one): the symbolic robot for hands, doors and conversation, and the
-    simulator's object poses and handles."""
-    from homebot.embodied.hands import ArmedBodyRobot, SeenObjects
-    from homebot.sim import SimRobot
-
-    percepts = SimRobot(simulation)
-    robot._percepts = percepts
-    if robot.looking is not None:
-        robot.looking.objects = _SimulatedObjects(simulation)
-    if isinstance(robot, ArmedBodyRobot) and isinstance(robot.arm.locate, SeenObjects):
-        robot.arm.locate.fallback = _TrueObjectPoses(simulation, body)
-
-
-class _TrueObjectPoses:
-    """Where objects stand, for the arm's planning scene: the simulator's truth (x, y,
-    heading, surface height), standing in until perception reports object poses; a
-    detection's own position, when perception gives one, takes precedence for the target."""
-
-    def __init__(self, simulation: Simulation, body: SimBody) -> None:
-        self.sim = simulation
-        self.body = body
-
-    def __call__(self, name: str) -> tuple[float, float, float, float] | None:
-        from homebot.world import surface_height
-
-        where = self.sim.object_location.get(name)
-        if where is None or where not in self.sim.world.placements:
-            return None
-        x, y = self.sim.position_on(name, where)
-        return (x, y, self.body.hands.heading(name),
-                surface_height(self.sim.world.placements[where].model))
-
-
-class _SimulatedObjects:
-    """What the simulated world does when the robot looks or reaches (``ObjectWorld``)."""
-
-    def __init__(self, simulation: Simulation) -> None:
-        self.sim = simulation
-
-    def object_at(self, point: tuple[float, float], placement: str) -> int | None:
-        """The object on ``placement`` nearest ``point``, if the hand reaching there meets it."""
-        sim = self.sim
-        near = sorted((math.dist(point, sim.position_on(name, placement)), name)
-                      for name in sim.objects_on(placement))
-        if not near or near[0][0] > _HAND_REACH:
-            return None
-        return sim.object_ids[near[0][1]]
-
-    def looked_at(self, placement: str) -> None:
-        self.sim.maybe_move_during_task(placement)

@@ -26,7 +26,7 @@ from shapely.geometry import LineString, Point
 
 from homebot.embodied.robot import BodyRobot
 from homebot.geometry import Pose
-from homebot.manipulation.control import ArmControl, Locate
+from homebot.manipulation.control import ArmControl
 from homebot.manipulation.pick import PickOutcome, PickResult
 from homebot.robot import Detection
 from homebot.world import World, surface_height
@@ -52,32 +52,28 @@ _WAIT_FOR_GIVER = 6.0  #: seconds the robot holds its open hand out before closi
 
 
 class SeenObjects:
-    """Where the robot's camera last saw each object: the arm's ``Locate``.
+    """Where the robot's camera last saw each object: the arm's ``Locate``. The arm's
+    planning scene holds only what was seen; an object never seen is in no scene.
 
     Args:
         world: the map (surfaces and their heights).
-        fallback: the wiring's locate (the simulator's truth, until perception reports
-            poses), for what perception has not seen and for a box's heading, which
-            perception does not estimate yet.
     """
 
-    def __init__(self, world: World, fallback: Locate) -> None:
+    def __init__(self, world: World) -> None:
         self.world = world
-        self.fallback = fallback
-        #: where perception last saw each object: (placement, map position); the
-        #: ``ArmedBodyRobot`` keeps it
-        self.places: dict[str, tuple[str, tuple[float, float]]] = {}
+        #: where perception last saw each object: (placement, map position, heading or
+        #: None); the ``ArmedBodyRobot`` keeps it
+        self.places: dict[str, tuple[str, tuple[float, float], float | None]] = {}
 
     def __call__(self, name: str) -> tuple[float, float, float, float] | None:
-        """Where the arm's planning scene puts ``name``: where perception last saw it (on
-        the surface it was seen on, at the map's height for it), else the fallback's."""
-        given = self.fallback(name)
+        """Where the arm's planning scene puts ``name``: where perception last saw it, on
+        the surface it was seen on at the map's height for it, turned as perception fitted
+        it (0 when it did not); None for what it has not seen."""
         remembered = self.places.get(name)
         if remembered is None or remembered[0] not in self.world.placements:
-            return given
-        placement, (x, y) = remembered
-        heading = given[2] if given is not None else 0.0
-        return (x, y, heading, surface_height(self.world.placements[placement].model))
+            return None
+        placement, (x, y), heading = remembered
+        return (x, y, heading or 0.0, surface_height(self.world.placements[placement].model))
 
 
 class ArmedBodyRobot(BodyRobot):
@@ -102,16 +98,16 @@ class ArmedBodyRobot(BodyRobot):
         self._holding: dict[str, Detection] = {}
         self._asked_for: str | None = None  #: the object last asked to be put in the hand
         self._handles = 0  #: the robot's own handles for what it was handed
-        #: where perception last saw each object: (placement, map position)
+        #: where perception last saw each object: (placement, map position, heading)
         self.seen = seen.places
 
     def perceive_objects(self, placement: str) -> list[Detection]:
         detections = super().perceive_objects(placement)
-        for name in [n for n, (where, _) in self.seen.items() if where == placement]:
+        for name in [n for n, (where, _, _) in self.seen.items() if where == placement]:
             del self.seen[name]  # not there any more, or seen anew below
         for detection in detections:
             if detection.position is not None:
-                self.seen[detection.label] = (placement, detection.position)
+                self.seen[detection.label] = (placement, detection.position, detection.heading)
         return detections
 
     def grasp(self, detection: Detection, hand: str) -> str | None:
@@ -177,7 +173,7 @@ class ArmedBodyRobot(BodyRobot):
             held = self.arm.holding.name if self.arm.holding is not None else None
             outcome = self.arm.place(placement, self.pose(), drop=category in _BIN_CATEGORIES)
             if held is not None and outcome.done and outcome.spot is not None:
-                self.seen[held] = (placement, outcome.spot)  # where it was put
+                self.seen[held] = (placement, outcome.spot, None)  # where it was put
             self.events.record("robot.place", placement=placement, done=outcome.done,
                                detail=outcome.detail)
             done = outcome.done

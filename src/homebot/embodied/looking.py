@@ -13,7 +13,6 @@ seen.
 from __future__ import annotations
 
 import math
-from typing import Protocol
 
 from shapely.geometry import Point
 
@@ -22,7 +21,7 @@ from homebot.perception.recognition import ObjectEstimate, TabletopPerception
 from homebot.robot import Body, Detection
 from homebot.world import World, surface_height
 
-__all__ = ["ObjectWorld", "TableLook"]
+__all__ = ["TableLook"]
 
 _CAMERA_HEIGHT = 1.3  #: metres: the head camera above the floor
 #: radians: half the camera's horizontal field of view less a margin, so that neighbouring
@@ -37,17 +36,6 @@ _SAME_OBJECT = 0.05  #: metres between estimates from two views of one object
 _VIEW_SECONDS = 0.7  #: the head turns and the camera settles
 
 
-class ObjectWorld(Protocol):
-    """What the robot does not decide: which object the hand meets where it reaches, and
-    the world changing while the robot looks."""
-
-    def object_at(self, point: tuple[float, float], placement: str) -> int | None:
-        """The handle of the object standing at ``point`` on ``placement`` (None: nothing)."""
-
-    def looked_at(self, placement: str) -> None:
-        """The robot looks at ``placement`` now."""
-
-
 class TableLook:
     """Looks at placements for a ``BodyRobot``.
 
@@ -55,22 +43,19 @@ class TableLook:
         body: the head and camera.
         world: the map: placement footprints, surface heights, approach poses.
         perception: the trained table-top pipeline.
-        objects: where a grasp would land (``ObjectWorld``).
     """
 
-    def __init__(self, body: Body, world: World, perception: TabletopPerception,
-                 objects: ObjectWorld) -> None:
+    def __init__(self, body: Body, world: World, perception: TabletopPerception) -> None:
         self.body = body
         self.world = world
         self.perception = perception
-        self.objects = objects
+        self._sightings = 0  #: detections made so far: each gets its own handle
 
     def look(self, placement: str, pose: Pose) -> list[Detection]:
         """The objects seen on ``placement`` from ``pose`` (the robot's estimate)."""
         where = self.world.placements.get(placement)
         if where is None or where.footprint.distance(Point(pose.xy())) > _REACH:
             return []
-        self.objects.looked_at(placement)
         height = surface_height(where.model)
         seen: list[tuple[ObjectEstimate, tuple[float, float]]] = []
         for pan, tilt in self._views(placement, pose, height):
@@ -81,7 +66,7 @@ class TableLook:
                 if where.footprint.buffer(_ON_SURFACE).contains(Point(point)):
                     seen.append((estimate, point))
         self.body.point_head(0.0, 0.0)
-        return [self._detection(estimate, point, placement)
+        return [self._detection(estimate, point, placement, pose)
                 for estimate, point in _merged(seen)]
 
     def _views(self, placement: str, pose: Pose,
@@ -108,11 +93,13 @@ class TableLook:
         return [(low + step * (index + 0.5), tilt) for tilt in tilts for index in range(views)]
 
     def _detection(self, estimate: ObjectEstimate, point: tuple[float, float],
-                   placement: str) -> Detection:
-        handle = self.objects.object_at(point, placement)
-        return Detection(estimate.label, estimate.category, -1 if handle is None else handle,
+                   placement: str, pose: Pose) -> Detection:
+        self._sightings += 1  # the robot's own handle: this sighting
+        return Detection(estimate.label, estimate.category, self._sightings,
                          (round(point[0], 3), round(point[1], 3)),
-                         size=round(estimate.size, 3), mass=round(estimate.mass, 3))
+                         size=round(estimate.size, 3), mass=round(estimate.mass, 3),
+                         heading=None if estimate.heading is None else
+                         round(wrap_angle(estimate.heading + pose.theta), 4))
 
 
 def _merged(seen: list[tuple[ObjectEstimate, tuple[float, float]]],

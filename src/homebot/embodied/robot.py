@@ -11,9 +11,10 @@ or blocked door so the executive's door protocol can act.
 Objects on placements are seen with the head camera through the table-top
 pipeline (``looking``); people with the laser, the head camera and faces
 (``people_look``); whether a door is open by whether the laser's beams pass
-through the doorway (``doors``). What the hands and the voice do without a
-module of their own yet (a symbolic door handle, answers, handing over) goes to
-``percepts``, another Robot implementation over the same world.
+through the doorway (``doors``). The robot speaks through the body's speaker and
+hears answers in its microphone (``conversation``). It holds nothing of the simulator:
+everything it believes comes through the ``Body`` port. Hands are the arm's
+(``ArmedBodyRobot``, ``homebot.embodied.hands``); a ``BodyRobot`` alone has none.
 """
 
 from __future__ import annotations
@@ -94,21 +95,17 @@ class BodyRobot(Robot):
             pipeline.
         conversation: speaks and hears through the body (default: answers heard by an
             ``AnswerRecognizer`` for ``world``, built on the first question).
-        percepts: a stand-in for what the body does not do yet (None: nothing stands in;
-            what needs it raises ``PartMissing``).
     """
 
     def __init__(self, body: Body, world: World, navigator: Navigator,
                  localisation: MonteCarloLocalisation, controller: LocalController,
                  events: EventLog, *, looking: TableLook | None = None,
-                 conversation: Conversation | None = None,
-                 percepts: Robot | None = None) -> None:
+                 conversation: Conversation | None = None) -> None:
         self.body = body
         self.world = world
         self.navigator = navigator
         self.localisation = localisation
         self.controller = controller
-        self._percepts = percepts
         self.events = events
         self.looking = looking
         self.conversation = conversation or Conversation(body, events,
@@ -129,13 +126,6 @@ class BodyRobot(Robot):
         self.localisation.update(body.odometry(), body.scan())
 
     # ------------------------------------------------------------ state
-
-    @property
-    def percepts(self) -> Robot:
-        """The stand-in for what the body does not do yet."""
-        if self._percepts is None:
-            raise PartMissing("a way to do this through the body")
-        return self._percepts
 
     @property
     def hands(self) -> tuple[str, ...]:
@@ -344,35 +334,42 @@ class BodyRobot(Robot):
         finally:
             self._walking_with = None
 
-    # ------------------------------------------------------------ the rest stays symbolic
+    # ------------------------------------------------------------ perception and hands
 
     def perceive_objects(self, placement: str) -> list[Detection]:
-        if self.looking is not None:
-            return self.looking.look(placement, self.pose())
-        return self.percepts.perceive_objects(placement)
+        """What the head camera sees on ``placement`` (nothing without a camera look)."""
+        if self.looking is None:
+            return []
+        return self.looking.look(placement, self.pose())
 
     def perceive_people(self) -> list[PersonPercept]:
-        if self.people_look is not None:
-            return self.people_look.look()
-        return self.percepts.perceive_people()
+        """Who the laser and the head camera see (nobody without a people look)."""
+        if self.people_look is None:
+            return []
+        return self.people_look.look()
+
+    # A body without an arm (``ArmedBodyRobot`` has one) holds nothing and takes nothing.
 
     def grasp(self, detection: Detection, hand: str) -> str | None:
-        return self.percepts.grasp(detection, hand)
+        return f"I have no arm to take the {detection.label} with"
 
     def held(self, hand: str) -> Detection | None:
-        return self.percepts.held(hand)
+        return None
 
     def release(self, hand: str, placement: str) -> None:
-        self.percepts.release(hand, placement)
+        return None
 
     def hand_over(self, hand: str, person: str) -> bool:
-        return self.percepts.hand_over(hand, person)
+        return False
 
     def receive(self, hand: str, person: str) -> Detection | None:
-        return self.percepts.receive(hand, person)
+        return None
 
     def open_door(self, door: str) -> bool:
-        return self.percepts.open_door(door)
+        """Whether ``door`` is open, as the laser sees it from before it. The arm does not
+        open doors inside a task yet: a shut door stays shut (the executive's door
+        protocol then asks someone to open it)."""
+        return self.door_is_open(door) is True
 
     def door_is_open(self, door: str) -> bool | None:
         model = self.world.doors.get(door)

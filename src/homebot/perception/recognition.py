@@ -10,6 +10,7 @@ the simulator renders them and this layer never imports it).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 
@@ -47,6 +48,27 @@ class ObjectEstimate:
     rgb: tuple[int, int, int]  #: median colour seen
     mass: float  #: kg, the recognised object's
     truncated: bool = False  #: it reaches the picture's edge: part of it may be outside
+    #: radians, base frame: the heading of the recognised box's x side, from a minimum-area
+    #: rectangle fitted to the top face (None: not a box, or too few points)
+    heading: float | None = None
+
+
+def box_heading(top: np.ndarray, extent: Sequence[float]) -> float | None:
+    """The heading (radians, in the points' frame, modulo pi) of a box's x side, from the
+    minimum-area rectangle round its top face's points (``cv2.minAreaRect``): of the
+    rectangle's two sides, the one whose length is nearer the box's x extent is its x side.
+    None for fewer than five points."""
+    if len(top) < 5:
+        return None
+    import cv2
+
+    (_, _), (first, second), degrees = cv2.minAreaRect(np.asarray(top[:, :2], np.float32))
+    angle = math.radians(degrees)
+    x_side, y_side = float(extent[0]), float(extent[1])
+    first_is_x = abs(first - x_side) + abs(second - y_side) <= \
+        abs(first - y_side) + abs(second - x_side)
+    heading = angle if first_is_x else angle + math.pi / 2
+    return math.atan2(math.sin(2 * heading), math.cos(2 * heading)) / 2
 
 
 def match_positions(estimated: Sequence[Sequence[float]], truth: Sequence[Sequence[float]],
@@ -157,5 +179,7 @@ class TabletopPerception:
                 label or "object", entry.category if entry else "object", confidence,
                 segment.position(), max(height, major), height,
                 (int(rgb[0]), int(rgb[1]), int(rgb[2])), entry.mass if entry else 0.0,
-                _at_edge(frame, segment.points)))
+                _at_edge(frame, segment.points),
+                box_heading(segment.top(), entry.extent[:2])
+                if entry is not None and entry.shape.value == "box" else None))
         return estimates

@@ -53,8 +53,8 @@ class MoveReport:
 class Detection:
     """An object seen by perception. ``handle`` lets the arm reach that very object;
     ``position`` is where it stands (map frame, metres) when perception tells; ``size``
-    (largest dimension, metres) and ``mass`` (kg) are perception's estimates, when it
-    makes them (None: ask the world file)."""
+    (largest dimension, metres), ``mass`` (kg) and ``heading`` are perception's
+    estimates, when it makes them (None: ask the world file)."""
 
     label: str
     category: str
@@ -62,6 +62,8 @@ class Detection:
     position: tuple[float, float] | None = None
     size: float | None = None
     mass: float | None = None
+    #: radians, map frame: how a box stands turned (its x side), when perception fits it
+    heading: float | None = None
 
 
 @dataclass(frozen=True, slots=True)

@@ -16,6 +16,7 @@ from collections.abc import Sequence
 from dataclasses import replace
 
 import numpy as np
+from shapely.geometry import Point as ShapelyPoint
 
 from homebot.errors import BodyError, PartMissing
 from homebot.geometry import Pose, wrap_angle
@@ -60,6 +61,7 @@ _PAN_LIMIT = 2.6
 _TILT_LIMITS = (-0.4, 0.9)
 _CONTACT_HYSTERESIS = 0.03  #: metres clear of an obstacle before a new touch counts again
 _TRAJECTORY_STEP = 0.1  #: metres between recorded trajectory points
+_LOOKING_REACH = 1.0  #: metres from a placement within which the robot looks at it
 _CATCH_UP_STEP = 0.5  #: seconds per walking step when time passed outside the ticks
 # Seeds of the body's own random streams, apart from the simulation's disturbances.
 _SENSOR_STREAM, _WALKER_STREAM, _CAMERA_STREAM = 101, 202, 404
@@ -203,8 +205,17 @@ class SimBody(Body):
     def camera(self) -> RgbdFrame:
         """The head camera's frame of the true home: furniture, walls, the objects on
         their surfaces and the people (``homebot.sim.camera``, ``sim.body_tracker``)."""
+        self._first_looks()
         return self.camera_simulator.render(self.now(), self.sim.robot_pose, self._head,
                                             self._solids())
+
+    def _first_looks(self) -> None:
+        """The first time the camera sees a placement the robot stands at, someone may
+        just have moved an object from it (``Simulation.maybe_move_during_task``)."""
+        here = ShapelyPoint(self.sim.robot_pose[:2])
+        for name, placement in sorted(self.sim.world.placements.items()):
+            if placement.footprint.distance(here) <= _LOOKING_REACH:
+                self.sim.maybe_move_during_task(name)
 
     def person_view(self, spot: tuple[float, float]) -> PersonView | None:
         """The skeleton tracker's view of the person standing at ``spot``
