@@ -19,6 +19,7 @@ from rich.table import Table
 
 from homebot.app import Fidelity, RunSettings, build_run, disturbed
 from homebot.bench.arguments import add_fidelity_option, count, disturbance_level, seed
+from homebot.events import Event
 from homebot.navigation import Navigator
 from homebot.trials.errands import Errand, ErrandKind, errands
 from homebot.trials.fetch import fetch_tasks
@@ -41,6 +42,8 @@ class ModeResult:
     wall_times: list[float] = field(default_factory=list)
     #: per errand kind: [tasks, verified done]
     by_kind: dict[str, list[int]] = field(default_factory=dict)
+    #: the hands in the loop, from the simulator's log: [tried, done by the truth]
+    hands: dict[str, list[int]] = field(default_factory=dict)
 
     def to_dict(self) -> dict[str, Any]:
         return {
@@ -52,7 +55,28 @@ class ModeResult:
             "median_wall_ms": round(1000 * statistics.median(self.wall_times or [0.0]), 3),
             "by_kind": {kind: {"tasks": tasks, "verified": verified}
                         for kind, (tasks, verified) in sorted(self.by_kind.items())},
+            "hands": {what: {"tried": tried, "done": done}
+                      for what, (tried, done) in sorted(self.hands.items())},
         }
+
+    def count_hands(self, events: list[Event]) -> None:
+        """Grasps, hand-overs and receptions the embodied robot tried (its own log) and
+        what the truth made of them (the simulator's log): a grasp lifted the object, a
+        hand-over left it with a person, a person let go of what they put in the hand."""
+        kinds = [(event.kind, event.data) for event in events]
+        pairs = {
+            "grasp": (sum(k == "robot.pick" and d.get("outcome") != "unreachable"
+                          for k, d in kinds),
+                      sum(k == "sim.arm" and d.get("what") == "lifted" for k, d in kinds)),
+            "hand_over": (sum(k == "robot.hand_over" for k, _ in kinds),
+                          sum(k == "sim.person" and d.get("did") == "took" for k, d in kinds)),
+            "receive": (sum(k == "robot.receive" for k, _ in kinds),
+                        sum(k == "sim.person" and d.get("did") == "let go" for k, d in kinds)),
+        }
+        for what, (tried, done) in pairs.items():
+            counts = self.hands.setdefault(what, [0, 0])
+            counts[0] += tried
+            counts[1] += done
 
 
 def errand_set(world: World, tasks: int, seed: int, mix: str = "everyday") -> list[Errand]:
@@ -84,6 +108,8 @@ def compare_modes(world: World, tasks: int, seed: int, level: float = 1.0,
             really = errand.done(run.simulation)
             result.delivered += really
             result.verified += really and report.success
+            if fidelity is Fidelity.EMBODIED:
+                result.count_hands(run.simulation.events.events)
             counts = result.by_kind.setdefault(str(errand.kind), [0, 0])
             counts[0] += 1
             counts[1] += really and report.success
@@ -125,6 +151,11 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
                           str(result["failed_and_told_why"]),
                           f"{result['median_sim_time_s']} s", f"{result['median_wall_ms']} ms")
         console.print(table)
+        for result in results:
+            if result["hands"]:
+                console.print(f"{result['mode']}: hands in the loop, by the truth: " + ", ".join(
+                    f"{what} {counts['done']}/{counts['tried']}"
+                    for what, counts in result["hands"].items()))
     return {"benchmark": "robustness", "errands": args.errands, "tasks": args.tasks,
             "seed": args.seed,
             "fidelity": str(args.fidelity), "modes": results}
