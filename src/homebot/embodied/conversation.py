@@ -6,9 +6,9 @@ microphone fills, until an utterance has ended (``_END_OF_TURN`` seconds of quie
 speech) or nobody has begun within ``_WAIT`` seconds, and hears it in a dialogue state
 (``homebot.speech.answers``). ``ask`` asks, listens and, when nobody answers or the answer
 is off the point, says so and asks once more. A name, a drink or an open answer is
-confirmed ("Did you say John?"); on a "no" the robot asks once more and hears the answer
-as anything but what was denied. Nothing here knows who is in the home: what
-was said comes only through the microphone.
+confirmed ("Did you say John?"); on a "no" the robot asks again (up to three times in
+all) and hears the answer as anything but what was denied. Nothing here knows who is in
+the home: what was said comes only through the microphone.
 """
 
 from __future__ import annotations
@@ -33,6 +33,7 @@ _LONGEST_ANSWER = 12.0  #: seconds of answer the robot listens to at most
 _END_OF_TURN = 0.9  #: seconds of quiet after speech that end an answer
 _LISTEN_STEP = 0.25  #: seconds the body ticks between looks at what the microphone heard
 _ATTEMPTS = 2  #: a question is asked at most twice
+_ATTEMPTS_WHEN_CORRECTED = 3  #: ... or thrice when the person said it was misheard
 _YES = {"yes", "yeah", "sure", "of", "correct", "that", "right"}  #: first words of a yes
 #: dialogue states whose answers the robot confirms ("Did you say John?"): a misheard name
 #: or wish comes back as a "no", and the question is asked again
@@ -74,19 +75,22 @@ class Conversation:
         answer off the point, or one the person says the robot misheard; None when there
         is still no answer."""
         denied: list[str] = []
-        for attempt in range(_ATTEMPTS):
+        attempt, attempts = 0, _ATTEMPTS
+        while attempt < attempts:
+            attempt += 1
             if not self.say(question):
                 return None
             heard = self.listen(state, denied=tuple(denied))
-            last = attempt + 1 == _ATTEMPTS
             if heard.text is None:
-                if not last and heard.reason != "no_speech":
+                if attempt < attempts and heard.reason != "no_speech":
                     self.say("Sorry, I did not understand.")
                 continue
             if state not in _CONFIRMED or self._confirmed(heard.text):
                 return heard.text
             denied.append(heard.text)
-            if not last:
+            # someone who answers and corrects the robot is worth one more try
+            attempts = _ATTEMPTS_WHEN_CORRECTED
+            if attempt < attempts:
                 self.say("Sorry, I misheard.")
         return None
 
