@@ -43,11 +43,17 @@ def test_someone_in_an_open_doorway_does_not_shut_it(
     assert run.robot.door_is_open(DOOR) is True
 
 
-def test_a_door_out_of_sight_is_not_known(apartment: World,
-                                          apartment_navigator: Navigator) -> None:
+@pytest.mark.parametrize("state", [DoorState.OPEN, DoorState.CLOSED])
+def test_a_door_behind_the_robot_is_turned_to_and_read(
+        apartment: World, apartment_navigator: Navigator, state: DoorState) -> None:
     run = _robot_before_the_door(apartment, apartment_navigator, 1.0)
+    run.simulation.door_state[DOOR] = state
     here = run.simulation.robot_pose
     turned = Pose(here[0], here[1], here[2] + math.pi)  # the door is in the laser's blind spot
     run.simulation.robot_pose = (turned.x, turned.y, turned.theta)
     run.robot.localisation.initialise(turned, spread=0.01, angle_spread=0.01)  # type: ignore[attr-defined]
-    assert run.robot.door_is_open(DOOR) is None
+    assert run.robot.door_is_open(DOOR) is (state is DoorState.OPEN)
+    door = apartment.doors[DOOR].position
+    x, y, theta = run.simulation.robot_pose
+    bearing = math.atan2(door[1] - y, door[0] - x)
+    assert abs(math.remainder(bearing - theta, math.tau)) < 0.5  # it turned to face the door

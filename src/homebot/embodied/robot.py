@@ -271,6 +271,11 @@ class BodyRobot(Robot):
         blocking = sorted((gap, name or "") for gap, name in seen if gap <= _IN_THE_WAY)
         return blocking[0][1] if blocking else None
 
+    def _turn_towards(self, point: tuple[float, float]) -> None:
+        """Turn on the spot towards ``point`` and take a fresh sweep."""
+        self.navigation.face(point)
+        self.body.tick()
+
     def _person_near(self, point: tuple[float, float], reach: float) -> str | None:
         """The name of the person seen nearest ``point`` within ``reach``; "" when the
         robot cannot name them, None for nobody."""
@@ -381,6 +386,12 @@ class BodyRobot(Robot):
         self.body.tick()  # a fresh sweep: the door may have moved since the last one
         seen = door_seen_open(self.body.scan(), self.pose(), model.position, normal,
                               model.width)
+        if seen is None:
+            # The doorway is behind the robot or at the edge of its view: turn to face it
+            # and look again, rather than take a door it cannot see for shut.
+            self._turn_towards(model.position)
+            seen = door_seen_open(self.body.scan(), self.pose(), model.position, normal,
+                                  model.width)
         if seen is False and self._person_near(model.position, model.width / 2) is not None:
             return True  # the laser cannot tell a leaf from someone filling the doorway
         return seen

@@ -411,11 +411,14 @@ class RecoveringNavigation:
     def _face(self, path: tuple[tuple[float, float], ...]) -> None:
         """Turn on the spot to face along ``path`` (Nav2's spin recovery): a local
         planner caught facing away from its way may find none it can start on."""
+        self.face(_point_along(path, self.localise().xy(), _FACE_AHEAD))
+
+    def face(self, point: tuple[float, float]) -> None:
+        """Turn on the spot until ``point`` lies straight ahead (within a few degrees)."""
         body = self.body
         pose = self.localise()
-        ahead = _point_along(path, pose.xy(), _FACE_AHEAD)
         for _ in range(int(2 * math.pi / (body.limits.angular * body.tick_period)) + 1):
-            error = wrap_angle(math.atan2(ahead[1] - pose.y, ahead[0] - pose.x) - pose.theta)
+            error = wrap_angle(math.atan2(point[1] - pose.y, point[0] - pose.x) - pose.theta)
             if abs(error) <= _FACED:
                 break
             limit = math.sqrt(2 * body.limits.angular_acceleration * abs(error))
