@@ -3,10 +3,10 @@
     PYTHONPATH=src python benchmarks/handovers_in_errands.py apartment --seeds 104,105
 
 Per seed, ``homebot.trials.errands`` draws ``--errands`` errands; each FETCH (ends in
-``give``) and TAKE (starts with ``receive``) one runs alone in an embodied run. A hand-over
-succeeded when the truth has the object with the person (``Errand.done``); a receive succeeded when the
-person let go into the robot's hand (the simulator's ``sim.person`` event) and the object
-no longer is with them. ASK errands are skipped.
+``give``) and TAKE (starts with ``receive``) one runs alone in an embodied run. A
+hand-over succeeded when the truth has the object with the person (``Errand.done``); a
+receive succeeded when the person let go into the robot's hand (the simulator's
+``sim.person`` event) and the object no longer is with them. ASK errands are skipped.
 """
 
 from __future__ import annotations
