@@ -12,10 +12,9 @@ from __future__ import annotations
 
 import json
 import sys
-import time
 
-from homebot.app import Fidelity, RunSettings, build_run, disturbed
-from homebot.bench.robustness import ModeResult, errand_set
+from homebot.app import Fidelity
+from homebot.bench.robustness import ModeResult, errand_set, run_errand
 from homebot.navigation import Navigator
 from homebot.world import World
 
@@ -25,26 +24,14 @@ def main(world_name: str, tasks: int, seed: int) -> None:
     navigator = Navigator(world)
     result = ModeResult("monitored + recovery")
     for index, errand in enumerate(errand_set(world, tasks, seed)):
-        run = build_run(RunSettings(world=world, seed=seed * 100_003 + index,
-                                    disturbances=disturbed(1.0), navigator=navigator,
-                                    fidelity=Fidelity.EMBODIED))
-        errand.arrange(run.simulation)
-        started = time.perf_counter()
-        report = run.run(errand.task)
-        wall = time.perf_counter() - started
-        verified = errand.done(run.simulation) and report.success
-        result.tasks += 1
-        result.verified += verified
-        result.sim_times.append(report.sim_time)
-        result.wall_times.append(wall)
-        result.count_hands(run.simulation.events.events)
-        counts = result.by_kind.setdefault(str(errand.kind), [0, 0])
-        counts[0] += 1
-        counts[1] += verified
-        why = "" if verified else (f"{report.reason!r} said {report.speech[-1:]} truth: "
-                                   f"{'done' if errand.done(run.simulation) else 'not done'}")
-        print(index, errand.kind.value, "OK" if verified else "FAIL",
-              f"{report.sim_time:.1f} s", f"{wall:.1f} s wall", why, flush=True)
+        ran = run_errand(world, errand, seed * 100_003 + index, navigator=navigator,
+                         fidelity=Fidelity.EMBODIED)
+        result.add(ran, hands=True)
+        report = ran.report
+        why = "" if ran.verified else (f"{report.reason!r} said {report.speech[-1:]} truth: "
+                                       f"{'done' if ran.done else 'not done'}")
+        print(index, errand.kind.value, "OK" if ran.verified else "FAIL",
+              f"{report.sim_time:.1f} s", f"{ran.wall:.1f} s wall", why, flush=True)
     print(json.dumps(result.to_dict()))
 
 

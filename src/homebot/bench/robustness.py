@@ -20,12 +20,14 @@ from rich.table import Table
 from homebot.app import Fidelity, RunSettings, build_run, disturbed
 from homebot.bench.arguments import add_fidelity_option, count, disturbance_level, seed
 from homebot.events import Event
+from homebot.executive import RunReport
 from homebot.navigation import Navigator
 from homebot.trials.errands import Errand, ErrandKind, errands
 from homebot.trials.fetch import fetch_tasks
 from homebot.world import World
 
-__all__ = ["ModeResult", "add_arguments", "compare_modes", "errand_set", "run"]
+__all__ = ["ErrandRun", "ModeResult", "add_arguments", "compare_modes", "errand_set",
+           "run", "run_errand"]
 
 
 @dataclass
@@ -59,6 +61,23 @@ class ModeResult:
                       for what, (tried, done) in sorted(self.hands.items())},
         }
 
+    def add(self, errand_run: ErrandRun, *, hands: bool = False) -> None:
+        """Count one errand run in (and, with ``hands``, the hands in the loop)."""
+        report = errand_run.report
+        self.tasks += 1
+        self.wall_times.append(errand_run.wall)
+        self.sim_times.append(report.sim_time)
+        self.delivered += errand_run.done
+        self.verified += errand_run.verified
+        if hands:
+            self.count_hands(errand_run.events)
+        counts = self.by_kind.setdefault(str(errand_run.errand.kind), [0, 0])
+        counts[0] += 1
+        counts[1] += errand_run.verified
+        if not report.success:
+            self.failed += 1
+            self.told_why += any(text.startswith("I am sorry") for text in report.speech)
+
     def count_hands(self, events: list[Event]) -> None:
         """Grasps, hand-overs and receptions the embodied robot tried (its own log) and
         what the truth made of them (the simulator's log): a grasp lifted the object, a
@@ -87,6 +106,38 @@ def errand_set(world: World, tasks: int, seed: int, mix: str = "everyday") -> li
     return errands(world, tasks, seed)
 
 
+@dataclass(frozen=True)
+class ErrandRun:
+    """One errand run: the robot's report and what the simulator's truth shows."""
+
+    errand: Errand
+    report: RunReport[Any]
+    done: bool  #: by the truth (``Errand.done``)
+    wall: float  #: seconds of wall time the run took
+    events: list[Event]  #: the run's log, the simulator's with the robot's
+
+    @property
+    def verified(self) -> bool:
+        """Done by the truth and reported done by the robot."""
+        return self.done and self.report.success
+
+
+def run_errand(world: World, errand: Errand, run_seed: int, *, level: float = 1.0,
+               monitoring: bool = True, navigator: Navigator | None = None,
+               fidelity: Fidelity = Fidelity.SYMBOLIC) -> ErrandRun:
+    """Run ``errand`` in a fresh run of ``world`` (seed ``run_seed``, disturbances at
+    ``level``), its arena set first, and referee it."""
+    run = build_run(RunSettings(
+        world=world, seed=run_seed, disturbances=disturbed(level), monitoring=monitoring,
+        navigator=navigator, fidelity=fidelity))
+    errand.arrange(run.simulation)
+    started = time.perf_counter()
+    report = run.run(errand.task)
+    wall = time.perf_counter() - started
+    return ErrandRun(errand, report, errand.done(run.simulation), wall,
+                     run.simulation.events.events)
+
+
 def compare_modes(world: World, tasks: int, seed: int, level: float = 1.0,
                   fidelity: Fidelity = Fidelity.SYMBOLIC,
                   mix: str = "everyday") -> list[ModeResult]:
@@ -96,26 +147,10 @@ def compare_modes(world: World, tasks: int, seed: int, level: float = 1.0,
     for mode, monitoring in (("monitored + recovery", True), ("plain sequence", False)):
         result = ModeResult(mode)
         for index, errand in enumerate(errand_set(world, tasks, seed, mix)):
-            run = build_run(RunSettings(
-                world=world, seed=seed * 100_003 + index, disturbances=disturbed(level),
-                monitoring=monitoring, navigator=navigator, fidelity=fidelity))
-            errand.arrange(run.simulation)
-            started = time.perf_counter()
-            report = run.run(errand.task)
-            result.wall_times.append(time.perf_counter() - started)
-            result.tasks += 1
-            result.sim_times.append(report.sim_time)
-            really = errand.done(run.simulation)
-            result.delivered += really
-            result.verified += really and report.success
-            if fidelity is Fidelity.EMBODIED:
-                result.count_hands(run.simulation.events.events)
-            counts = result.by_kind.setdefault(str(errand.kind), [0, 0])
-            counts[0] += 1
-            counts[1] += really and report.success
-            if not report.success:
-                result.failed += 1
-                result.told_why += any(text.startswith("I am sorry") for text in report.speech)
+            result.add(run_errand(world, errand, seed * 100_003 + index, level=level,
+                                  monitoring=monitoring, navigator=navigator,
+                                  fidelity=fidelity),
+                       hands=fidelity is Fidelity.EMBODIED)
         results.append(result)
     return results
 

@@ -100,14 +100,11 @@ class Conversation:
         if not self.say(f"Did you say {answer}?"):
             return True
         heard = self.listen("yes_no")
-        if heard.reason == "no_speech":
-            return True
-        return heard.text is not None and heard.text.split()[0] in _YES
+        return heard.reason == "no_speech" or _is_yes(heard)
 
     def agreed(self) -> bool:
         """Listen for the answer to a request just made: whether it was a yes."""
-        heard = self.listen("yes_no")
-        return heard.text is not None and heard.text.split()[0] in _YES
+        return _is_yes(self.listen("yes_no"))
 
     def listen(self, state: str, denied: tuple[str, ...] = ()) -> Hearing:
         """What the microphone hears next, as one answer in ``state``, not one of the
@@ -134,7 +131,7 @@ class Conversation:
                 break
             if utterances and audio.size - utterances[-1].end >= _END_OF_TURN * SAMPLE_RATE:
                 break
-        heard = recogniser.hear(np.concatenate(chunks), state, denied=denied)
+        heard = recogniser.hear(audio, state, denied=denied)
         self.events.record("robot.heard", text=heard.text, state=state, reason=heard.reason)
         return heard
 
@@ -142,3 +139,8 @@ class Conversation:
         if self._recogniser is None:
             self._recogniser = self._make_recogniser()
         return self._recogniser
+
+
+def _is_yes(heard: Hearing) -> bool:
+    """Whether what was heard (in the yes/no state) is a yes."""
+    return heard.text is not None and heard.text.split()[0] in _YES

@@ -9,8 +9,8 @@ two sides at most), and after a step the robot looks again: the step moved its p
 estimate's error under what it saw. A release puts the object on a free spot of the
 placement (or drops it into a bin). The arm plans among the objects where the robot's
 camera last saw them (``perceive_objects``; a picked object leaves that memory, a placed
-one is where it was put: ``SeenObjects``, the arm's ``locate``); the wiring's own locate
-(the simulator's truth) stands in only for objects it has not seen and for box headings.
+one is where it was put: ``SeenObjects``, the arm's ``locate``); nothing else stands in
+for an object it has not seen.
 The robot has one arm: the world's second hand name is kept for the skills, but a grasp
 with the gripper full is refused (the hand stays empty).
 """

@@ -3,12 +3,10 @@ into a bin, all through the Body port and planned in the robot's own scene.
 
 The scene is built from what the robot knows: the world file's furniture (footprints and
 surface heights) and the objects' catalogue shapes where they stand. Where perception
-gives a detection's position that is used; the heading of a box and the positions of the
-other objects come from ``locate``, which the wiring layer supplies. The embodied robot's
-``SeenObjects`` (``homebot.embodied.hands``) answers it with where its camera last saw each
-object, and falls back on the simulator's truth (labelled as such in
-``homebot.app.embodied``) for what it has not seen and for box headings, which
-perception does not estimate yet.
+gives a detection's position and heading (a box's heading from the top face of its
+points) that is used; the positions of the other objects come from ``locate``, which the
+wiring layer supplies: the embodied robot's ``SeenObjects`` (``homebot.embodied.hands``),
+where its camera last saw each object. An object it has not seen is not in the scene.
 """
 
 from __future__ import annotations

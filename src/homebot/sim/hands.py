@@ -180,8 +180,8 @@ class SimHands:
         #: what people were asked: to take what the robot holds out, to put something in
         #: its hand (None: nobody hands anything over)
         self.hearing = hearing
-        #: the person pulling at what the robot holds out, and their pull (newtons)
-        self._taker: tuple[str, str, float] | None = None
+        #: the person pulling at what the robot holds out, and what they pull at
+        self._taker: tuple[str, str] | None = None
         #: seconds the hand has stood held out near the person who is to take from it
         self._held_out = 0.0
         self._driver: ArmDriver | None = None
@@ -322,16 +322,23 @@ class SimHands:
 
     def _let_go_into_hand(self, name: str) -> None:
         """Both fingers touch what the person holds out: they let go; it is the robot's."""
-        truth = self.simulation
-        free = [hand for hand, held in truth.hands.items() if held is None]
-        if free:
-            truth.hands[free[0]] = name
-            truth.handled.add(name)
-            truth.object_location[name] = HAND_PREFIX + free[0]
-        truth.events.record("sim.person", person=self._giver, did="let go", object=name)
+        self._into_free_hand(name)
+        self.simulation.events.record("sim.person", person=self._giver, did="let go",
+                                      object=name)
         if self.hearing is not None:
             self.hearing.asked_to_give = None
         self._handing = self._giver = None
+
+    def _into_free_hand(self, name: str) -> str | None:
+        """The truth has ``name`` in the robot's first free hand; which (None: both full)."""
+        truth = self.simulation
+        free: list[str] = [hand for hand, held in truth.hands.items() if held is None]
+        if not free:
+            return None
+        truth.hands[free[0]] = name
+        truth.handled.add(name)
+        truth.object_location[name] = HAND_PREFIX + free[0]
+        return free[0]
 
     def _pull(self, seconds: float) -> str | None:
         """The person the robot hands something to pulls at it once the hand has stood
@@ -362,7 +369,7 @@ class SimHands:
         ramp = min(1.0, (self._held_out - delay) / 0.5)
         weight = -sim.objects[held].mass * sim.model.opt.gravity
         sim.push(held, weight + ramp * strength * towards)
-        self._taker = (taker, held, strength)
+        self._taker = (taker, held)
         return held
 
     def _taken(self, name: str) -> None:
@@ -399,12 +406,9 @@ class SimHands:
             gripped = sim.touching_fingers(name) == 2
             rest = body.base + body.extents[2] / 2
             if gripped and position[2] > rest + _HELD_RISE and name not in in_hand:
-                free = [hand for hand, held in truth.hands.items() if held is None]
-                if free:
-                    truth.hands[free[0]] = name
-                    truth.handled.add(name)
-                    truth.object_location[name] = HAND_PREFIX + free[0]
-                    truth.events.record("sim.arm", what="lifted", object=name, hand=free[0])
+                hand = self._into_free_hand(name)
+                if hand is not None:
+                    truth.events.record("sim.arm", what="lifted", object=name, hand=hand)
                 continue
             if gripped or not (final or self._resting(name)):
                 continue

@@ -99,10 +99,11 @@ class PeopleHearing:
         if _says(text, _HERE_IS):
             self.asked_to_take = listener
             return
-        if "?" in text and not self._is_request(text):
+        request = self._is_request(text)
+        if "?" in text and not request:
             question = _without_address(text, listener)
             reply = self._answer(listener, question)
-        elif self._is_request(text):
+        elif request:
             reply = _YES if model.cooperative and self._do(listener, text) else _NO
         elif _says(text, _COME_ALONG):
             if model.cooperative:
@@ -185,17 +186,11 @@ class PeopleHearing:
                         None)
             if room is None:
                 return False
-            middle = sim.world.room_polygons[room].centroid
-            sim.move_person(person, sim.free_floor_near((middle.x, middle.y)))
+            sim.move_person(person, sim.free_floor_in(room))
             return True
-        state = sim.people[person]
-        spot = sim.spot_aside(state.position)
-        if spot is None and state.blocking_door:
-            middle = sim.world.room_polygons[state.room].centroid
-            spot = sim.free_floor_near((middle.x, middle.y))
-        if spot is None:
+        # asked to let the robot by: off its way, or out of the doorway they stand in
+        if not sim.step_aside(person, sim.people[person].blocking_door):
             return False
-        sim.move_person(person, spot)
         sim.events.record("sim.person", person=person, did="stepped aside")
         return True
 

@@ -299,16 +299,7 @@ class SimRobot(Robot):
         if not state.model.cooperative:
             return False
         if request is HelpRequest.STEP_ASIDE:
-            # Whoever is in the way steps off the robot's way where there is room; one
-            # who blocked a doorway on purpose, finding none, goes into their room.
-            spot = sim.spot_aside(state.position)
-            if spot is None and state.blocking_door == target:
-                middle = sim.world.room_polygons[state.room].centroid
-                spot = sim.free_floor_near((middle.x, middle.y))
-            if spot is None:
-                return False
-            sim.move_person(person, spot)
-            return True
+            return sim.step_aside(person, target)
         if request is HelpRequest.OPEN_DOOR and target in sim.door_state:
             sim.clock.advance(ActionDurations.OPEN_DOOR)
             sim.door_state[target] = DoorState.OPEN

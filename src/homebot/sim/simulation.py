@@ -289,6 +289,24 @@ class Simulation:
         spot = grid.center_of(*cell)
         return spot if self.world.room_at(*spot) == self.world.room_at(*point) else point
 
+    def free_floor_in(self, room: str) -> tuple[float, float]:
+        """The free floor nearest the middle of ``room`` (``free_floor_near``)."""
+        middle = self.world.room_polygons[room].centroid
+        return self.free_floor_near((middle.x, middle.y))
+
+    def step_aside(self, name: str, door: str | None) -> bool:
+        """Person ``name`` steps off the robot's way where there is room (``spot_aside``);
+        one who blocks ``door`` on purpose, finding none, goes into their room. Whether
+        they moved."""
+        state = self.people[name]
+        spot = self.spot_aside(state.position)
+        if spot is None and state.blocking_door is not None and state.blocking_door == door:
+            spot = self.free_floor_in(state.room)
+        if spot is None:
+            return False
+        self.move_person(name, spot)
+        return True
+
     def distance_to(self, point: tuple[float, float]) -> float:
         return math.dist(self.robot_pose[:2], point)
 
