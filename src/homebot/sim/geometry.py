@@ -3,7 +3,9 @@
 Two forms of the same geometry, built once per world and shared between runs:
 a fine raster (2 cm), for ray casting, and exact
 shapely shapes, for judging collisions. Door states change which door
-openings are filled; the raster is kept per set of shut doors.
+openings are filled, and where a door left ajar (``opening`` in the world file)
+has its leaf: shut in the doorway, or standing at its angle while open; the
+raster is kept per set of shut doors.
 """
 
 from __future__ import annotations
@@ -33,6 +35,7 @@ class TrueGeometry:
     raster: OccupancyGrid = field(init=False)
     _walls: BaseGeometry = field(init=False)
     _door_leaves: dict[str, BaseGeometry] = field(init=False)
+    _open_leaves: dict[str, BaseGeometry] = field(init=False)
     _images: dict[frozenset[str], np.ndarray] = field(init=False, default_factory=dict)
     _solids: dict[frozenset[str], BaseGeometry] = field(init=False, default_factory=dict)
 
@@ -61,6 +64,8 @@ class TrueGeometry:
                                        for polygon in world.room_polygons.values()])
         self._door_leaves = {name: opening.intersection(wall_band)
                              for name, opening in openings.items()}
+        self._open_leaves = {name: leaf for name in world.doors
+                             if (leaf := world.door_leaf(name)) is not None}
 
     def solid_image(self, shut_doors: frozenset[str]) -> np.ndarray:
         """The raster with these doors shut: 1 where solid, 0 where free (uint8, row = y)."""
@@ -68,17 +73,40 @@ class TrueGeometry:
             occupied = self.raster.occupied.ravel().copy()
             for door in shut_doors:
                 occupied[self.raster.door_passages[door]] = True
+            for door, leaf in self._open_leaves.items():
+                if door not in shut_doors:
+                    occupied[self._cells_under(leaf)] = True
             self._images[shut_doors] = occupied.reshape(self.raster.shape).astype(np.uint8)
         return self._images[shut_doors]
 
     def solids(self, shut_doors: frozenset[str]) -> BaseGeometry:
         """Walls, furniture and the leaves of the shut doors, as one prepared shape."""
         if shut_doors not in self._solids:
-            leaves = [self._door_leaves[door] for door in sorted(shut_doors)]
+            leaves = [self._door_leaves[door] for door in sorted(shut_doors)] + [
+                leaf for door, leaf in sorted(self._open_leaves.items())
+                if door not in shut_doors]
             solid = shapely.union_all([self._walls, *leaves])
             shapely.prepare(solid)
             self._solids[shut_doors] = solid
         return self._solids[shut_doors]
+
+    def _cells_under(self, shape: BaseGeometry) -> np.ndarray:
+        """Flat indices of the raster cells whose centres lie within ``shape`` grown by half
+        a cell's diagonal, so that a thin leaf is drawn without gaps."""
+        raster = self.raster
+        grown = shape.buffer(TRUTH_RESOLUTION * 0.71)
+        rows, columns = raster.shape
+        min_x, min_y, max_x, max_y = grown.bounds
+        first_column = max(int((min_x - raster.origin[0]) / TRUTH_RESOLUTION), 0)
+        last_column = min(int((max_x - raster.origin[0]) / TRUTH_RESOLUTION) + 1, columns - 1)
+        first_row = max(int((min_y - raster.origin[1]) / TRUTH_RESOLUTION), 0)
+        last_row = min(int((max_y - raster.origin[1]) / TRUTH_RESOLUTION) + 1, rows - 1)
+        row_index, column_index = np.mgrid[first_row:last_row + 1, first_column:last_column + 1]
+        xs = raster.origin[0] + (column_index + 0.5) * TRUTH_RESOLUTION
+        ys = raster.origin[1] + (row_index + 0.5) * TRUTH_RESOLUTION
+        inside = shapely.contains_xy(grown, xs, ys)
+        flat: np.ndarray = (row_index[inside] * columns + column_index[inside]).astype(np.intp)
+        return flat
 
     def clearance(self, x: float, y: float, shut_doors: frozenset[str]) -> float:
         """Exact distance from a point to the nearest wall, furniture or shut door."""

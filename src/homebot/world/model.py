@@ -190,6 +190,23 @@ class DoorModel(_Strict):
     position: Point
     width: float = Field(default=0.9, gt=0.4, le=3.0)
     state: DoorState = DoorState.OPEN
+    opening: float | None = Field(default=None, gt=0.0, le=180.0, description=(
+        "degrees the leaf stands from the wall's line while the door is open (30: barely "
+        "ajar, 90: square to the wall); unset: the leaf lies flat against the wall, out of "
+        "the way"))
+    hinge: Literal["north", "south", "east", "west"] | None = Field(default=None, description=(
+        "the jamb the leaf turns on (an end of the doorway along the wall; default: the "
+        "west end, or the south end of a wall running north-south); needs ``opening``"))
+    swings_into: Name | None = Field(default=None, description=(
+        "the room the leaf opens into (one of ``rooms``; default: the first); needs "
+        "``opening``"))
+
+    @model_validator(mode="after")
+    def _leaf_needs_opening(self) -> DoorModel:
+        if self.opening is None and (self.hinge is not None or self.swings_into is not None):
+            raise ValueError("hinge and swings_into place an open door's leaf; give the "
+                             "door an opening too (degrees from the wall, e.g. opening: 60)")
+        return self
 
 
 class PlacementModel(_Strict):

@@ -10,7 +10,7 @@ from pathlib import Path
 from typing import Any
 
 import yaml
-from shapely.geometry import Point, Polygon, box
+from shapely.geometry import LineString, Point, Polygon, box
 from shapely.geometry.base import BaseGeometry
 from shapely.ops import unary_union
 from shapely.prepared import prep
@@ -37,6 +37,9 @@ __all__ = ["Placement", "World", "shipped_world_names", "shipped_world_path"]
 _APPROACH_CLEARANCE = 0.12
 # The largest occupancy grid a world may ask for (a 150 m square at 5 cm; a few hundred MB).
 _MAX_GRID_CELLS = 9e6
+_LEAF_THICKNESS = 0.04  #: metres, a door's leaf
+#: the compass names a door's hinge is given by, as unit vectors on the map
+_COMPASS = {"east": (1.0, 0.0), "west": (-1.0, 0.0), "north": (0.0, 1.0), "south": (0.0, -1.0)}
 
 
 @dataclass(frozen=True, slots=True)
@@ -323,11 +326,52 @@ class World:
             self._problem(["doors", index, "rooms"], "a door must join two different rooms")
             return
         point = Point(door.position)
-        for room in door.rooms:
-            if self.room_polygons[room].exterior.distance(point) > tolerance:
-                self._problem(["doors", index, "position"],
-                              f"{list(door.position)} is not on the wall of room '{room}'; "
-                              "put the door on the wall the two rooms share")
+        off_the_wall = [room for room in door.rooms
+                        if self.room_polygons[room].exterior.distance(point) > tolerance]
+        for room in off_the_wall:
+            self._problem(["doors", index, "position"],
+                          f"{list(door.position)} is not on the wall of room '{room}'; "
+                          "put the door on the wall the two rooms share")
+        if off_the_wall:
+            return
+        if door.swings_into is not None and door.swings_into not in door.rooms:
+            self._problem(["doors", index, "swings_into"],
+                          f"'{door.swings_into}' is not one of the door's rooms; use "
+                          f"'{door.rooms[0]}' or '{door.rooms[1]}'")
+        if door.hinge is not None:
+            along = _wall_direction(self.room_polygons[door.rooms[0]], door.position)
+            if abs(_COMPASS[door.hinge][0] * along[0] + _COMPASS[door.hinge][1] * along[1]) < 0.5:
+                ends = " or ".join(name for name, (cx, cy) in _COMPASS.items()
+                                   if abs(cx * along[0] + cy * along[1]) >= 0.5)
+                self._problem(["doors", index, "hinge"],
+                              f"the hinge is at an end of the doorway along the wall, and "
+                              f"'{door.hinge}' points across it; use {ends}")
+
+    def door_leaf(self, door: str) -> BaseGeometry | None:
+        """Where an open door's leaf stands, 4 cm thick, as the world file's ``opening``,
+        ``hinge`` and ``swings_into`` place it; None for a door whose leaf lies flat
+        against the wall (no ``opening``)."""
+        model = self.doors[door]
+        if model.opening is None:
+            return None
+        cx, cy = model.position
+        into = self.point_before_door(door, model.swings_into or model.rooms[0], 1.0)
+        nx, ny = into.x - cx, into.y - cy
+        tx, ty = _wall_direction(self.room_polygons[model.rooms[0]], model.position)
+        hinge = _COMPASS[model.hinge] if model.hinge else (
+            _COMPASS["west"] if abs(tx) >= abs(ty) else _COMPASS["south"])
+        if hinge[0] * tx + hinge[1] * ty < 0:
+            tx, ty = -tx, -ty  # (tx, ty) now points from the middle to the hinge
+        half = model.width / 2
+        hx, hy = cx + tx * half, cy + ty * half
+        # shut, the leaf points from the hinge to the far jamb; it turns towards the room
+        angle = math.radians(model.opening)
+        dx = -tx * math.cos(angle) + nx * math.sin(angle)
+        dy = -ty * math.cos(angle) + ny * math.sin(angle)
+        leaf: BaseGeometry = LineString([(hx, hy), (hx + dx * model.width,
+                                                     hy + dy * model.width)]).buffer(
+            _LEAF_THICKNESS / 2, cap_style="flat")
+        return leaf
 
     def _build_placements(self) -> dict[str, Placement]:
         footprints = {
@@ -472,6 +516,17 @@ class World:
         if not path.is_absolute() and self._document is not None:
             path = Path(self.source).parent / path
         return path
+
+
+def _wall_direction(room: Polygon, point: tuple[float, float]) -> tuple[float, float]:
+    """The unit vector along ``room``'s wall at ``point``."""
+    boundary = room.exterior
+    along = boundary.project(Point(point))
+    before = boundary.interpolate(max(along - 0.05, 0.0))
+    after = boundary.interpolate(min(along + 0.05, boundary.length))
+    tx, ty = after.x - before.x, after.y - before.y
+    norm = math.hypot(tx, ty) or 1.0
+    return (tx / norm, ty / norm)
 
 
 def _unknown(kind: str, name: str, known: Iterable[str]) -> str:
