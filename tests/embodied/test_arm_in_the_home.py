@@ -90,7 +90,7 @@ def test_out_of_reach_the_robot_steps_beside_the_nearest_free_side_of_the_surfac
     assert isinstance(robot, ArmedBodyRobot)
     # The desk (x 9.2-10.8, y 9.15-9.85) stands against the office's wall at y = 10: an
     # object at its back-left corner is reached from its left side, never from behind.
-    stands = robot._stands_before("rubik cube", (9.3, 9.75))
+    stands = robot._stands_before((9.3, 9.75))
     first = stands[0]
     assert first.x < 9.2 - 0.3 and 9.3 < first.y < 9.85
     assert abs(math.atan2(9.75 - first.y, 9.3 - first.x) - first.theta) < 1e-9

@@ -93,3 +93,18 @@ def test_nobody_out_of_earshot_answers(apartment: World,
               key=lambda state: -abs(state.position[0] - run.simulation.robot_pose[0]))
     assert robot.ask(far.model.name, "what is your name?") is None
     assert not any(e.kind == "sim.person_said" for e in run.simulation.events.events)
+
+
+def test_a_round_thing_put_in_the_hand_is_carried_and_put_on_a_high_surface(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    # Held level as it was handed over (not swung down to the tucked pose, where a sphere
+    # squeezes out between the pads), and put down with the torso raised so the elbow
+    # clears the 0.8 m coat rack.
+    run = _run(apartment, apartment_navigator)
+    run.simulation.object_location["lemon"] = PERSON_PREFIX + "Maria"
+    report = run.run(Task((Step("navigate", {"to": "Maria"}),
+                           Step("receive", {"person": "Maria", "object": "lemon"}),
+                           Step("navigate", {"to": "coat rack"}),
+                           Step("place", {"placement": "coat rack", "object": "lemon"}))))
+    assert report.success, report.reason
+    assert run.simulation.object_location["lemon"] == "coat rack"

@@ -26,7 +26,7 @@ from shapely.geometry import LineString, Point
 
 from homebot.embodied.robot import BodyRobot
 from homebot.geometry import Pose
-from homebot.manipulation.control import ArmControl
+from homebot.manipulation.control import ArmControl, PlaceOutcome
 from homebot.manipulation.pick import PickOutcome, PickResult
 from homebot.robot import Detection
 from homebot.world import World, surface_height
@@ -121,8 +121,9 @@ class ArmedBodyRobot(BodyRobot):
         # steps to the sides of the surface nearest the object.
         result = PickResult(PickOutcome.UNREACHABLE, detail="too far to grasp well") if far \
             else self.arm.pick(detection.label, here, detection.position, detection.mass)
-        stands = iter(self._stands_before(detection.label, detection.position)
-                      if result.outcome is PickOutcome.UNREACHABLE else ())
+        where = detection.position or self.arm.locate(detection.label)
+        stands = iter(self._stands_before(where[:2])
+                      if where is not None and result.outcome is PickOutcome.UNREACHABLE else ())
         if far:  # from here, too, if no step brings it nearer
             stands = itertools.chain(stands, (here,))
         for stand in itertools.islice(stands, _STANDS_TRIED):
@@ -169,9 +170,19 @@ class ArmedBodyRobot(BodyRobot):
         known = self.world.placements.get(placement)
         done = False
         if known is not None:
-            category = known.model.category.lower()
+            drop = known.model.category.lower() in _BIN_CATEGORIES
             held = self.arm.holding.name if self.arm.holding is not None else None
-            outcome = self.arm.place(placement, self.pose(), drop=category in _BIN_CATEGORIES)
+            outcome = self._put_down(placement, drop)
+            # No free spot within reach from where navigation left it: the robot steps
+            # beside the surface, nearest side first, as it does to grasp.
+            centre = known.model.center
+            stands = [] if outcome.done else self._stands_before(
+                (float(centre[0]), float(centre[1])))
+            for stand in stands[:_STANDS_TRIED]:
+                if self.move_to(stand).reached:
+                    outcome = self._put_down(placement, drop)
+                    if outcome.done:
+                        break
             if held is not None and outcome.done and outcome.spot is not None:
                 self.seen[held] = (placement, outcome.spot, None)  # where it was put
             self.events.record("robot.place", placement=placement, done=outcome.done,
@@ -181,6 +192,13 @@ class ArmedBodyRobot(BodyRobot):
             self.body.gripper().command(0.2)
             self.body.tick(max(1, round(0.5 / self.body.tick_period)))
             self.arm.holding = None
+
+    def _put_down(self, placement: str, drop: bool) -> PlaceOutcome:
+        """Look at the placement first (what stands there now is in the arm's scene, so
+        the free spot is free), then put what the hand holds on it."""
+        if not drop:
+            self.perceive_objects(placement)
+        return self.arm.place(placement, self.pose(), drop=drop)
 
     def receive(self, hand: str, person: str) -> Detection | None:
         """Hold the open hand out (the person was asked to put the object in); once the
@@ -257,16 +275,12 @@ class ArmedBodyRobot(BodyRobot):
         self._handles += 1
         return -self._handles
 
-    def _stands_before(self, name: str, seen_at: tuple[float, float] | None) -> list[Pose]:
-        """Poses beside the object's surface, facing the object, nearest to it first.
+    def _stands_before(self, point: tuple[float, float]) -> list[Pose]:
+        """Poses beside the surface under ``point``, facing it, nearest to it first.
 
         At most one per side of the surface: the free spot just off the side nearest
-        the object (a side against a wall or other furniture may offer none).
+        ``point`` (a side against a wall or other furniture may offer none).
         """
-        where = self.arm.locate(name)
-        point = seen_at if seen_at is not None else (where[:2] if where else None)
-        if point is None:
-            return []
         seen = Point(point)
         found = [(p.footprint.distance(seen), p) for p in self.world.placements.values()
                  if p.footprint.covers(seen)]

@@ -11,6 +11,7 @@ where its camera last saw each object. An object it has not seen is not in the s
 
 from __future__ import annotations
 
+import itertools
 import math
 import time
 from collections.abc import Callable
@@ -27,6 +28,7 @@ from homebot.manipulation.pick import (
     PickOutcome,
     PickPlan,
     PickResult,
+    carry_pose,
     current_configuration,
     execute_pick,
     follow,
@@ -50,6 +52,7 @@ _DROP_ABOVE = 0.2  #: metres above a bin's opening where the hand lets go
 _REACH = 0.9  #: metres from the base's centre the arm can put things
 _NEAREST = 0.55  #: metres: nearer than this the arm is too cramped to put things down
 _BEST_REACH = 0.72  #: metres: spots about this far in front of the robot are tried first
+_SPOTS_TRIED = 25  #: spots within reach tried before the robot says it finds none
 #: torso, then the arm held out in front at chest height, fingers level: offering the hand
 _OFFER = np.array([0.2, 0.0, 0.5, 0.0, -1.2, 0.0, 0.7, 0.0])
 _OPEN = 0.2  #: a gripper command wider than the fingers open: fully open
@@ -211,7 +214,7 @@ class ArmControl:
     def close_on_handed(self, name: str, base: Pose) -> bool:
         """Close the offered hand on ``name``, which a person put in it (a name the world's
         catalogue does not know: something of a cup's size): whether the fingers then hold
-        something (sensed: they stand apart). If they do, the arm tucks it in."""
+        something (sensed: they stand apart). If they do, the arm draws it in to carry it."""
         if self.holding is not None:
             return False
         self.body.gripper().command(0.0, GRIP_FORCE)
@@ -227,7 +230,13 @@ class ArmControl:
             self.holding = None
             self.body.gripper().command(_OPEN)
             return False
-        self._tuck(scene)
+        # Drawn in as a picked object is carried, fingers as they took it: swung down to
+        # the tucked pose, a round thing squeezes out between the pads.
+        here = current_configuration(self.body)
+        carry = carry_pose(scene, here, rotation)
+        path = plan_motion(scene, here, carry, self.rng, gripper=0.2,
+                           allowed=scene.without(scene.obstacles))
+        follow(self.body, path or [here, carry])
         return True
 
     def gripper_holds(self) -> bool:
@@ -265,9 +274,9 @@ class ArmControl:
             model.center, model.size, others, holding.radius, front)
         above = _DROP_ABOVE if drop else _PLACE_ABOVE
         current = current_configuration(self.body)
-        for spot in spots[:25]:
-            if not _NEAREST <= math.dist(spot, (base.x, base.y)) <= _REACH:
-                continue
+        within_reach = [spot for spot in spots
+                        if _NEAREST <= math.dist(spot, (base.x, base.y)) <= _REACH]
+        for spot in within_reach[:_SPOTS_TRIED]:
             rotation = _turned(holding.rotation, base, spot)
             release = np.array([*spot, height + holding.grasp_height + 0.005])
             high = release + np.array([0.0, 0.0, above])
@@ -297,14 +306,18 @@ class ArmControl:
 def _release_configurations(scene: PlanningScene, release: np.ndarray, high: np.ndarray,
                             rotation: np.ndarray, current: np.ndarray
                             ) -> tuple[np.ndarray, np.ndarray] | None:
-    """Collision-free configurations with the hand at ``release`` and above it at ``high``."""
-    for seed in (current, *IK_SEEDS):
+    """Collision-free configurations with the hand at ``release`` and above it at ``high``.
+
+    The torso is first left to the solver; then held at its top, where the shoulder stands
+    well above a high surface and a hand held level reaches over it without the elbow
+    dipping into it."""
+    for torso, seed in itertools.product((None, float(scene.upper[0])), (current, *IK_SEEDS)):
         posture = seed.copy()
-        posture[0] = scene.upper[0] - 0.15
-        down = solve_ik(scene, release, rotation, [seed], posture=posture)
+        posture[0] = scene.upper[0] - 0.15 if torso is None else torso
+        down = solve_ik(scene, release, rotation, [seed], posture=posture, torso=torso)
         if down is None or scene.collides(down, gripper=0.2):
             continue
-        over = solve_ik(scene, high, rotation, [down])
+        over = solve_ik(scene, high, rotation, [down], torso=torso)
         if over is None or scene.collides(over, gripper=0.2):
             continue
         return over, down

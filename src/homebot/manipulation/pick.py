@@ -30,6 +30,7 @@ __all__ = [
     "PickOutcome",
     "PickPlan",
     "PickResult",
+    "carry_pose",
     "execute_pick",
     "plan_motion",
     "plan_pick",
@@ -144,7 +145,7 @@ def plan_pick(scene: PlanningScene, obj: ObjectGeometry, current: np.ndarray,
     path = plan_motion(scene, current, grasp.pre_grasp, rng, gripper=grasp.candidate.opening())
     at, rotation = scene.grasp_frame(grasp.grasp)
     lift = _lift(scene, grasp.grasp, at, rotation)
-    carry = _carry(scene, lift, rotation)
+    carry = carry_pose(scene, lift, rotation)
     rise = float(scene.grasp_frame(carry)[0][2] - at[2])
     seconds = time.process_time() - started
     if path is None:
@@ -171,9 +172,10 @@ def _lift(scene: PlanningScene, grasp: np.ndarray, at: np.ndarray,
     return lifted
 
 
-def _carry(scene: PlanningScene, lift: np.ndarray, rotation: np.ndarray) -> np.ndarray:
-    """The lifted hand raised further and drawn back towards the base, keeping its grip's
-    orientation (an upright bottle stays upright); the torso raised when IK finds none."""
+def carry_pose(scene: PlanningScene, lift: np.ndarray, rotation: np.ndarray) -> np.ndarray:
+    """The hand at ``lift`` raised further and drawn back towards the base, keeping its
+    grip's orientation (an upright bottle stays upright): where an object is carried; the
+    torso raised when IK finds none."""
     at, _ = scene.grasp_frame(lift)
     base = np.array(scene.base[:2])
     reach = at[:2] - base
