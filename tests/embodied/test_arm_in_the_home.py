@@ -166,3 +166,22 @@ def test_what_a_person_puts_in_the_offered_hand_is_held_by_the_fingers() -> None
     grasp = body.hands.driver().sim.grasp_point()
     held = body.hands.driver().sim.object_position("cola")
     assert math.dist(grasp, held) < 0.05
+
+
+def test_a_flat_thing_put_in_the_hand_is_let_fall_the_last_centimetres_onto_the_table() -> None:
+    # The fork is handed in level, from the side: lowered to rest on the table, the
+    # fingers under it would meet the table first, so it is let go a little above.
+    sim, body, control, stand = _at_the_coffee_table()
+    control.offer_hand(stand)
+    person = sorted(sim.people)[0]
+    hand = body.hands.driver().sim.grasp_point()
+    sim.move_person(person, (float(hand[0]) + 0.4 * math.cos(stand.theta),
+                             float(hand[1]) + 0.4 * math.sin(stand.theta)))
+    sim.object_location["fork"] = f"person:{person}"
+    body.hearing.asked_to_give = (person, "fork")
+    body.tick(10)
+    assert control.close_on_handed("fork", stand)
+    placed = control.place("coffee table", stand)
+    assert placed, placed.detail
+    body.tick(30)
+    assert sim.object_location["fork"] == "coffee table"

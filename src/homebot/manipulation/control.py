@@ -53,6 +53,7 @@ _REACH = 0.9  #: metres from the base's centre the arm can put things
 _NEAREST = 0.55  #: metres: nearer than this the arm is too cramped to put things down
 _BEST_REACH = 0.72  #: metres: spots about this far in front of the robot are tried first
 _SPOTS_TRIED = 25  #: spots within reach tried before the robot says it finds none
+_LET_FALL = (0.0, 0.03)  #: metres above its resting height an object may be let go
 #: torso, then the arm held out in front at chest height, fingers level: offering the hand
 _OFFER = np.array([0.2, 0.0, 0.5, 0.0, -1.2, 0.0, 0.7, 0.0])
 _OPEN = 0.2  #: a gripper command wider than the fingers open: fully open
@@ -310,11 +311,14 @@ def _release_configurations(scene: PlanningScene, release: np.ndarray, high: np.
 
     The torso is first left to the solver; then held at its top, where the shoulder stands
     well above a high surface and a hand held level reaches over it without the elbow
-    dipping into it."""
-    for torso, seed in itertools.product((None, float(scene.upper[0])), (current, *IK_SEEDS)):
+    dipping into it. A flat thing held from the side is let fall the last centimetres:
+    lowered to the surface, the fingers below it would meet the surface first."""
+    for raised, torso, seed in itertools.product(_LET_FALL, (None, float(scene.upper[0])),
+                                                 (current, *IK_SEEDS)):
         posture = seed.copy()
         posture[0] = scene.upper[0] - 0.15 if torso is None else torso
-        down = solve_ik(scene, release, rotation, [seed], posture=posture, torso=torso)
+        down = solve_ik(scene, release + np.array([0.0, 0.0, raised]), rotation, [seed],
+                        posture=posture, torso=torso)
         if down is None or scene.collides(down, gripper=0.2):
             continue
         over = solve_ik(scene, high, rotation, [down], torso=torso)
