@@ -5,16 +5,23 @@ doorway ends on that line; through an open door most beams go on into the next
 room. Someone standing in an open doorway stops only the beams that meet them,
 and a person filling the doorway stands out of the line where a leaf is flat.
 Beams that end well before the line (something in front of the door) tell nothing.
+
+Whether an open doorway lets the robot through is geometry (``doorway_passable``):
+a leaf left half open, a coat rack beside the jamb or someone standing in the
+doorway are all returns, and the robot fits through when some straight way
+across the doorway keeps its radius from every one of them and from the jambs.
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 
 from homebot.geometry import Pose, rays_cross_line
 from homebot.robot import LaserScan
 
-__all__ = ["door_seen_open"]
+__all__ = ["WayThrough", "door_seen_open", "doorway_passable", "way_through"]
 
 _JAMB = 0.08  #: metres inside each jamb where beams are not counted
 _PAST_THE_LINE = 0.1  #: metres past the wall's middle line: a beam went through
@@ -22,6 +29,11 @@ _IN_FRONT = 0.35  #: metres in front of the line where returns are the door or s
 _BODY = 0.06  #: metres a person stands out of a leaf's face
 _THROUGH = 2  #: beams through the doorway that show it open
 _SHUT = 3  #: beams at the door that show it shut (or someone in it)
+_CROSSING = 0.7  #: metres either side of the wall's line over which a way through is checked
+_SLANTS = np.radians(np.arange(-60.0, 61.0, 5.0))  #: ways through, from straight across
+_OFFSET_STEP = 0.02  #: metres between the ways through tried along the doorway
+_WALL_STEP = 0.02  #: metres between the points standing for the wall beside the doorway
+_PREFER_STRAIGHT = 0.02  #: metres of room given up per radian of slant and metre off centre
 
 
 def door_seen_open(scan: LaserScan, pose: Pose, centre: tuple[float, float],
@@ -54,3 +66,80 @@ def door_seen_open(scan: LaserScan, pose: Pose, centre: tuple[float, float],
     face = float(np.percentile(at_the_door, 75))
     standing_out = at_the_door < face - _BODY
     return bool(np.count_nonzero(standing_out) >= _SHUT)
+
+
+@dataclass(frozen=True, slots=True)
+class WayThrough:
+    """A straight way across a doorway, on the map: from ``entry`` on the side the
+    door's normal points to, to ``exit`` on the other, each ``_CROSSING`` from the
+    wall's line; ``room`` metres to spare between the disc on the way and the nearest
+    return or jamb; ``slant`` radians from straight across."""
+
+    entry: tuple[float, float]
+    exit: tuple[float, float]
+    room: float
+    slant: float
+
+
+def way_through(points: np.ndarray, centre: tuple[float, float], normal: tuple[float, float],
+                width: float, wall_thickness: float, radius: float) -> WayThrough | None:
+    """The straight way across the doorway, from the ``normal``'s side to the other,
+    with the most room round a disc of ``radius``: past ``points`` (laser returns on the
+    map, (n, 2)) and the jambs; None when no way leaves the disc room.
+
+    The ways tried cross the wall's line anywhere in the doorway, straight or slanted
+    up to 60 degrees (past a leaf left half open the way runs along the leaf); only
+    points within ``_CROSSING`` (and the disc's radius) of the line, either side, along
+    each way count.
+    """
+    nx, ny = np.asarray(normal, dtype=float) / float(np.hypot(*normal))
+    tx, ty = -ny, nx
+    half = width / 2
+    relative = np.asarray(points, dtype=float).reshape(-1, 2) - np.asarray(centre)
+    along = relative @ np.array([tx, ty])
+    across = relative @ np.array([nx, ny])
+    # the wall either side of the doorway, its faces and the jambs, as the map has it
+    beyond = np.arange(half, half + _CROSSING + _WALL_STEP, _WALL_STEP)
+    faces = np.arange(-wall_thickness / 2, wall_thickness / 2 + 1e-9, _WALL_STEP)
+    wall_along = np.concatenate([beyond, -beyond, beyond, -beyond,
+                                 np.full(len(faces), half), np.full(len(faces), -half)])
+    wall_across = np.concatenate([np.full(2 * len(beyond), -wall_thickness / 2),
+                                  np.full(2 * len(beyond), wall_thickness / 2), faces, faces])
+    near = (np.abs(across) <= _CROSSING + 2 * radius) & (np.abs(along) <= half + _CROSSING + radius)
+    along = np.concatenate([along[near], wall_along])
+    across = np.concatenate([across[near], wall_across])
+    offsets = np.arange(-half + radius, half - radius + 1e-9, _OFFSET_STEP)
+    best: tuple[float, float, float] | None = None  # (room, slant, offset)
+    for slant in _SLANTS:
+        sine, cosine = float(np.sin(slant)), float(np.cos(slant))
+        # per way (row) and point (column): distance from the way, and how far along it
+        shifted = along[None, :] - offsets[:, None]
+        off_the_way = np.abs(shifted * cosine - across[None, :] * sine)
+        on_the_way = shifted * sine + across[None, :] * cosine
+        # the disc at either end of the way reaches a radius further
+        room = np.where(np.abs(on_the_way) <= _CROSSING + radius, off_the_way,
+                        np.inf).min(axis=1)
+        # the most room, and of ways with nearly as much, the straightest and most central
+        score = room - _PREFER_STRAIGHT * (abs(float(slant)) + np.abs(offsets))
+        k = int(np.argmax(score))
+        if room[k] >= radius and (best is None or score[k] > best[0] - _PREFER_STRAIGHT * (
+                abs(best[1]) + abs(best[2]))):
+            best = (float(room[k]), float(slant), float(offsets[k]))
+    if best is None:
+        return None
+    room, slant, offset = best
+    # the way's direction, from the normal's side across the wall
+    dx = -(nx * np.cos(slant) + tx * np.sin(slant))
+    dy = -(ny * np.cos(slant) + ty * np.sin(slant))
+    cx, cy = centre[0] + tx * offset, centre[1] + ty * offset
+    return WayThrough((float(cx - dx * _CROSSING), float(cy - dy * _CROSSING)),
+                      (float(cx + dx * _CROSSING), float(cy + dy * _CROSSING)),
+                      room - radius, slant)
+
+
+def doorway_passable(points: np.ndarray, centre: tuple[float, float],
+                     normal: tuple[float, float], width: float, wall_thickness: float,
+                     radius: float) -> bool:
+    """Whether a disc of ``radius`` fits through the doorway on some straight way across
+    it, past ``points`` and the jambs (see ``way_through``)."""
+    return way_through(points, centre, normal, width, wall_thickness, radius) is not None

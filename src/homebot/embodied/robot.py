@@ -30,7 +30,7 @@ from shapely.geometry import Point as ShapelyPoint
 
 from homebot.cancel import CancelToken
 from homebot.embodied.conversation import Conversation
-from homebot.embodied.doors import door_seen_open
+from homebot.embodied.doors import WayThrough, door_seen_open, way_through
 from homebot.embodied.looking import TableLook
 from homebot.embodied.people_look import PeopleLook
 from homebot.errors import NavigationError, PartMissing
@@ -41,6 +41,7 @@ from homebot.navigation.localisation import MonteCarloLocalisation
 from homebot.navigation.localmap import LocalController
 from homebot.navigation.navigate import StopReason
 from homebot.navigation.recovery import RecoveringNavigation, scan_on_map
+from homebot.navigation.straight import drive_straight
 from homebot.perception.faces import Acquaintances
 from homebot.robot import (
     Blocker,
@@ -51,7 +52,7 @@ from homebot.robot import (
     PersonPercept,
     Robot,
 )
-from homebot.world import World
+from homebot.world import PlacementKind, World
 
 if TYPE_CHECKING:
     from homebot.speech.answers import AnswerRecognizer
@@ -60,8 +61,13 @@ __all__ = ["BodyRobot"]
 
 _STOP_BEFORE_DOOR = 0.6  #: metres in front of a door where the robot stops to look at it
 _SEES_THE_DOOR = 3.0  #: metres within which the robot, stopped short, looks at a door ahead
-_DOORWAY = 0.35  #: laser returns this close to a door's centre mean something stands in it
-_JAMB = 0.05  #: metres inside a door's jambs where returns may still be the jambs
+_FURNITURE_NEAR_DOOR = 1.5  #: metres from a door within which the map's furniture counts
+_OUTLINE_STEP = 0.02  #: metres between the points taken along a furniture's outline
+_NEAR_THE_DOOR = 0.5  #: metres: a door's leaf on the spot before it, this near will do
+_SIDE_ROOM = 0.0  #: metres the robot wants beside it passing through a doorway
+_ROOMY_DOORWAY = 0.1  #: metres to spare a side on the straight way: the ordinary drive will do
+_SLANTED = 0.1  #: radians: a way through slanted more than this is lined up with first
+_ON_THE_WAY = 0.1  #: metres from a way's entry where the robot may start along it
 _GOAL_TOLERANCE = 0.15  #: metres: a leg ends this close to its end point
 _HEADING_TOLERANCE = 0.2  #: radians: the final turn ends this close to the goal's heading
 _PARTICLES_SHOWN = 500
@@ -159,7 +165,8 @@ class BodyRobot(Robot):
         companion = escort or self._walking_with
         for index, leg in enumerate(legs):
             report = self._drive_leg(leg.target, avoid_doors, final=leg.door is None,
-                                     companion=companion, cancel=cancel)
+                                     companion=companion, cancel=cancel,
+                                     near_enough=_NEAR_THE_DOOR if leg.door else 0.0)
             travelled += report.distance
             if report.blocker is Blocker.CANCELLED:
                 return MoveReport(False, self.pose(), travelled, Blocker.CANCELLED,
@@ -183,16 +190,18 @@ class BodyRobot(Robot):
                     self.events.record("robot.blocked", door=leg.door, blocker=blocked[0].value)
                     return MoveReport(False, self.pose(), travelled, blocked[0], leg.door,
                                       blocked[1], tuple(passed))
+                travelled += self._pass_narrow_doorway(leg.door, avoid_doors)
                 passed.append(leg.door)
         self._record_view()
         return MoveReport(True, self.pose(), travelled, doors_passed=tuple(passed))
 
     def _drive_leg(self, target: Pose, avoid_doors: frozenset[str], final: bool,
-                   companion: str | None = None, cancel: CancelToken | None = None
-                   ) -> MoveReport:
+                   companion: str | None = None, cancel: CancelToken | None = None,
+                   near_enough: float = 0.0) -> MoveReport:
         """Drive to ``target`` along stage-1 paths, planning round what blocks the way;
         stop when ``companion`` (the person guided or followed) shows stop, or when
-        ``cancel`` is cancelled."""
+        ``cancel`` is cancelled. Something standing on ``target``: as near as there is
+        room, within ``near_enough`` metres, will do."""
         shown = self.stop_shown
         gesture = (lambda: shown(companion)) if shown is not None and companion else None
 
@@ -205,7 +214,7 @@ class BodyRobot(Robot):
                                             heading_tolerance=_HEADING_TOLERANCE if final
                                             else None,
                                             stop=stop if cancel is not None or gesture is not None
-                                            else None)
+                                            else None, near_enough=near_enough)
         except NavigationError:
             return MoveReport(False, self.pose(), 0.0, Blocker.NO_PATH)
         if attempt.reached:
@@ -232,12 +241,54 @@ class BodyRobot(Robot):
         state = self.door_is_open(door)
         if state is False or (state is None and not from_afar):
             return (Blocker.DOOR_CLOSED, None)
-        model = self.world.doors[door]
-        # Returns off the door's jambs are no one standing in it, however narrow it is.
-        reach = min(_DOORWAY, model.width / 2 - _JAMB)
-        if self._laser_returns_near(model.position, reach) == 0:
+        # A leaf left half open, furniture beside the jamb or someone by the doorway keep
+        # the robot out only when no straight way through the doorway is wide enough.
+        if self._way_through(door) is not None:
             return None
-        return (Blocker.PERSON, self._person_near(model.position, 0.8) or None)
+        return (Blocker.PERSON, self._person_near(self.world.doors[door].position, 0.8) or None)
+
+    def _pass_narrow_doorway(self, door: str, avoid_doors: frozenset[str]) -> float:
+        """Standing before ``door`` (open, and a way through it seen): when its widest
+        straight way leaves little room or runs slanted (past a leaf left half open, or
+        furniture by a jamb), line up with that way and drive along it at a crawl, as
+        stage 2's safety margin would not; metres driven. A roomy doorway is left to the
+        next leg's ordinary drive."""
+        way = self._way_through(door)
+        if way is None or (way.room >= _ROOMY_DOORWAY and abs(way.slant) < _SLANTED):
+            return 0.0
+        here = self.pose().xy()
+        entry, exit_ = sorted((way.entry, way.exit), key=lambda end: math.dist(here, end))
+        heading = math.atan2(exit_[1] - entry[1], exit_[0] - entry[0])
+        self.events.record("robot.doorway", door=door, room=round(way.room, 3),
+                           slant=round(way.slant, 3))
+        start = self.body.odometry().pose
+        if math.dist(here, entry) > _ON_THE_WAY:
+            # a short straight step onto the way when it is free, else the ordinary drive
+            self._turn_towards(entry)
+            if not drive_straight(self.body, self.localise, here, entry):
+                attempt = self.navigation.drive(Pose(*entry, heading), avoid_doors,
+                                                tolerance=_ON_THE_WAY,
+                                                heading_tolerance=_HEADING_TOLERANCE)
+                if not attempt.reached:
+                    return attempt.travelled
+        self._turn_towards(exit_)
+        drive_straight(self.body, self.localise, entry, exit_)
+        return math.dist(start.xy(), self.body.odometry().pose.xy())
+
+    def _way_through(self, door: str) -> WayThrough | None:
+        """The widest straight way through ``door`` past what the laser sees now."""
+        model = self.world.doors[door]
+        x, y = self.world.point_before_door(door, model.rooms[0], 1.0).xy()
+        normal = (x - model.position[0], y - model.position[1])
+        # what the laser sees, and the furniture the map has (out of view round a jamb)
+        near = ShapelyPoint(model.position).buffer(_FURNITURE_NEAR_DOOR)
+        outlines = [np.asarray(placement.footprint.exterior.segmentize(_OUTLINE_STEP).coords)
+                    for placement in self.world.placements.values()
+                    if placement.model.kind is PlacementKind.FURNITURE
+                    and placement.footprint.intersects(near)]
+        points = np.concatenate([self._scan_on_map(), *outlines])
+        return way_through(points, model.position, normal, model.width,
+                           self.world.model.wall_thickness, self.body.radius + _SIDE_ROOM)
 
     def _door_ahead_blocked(self, legs: list[_Leg]
                             ) -> tuple[str, Blocker, str | None] | None:
@@ -252,11 +303,6 @@ class BodyRobot(Robot):
             if blocked is not None:
                 return (leg.door, *blocked)
         return None
-
-    def _laser_returns_near(self, point: tuple[float, float], reach: float) -> int:
-        points = self._scan_on_map()
-        return int(np.count_nonzero(np.hypot(points[:, 0] - point[0],
-                                             points[:, 1] - point[1]) < reach))
 
     def _person_in_the_way(self, target: Pose, avoid_doors: frozenset[str]) -> str | None:
         """Who stands on the way the robot would take if nobody were there (or, with no

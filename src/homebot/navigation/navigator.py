@@ -85,7 +85,8 @@ class Navigator:
     def plan_around(self, start: tuple[float, float], goal: tuple[float, float],
                     closed_doors: frozenset[str], obstacles: np.ndarray,
                     clearance: float, static_clearance: float | None = None,
-                    near_goal: float = 0.0) -> tuple[tuple[float, float], ...] | None:
+                    near_goal: float = 0.0, flat: np.ndarray | None = None,
+                    flat_clearance: float = 0.0) -> tuple[tuple[float, float], ...] | None:
         """Waypoints of a path keeping ``clearance`` from ``obstacles`` ((n, 2) map points).
 
         CAESAR's dynamic obstacle extension: what the laser sees that the static map
@@ -95,7 +96,8 @@ class Navigator:
         furniture: a local planner that keeps a safety margin needs the same here.
         When ``obstacles`` cover the goal itself (someone stands on it), the path ends
         at the free cell nearest to it if that lies within ``near_goal`` metres (as near
-        as the robot can come), else there is none.
+        as the robot can come), else there is none. ``flat`` are obstacles of something
+        long and flat (a door's leaf left half open), kept ``flat_clearance`` from.
         """
         grid = self.grid
         mask = self._mask(closed_doors).copy()
@@ -107,6 +109,8 @@ class Navigator:
             mask |= narrow
         if len(obstacles):
             mask[self._cells_within(obstacles, clearance)] = True
+        if flat is not None and len(flat):
+            mask[self._cells_within(flat, flat_clearance)] = True
         start_cell = grid.nearest_free(mask, *grid.cell_of(*start))
         goal_cell = grid.nearest_free(self._mask(closed_doors), *grid.cell_of(*goal))
         if start_cell is None or goal_cell is None:

@@ -25,6 +25,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.spatial import cKDTree
 
 from homebot.errors import NavigationError
 from homebot.geometry import Pose, from_frame, wrap_angle, wrap_angles
@@ -46,6 +47,9 @@ _FACE_AHEAD = 0.5  #: metres along the path to the point a spin recovery turns t
 _FACED = 0.3  #: radians: a spin recovery stops this close to facing that point
 _DETOUR_BUDGETS = 3.0  #: a goal's whole time, detours included, in first budgets
 _AT_THE_MAP = 0.075  #: metres: a return this near a wall or furniture cell is that obstacle
+_CLUSTER_JUMP = 0.1  #: metres between neighbouring returns of one thing
+_NARROW_MARGIN = 0.05  #: metres from walls beyond the radius a narrow way keeps where it can
+_EXTENDED = 0.45  #: metres: a run of unexpected returns this long is no person's legs
 # Making way (stepping aside for people who wait for the robot to pass):
 _CROWDED = 1.5  #: metres: someone this near the waiting robot may be waiting for it in turn
 _DOORWAY = 1.0  #: metres from a door's centre: no spot to step aside to
@@ -68,6 +72,9 @@ class RecoveryPolicy:
         seconds_per_metre: the time budget per metre of the first path ...
         wait_budget: ... plus this, for waiting and going round.
         obstacle_margin: metres kept from an unexpected return beyond the robot's radius.
+        extended_margin: ... and from one of something long and flat the map lacks (a
+            door's leaf left half open: it does not step into the way as people may, and
+            past it a 0.8 m doorway leaves a 0.5 m robot little more than 0.6 m).
         static_margin: metres kept from walls and furniture beyond it, where there is room.
         obstacle_memory: seconds an unexpected return is remembered.
         unexplained: a return this much shorter than the static map explains is unexpected.
@@ -84,6 +91,7 @@ class RecoveryPolicy:
     # More than stage 2 keeps from a pair of legs (its safety plus leg margin), so that
     # stage 1 never offers a gap past a person that stage 2 will not drive through.
     obstacle_margin: float = 0.22
+    extended_margin: float = 0.05
     static_margin: float = 0.14
     obstacle_memory: float = 45.0
     unexplained: float = 0.15
@@ -98,7 +106,7 @@ class RecoveryPolicy:
             if not (math.isfinite(value) and value > 0):
                 raise NavigationError(f"the recovery policy's {name} must be a positive "
                                       f"number, not {value!r}")
-        for name in ("wait_budget", "obstacle_margin", "static_margin"):
+        for name in ("wait_budget", "obstacle_margin", "extended_margin", "static_margin"):
             value = getattr(self, name)
             if not (math.isfinite(value) and value >= 0):
                 raise NavigationError(f"the recovery policy's {name} cannot be negative or "
@@ -117,6 +125,9 @@ class ObstacleMemory:
     navigator: Navigator
     unexplained: float
     memory: float
+    #: per point the last ``observe`` returned, whether it belongs to something long and
+    #: flat (see ``unexpected_extended``)
+    extended: np.ndarray = field(default_factory=lambda: np.zeros(0, dtype=bool))
     _seen: list[tuple[float, np.ndarray]] = field(default_factory=list)
 
     def unexpected(self, pose: Pose, scan: LaserScan) -> np.ndarray:
@@ -128,6 +139,32 @@ class ObstacleMemory:
         beam. Returns right at the map's obstacles are always explained, as a
         beam grazing a wall may end a little early on a map raster.
         """
+        points, unexplained = self._unexplained(pose, scan)
+        unexpected: np.ndarray = points[unexplained]
+        return unexpected
+
+    def unexpected_extended(self, pose: Pose, scan: LaserScan) -> tuple[np.ndarray, np.ndarray]:
+        """``unexpected(pose, scan)``, and per return whether it belongs to something long
+        and flat the map lacks: a run of neighbouring unexpected returns at least
+        ``_EXTENDED`` long (a door's leaf left half open, a box), which does not step
+        into the way as a person may, and which no pair of legs makes."""
+        points, unexplained = self._unexplained(pose, scan)
+        beams = np.flatnonzero(scan.valid())
+        extended = np.zeros(len(points), dtype=bool)
+        # runs of unexpected returns on neighbouring beams, each step under a cluster's jump
+        steps = np.hypot(*np.diff(points, axis=0).T) if len(points) > 1 else np.zeros(0)
+        joined = (np.diff(beams) == 1) & (steps < _CLUSTER_JUMP) & unexplained[:-1] & \
+            unexplained[1:]
+        starts = np.flatnonzero(np.concatenate(([True], ~joined)))
+        ends = np.concatenate((starts[1:], [len(points)])) - 1
+        for start, end in zip(starts, ends, strict=True):
+            if unexplained[start] and math.dist(points[start], points[end]) >= _EXTENDED:
+                extended[start:end + 1] = True
+        return points[unexplained], extended[unexplained]
+
+    def _unexplained(self, pose: Pose, scan: LaserScan) -> tuple[np.ndarray, np.ndarray]:
+        """The scan's returns on the map (beams with no return dropped), and which of them
+        no wall or furniture explains."""
         keep = scan.valid()
         ranges = scan.ranges[keep]
         origin = _laser_origin(pose, scan)
@@ -142,8 +179,7 @@ class ObstacleMemory:
                       0, rows - 1)
         clearance = self.navigator.clearance()[row, column]
         short = (ranges < expected - self.unexplained) & (clearance > _AT_THE_MAP)
-        unexplained: np.ndarray = points[short | (clearance > self.unexplained)]
-        return unexplained
+        return points, short | (clearance > self.unexplained)
 
     def _expected_ranges(self, origin: tuple[float, float], angles: np.ndarray,
                          reach: np.ndarray) -> np.ndarray:
@@ -174,14 +210,25 @@ class ObstacleMemory:
         """
         self._seen = [(seen, self._still_there(points, pose, scan))
                       for seen, points in self._seen if now - seen <= self.memory]
-        self._seen.append((now, self.unexpected(pose, scan)))
-        return np.concatenate([points for _, points in self._seen])
+        points, extended = self.unexpected_extended(pose, scan)
+        self._seen.append((now, np.column_stack((points, extended))))
+        remembered = np.concatenate([points for _, points in self._seen])
+        extended = remembered[:, 2] > 0
+        if extended.any() and not extended.all():
+            # the same leaf seen end on from elsewhere is a short run: one thing all the same
+            gap, _ = cKDTree(remembered[extended, :2]).query(remembered[~extended, :2])
+            extended[np.flatnonzero(~extended)[gap <= _CLUSTER_JUMP / 2]] = True
+        self.extended = extended
+        return remembered[:, :2]
 
     def clear(self) -> None:
         """Forget everything remembered."""
         self._seen = []
+        self.extended = np.zeros(0, dtype=bool)
 
     def _still_there(self, points: np.ndarray, pose: Pose, scan: LaserScan) -> np.ndarray:
+        """The rows of ``points`` ((n, 2) or more columns, x and y first) that the scan
+        does not see past."""
         if not len(points):
             return points
         origin_x, origin_y = _laser_origin(pose, scan)
@@ -251,9 +298,13 @@ class RecoveringNavigation:
 
     def drive(self, target: Pose, avoid_doors: frozenset[str] = frozenset(), *,
               tolerance: float = 0.15, heading_tolerance: float | None = 0.2,
-              stop: Callable[[], bool] | None = None) -> NavigationAttempt:
+              stop: Callable[[], bool] | None = None,
+              near_enough: float = 0.0) -> NavigationAttempt:
         """Drive to ``target``; a path round ``avoid_doors`` only. ``stop`` is asked every
         control period (a person's stop gesture): True cancels the drive (CANCELED).
+        With ``target`` taken by something the laser sees (a door's leaf over the spot
+        where the robot would look at the door), coming as near as there is room counts
+        as reaching it if that is within ``near_enough`` metres; else the robot waits.
 
         Raises:
             NavigationError: the static map has no path to the target at all.
@@ -277,6 +328,7 @@ class RecoveringNavigation:
         waiting_since: float | None = None
         made_way_at = -math.inf
         obstacles = np.zeros((0, 2))
+        extended = np.zeros(0, dtype=bool)
         while body.now() < deadline:
             if path is None:
                 if waiting_since is None:
@@ -287,7 +339,8 @@ class RecoveringNavigation:
                 waits += 1
                 if body.now() - max(waiting_since, made_way_at) >= policy.make_way_after:
                     made_way_at = body.now()
-                    travelled += self.make_way(self.localise(), obstacles, avoid_doors)
+                    travelled += self.make_way(self.localise(), obstacles[~extended],
+                                               avoid_doors)
                     # Nav2's clear-costmap recovery: what the laser cannot see from here
                     # (round a door's jamb, behind the robot) is no longer trusted; what
                     # still stands in view is seen again at once.
@@ -309,6 +362,9 @@ class RecoveringNavigation:
                 travelled += result.travelled
                 reason = result.reason or StopReason.TIMEOUT
                 if result.reached and aim is not target:
+                    if math.dist(aim.xy(), target.xy()) <= near_enough:
+                        reason = StopReason.REACHED
+                        break
                     reason = StopReason.BLOCKED  # there: wait for the target to clear
                 elif result.reached or reason is not StopReason.BLOCKED:
                     break
@@ -316,12 +372,16 @@ class RecoveringNavigation:
                     self._face(path)
             pose = self.localise()
             obstacles = self.memory.observe(body.now(), pose, body.scan())
+            extended = self.memory.extended
             # Waited a while for the wide way (people staying in it): a narrower way will do.
             squeeze = waiting_since is not None and \
                 body.now() - waiting_since >= policy.make_way_after
-            path = self.plan_wide(pose, target, avoid_doors, obstacles, squeeze)
+            path = self.plan_wide(pose, target, avoid_doors, obstacles, squeeze, extended)
             if path is not None and path[-1] != target.xy() and \
                     math.dist(pose.xy(), path[-1]) <= tolerance:
+                if math.dist(path[-1], target.xy()) <= near_enough:
+                    reason = StopReason.REACHED
+                    break
                 path = None  # as near to an occupied target as it comes: wait there
             if path is not None:
                 needed = body.now() + polyline_length(path) * policy.seconds_per_metre
@@ -336,6 +396,7 @@ class RecoveringNavigation:
 
     def plan_wide(self, here: Pose, target: Pose, avoid_doors: frozenset[str],
                   obstacles: np.ndarray, squeeze: bool = False,
+                  extended: np.ndarray | None = None,
                   ) -> tuple[tuple[float, float], ...] | None:
         """Stage 1 round ``obstacles``, with a margin from walls and furniture.
 
@@ -343,21 +404,36 @@ class RecoveringNavigation:
         wider way: when it has one and ``obstacles`` stand in it, None (wait, or ask),
         rather than squeezing through a gap the local planner can only crawl through;
         unless ``squeeze`` (the robot has waited for the wide way a while already).
+        ``extended`` marks the obstacles of something long and flat (a door's leaf),
+        from which the policy's ``extended_margin`` is kept instead.
         """
         radius, policy = self.body.radius, self.policy
         around, wide = radius + policy.obstacle_margin, radius + policy.static_margin
+        flat = np.zeros((0, 2))
+        if extended is not None and extended.any():
+            obstacles, flat = obstacles[~extended], obstacles[extended]
+        beside = radius + policy.extended_margin
         # Someone standing on the target itself: the path ends as near to it as there is
         # room (the robot waits there for them to step off).
         near = around
         path = self.navigator.plan_around(here.xy(), target.xy(), avoid_doors, obstacles,
-                                          around, wide, near_goal=near)
+                                          around, wide, near_goal=near, flat=flat,
+                                          flat_clearance=beside)
         if path is not None:
             return path
+        # People may step out of the wide way; what is long and flat (a leaf) will not.
         if len(obstacles) and not squeeze and self.navigator.plan_around(
-                here.xy(), target.xy(), avoid_doors, np.zeros((0, 2)), around, wide):
+                here.xy(), target.xy(), avoid_doors, np.zeros((0, 2)), around, wide,
+                flat=flat, flat_clearance=beside):
             return None
-        return self.navigator.plan_around(here.xy(), target.xy(), avoid_doors, obstacles,
-                                          around, near_goal=near)
+        # The narrow way: a little room from walls where there is, else the radius.
+        for static in (radius + _NARROW_MARGIN, None):
+            path = self.navigator.plan_around(here.xy(), target.xy(), avoid_doors, obstacles,
+                                              around, static, near_goal=near, flat=flat,
+                                              flat_clearance=beside)
+            if path is not None:
+                return path
+        return None
 
     def make_way(self, here: Pose, obstacles: np.ndarray, avoid_doors: frozenset[str]) -> float:
         """Step out of the way of people standing round the robot (metres driven).

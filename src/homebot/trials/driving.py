@@ -386,8 +386,9 @@ class _TracedNavigation(RecoveringNavigation):
 
     def plan_wide(self, here: Pose, target: Pose, avoid_doors: frozenset[str],
                   obstacles: np.ndarray, squeeze: bool = False,
+                  extended: np.ndarray | None = None,
                   ) -> tuple[tuple[float, float], ...] | None:
-        path = super().plan_wide(here, target, avoid_doors, obstacles, squeeze)
+        path = super().plan_wide(here, target, avoid_doors, obstacles, squeeze, extended)
         self.trace.planned(self.body.now(), here, obstacles, squeeze, path)
         return path
 

@@ -1,0 +1,62 @@
+"""A 0.5 m robot passes an 0.8 m doorway whose door stands half open, a shelf beside it:
+once, without reversing through it and without touching the leaf (the simulator's trail
+and bumper say so)."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from homebot.app import Fidelity, RunSettings, build_run
+from homebot.geometry import Pose
+from homebot.world import World
+
+pytest.importorskip("cv2")
+
+_FLAT = """
+name: two_rooms_ajar_door
+rooms:
+  - {{name: hall, polygon: [[0, 0], [3, 0], [3, 3], [0, 3]]}}
+  - {{name: study, polygon: [[3, 0], [6, 0], [6, 3], [3, 3]]}}
+doors:
+  - {{name: study door, rooms: [hall, study], position: [3, 1.0], width: 0.8, opening: 60,
+     hinge: {hinge}, swings_into: {into}}}
+categories:
+  - {{name: book, plural: books}}
+placements:
+  - {{name: shelf, category: storage, room: hall, center: [2.75, 1.95], size: [0.4, 0.6]}}
+  - {{name: desk, category: table, room: study, center: [5.4, 2.6], size: [1.0, 0.6], holds: [book]}}
+objects:
+  - {{name: atlas, category: book, placement: desk}}
+people:
+  - {{name: Ada, room: hall, position: [0.6, 2.4]}}
+operator: Ada
+robot:
+  pose: [1.0, 1.6, 0.0]
+  radius: 0.25
+"""
+
+
+def _sides(trail: list[tuple[float, float]]) -> list[int]:
+    """Which side of the door's wall (x = 3) the robot was on, each time it changed."""
+    sides: list[int] = []
+    for x, _ in trail:
+        side = 1 if x > 3.0 else -1
+        if not sides or sides[-1] != side:
+            sides.append(side)
+    return sides
+
+
+@pytest.mark.parametrize(("hinge", "into"), [("south", "study"), ("north", "hall")])
+def test_a_half_open_doorway_is_passed_once_without_touching_the_leaf(hinge: str,
+                                                                      into: str) -> None:
+    world = World.from_yaml_text(_FLAT.format(hinge=hinge, into=into))
+    run = build_run(RunSettings(world=world, seed=3, fidelity=Fidelity.EMBODIED))
+    goal = Pose(4.6, 1.6, 0.0)
+    report = run.robot.move_to(goal)
+    x, y, _ = run.simulation.robot_pose
+    assert report.reached and math.dist((x, y), goal.xy()) < 0.3  # judged by the truth
+    assert report.doors_passed == ("study door",)
+    assert _sides(run.path()) == [-1, 1]  # through once, never back through the door
+    assert run.simulation.collisions == []
