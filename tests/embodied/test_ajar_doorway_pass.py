@@ -26,7 +26,8 @@ categories:
   - {{name: book, plural: books}}
 placements:
   - {{name: shelf, category: storage, room: hall, center: [2.75, 1.95], size: [0.4, 0.6]}}
-  - {{name: desk, category: table, room: study, center: [5.4, 2.6], size: [1.0, 0.6], holds: [book]}}
+  - {{name: desk, category: table, room: study, center: [5.4, 2.6], size: [1.0, 0.6],
+     holds: [book]}}
 objects:
   - {{name: atlas, category: book, placement: desk}}
 people:

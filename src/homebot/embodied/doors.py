@@ -4,7 +4,8 @@ A shut door's leaf stands in the wall's line, so every beam that crosses the
 doorway ends on that line; through an open door most beams go on into the next
 room. Someone standing in an open doorway stops only the beams that meet them,
 and a person filling the doorway stands out of the line where a leaf is flat.
-Beams that end well before the line (something in front of the door) tell nothing.
+Beams that end well before the line (something in front of the door, a leaf
+swung towards the robot) tell nothing.
 
 Whether an open doorway lets the robot through is geometry (``doorway_passable``):
 a leaf left half open, a coat rack beside the jamb or someone standing in the
@@ -26,6 +27,9 @@ __all__ = ["WayThrough", "door_seen_open", "doorway_passable", "way_through"]
 _JAMB = 0.08  #: metres inside each jamb where beams are not counted
 _PAST_THE_LINE = 0.1  #: metres past the wall's middle line: a beam went through
 _IN_FRONT = 0.35  #: metres in front of the line where returns are the door or someone in it
+_IN_LINE = 0.12  #: metres in front of the line within which a return may be a shut leaf
+_LEAF_IN_FRONT = 1.0  #: metres in front of the line a leaf swung towards the robot reaches
+_SLANTED_LEAF = 0.15  #: metres of depth over which such a leaf's returns spread at least
 _BODY = 0.06  #: metres a person stands out of a leaf's face
 _THROUGH = 2  #: beams through the doorway that show it open
 _SHUT = 3  #: beams at the door that show it shut (or someone in it)
@@ -60,7 +64,13 @@ def door_seen_open(scan: LaserScan, pose: Pose, centre: tuple[float, float],
     if int(np.count_nonzero(gap > _PAST_THE_LINE)) >= _THROUGH:
         return True
     at_the_door = gap[(gap >= -_IN_FRONT) & (gap <= _PAST_THE_LINE)]
-    if len(at_the_door) < _SHUT:
+    if np.count_nonzero(at_the_door >= -_IN_LINE) < _SHUT:
+        # Nothing in the wall's line, where a shut leaf stands: what the beams meet stands
+        # in front of the doorway. Slanted across it, it is the leaf swung towards the
+        # robot (the door is open); else it hides the doorway.
+        in_front = gap[(gap < -_IN_LINE) & (gap >= -_LEAF_IN_FRONT)]
+        if len(in_front) >= _SHUT and float(np.ptp(in_front)) >= _SLANTED_LEAF:
+            return True
         return None
     # a leaf is flat; someone filling the doorway stands out of it, towards the robot
     face = float(np.percentile(at_the_door, 75))

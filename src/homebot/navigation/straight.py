@@ -25,6 +25,7 @@ _LOOK_AHEAD = 0.15  #: metres ahead of the footprint that must stay free
 _STEER = 1.5  #: rad/s of turn per metre off the line and per radian off its heading
 _ARRIVED = 0.03  #: metres short of the end where the robot counts as there
 _STRAY = 0.12  #: metres off the line at which the robot stops (lost the way)
+_ALIGNED = 0.1  #: radians off the way's heading within which the robot drives on
 
 
 def drive_straight(body: Body, localise: Callable[[], Pose], start: tuple[float, float],
@@ -53,11 +54,12 @@ def drive_straight(body: Body, localise: Callable[[], Pose], start: tuple[float,
             break
         if abs(off) > _STRAY:
             break
-        if not _path_free(body, body.radius + _LOOK_AHEAD, half_width):
-            break
         error = wrap_angle(heading - pose.theta)
         turn = _STEER * (error - off)
-        speed = _CRAWL if abs(error) < 0.3 else 0.0
+        # turned along the way first, on the spot; the strip ahead is the way's then
+        speed = _CRAWL if abs(error) < _ALIGNED else 0.0
+        if speed and not _path_free(body, body.radius + _LOOK_AHEAD, half_width):
+            break
         body.command_velocity(Twist(min(speed, length - along + 0.02), 0.0,
                                     max(-body.limits.angular, min(body.limits.angular, turn))))
         body.tick()
