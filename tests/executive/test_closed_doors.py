@@ -55,8 +55,12 @@ def test_a_route_without_closed_doors_is_preferred(apartment: World) -> None:
 
 
 def test_a_locked_door_on_the_only_route_ends_in_a_failure_naming_it(apartment: World) -> None:
-    world = _apartment_with("bedroom door", "locked", apartment)
-    run = build_run(RunSettings(world=world))
+    # Nobody will open it: the robot asks the people it can reach, and they refuse.
+    data: dict[str, Any] = _apartment_with("bedroom door", "locked", apartment).to_dict()
+    for person in data["people"]:
+        person["cooperative"] = False
+    run = build_run(RunSettings(world=World.from_dict(data)))
     report = run.run(Task((Step("navigate", {"to": "bed"}),)))
     assert not report.success
     assert "bedroom door" in report.reason
+    assert any("could you please open the bedroom door" in text for text in report.speech)

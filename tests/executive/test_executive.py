@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 
 import pytest
@@ -61,6 +62,23 @@ def test_locked_door_gets_someone_to_open_it(apartment: World,
     report = run.run(Task((Step("navigate", {"to": "bed"}),)))
     assert report.success
     assert any("open the bedroom door" in text for text in report.speech)
+
+
+def test_with_nobody_by_a_locked_door_the_robot_goes_to_ask_someone(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    # Nobody outside the bedroom is near its door (John is inside, behind it), and there
+    # is no other way in: the robot goes to someone it can reach (Alex, in the living
+    # room) and asks there.
+    run = _run(apartment, apartment_navigator)
+    run.simulation.door_state["bedroom door"] = DoorState.LOCKED
+    door = apartment.doors["bedroom door"].position
+    assert all(math.dist(state.position, door) > 3.0
+               for state in run.simulation.people.values() if state.room != "bedroom")
+    report = run.run(Task((Step("navigate", {"to": "bed"}),)))
+    assert report.success, report.reason
+    assert any(text.startswith("Alex, could you please open the bedroom door")
+               for text in report.speech)
+    assert run.simulation.door_state["bedroom door"] is DoorState.OPEN
 
 
 def test_person_in_the_way_is_asked_to_step_aside(apartment: World,
@@ -175,8 +193,12 @@ def test_inference_gets_a_turn_when_the_protocols_give_up(
         asked.append(outcome.error)
         return False
 
+    # nobody will open the locked door, however the robot asks
+    data = apartment.to_dict()
+    for person in data["people"]:
+        person["cooperative"] = False
     run = build_run(RunSettings(
-        world=apartment, navigator=apartment_navigator, inference=inference))
+        world=World.from_dict(data), navigator=apartment_navigator, inference=inference))
     run.simulation.door_state["bedroom door"] = DoorState.LOCKED
     report = run.run(Task((Step("navigate", {"to": "bed"}),)))
     assert not report.success

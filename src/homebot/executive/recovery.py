@@ -28,6 +28,9 @@ Recover = bool | Collection[ErrorCode]
 WAY_BLOCKED: frozenset[ErrorCode] = frozenset({ErrorCode.DOOR_CLOSED, ErrorCode.PATH_BLOCKED})
 
 
+_HELPERS_SOUGHT = 2  #: people the robot goes to, one after another, to ask to open a door
+
+
 class StepRunner(typing.Protocol):
     """Runs a skill step through the executive: ``run(skill, args)``, with recovery
     unless ``recover`` narrows it (False: the bare skill, as the inference cycle's own
@@ -44,7 +47,8 @@ Protocol = Callable[[SkillContext, str, Mapping[str, Any], Outcome, StepRunner],
 
 def _door_closed(context: SkillContext, skill: str, args: Mapping[str, Any],
                  outcome: Outcome, run: StepRunner) -> bool:
-    """Open the door; if it will not open, ask someone nearby; else go round it."""
+    """Open the door; if it will not open, ask someone nearby; else go round it; with no
+    way round, go and ask someone the robot can reach to open it."""
     door = str(outcome.data.get("door", ""))
     if not door:
         return False
@@ -63,7 +67,32 @@ def _door_closed(context: SkillContext, skill: str, args: Mapping[str, Any],
             speak(context, "Thank you!")
             return True
     # The door stays in the believed-closed set, so the next attempt routes round it.
-    return _has_other_way(context, skill, args)
+    if _has_other_way(context, skill, args):
+        return True
+    if _someone_elsewhere_opens(context, door, run):
+        context.beliefs.door_open(door)
+        return True
+    return False
+
+
+def _someone_elsewhere_opens(context: SkillContext, door: str, run: StepRunner) -> bool:
+    """Nobody by the door opens it: go to the people the robot believes it can reach
+    without passing a door it believes shut, nearest way first, and ask them."""
+    here = context.robot.pose().xy()
+    closed = frozenset(context.beliefs.closed_doors | {door})
+    reachable = []
+    for name, where in context.beliefs.person_at.items():
+        plan = context.navigator.plan(here, where, closed)
+        if plan is not None:
+            reachable.append((plan.length, name))
+    for _, name in sorted(reachable)[:_HELPERS_SOUGHT]:
+        if not run("navigate", {"to": name}, recover=WAY_BLOCKED - {ErrorCode.DOOR_CLOSED}):
+            continue
+        speak(context, f"{name}, could you please open the {door} for me?")
+        if context.robot.request(name, HelpRequest.OPEN_DOOR, door):
+            speak(context, "Thank you!")
+            return True
+    return False
 
 
 def _path_blocked(context: SkillContext, skill: str, args: Mapping[str, Any],
