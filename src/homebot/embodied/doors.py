@@ -33,7 +33,7 @@ _SLANTED_LEAF = 0.15  #: metres of depth over which such a leaf's returns spread
 _BODY = 0.06  #: metres a person stands out of a leaf's face
 _THROUGH = 2  #: beams through the doorway that show it open
 _SHUT = 3  #: beams at the door that show it shut (or someone in it)
-_CROSSING = 0.7  #: metres either side of the wall's line over which a way through is checked
+_CROSSING = 0.45  #: metres along a way through, either side of the wall's line, to its ends
 _SLANTS = np.radians(np.arange(-60.0, 61.0, 5.0))  #: ways through, from straight across
 _OFFSET_STEP = 0.02  #: metres between the ways through tried along the doorway
 _WALL_STEP = 0.02  #: metres between the points standing for the wall beside the doorway
@@ -81,7 +81,7 @@ def door_seen_open(scan: LaserScan, pose: Pose, centre: tuple[float, float],
 @dataclass(frozen=True, slots=True)
 class WayThrough:
     """A straight way across a doorway, on the map: from ``entry`` on the side the
-    door's normal points to, to ``exit`` on the other, each ``_CROSSING`` from the
+    door's normal points to, to ``exit`` on the other, each ``_CROSSING`` along it from the
     wall's line; ``room`` metres to spare between the disc on the way and the nearest
     return or jamb; ``slant`` radians from straight across."""
 
@@ -99,8 +99,8 @@ def way_through(points: np.ndarray, centre: tuple[float, float], normal: tuple[f
 
     The ways tried cross the wall's line anywhere in the doorway, straight or slanted
     up to 60 degrees (past a leaf left half open the way runs along the leaf); only
-    points within ``_CROSSING`` (and the disc's radius) of the line, either side, along
-    each way count.
+    the disc is swept along each way from end to end, ``_CROSSING`` either side of the
+    wall's line.
     """
     nx, ny = np.asarray(normal, dtype=float) / float(np.hypot(*normal))
     tx, ty = -ny, nx
@@ -109,13 +109,14 @@ def way_through(points: np.ndarray, centre: tuple[float, float], normal: tuple[f
     along = relative @ np.array([tx, ty])
     across = relative @ np.array([nx, ny])
     # the wall either side of the doorway, its faces and the jambs, as the map has it
-    beyond = np.arange(half, half + _CROSSING + _WALL_STEP, _WALL_STEP)
+    beyond = np.arange(half, half + _CROSSING + radius + _WALL_STEP, _WALL_STEP)
     faces = np.arange(-wall_thickness / 2, wall_thickness / 2 + 1e-9, _WALL_STEP)
     wall_along = np.concatenate([beyond, -beyond, beyond, -beyond,
                                  np.full(len(faces), half), np.full(len(faces), -half)])
     wall_across = np.concatenate([np.full(2 * len(beyond), -wall_thickness / 2),
                                   np.full(2 * len(beyond), wall_thickness / 2), faces, faces])
-    near = (np.abs(across) <= _CROSSING + 2 * radius) & (np.abs(along) <= half + _CROSSING + radius)
+    near = (np.abs(across) <= _CROSSING + 2 * radius) & \
+        (np.abs(along) <= half + _CROSSING + radius)
     along = np.concatenate([along[near], wall_along])
     across = np.concatenate([across[near], wall_across])
     offsets = np.arange(-half + radius, half - radius + 1e-9, _OFFSET_STEP)
@@ -126,9 +127,9 @@ def way_through(points: np.ndarray, centre: tuple[float, float], normal: tuple[f
         shifted = along[None, :] - offsets[:, None]
         off_the_way = np.abs(shifted * cosine - across[None, :] * sine)
         on_the_way = shifted * sine + across[None, :] * cosine
-        # the disc at either end of the way reaches a radius further
-        room = np.where(np.abs(on_the_way) <= _CROSSING + radius, off_the_way,
-                        np.inf).min(axis=1)
+        # the disc swept from end to end: a point past an end is as far as from that end
+        past_the_end = np.maximum(np.abs(on_the_way) - _CROSSING, 0.0)
+        room = np.hypot(off_the_way, past_the_end).min(axis=1)
         # the most room, and of ways with nearly as much, the straightest and most central
         score = room - _PREFER_STRAIGHT * (abs(float(slant)) + np.abs(offsets))
         k = int(np.argmax(score))

@@ -63,6 +63,7 @@ _STOP_BEFORE_DOOR = 0.6  #: metres in front of a door where the robot stops to l
 _SEES_THE_DOOR = 3.0  #: metres within which the robot, stopped short, looks at a door ahead
 _FURNITURE_NEAR_DOOR = 1.5  #: metres from a door within which the map's furniture counts
 _OUTLINE_STEP = 0.02  #: metres between the points taken along a furniture's outline
+_CLOSE_TO_THE_DOOR = 1.3  #: metres from a door's middle: near enough to look at it and pass
 _NEAR_THE_DOOR = 0.5  #: metres: a door's leaf on the spot before it, this near will do
 _SIDE_ROOM = 0.0  #: metres the robot wants beside it passing through a doorway
 _ROOMY_DOORWAY = 0.1  #: metres to spare a side on the straight way: the ordinary drive will do
@@ -171,6 +172,14 @@ class BodyRobot(Robot):
             if report.blocker is Blocker.CANCELLED:
                 return MoveReport(False, self.pose(), travelled, Blocker.CANCELLED,
                                   doors_passed=tuple(passed))
+            if not report.reached and leg.door is not None and \
+                    report.blocker in (Blocker.OBSTRUCTED, Blocker.PERSON) and \
+                    math.dist(self.pose().xy(), self.world.doors[leg.door].position) <= \
+                    _CLOSE_TO_THE_DOOR and self._door_blocker(leg.door) is None:
+                # Kept off the spot before the door (a leaf swung towards the robot, seen
+                # end on, looks like someone's leg), but close to it, and it is open with
+                # a way through: go on through.
+                report = MoveReport(True, self.pose(), report.distance)
             if not report.reached:
                 self._record_view()
                 # Stopped short: a door still ahead that is shut, or that the laser sees

@@ -25,6 +25,8 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.sparse import coo_matrix
+from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
 
 from homebot.errors import NavigationError
@@ -49,6 +51,7 @@ _DETOUR_BUDGETS = 3.0  #: a goal's whole time, detours included, in first budget
 _AT_THE_MAP = 0.075  #: metres: a return this near a wall or furniture cell is that obstacle
 _CLUSTER_JUMP = 0.1  #: metres between neighbouring returns of one thing
 _NARROW_MARGIN = 0.05  #: metres from walls beyond the radius a narrow way keeps where it can
+_SAME_THING = 0.07  #: metres between neighbouring returns of one remembered thing
 _EXTENDED = 0.45  #: metres: a run of unexpected returns this long is no person's legs
 # Making way (stepping aside for people who wait for the robot to pass):
 _CROWDED = 1.5  #: metres: someone this near the waiting robot may be waiting for it in turn
@@ -215,9 +218,13 @@ class ObstacleMemory:
         remembered = np.concatenate([points for _, points in self._seen])
         extended = remembered[:, 2] > 0
         if extended.any() and not extended.all():
-            # the same leaf seen end on from elsewhere is a short run: one thing all the same
-            gap, _ = cKDTree(remembered[extended, :2]).query(remembered[~extended, :2])
-            extended[np.flatnonzero(~extended)[gap <= _CLUSTER_JUMP / 2]] = True
+            # The same leaf seen end on, or in pieces, from elsewhere: returns joined to a
+            # long run by a chain of close neighbours belong to that one thing.
+            pairs = cKDTree(remembered[:, :2]).query_pairs(_SAME_THING, output_type="ndarray")
+            graph = coo_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])),
+                               shape=(len(remembered), len(remembered)))
+            _, component = connected_components(graph, directed=False)
+            extended = np.isin(component, component[extended])
         self.extended = extended
         return remembered[:, :2]
 

@@ -58,7 +58,9 @@ def drive_straight(body: Body, localise: Callable[[], Pose], start: tuple[float,
         turn = _STEER * (error - off)
         # turned along the way first, on the spot; the strip ahead is the way's then
         speed = _CRAWL if abs(error) < _ALIGNED else 0.0
-        if speed and not _path_free(body, body.radius + _LOOK_AHEAD, half_width):
+        # the strip ahead, up to where the footprint ends at the line's end
+        ahead = min(_LOOK_AHEAD, length - along) + body.radius
+        if speed and not _path_free(body, ahead, half_width):
             break
         body.command_velocity(Twist(min(speed, length - along + 0.02), 0.0,
                                     max(-body.limits.angular, min(body.limits.angular, turn))))
