@@ -229,9 +229,17 @@ class ArmedBodyRobot(BodyRobot):
             return False
         self._face(person)
         self.arm.hold_out(self.pose())
-        pulled = self._wait_for_wrench(_PULL, _WAIT_FOR_TAKER)
-        if not pulled:
-            self.events.record("robot.hand_over", person=person, released=False)
+        # A pull is felt across the wrist, towards the person: what slips out of the
+        # fingers changes the wrist's load too, but downwards.
+        pulled = self._wait_for_wrench(_PULL, _WAIT_FOR_TAKER,
+                                       sensor_to_map=self.arm.hand_rotation(self.pose()))
+        if not pulled or not self.arm.gripper_holds():
+            # not taken, or it slipped out of the hand (fingers shut on nothing): not given
+            self.events.record("robot.hand_over", person=person, released=False,
+                               slipped=pulled)
+            if pulled:
+                self.arm.holding = None
+                del self._holding[hand]
             self.arm.tuck(self.pose())
             return False
         self.arm.let_go()
@@ -247,16 +255,21 @@ class ArmedBodyRobot(BodyRobot):
             self._asked_for = max(named, key=len) if named else None
         super().say(text)
 
-    def _wait_for_wrench(self, threshold: float, seconds: float) -> bool:
+    def _wait_for_wrench(self, threshold: float, seconds: float, *,
+                         sensor_to_map: np.ndarray | None = None) -> bool:
         """Tick until the wrist's force differs from what it was by more than ``threshold``
-        newtons for ``_FELT`` seconds; False after ``seconds`` without."""
+        newtons for ``_FELT`` seconds; False after ``seconds`` without. Given the sensor's
+        orientation on the map, only the horizontal part of the change counts."""
         start = self.body.wrist_wrench().force
         step = max(1, round(0.05 / self.body.tick_period))
         waited = held = 0.0
         while waited < seconds:
             self.body.tick(step)
             waited += step * self.body.tick_period
-            change = float(np.linalg.norm(self.body.wrist_wrench().force - start))
+            difference = self.body.wrist_wrench().force - start
+            if sensor_to_map is not None:
+                difference = (sensor_to_map @ difference)[:2]
+            change = float(np.linalg.norm(difference))
             held = held + step * self.body.tick_period if change > threshold else 0.0
             if held >= _FELT:
                 return True

@@ -240,6 +240,12 @@ class ArmControl:
         follow(self.body, path or [here, carry])
         return True
 
+    def hand_rotation(self, base: Pose) -> np.ndarray:
+        """The hand's orientation on the map (3 × 3), from the joints' positions: the
+        wrist sensor's frame turned onto the map."""
+        _, rotation = self._scene(base).grasp_frame(current_configuration(self.body))
+        return rotation
+
     def gripper_holds(self) -> bool:
         """Sensed: the fingers stand apart though told to close (something is between)."""
         state = self.body.gripper().state()
