@@ -33,7 +33,12 @@ _SLANTED_LEAF = 0.15  #: metres of depth over which such a leaf's returns spread
 _BODY = 0.06  #: metres a person stands out of a leaf's face
 _THROUGH = 2  #: beams through the doorway that show it open
 _SHUT = 3  #: beams at the door that show it shut (or someone in it)
-_CROSSING = 0.45  #: metres along a way through, either side of the wall's line, to its ends
+#: metres along a way through, either side of the wall's line, to its ends: 0.45 m fits in
+#: a 1.0 m corridor; a narrow way ends 0.7 m out where that fits, clear of a leaf's tip
+_SHORT_REACH, _LONG_REACH = 0.45, 0.7
+_ROOM_TO_GO_ON = 0.03  #: metres of room a narrow way may give up to end 0.7 m out
+_ROOMY = 0.1  #: metres to spare a side on a straight way through: no narrow doorway
+_SLANTED = 0.1  #: radians: a way through slanted more than this is a narrow one
 _SLANTS = np.radians(np.arange(-60.0, 61.0, 5.0))  #: ways through, from straight across
 _OFFSET_STEP = 0.02  #: metres between the ways through tried along the doorway
 _WALL_STEP = 0.02  #: metres between the points standing for the wall beside the doorway
@@ -81,7 +86,7 @@ def door_seen_open(scan: LaserScan, pose: Pose, centre: tuple[float, float],
 @dataclass(frozen=True, slots=True)
 class WayThrough:
     """A straight way across a doorway, on the map: from ``entry`` on the side the
-    door's normal points to, to ``exit`` on the other, each ``_CROSSING`` along it from the
+    door's normal points to, to ``exit`` on the other, each up to 0.7 m along it from the
     wall's line; ``room`` metres to spare between the disc on the way and the nearest
     return or jamb; ``slant`` radians from straight across."""
 
@@ -89,6 +94,13 @@ class WayThrough:
     exit: tuple[float, float]
     room: float
     slant: float
+    offset: float  #: metres from the doorway's middle, along the wall, where it crosses
+
+    @property
+    def narrow(self) -> bool:
+        """Little room to spare, or slanted (past a leaf): to be lined up with and driven
+        along, rather than left to the local planner's margins."""
+        return self.room < _ROOMY or abs(self.slant) >= _SLANTED
 
 
 def way_through(points: np.ndarray, centre: tuple[float, float], normal: tuple[float, float],
@@ -98,10 +110,23 @@ def way_through(points: np.ndarray, centre: tuple[float, float], normal: tuple[f
     map, (n, 2)) and the jambs; None when no way leaves the disc room.
 
     The ways tried cross the wall's line anywhere in the doorway, straight or slanted
-    up to 60 degrees (past a leaf left half open the way runs along the leaf); only
-    the disc is swept along each way from end to end, ``_CROSSING`` either side of the
-    wall's line.
+    up to 60 degrees (past a leaf left half open the way runs along the leaf); the
+    disc is swept along each from end to end, 0.45 m either side of the wall's line,
+    or for a narrow way 0.7 m where that leaves nearly as much room.
     """
+    short = _way_through(points, centre, normal, width, wall_thickness, radius, _SHORT_REACH)
+    if short is None or not short.narrow:
+        return short
+    # A narrow way: the farther it runs on, the clearer of a leaf's tip the robot comes
+    # out, unless running on costs much of what little room there is.
+    long = _way_through(points, centre, normal, width, wall_thickness, radius, _LONG_REACH)
+    return long if long is not None and long.room >= short.room - _ROOM_TO_GO_ON else short
+
+
+def _way_through(points: np.ndarray, centre: tuple[float, float],
+                 normal: tuple[float, float], width: float, wall_thickness: float,
+                 radius: float, reach: float) -> WayThrough | None:
+    """``way_through`` with its ends ``reach`` metres either side of the wall's line."""
     nx, ny = np.asarray(normal, dtype=float) / float(np.hypot(*normal))
     tx, ty = -ny, nx
     half = width / 2
@@ -109,14 +134,14 @@ def way_through(points: np.ndarray, centre: tuple[float, float], normal: tuple[f
     along = relative @ np.array([tx, ty])
     across = relative @ np.array([nx, ny])
     # the wall either side of the doorway, its faces and the jambs, as the map has it
-    beyond = np.arange(half, half + _CROSSING + radius + _WALL_STEP, _WALL_STEP)
+    beyond = np.arange(half, half + reach + radius + _WALL_STEP, _WALL_STEP)
     faces = np.arange(-wall_thickness / 2, wall_thickness / 2 + 1e-9, _WALL_STEP)
     wall_along = np.concatenate([beyond, -beyond, beyond, -beyond,
                                  np.full(len(faces), half), np.full(len(faces), -half)])
     wall_across = np.concatenate([np.full(2 * len(beyond), -wall_thickness / 2),
                                   np.full(2 * len(beyond), wall_thickness / 2), faces, faces])
-    near = (np.abs(across) <= _CROSSING + 2 * radius) & \
-        (np.abs(along) <= half + _CROSSING + radius)
+    near = (np.abs(across) <= reach + 2 * radius) & \
+        (np.abs(along) <= half + reach + radius)
     along = np.concatenate([along[near], wall_along])
     across = np.concatenate([across[near], wall_across])
     offsets = np.arange(-half + radius, half - radius + 1e-9, _OFFSET_STEP)
@@ -128,7 +153,7 @@ def way_through(points: np.ndarray, centre: tuple[float, float], normal: tuple[f
         off_the_way = np.abs(shifted * cosine - across[None, :] * sine)
         on_the_way = shifted * sine + across[None, :] * cosine
         # the disc swept from end to end: a point past an end is as far as from that end
-        past_the_end = np.maximum(np.abs(on_the_way) - _CROSSING, 0.0)
+        past_the_end = np.maximum(np.abs(on_the_way) - reach, 0.0)
         room = np.hypot(off_the_way, past_the_end).min(axis=1)
         # the most room, and of ways with nearly as much, the straightest and most central
         score = room - _PREFER_STRAIGHT * (abs(float(slant)) + np.abs(offsets))
@@ -143,9 +168,9 @@ def way_through(points: np.ndarray, centre: tuple[float, float], normal: tuple[f
     dx = -(nx * np.cos(slant) + tx * np.sin(slant))
     dy = -(ny * np.cos(slant) + ty * np.sin(slant))
     cx, cy = centre[0] + tx * offset, centre[1] + ty * offset
-    return WayThrough((float(cx - dx * _CROSSING), float(cy - dy * _CROSSING)),
-                      (float(cx + dx * _CROSSING), float(cy + dy * _CROSSING)),
-                      room - radius, slant)
+    return WayThrough((float(cx - dx * reach), float(cy - dy * reach)),
+                      (float(cx + dx * reach), float(cy + dy * reach)),
+                      room - radius, slant, offset)
 
 
 def doorway_passable(points: np.ndarray, centre: tuple[float, float],

@@ -66,8 +66,6 @@ _OUTLINE_STEP = 0.02  #: metres between the points taken along a furniture's out
 _CLOSE_TO_THE_DOOR = 1.3  #: metres from a door's middle: near enough to look at it and pass
 _NEAR_THE_DOOR = 0.5  #: metres: a door's leaf on the spot before it, this near will do
 _SIDE_ROOM = 0.0  #: metres the robot wants beside it passing through a doorway
-_ROOMY_DOORWAY = 0.1  #: metres to spare a side on the straight way: the ordinary drive will do
-_SLANTED = 0.1  #: radians: a way through slanted more than this is lined up with first
 _ON_THE_WAY = 0.1  #: metres from a way's entry where the robot may start along it
 _GOAL_TOLERANCE = 0.15  #: metres: a leg ends this close to its end point
 _HEADING_TOLERANCE = 0.2  #: radians: the final turn ends this close to the goal's heading
@@ -263,7 +261,7 @@ class BodyRobot(Robot):
         stage 2's safety margin would not; metres driven. A roomy doorway is left to the
         next leg's ordinary drive."""
         way = self._way_through(door)
-        if way is None or (way.room >= _ROOMY_DOORWAY and abs(way.slant) < _SLANTED):
+        if way is None or not way.narrow:
             return 0.0
         here = self.pose().xy()
         entry, exit_ = sorted((way.entry, way.exit), key=lambda end: math.dist(here, end))
