@@ -172,7 +172,8 @@ def guided_figures(seed: int, routes: int = 20) -> dict[str, Any]:
 
 def carry_table_figures(seed: int, trials: int = 20) -> dict[str, Any]:
     """Carrying a table with a person over ``trials`` seeded carries: the table's worst
-    tilt while off the floor (target ≤ 3°), lifted and lowered with the person."""
+    tilt while off the floor (target ≤ 3°), lifted and lowered with the person; and the
+    worst gap between the pitch the robot perceived and the true pitch."""
     began, cpu = time.perf_counter(), time.process_time()
     results = [carry_table_episode(seed, k) for k in range(trials)]
     wall, cpu = time.perf_counter() - began, time.process_time() - cpu
@@ -182,6 +183,7 @@ def carry_table_figures(seed: int, trials: int = 20) -> dict[str, Any]:
         "median_max_tilt_deg": round(statistics.median(r.max_tilt_deg for r in results), 3),
         "max_tilt_deg_while_held": max((r.max_tilt_deg for r in results if not r.dropped),
                                        default=None),
+        "worst_pitch_error_deg": max(r.pitch_error_deg for r in results),
         "lift_detected_after_s": [None if r.lifted_at is None else round(r.lifted_at, 2)
                                   for r in results],
         "lowered": sum(1 for r in results if r.lowered),

@@ -16,6 +16,12 @@ in its copy of the model, so compliance (``homebot.manipulation.compliance``) is
 that holds the hand. The person's forces (``homebot.sim.forces``) are added to
 ``xfrc_applied`` before every physics step; the scene's ground truth (where bodies truly
 are) is for benchmarks and tests, never for the robot.
+
+The robot sees the scene through a laser range finder (``laser``): rays cast from a
+mount on the robot against the scene's geometry, the robot's own links filtered out (as
+a self-filter does with the robot's model), each range with seeded noise. Cosero's
+torso laser is pitchable and its head carries a depth camera; a fan of rays in any
+plane stands for either.
 """
 
 from __future__ import annotations
@@ -30,7 +36,7 @@ import numpy as np
 from homebot.errors import SceneError
 from homebot.geometry import yaw_rotation
 
-__all__ = ["ARM_JOINTS", "InteractionScene", "scene_path"]
+__all__ = ["ARM_JOINTS", "LASER_NOISE", "LASER_RANGE", "InteractionScene", "scene_path"]
 
 ARM_JOINTS = ("shoulder_pan", "shoulder_lift", "upper_arm_roll", "elbow_flex", "forearm_roll",
               "wrist_flex", "wrist_roll")
@@ -42,6 +48,9 @@ Pusher = Callable[["InteractionScene", float], None]
 
 
 _BASE_JOINTS = ("base_x", "base_y", "base_yaw")
+_LASER_STREAM = 2077
+LASER_NOISE = 0.01  #: metres: the range noise of a laser scanner (1 sigma)
+LASER_RANGE = 5.0  #: metres: no return beyond this
 
 
 def _with_driven_base(mujoco: Any, spec: Any) -> Any:
@@ -89,10 +98,11 @@ class InteractionScene:
         scene: a shipped scene's name or an MJCF file's path.
         control_rate: control ticks per simulated second (torques hold between ticks).
         edit: changes the scene's ``mujoco.MjSpec`` before it is compiled (a variant).
+        sensor_seed: seeds the laser's range noise.
     """
 
     def __init__(self, scene: str | Path, *, control_rate: float = 100.0,
-                 edit: Callable[[Any], None] | None = None) -> None:
+                 edit: Callable[[Any], None] | None = None, sensor_seed: int = 0) -> None:
         mujoco = _mujoco()
         self._mj = mujoco
         path = Path(scene) if isinstance(scene, Path) or str(scene).endswith(".xml") else (
@@ -134,6 +144,9 @@ class InteractionScene:
         self._jacp = np.zeros((3, model.nv))
         self._jacr = np.zeros((3, model.nv))
         self.pushers: list[Pusher] = []
+        self._robot_bodies = {b for b in range(model.nbody)
+                              if int(model.body_rootid[b]) == self._base}
+        self._sensor_rng = np.random.default_rng([sensor_seed, _LASER_STREAM])
         mujoco.mj_forward(model, self.data)
 
     # ------------------------------------------------------------ set-up
@@ -215,6 +228,34 @@ class InteractionScene:
 
     def torso_height(self) -> float:
         return float(self.data.qpos[self._lift_qpos])
+
+    def laser(self, mount: np.ndarray, directions: np.ndarray, *,
+              noise: float = LASER_NOISE) -> np.ndarray:
+        """Ranges (m) along rays from ``mount`` (base frame) in ``directions`` (base frame,
+        unit vectors, one a row) to the first surface that is not the robot's own; inf
+        where nothing is within ``LASER_RANGE``. Each range has Gaussian noise."""
+        mj, model, data = self._mj, self.model, self.data
+        rotation = self._base_rotation()
+        origin = self.to_world(np.asarray(mount, dtype=float))
+        rays = np.atleast_2d(np.asarray(directions, dtype=float)) @ rotation.T
+        ranges = np.full(len(rays), np.inf)
+        hit = np.zeros(1, dtype=np.int32)
+        for k, ray in enumerate(rays):
+            travelled, start = 0.0, origin.copy()
+            for _ in range(8):  # past the robot's own links
+                distance = mj.mj_ray(model, data, start, ray, None, 1, -1, hit)
+                if distance < 0:
+                    break
+                travelled += distance
+                if int(model.geom_bodyid[hit[0]]) not in self._robot_bodies:
+                    ranges[k] = travelled
+                    break
+                travelled += 1e-4
+                start = origin + travelled * ray
+        seen = np.isfinite(ranges)
+        ranges[seen] += self._sensor_rng.normal(0.0, noise, int(seen.sum()))
+        ranges[ranges > LASER_RANGE] = np.inf
+        return ranges
 
     # ------------------------------------------------------------ commands
 

@@ -5,9 +5,14 @@ The scenarios ``handover``, ``receive``, ``guided_by_hand``, ``carry_table`` and
 their figures. Every episode runs the robot's behaviour
 (``homebot.manipulation.interaction``) on the compliance controller in an
 ``InteractionScene``; the person is a seeded force profile or a gripping hand
-(``homebot.sim.forces``). Success is judged on the physics' ground truth: when the
-bottle truly left the fingers, where the robot's base truly went, how level the table
-truly was, how far the door's hinge truly turned.
+(``homebot.sim.forces``). The robot's side reads what its drivers report (the arm's
+joints, the hand's pose and Jacobian, the wrist's force-torque sensor, the torso's
+height, the base's odometry) and its torso laser (``InteractionScene.laser``): the
+carried table's pitch is fitted to the laser's points on its top
+(``homebot.perception.table_pitch``). The door's hinge and handle are not perceived
+yet: ``door_episode`` gives the robot the truth with a seeded error. Success is judged
+on the physics' ground truth: when the bottle truly left the fingers, where the robot's
+base truly went, how level the table truly was, how far the door's hinge truly turned.
 """
 
 from __future__ import annotations
@@ -30,6 +35,7 @@ from homebot.manipulation.interaction import (
     Receive,
     ReceivePhase,
 )
+from homebot.perception.table_pitch import TablePitch
 from homebot.robot import DriveKind, Twist
 from homebot.sim.forces import GrippingHand, Trajectory, apply_at, handover_trial
 from homebot.sim.hri import InteractionScene
@@ -349,6 +355,7 @@ _HANDLE_HEIGHT = 0.76  #: the upright handle's centre above the floor
 _HANDLE_OFFSET = 0.64  #: from the table's centre to its handle, along the table
 _TABLE_LENGTH = 1.2
 _LEG_GAP = 0.005  #: the table's legs end this far below its frame's floor level
+_SCAN_EVERY = 3  #: control ticks per laser scan of the table (about 33 Hz)
 
 
 def reach(scene: InteractionScene, position: np.ndarray, rotation: np.ndarray,
@@ -382,6 +389,9 @@ class CarryResult:
     travelled: float  #: how far the table's centre moved on the floor (m)
     dropped: bool  #: the robot's fingers lost the table
     seconds: float = 0.0  #: simulated
+    #: the largest gap between the pitch the robot perceived and the table's true pitch
+    #: while the table was off the floor (degrees)
+    pitch_error_deg: float = 0.0
 
     @property
     def success(self) -> bool:
@@ -419,7 +429,7 @@ def carry_table_episode(seed: int, index: int = 0) -> CarryResult:
     (``carry_profile``)."""
     rng = np.random.default_rng([seed, _RNG_STREAM, 3, index])
     profile = carry_profile(rng)
-    scene = InteractionScene("table")
+    scene = InteractionScene("table", sensor_seed=int(rng.integers(2**31)))
     q = reach(scene, np.array([0.72, 0.0, _HANDLE_HEIGHT]), np.eye(3),
               np.array([0.0, 1.2, 0.0, -1.9, 0.0, 0.7, 0.0]))
     scene.set_arm(q, torso=0.0, gripper=0.07)
@@ -456,11 +466,15 @@ def carry_table_episode(seed: int, index: int = 0) -> CarryResult:
     scene.pushers.append(hold)
     start_xy = scene.body_position("table")[:2]
     floor_height = scene.body_position("table")[2]
-    max_tilt, max_height, lifted_at, dropped = 0.0, 0.0, None, False
+    max_tilt, max_height, lifted_at, dropped, pitch_error = 0.0, 0.0, None, False, 0.0
     base = BaseDrive(scene)
+    tracker = TablePitch()
+    ticks = 0
     while scene.time < times[-1] + 4.0 and behaviour.phase is not CarryPhase.DONE:
-        command = behaviour.update(scene.control_period, controller.shift,
-                                   _tracked_pitch(scene, rng))
+        if ticks % _SCAN_EVERY == 0:
+            _scan_table(scene, tracker)
+        ticks += 1
+        command = behaviour.update(scene.control_period, controller.shift, tracker.pitch)
         if lifted_at is None and behaviour.phase is CarryPhase.CARRYING:
             lifted_at = scene.time - t0
         apply(scene, controller, command)
@@ -471,6 +485,7 @@ def carry_table_episode(seed: int, index: int = 0) -> CarryResult:
         if height > 0.02:  # off the floor: it must be level
             top = scene.body_rotation("table")
             max_tilt = max(max_tilt, math.degrees(math.acos(min(1.0, abs(top[2, 2])))))
+            pitch_error = max(pitch_error, abs(math.degrees(tracker.pitch - _true_pitch(scene))))
         if float(np.linalg.norm(scene.hand_world() - np.asarray(
                 scene.data.geom("handle").xpos))) > 0.08:
             dropped = True  # the handle is out of the fingers
@@ -480,7 +495,7 @@ def carry_table_episode(seed: int, index: int = 0) -> CarryResult:
     down_now = scene.body_position("table")[2] - floor_height < 0.02
     return CarryResult(lifted_at, bool(behaviour.phase is CarryPhase.DONE and down_now),
                        round(max_tilt, 3), round(float(max_height), 3), round(travelled, 3),
-                       dropped, scene.time)
+                       dropped, scene.time, round(pitch_error, 3))
 
 
 def _eased(a: np.ndarray, b: np.ndarray, speed: float,
@@ -502,14 +517,20 @@ def _eased(a: np.ndarray, b: np.ndarray, speed: float,
     return out
 
 
-def _tracked_pitch(scene: InteractionScene, rng: np.random.Generator) -> float:
-    """The table's pitch as the robot's table tracker reports it (positive: the person's
-    end higher). Cosero registers the table in its RGB-D images (MRSMap); homebot has no
-    such tracker yet, so it stands in: the true pitch, seen with 0.2° of noise."""
+def _true_pitch(scene: InteractionScene) -> float:
+    """Ground truth for the referee: the table's pitch (positive: the person's end higher)."""
     near = np.asarray(scene.data.site("near_edge").xpos)
     far = np.asarray(scene.data.site("far_edge").xpos)
     run = float(np.linalg.norm((far - near)[:2]))
-    return math.atan2(float(far[2] - near[2]), run) + float(rng.normal(0.0, 0.0035))
+    return math.atan2(float(far[2] - near[2]), run)
+
+
+def _scan_table(scene: InteractionScene, tracker: TablePitch) -> float:
+    """One laser scan over the carried table, and the pitch the tracker makes of it."""
+    arm = reading(scene)
+    torso = scene.torso_height()
+    ranges = scene.laser(tracker.mount(torso), tracker.directions(arm.hand_rotation))
+    return tracker.update(torso, arm.hand_position, arm.hand_rotation, ranges)
 
 
 # ------------------------------------------------------------------ receiving

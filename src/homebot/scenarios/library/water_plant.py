@@ -4,8 +4,10 @@ The robot holds a watering can by its handle, a tool adapter in Cosero's manner 
 lips close round the fingers (Cosero grasps a known can at a predefined reference pose;
 here the can starts in the hand). It stands where navigation left it, at a seeded pose
 6–15 cm short of the pouring pose, up to 6 cm to the side and 2.6° turned; it sees the
-pot (its position with 1 cm of noise, a stand-in for the laser), drives the rest of the
-way to where the level can's spout is above the pot (the can itself beside it), and runs
+pot with its torso laser (``homebot.perception.plant_pot``: the rim's height and a circle
+fitted to the wall below it), drives the rest of the way to where the level can's spout
+is above the pot (the can itself beside it; a sweep twice a second, odometry between),
+looks once more, and runs
 the pouring primitive (``homebot.manipulation.tools.WateringMotion``): the spout held
 15 cm above the pot's rim while the wrist rolls the can about it. The water is a model over the
 physics' truth: it runs from the spout while the can is tipped more than 20° (up to
@@ -23,7 +25,8 @@ from typing import Any
 import numpy as np
 from rich.console import Console
 
-from homebot.geometry import quaternion_from_yaw
+from homebot.errors import SceneError
+from homebot.geometry import quaternion_from_yaw, yaw_rotation
 from homebot.scenarios.running import RunBuilder
 from homebot.scenarios.summary import scenario_summary
 
@@ -36,6 +39,7 @@ _POT_RADIUS = 0.09  #: inside the rim
 _FLOWING = math.radians(20.0)
 _FULL_FLOW = 0.25  #: litres per second
 _STREAM = 1864
+_SWEEP_EVERY = 50  #: control ticks between the laser's sweeps while driving (0.5 s)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -47,12 +51,13 @@ def pour(seed: int) -> dict[str, Any]:
     from homebot.manipulation.compliance import Compliance, ComplianceController
     from homebot.manipulation.interaction import Command
     from homebot.manipulation.tools import PourPhase, Tool, WateringMotion, approach_offset
+    from homebot.perception.plant_pot import PotScan
     from homebot.robot import Twist
     from homebot.sim.hri import InteractionScene
     from homebot.trials.interaction import BaseDrive, apply, reach, reading
 
     rng = np.random.default_rng([seed, _STREAM])
-    scene = InteractionScene("watering")
+    scene = InteractionScene("watering", sensor_seed=seed)
     q = reach(scene, _HAND, np.eye(3), np.array([0.0, 1.2, 0.0, -1.9, 0.0, 0.7, 0.0]))
     scene.set_arm(q, torso=0.0, gripper=0.07)
     tool = Tool("watering can", _CAN, axis=(-1.0, 0.0, 0.0))  # the wrist rolls
@@ -74,13 +79,30 @@ def pour(seed: int) -> dict[str, Any]:
         apply(scene, controller, hold)
         scene.step()
 
-    def seen_pot() -> np.ndarray:
-        return scene.to_base(pot_world + np.append(rng.normal(0.0, 0.01, 2), 0.0))
+    sweep = PotScan()
 
-    # Drive to where the pot is at the offset (facing it), steering on what it sees.
+    def look() -> np.ndarray:
+        """The pot's rim in the odometry frame, from a sweep of the torso laser."""
+        torso = scene.torso_height()
+        seen = sweep.find(torso, scene.laser(sweep.mount(torso), sweep.directions()))
+        if seen is None:
+            raise SceneError(f"{scene.path}: the torso laser sees no pot within "
+                             f"{sweep.reach} m in front of the robot; put the pot in front "
+                             "of it")
+        return _to_odometry(scene.base_pose(), seen.rim)
+
+    def seen_pot() -> np.ndarray:
+        return _to_base(scene.base_pose(), rim)
+
+    rim = look()
+    # Drive to where the pot is at the offset (facing it), steering on what it sees: a
+    # sweep twice a second, odometry in between.
     base = BaseDrive(scene, speed=0.25, turn=0.3, acceleration=0.3, angular_acceleration=0.5)
-    driven = 0.0
+    driven, ticks = 0.0, 0
     while driven < 20.0:
+        if ticks % _SWEEP_EVERY == 0 and ticks:
+            rim = look()
+        ticks += 1
         pot = seen_pot()
         error = pot[:2] - offset
         heading = math.atan2(pot[1], pot[0]) - math.atan2(offset[1], offset[0])
@@ -95,6 +117,7 @@ def pour(seed: int) -> dict[str, Any]:
         base.drive(Twist(), scene.control_period)
         apply(scene, controller, hold)
         scene.step()
+    rim = look()  # standing: one more look before pouring
     motion = WateringMotion(tool, held.hand_position, held.hand_rotation, seen_pot(),
                             clearance=0.15)
     watered = spilled = 0.0
@@ -128,6 +151,20 @@ def pour(seed: int) -> dict[str, Any]:
             "tipped_deg": round(math.degrees(worst_tilt), 1),
             "drove_s": round(driven, 2), "start": [round(v, 3) for v in start],
             "seconds": round(scene.time, 2)}
+
+
+def _to_odometry(pose: tuple[float, float, float], point: np.ndarray) -> np.ndarray:
+    """A base-frame point in the odometry frame."""
+    moved: np.ndarray = yaw_rotation(pose[2]) @ np.asarray(point, dtype=float) + np.array(
+        [pose[0], pose[1], 0.0])
+    return moved
+
+
+def _to_base(pose: tuple[float, float, float], point: np.ndarray) -> np.ndarray:
+    """An odometry-frame point in the base frame."""
+    local: np.ndarray = yaw_rotation(pose[2]).T @ (np.asarray(point, dtype=float) -
+                                                  np.array([pose[0], pose[1], 0.0]))
+    return local
 
 
 def run(args: argparse.Namespace, console: Console | None, build: RunBuilder) -> dict[str, Any]:
