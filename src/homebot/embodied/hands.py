@@ -232,7 +232,7 @@ class ArmedBodyRobot(BodyRobot):
         # A pull is felt across the wrist, towards the person: what slips out of the
         # fingers changes the wrist's load too, but downwards.
         pulled = self._wait_for_wrench(_PULL, _WAIT_FOR_TAKER,
-                                       sensor_to_map=self.arm.hand_rotation(self.pose()))
+                                       sensor_to_map=self.arm.hand_orientation(self.pose()))
         if not pulled or not self.arm.gripper_holds():
             # not taken, or it slipped out of the hand (fingers shut on nothing): not given
             self.events.record("robot.hand_over", person=person, released=False,

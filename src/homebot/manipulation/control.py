@@ -240,7 +240,7 @@ class ArmControl:
         follow(self.body, path or [here, carry])
         return True
 
-    def hand_rotation(self, base: Pose) -> np.ndarray:
+    def hand_orientation(self, base: Pose) -> np.ndarray:
         """The hand's orientation on the map (3 × 3), from the joints' positions: the
         wrist sensor's frame turned onto the map."""
         _, rotation = self._scene(base).grasp_frame(current_configuration(self.body))
