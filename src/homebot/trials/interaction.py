@@ -355,7 +355,6 @@ _HANDLE_HEIGHT = 0.76  #: the upright handle's centre above the floor
 _HANDLE_OFFSET = 0.64  #: from the table's centre to its handle, along the table
 _TABLE_LENGTH = 1.2
 _LEG_GAP = 0.005  #: the table's legs end this far below its frame's floor level
-_SCAN_EVERY = 3  #: control ticks per laser scan of the table (about 33 Hz)
 
 
 def reach(scene: InteractionScene, position: np.ndarray, rotation: np.ndarray,
@@ -469,11 +468,8 @@ def carry_table_episode(seed: int, index: int = 0) -> CarryResult:
     max_tilt, max_height, lifted_at, dropped, pitch_error = 0.0, 0.0, None, False, 0.0
     base = BaseDrive(scene)
     tracker = TablePitch()
-    ticks = 0
     while scene.time < times[-1] + 4.0 and behaviour.phase is not CarryPhase.DONE:
-        if ticks % _SCAN_EVERY == 0:
-            _scan_table(scene, tracker)
-        ticks += 1
+        _scan_table(scene, tracker)  # a scan every control tick (100 Hz)
         command = behaviour.update(scene.control_period, controller.shift, tracker.pitch)
         if lifted_at is None and behaviour.phase is CarryPhase.CARRYING:
             lifted_at = scene.time - t0
