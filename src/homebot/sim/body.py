@@ -38,7 +38,13 @@ from homebot.robot import (
 )
 from homebot.sim.audio import AudioScene, SimMicrophone, SimSpeaker
 from homebot.sim.body_tracker import BodyTracker, person_solids
-from homebot.sim.camera import CameraSimulator, SceneGeometry, Solid, object_yaw
+from homebot.sim.camera import (
+    CameraSimulator,
+    SceneGeometry,
+    Solid,
+    door_solids,
+    object_yaw,
+)
 from homebot.sim.components import ComponentSimulation
 from homebot.sim.faces import FaceCamera
 from homebot.sim.geometry import TrueGeometry
@@ -47,7 +53,7 @@ from homebot.sim.hearing import PeopleHearing, PersonVoice
 from homebot.sim.laser import LaserSimulator
 from homebot.sim.simulation import Simulation
 from homebot.sim.walkers import PeopleWalking
-from homebot.world import LaserModel, object_catalogue, surface_height
+from homebot.world import DoorState, LaserModel, object_catalogue, surface_height
 
 __all__ = ["FOOT_RADIUS", "OdometryNoise", "SimBody"]
 
@@ -203,8 +209,9 @@ class SimBody(Body):
                                max(_TILT_LIMITS[0], min(_TILT_LIMITS[1], tilt)))
 
     def camera(self) -> RgbdFrame:
-        """The head camera's frame of the true home: furniture, walls, the objects on
-        their surfaces and the people (``homebot.sim.camera``, ``sim.body_tracker``)."""
+        """The head camera's frame of the true home: furniture, walls, shut doors' leaves
+        and handles, the objects on their surfaces and the people (``homebot.sim.camera``,
+        ``sim.body_tracker``)."""
         self._first_looks()
         return self.camera_simulator.render(self.now(), self.sim.robot_pose, self._head,
                                             self._solids())
@@ -255,6 +262,9 @@ class SimBody(Body):
         for name, state in sorted(sim.people.items()):
             solids.extend(person_solids(sim.world, name, state.model, state.posture,
                                         state.position, self.people.facing(name)))
+        for door, door_state in sorted(sim.door_state.items()):
+            if door_state is not DoorState.OPEN:
+                solids.extend(door_solids(sim.world, door))
         return solids
 
     def speaker(self) -> Speaker:

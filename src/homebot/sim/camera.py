@@ -1,8 +1,9 @@
 """The head's RGB-D camera, ray cast against the true home with numpy.
 
 Every pixel's ray meets the floor, the walls, the furniture (boxes from their
-footprints up to their surface height) and the catalogue objects standing on
-them (boxes turned about their vertical axis, upright cylinders, spheres). The
+footprints up to their surface height), the catalogue objects standing on
+them (boxes turned about their vertical axis, upright cylinders, spheres) and
+shut doors (``door_solids``: the leaf and a lever handle on each face, boxes). The
 nearest hit gives the depth and a Lambert-shaded colour. Depth is noisy as a
 Kinect's is (σ grows with the square of the distance, Nguyen et al. 2012),
 returns go missing at depth edges and out of range, and nearer surfaces hide
@@ -18,6 +19,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
+from shapely.geometry import Point as ShapelyPoint
 
 from homebot.geometry import yaw_rotation
 from homebot.robot import CameraIntrinsics, HeadState, RgbdFrame
@@ -30,6 +32,7 @@ __all__ = [
     "SceneGeometry",
     "Solid",
     "camera_pose",
+    "door_solids",
     "object_yaw",
 ]
 
@@ -41,6 +44,15 @@ _WALL_HEIGHT = 2.4
 _FLOOR_RGB = (150, 135, 115)
 _WALL_RGB = (215, 210, 200)
 _FURNITURE_RGB = (140, 100, 62)
+_LEAF_RGB = (190, 168, 132)
+_HANDLE_RGB = (175, 175, 180)
+_LEAF_HEIGHT = 2.0  #: metres: a shut leaf fills its doorway up to here
+_LEAF_THICKNESS = 0.04
+_LEAF_JAMB_GAP = 0.01  #: metres between a shut leaf's edge and each jamb
+_HANDLE = (0.12, 0.025, 0.025)  #: metres: a lever handle's length, depth and height
+_HANDLE_HEIGHT = 1.05  #: metres above the floor (DIN 18101)
+_HANDLE_IN = 0.1  #: metres from the latch edge to the handle's centre
+_HANDLE_STANDOFF = 0.05  #: metres between the leaf's face and the handle's back
 _EDGE_JUMP = 0.025  #: metres (plus 2 % of the depth) between neighbours that lose both returns
 _DROPOUT = 0.003  #: share of pixels with no return for no reason
 
@@ -83,6 +95,37 @@ class SceneGeometry:
                 boxes.append((x0, y0, x1, y1, surface_height(placement.model)))
         return cls(np.array(walls, dtype=np.float64).reshape(-1, 4),
                    np.array(boxes, dtype=np.float64).reshape(-1, 5))
+
+
+def door_solids(world: World, door: str) -> list[Solid]:
+    """A shut door's leaf in its doorway and a lever handle on each face near the latch
+    edge, as boxes; the hinge is the world file's ``hinge`` jamb (default: the west end,
+    or the south end of a wall running north-south, as ``World.door_leaf``)."""
+    model = world.doors[door]
+    boundary = world.room_polygons[model.rooms[0]].exterior
+    along = boundary.project(ShapelyPoint(model.position))
+    before = boundary.interpolate(max(along - 0.05, 0.0))
+    after = boundary.interpolate(min(along + 0.05, boundary.length))
+    tx, ty = after.x - before.x, after.y - before.y
+    norm = math.hypot(tx, ty) or 1.0
+    tx, ty = tx / norm, ty / norm
+    hinge = _COMPASS[model.hinge] if model.hinge else (
+        _COMPASS["west"] if abs(tx) >= abs(ty) else _COMPASS["south"])
+    if hinge[0] * tx + hinge[1] * ty > 0:
+        tx, ty = -tx, -ty  # (tx, ty) now points from the middle to the latch jamb
+    cx, cy = model.position
+    yaw = math.atan2(ty, tx)
+    leaf = Solid(Shape.BOX, (model.width - 2 * _LEAF_JAMB_GAP, _LEAF_THICKNESS, _LEAF_HEIGHT),
+                 _LEAF_RGB, cx, cy, 0.0, yaw)
+    latch = model.width / 2 - _LEAF_JAMB_GAP - _HANDLE_IN
+    off = _LEAF_THICKNESS / 2 + _HANDLE_STANDOFF + _HANDLE[1] / 2
+    handles = [Solid(Shape.BOX, _HANDLE, _HANDLE_RGB, cx + tx * latch - ty * side * off,
+                     cy + ty * latch + tx * side * off, _HANDLE_HEIGHT - _HANDLE[2] / 2, yaw)
+               for side in (1.0, -1.0)]
+    return [leaf, *handles]
+
+
+_COMPASS = {"east": (1.0, 0.0), "west": (-1.0, 0.0), "north": (0.0, 1.0), "south": (0.0, -1.0)}
 
 
 def camera_pose(head: HeadState, height: float = CAMERA_HEIGHT) -> np.ndarray:
