@@ -6,7 +6,8 @@ For every door of every world (default: the shipped worlds and benchmarks/flats)
 by the simulator, the robot stands 1.2 m before it on each side, facing it, head tilted
 0.2 rad down, and runs ``perception.door_leaf.perceive_door`` on one camera frame. A door
 side counts as perceived when the hinge found lies within 0.08 m of the true hinge jamb
-and the handle on the latch half; prints per world and in total, with the wall seconds
+and the handle on the latch half (a side whose room is narrower than the stand-off, a
+corridor, is counted apart, not tried); prints per world and in total, with the wall seconds
 per perception.
 """
 
@@ -19,6 +20,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from shapely.geometry import Point as ShapelyPoint
 
 from homebot.geometry import Pose
 from homebot.navigation import Navigator
@@ -41,7 +43,7 @@ def _true_hinge(world: World, door: str) -> np.ndarray:
 
 def _world_score(world: World, seed: int) -> dict[str, float]:
     body = SimBody(Simulation(world, seed=seed, navigator=Navigator(world)))
-    found = tried = 0
+    found = tried = no_room = 0
     seconds = 0.0
     for door in sorted(world.doors):
         for state in body.sim.door_state:
@@ -51,6 +53,9 @@ def _world_score(world: World, seed: int) -> dict[str, float]:
         for room in world.doors[door].rooms:
             before = world.point_before_door(door, room, _STAND_OFF)
             x, y = before.xy()
+            if not world.room_polygons[room].contains(ShapelyPoint(x, y)):
+                no_room += 1  # the room is narrower than the stand-off (a corridor)
+                continue
             cx, cy = world.doors[door].position
             heading = math.atan2(cy - y, cx - x)
             body.teleport(Pose(x, y, heading))
@@ -69,7 +74,7 @@ def _world_score(world: World, seed: int) -> dict[str, float]:
             on_latch_half = np.linalg.norm(handle - hinge) > world.doors[door].width / 2
             if np.linalg.norm(seen_hinge - hinge) < _HINGE_TOLERANCE and on_latch_half:
                 found += 1
-    return {"door_sides": tried, "hinge_found": found,
+    return {"door_sides": tried, "hinge_found": found, "no_room_to_stand": no_room,
             "wall_s_per_perception": round(seconds / max(tried, 1), 3)}
 
 
