@@ -141,6 +141,21 @@ def test_what_the_hand_holds_stays_held_when_the_robot_moves_on() -> None:
         assert control.gripper_holds()
 
 
+def _held_out_to_the_hand(sim: Simulation, body: SimBody, control: ArmControl, stand: Pose,
+                          obj: str) -> str:
+    """Offer the hand; a person beside it, holding ``obj`` and asked for it, holds it out
+    into the hand (not the robot's until the fingers close on it). The person's name."""
+    control.offer_hand(stand)
+    person = sorted(sim.people)[0]
+    hand = body.hands.driver().sim.grasp_point()
+    sim.move_person(person, (float(hand[0]) + 0.4 * math.cos(stand.theta),
+                             float(hand[1]) + 0.4 * math.sin(stand.theta)))
+    sim.object_location[obj] = f"person:{person}"
+    body.hearing.asked_to_give = (person, obj)
+    body.tick(10)
+    return person
+
+
 def test_what_a_person_puts_in_the_offered_hand_is_held_by_the_fingers() -> None:
     sim, body, control, stand = _at_the_coffee_table()
     control.offer_hand(stand)
@@ -149,14 +164,7 @@ def test_what_a_person_puts_in_the_offered_hand_is_held_by_the_fingers() -> None
     assert control.holding is None
     # A person beside the hand, holding the cola and asked for it, puts it in and holds it
     # there until the fingers close on it; then it is the robot's.
-    control.offer_hand(stand)
-    person = sorted(sim.people)[0]
-    hand = body.hands.driver().sim.grasp_point()
-    sim.move_person(person, (float(hand[0]) + 0.4 * math.cos(stand.theta),
-                             float(hand[1]) + 0.4 * math.sin(stand.theta)))
-    sim.object_location["cola"] = f"person:{person}"
-    body.hearing.asked_to_give = (person, "cola")
-    body.tick(10)
+    person = _held_out_to_the_hand(sim, body, control, stand, "cola")
     assert sim.object_location["cola"] == f"person:{person}"  # not the robot's yet
     assert control.close_on_handed("cola", stand)
     assert sim.hands["left"] == "cola" and sim.object_location["cola"] == "hand:left"
@@ -172,14 +180,7 @@ def test_a_flat_thing_put_in_the_hand_is_let_fall_the_last_centimetres_onto_the_
     # The fork is handed in level, from the side: lowered to rest on the table, the
     # fingers under it would meet the table first, so it is let go a little above.
     sim, body, control, stand = _at_the_coffee_table()
-    control.offer_hand(stand)
-    person = sorted(sim.people)[0]
-    hand = body.hands.driver().sim.grasp_point()
-    sim.move_person(person, (float(hand[0]) + 0.4 * math.cos(stand.theta),
-                             float(hand[1]) + 0.4 * math.sin(stand.theta)))
-    sim.object_location["fork"] = f"person:{person}"
-    body.hearing.asked_to_give = (person, "fork")
-    body.tick(10)
+    _held_out_to_the_hand(sim, body, control, stand, "fork")
     assert control.close_on_handed("fork", stand)
     placed = control.place("coffee table", stand)
     assert placed, placed.detail

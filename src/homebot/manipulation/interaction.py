@@ -44,6 +44,8 @@ __all__ = [
     "Handover",
     "Receive",
     "ReceivePhase",
+    "to_base",
+    "to_odometry",
 ]
 
 
@@ -395,7 +397,7 @@ class DoorMotion:
         self.rotation = np.asarray(hand_rotation, dtype=float)
         self.goal, self.speed, self.lead = goal, speed, lead
         self.base_gain, self.base_speed, self.turn_gain = base_gain, base_speed, turn_gain
-        start = _to_odom(pose, self.home)[:2] - self.hinge
+        start = to_odometry(pose, self.home)[:2] - self.hinge
         self.radius = float(np.linalg.norm(start))
         self.start_bearing = math.atan2(float(start[1]), float(start[0]))
         # Which way round opens: the way that first brings the handle towards the robot.
@@ -423,7 +425,7 @@ class DoorMotion:
     def update(self, dt: float, pose: tuple[float, float, float],
                hand_position: np.ndarray) -> Command:
         """``pose``: the base's odometry (x, y, yaw); ``hand_position``: base frame."""
-        hand = _to_odom(pose, np.asarray(hand_position, dtype=float))
+        hand = to_odometry(pose, np.asarray(hand_position, dtype=float))
         offset = hand[:2] - self.hinge
         radius = float(np.linalg.norm(offset))
         bearing = math.atan2(float(offset[1]), float(offset[0]))
@@ -446,10 +448,10 @@ class DoorMotion:
         turned = self.start_bearing + self.turn * self.commanded
         target = np.array([self.hinge[0] + radius * math.cos(turned),
                            self.hinge[1] + radius * math.sin(turned), float(hand[2])])
-        target[2] = float(_to_odom(pose, self.home)[2])
+        target[2] = float(to_odometry(pose, self.home)[2])
         yaw = self.turn * self.commanded  #: the handle has turned with the door
         # The base brings the target to the hand's place before it and faces the handle.
-        place = _to_odom(pose, self.home)
+        place = to_odometry(pose, self.home)
         error = target[:2] - place[:2]
         c, s = math.cos(pose[2]), math.sin(pose[2])
         local = np.array([c * error[0] + s * error[1], -s * error[0] + c * error[1]])
@@ -461,20 +463,20 @@ class DoorMotion:
         base = Twist(float(local[0]), float(local[1]), self.turn_gain * heading_error)
         if self.phase is DoorPhase.CLOSED:
             base = Twist()
-        target_base = _to_base(pose, target)
+        target_base = to_base(pose, target)
         relative_yaw = wrap_angle(yaw + self.yaw0 - pose[2])
         rotation = yaw_rotation(relative_yaw) @ self.rotation
         return Command(target_base, rotation, self.compliance, gripper_closed=True, base=base)
 
 
-def _to_odom(pose: tuple[float, float, float], point: np.ndarray) -> np.ndarray:
+def to_odometry(pose: tuple[float, float, float], point: np.ndarray) -> np.ndarray:
     """A base-frame point in the odometry frame."""
     moved: np.ndarray = yaw_rotation(pose[2]) @ np.asarray(point, dtype=float) + np.array(
         [pose[0], pose[1], 0.0])
     return moved
 
 
-def _to_base(pose: tuple[float, float, float], point: np.ndarray) -> np.ndarray:
+def to_base(pose: tuple[float, float, float], point: np.ndarray) -> np.ndarray:
     """An odometry-frame point in the base frame."""
     local: np.ndarray = yaw_rotation(pose[2]).T @ (np.asarray(point, dtype=float) -
                                                   np.array([pose[0], pose[1], 0.0]))

@@ -26,7 +26,7 @@ import numpy as np
 from rich.console import Console
 
 from homebot.errors import SceneError
-from homebot.geometry import quaternion_from_yaw, yaw_rotation
+from homebot.geometry import quaternion_from_yaw
 from homebot.scenarios.running import RunBuilder
 from homebot.scenarios.summary import scenario_summary
 
@@ -49,7 +49,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def pour(seed: int) -> dict[str, Any]:
     """One watering, judged on the physics' truth; the figures the scenario prints."""
     from homebot.manipulation.compliance import Compliance, ComplianceController
-    from homebot.manipulation.interaction import Command
+    from homebot.manipulation.interaction import Command, to_base, to_odometry
     from homebot.manipulation.tools import PourPhase, Tool, WateringMotion, approach_offset
     from homebot.perception.plant_pot import PotScan
     from homebot.robot import Twist
@@ -89,10 +89,10 @@ def pour(seed: int) -> dict[str, Any]:
             raise SceneError(f"{scene.path}: the torso laser sees no pot within "
                              f"{sweep.reach} m in front of the robot; put the pot in front "
                              "of it")
-        return _to_odometry(scene.base_pose(), seen.rim)
+        return to_odometry(scene.base_pose(), seen.rim)
 
     def seen_pot() -> np.ndarray:
-        return _to_base(scene.base_pose(), rim)
+        return to_base(scene.base_pose(), rim)
 
     rim = look()
     # Drive to where the pot is at the offset (facing it), steering on what it sees: a
@@ -151,20 +151,6 @@ def pour(seed: int) -> dict[str, Any]:
             "tipped_deg": round(math.degrees(worst_tilt), 1),
             "drove_s": round(driven, 2), "start": [round(v, 3) for v in start],
             "seconds": round(scene.time, 2)}
-
-
-def _to_odometry(pose: tuple[float, float, float], point: np.ndarray) -> np.ndarray:
-    """A base-frame point in the odometry frame."""
-    moved: np.ndarray = yaw_rotation(pose[2]) @ np.asarray(point, dtype=float) + np.array(
-        [pose[0], pose[1], 0.0])
-    return moved
-
-
-def _to_base(pose: tuple[float, float, float], point: np.ndarray) -> np.ndarray:
-    """An odometry-frame point in the base frame."""
-    local: np.ndarray = yaw_rotation(pose[2]).T @ (np.asarray(point, dtype=float) -
-                                                  np.array([pose[0], pose[1], 0.0]))
-    return local
 
 
 def run(args: argparse.Namespace, console: Console | None, build: RunBuilder) -> dict[str, Any]:
