@@ -7,7 +7,7 @@ and a person filling the doorway stands out of the line where a leaf is flat.
 Beams that end well before the line (something in front of the door, a leaf
 swung towards the robot) tell nothing.
 
-Whether an open doorway lets the robot through is geometry (``doorway_passable``):
+Whether an open doorway lets the robot through is geometry (``way_through``):
 a leaf left half open, a coat rack beside the jamb or someone standing in the
 doorway are all returns, and the robot fits through when some straight way
 across the doorway keeps its radius from every one of them and from the jambs.
@@ -22,7 +22,7 @@ import numpy as np
 from homebot.geometry import Pose, rays_cross_line
 from homebot.robot import LaserScan
 
-__all__ = ["WayThrough", "door_seen_open", "doorway_passable", "way_through"]
+__all__ = ["WayThrough", "door_seen_open", "way_through"]
 
 _JAMB = 0.08  #: metres inside each jamb where beams are not counted
 _PAST_THE_LINE = 0.1  #: metres past the wall's middle line: a beam went through
@@ -145,7 +145,7 @@ def _way_through(points: np.ndarray, centre: tuple[float, float],
     along = np.concatenate([along[near], wall_along])
     across = np.concatenate([across[near], wall_across])
     offsets = np.arange(-half + radius, half - radius + 1e-9, _OFFSET_STEP)
-    best: tuple[float, float, float] | None = None  # (room, slant, offset)
+    best: tuple[float, float, float, float] | None = None  # (score, room, slant, offset)
     for slant in _SLANTS:
         sine, cosine = float(np.sin(slant)), float(np.cos(slant))
         # per way (row) and point (column): distance from the way, and how far along it
@@ -158,12 +158,11 @@ def _way_through(points: np.ndarray, centre: tuple[float, float],
         # the most room, and of ways with nearly as much, the straightest and most central
         score = room - _PREFER_STRAIGHT * (abs(float(slant)) + np.abs(offsets))
         k = int(np.argmax(score))
-        if room[k] >= radius and (best is None or score[k] > best[0] - _PREFER_STRAIGHT * (
-                abs(best[1]) + abs(best[2]))):
-            best = (float(room[k]), float(slant), float(offsets[k]))
+        if room[k] >= radius and (best is None or score[k] > best[0]):
+            best = (float(score[k]), float(room[k]), float(slant), float(offsets[k]))
     if best is None:
         return None
-    room, slant, offset = best
+    _, room, slant, offset = best
     # the way's direction, from the normal's side across the wall
     dx = -(nx * np.cos(slant) + tx * np.sin(slant))
     dy = -(ny * np.cos(slant) + ty * np.sin(slant))
@@ -171,11 +170,3 @@ def _way_through(points: np.ndarray, centre: tuple[float, float],
     return WayThrough((float(cx - dx * reach), float(cy - dy * reach)),
                       (float(cx + dx * reach), float(cy + dy * reach)),
                       room - radius, slant, offset)
-
-
-def doorway_passable(points: np.ndarray, centre: tuple[float, float],
-                     normal: tuple[float, float], width: float, wall_thickness: float,
-                     radius: float) -> bool:
-    """Whether a disc of ``radius`` fits through the doorway on some straight way across
-    it, past ``points`` and the jambs (see ``way_through``)."""
-    return way_through(points, centre, normal, width, wall_thickness, radius) is not None

@@ -65,7 +65,6 @@ _FURNITURE_NEAR_DOOR = 1.5  #: metres from a door within which the map's furnitu
 _OUTLINE_STEP = 0.02  #: metres between the points taken along a furniture's outline
 _CLOSE_TO_THE_DOOR = 1.3  #: metres from a door's middle: near enough to look at it and pass
 _NEAR_THE_DOOR = 0.5  #: metres: a door's leaf on the spot before it, this near will do
-_SIDE_ROOM = 0.0  #: metres the robot wants beside it passing through a doorway
 _ON_THE_WAY = 0.1  #: metres from a way's entry where the robot may start along it
 _GOAL_TOLERANCE = 0.15  #: metres: a leg ends this close to its end point
 _HEADING_TOLERANCE = 0.2  #: radians: the final turn ends this close to the goal's heading
@@ -295,7 +294,7 @@ class BodyRobot(Robot):
                     and placement.footprint.intersects(near)]
         points = np.concatenate([self._scan_on_map(), *outlines])
         return way_through(points, model.position, normal, model.width,
-                           self.world.model.wall_thickness, self.body.radius + _SIDE_ROOM)
+                           self.world.model.wall_thickness, self.body.radius)
 
     def _door_ahead_blocked(self, legs: list[_Leg]
                             ) -> tuple[str, Blocker, str | None] | None:

@@ -29,19 +29,17 @@ _ALIGNED = 0.1  #: radians off the way's heading within which the robot drives o
 
 
 def drive_straight(body: Body, localise: Callable[[], Pose], start: tuple[float, float],
-                   end: tuple[float, float], *, side_room: float = 0.0) -> bool:
+                   end: tuple[float, float]) -> bool:
     """From about ``start``, facing ``end``, drive straight to ``end`` along the line
     between them; False (the base at rest) when a laser return comes into the
-    footprint's path (``side_room`` metres narrower than the footprint: the way was
-    chosen with that little to spare), the robot strays off the line, or it takes
-    more than twice the time the line needs.
+    footprint's path, the robot strays off the line, or it takes more than twice the
+    time the line needs.
     """
     length = math.dist(start, end)
     if length < 1e-6:
         return True
     ux, uy = (end[0] - start[0]) / length, (end[1] - start[1]) / length
     heading = math.atan2(uy, ux)
-    half_width = body.radius - side_room
     ticks = int(2 * (length / _CRAWL + 2.0) / body.tick_period)
     arrived = False
     for _ in range(ticks):
@@ -60,7 +58,7 @@ def drive_straight(body: Body, localise: Callable[[], Pose], start: tuple[float,
         speed = _CRAWL if abs(error) < _ALIGNED else 0.0
         # the strip ahead, up to where the footprint ends at the line's end
         ahead = min(_LOOK_AHEAD, length - along) + body.radius
-        if speed and not _path_free(body, ahead, half_width):
+        if speed and not _path_free(body, ahead, body.radius):
             break
         body.command_velocity(Twist(min(speed, length - along + 0.02), 0.0,
                                     max(-body.limits.angular, min(body.limits.angular, turn))))

@@ -19,7 +19,6 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
-from shapely.geometry import Point as ShapelyPoint
 
 from homebot.geometry import yaw_rotation
 from homebot.robot import CameraIntrinsics, HeadState, RgbdFrame
@@ -99,20 +98,10 @@ class SceneGeometry:
 
 def door_solids(world: World, door: str) -> list[Solid]:
     """A shut door's leaf in its doorway and a lever handle on each face near the latch
-    edge, as boxes; the hinge is the world file's ``hinge`` jamb (default: the west end,
-    or the south end of a wall running north-south, as ``World.door_leaf``)."""
+    edge, as boxes; the hinge is the world's (``World.door_hinge_direction``)."""
     model = world.doors[door]
-    boundary = world.room_polygons[model.rooms[0]].exterior
-    along = boundary.project(ShapelyPoint(model.position))
-    before = boundary.interpolate(max(along - 0.05, 0.0))
-    after = boundary.interpolate(min(along + 0.05, boundary.length))
-    tx, ty = after.x - before.x, after.y - before.y
-    norm = math.hypot(tx, ty) or 1.0
-    tx, ty = tx / norm, ty / norm
-    hinge = _COMPASS[model.hinge] if model.hinge else (
-        _COMPASS["west"] if abs(tx) >= abs(ty) else _COMPASS["south"])
-    if hinge[0] * tx + hinge[1] * ty > 0:
-        tx, ty = -tx, -ty  # (tx, ty) now points from the middle to the latch jamb
+    hinge_x, hinge_y = world.door_hinge_direction(door)
+    tx, ty = -hinge_x, -hinge_y  # from the middle to the latch jamb
     cx, cy = model.position
     yaw = math.atan2(ty, tx)
     leaf = Solid(Shape.BOX, (model.width - 2 * _LEAF_JAMB_GAP, _LEAF_THICKNESS, _LEAF_HEIGHT),
@@ -124,8 +113,6 @@ def door_solids(world: World, door: str) -> list[Solid]:
                for side in (1.0, -1.0)]
     return [leaf, *handles]
 
-
-_COMPASS = {"east": (1.0, 0.0), "west": (-1.0, 0.0), "north": (0.0, 1.0), "south": (0.0, -1.0)}
 
 
 def camera_pose(head: HeadState, height: float = CAMERA_HEIGHT) -> np.ndarray:

@@ -347,6 +347,16 @@ class World:
                               f"the hinge is at an end of the doorway along the wall, and "
                               f"'{door.hinge}' points across it; use {ends}")
 
+    def door_hinge_direction(self, door: str) -> tuple[float, float]:
+        """The unit vector along the wall from the doorway's middle to the jamb the leaf
+        turns on: the world file's ``hinge``, else the west end (the south end of a wall
+        running north-south)."""
+        model = self.doors[door]
+        tx, ty = _wall_direction(self.room_polygons[model.rooms[0]], model.position)
+        hinge = _COMPASS[model.hinge] if model.hinge else (
+            _COMPASS["west"] if abs(tx) >= abs(ty) else _COMPASS["south"])
+        return (-tx, -ty) if hinge[0] * tx + hinge[1] * ty < 0 else (tx, ty)
+
     def door_leaf(self, door: str) -> BaseGeometry | None:
         """Where an open door's leaf stands, 4 cm thick, as the world file's ``opening``,
         ``hinge`` and ``swings_into`` place it; None for a door whose leaf lies flat
@@ -357,11 +367,7 @@ class World:
         cx, cy = model.position
         into = self.point_before_door(door, model.swings_into or model.rooms[0], 1.0)
         nx, ny = into.x - cx, into.y - cy
-        tx, ty = _wall_direction(self.room_polygons[model.rooms[0]], model.position)
-        hinge = _COMPASS[model.hinge] if model.hinge else (
-            _COMPASS["west"] if abs(tx) >= abs(ty) else _COMPASS["south"])
-        if hinge[0] * tx + hinge[1] * ty < 0:
-            tx, ty = -tx, -ty  # (tx, ty) now points from the middle to the hinge
+        tx, ty = self.door_hinge_direction(door)
         half = model.width / 2
         hx, hy = cx + tx * half, cy + ty * half
         # shut, the leaf points from the hinge to the far jamb; it turns towards the room
