@@ -17,6 +17,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from homebot.perception.tabletop import plane_hypothesis
+
 __all__ = ["SeenDoor", "perceive_door"]
 
 _LEAF_HEIGHTS = (0.25, 1.9)  #: metres above the floor the leaf's plane is fitted over
@@ -32,7 +34,6 @@ _HANDLE_POINTS = 6  #: fewer points proud of the leaf are noise, not a handle
 _MIN_LEAF_POINTS = 200
 _ITERATIONS = 200
 _PLANES_TRIED = 3  #: the largest upright planes searched for a leaf with a handle
-_SAMPLE = 4000  #: plane hypotheses are scored on at most this many points
 
 
 @dataclass(frozen=True, slots=True)
@@ -68,21 +69,13 @@ def _vertical_plane(points: np.ndarray, rng: np.random.Generator
     """RANSAC for the upright plane ``normal·p + offset = 0`` with the most points.
 
     Returns ``(normal, offset, inlier_mask)`` with a horizontal unit normal, or ``None``."""
-    count = len(points)
-    if count < _MIN_LEAF_POINTS:
+    if len(points) < _MIN_LEAF_POINTS:
         return None
-    scored = points if count <= _SAMPLE else points[rng.choice(count, _SAMPLE, replace=False)]
-    picks = points[rng.integers(0, count, (_ITERATIONS, 3))]
-    normals = np.cross(picks[:, 1] - picks[:, 0], picks[:, 2] - picks[:, 0])
-    length = np.linalg.norm(normals, axis=1)
-    upright = (length > 1e-9) & (np.abs(normals[:, 2]) <= np.sin(_MAX_TILT) * length)
-    if not np.any(upright):
+    found = plane_hypothesis(points, _PLANE_DISTANCE, _ITERATIONS, rng,
+                             vertical_normal=False, max_tilt=_MAX_TILT)
+    if found is None:
         return None
-    normals, picks = normals[upright] / length[upright, None], picks[upright]
-    offsets = -np.einsum("ij,ij->i", normals, picks[:, 0])
-    support = (np.abs(scored @ normals.T + offsets) < _PLANE_DISTANCE).sum(axis=0)
-    best = int(np.argmax(support))
-    inliers = np.abs(points @ normals[best] + offsets[best]) < _PLANE_DISTANCE
+    inliers = np.abs(points @ found[0] + found[1]) < _PLANE_DISTANCE
     if int(inliers.sum()) < _MIN_LEAF_POINTS:
         return None
     # Refit the horizontal normal over the inliers (the principal axes of their footprint).

@@ -8,7 +8,7 @@ group is one object candidate with its features (extent, colour, shape cues)
 and a position: the centre of its top face, which the camera looks down on.
 
 Small pure functions in Open3D's style (numpy in, numpy out, no hidden state):
-``segment_plane``, ``cluster``, ``segment_tabletop``, ``cluster_features``.
+``plane_hypothesis``, ``segment_plane``, ``cluster``, ``segment_tabletop``, ``cluster_features``.
 """
 
 from __future__ import annotations
@@ -30,6 +30,7 @@ __all__ = [
     "Tabletop",
     "cluster",
     "cluster_features",
+    "plane_hypothesis",
     "row_spacing",
     "segment_plane",
     "segment_tabletop",
@@ -141,6 +142,32 @@ def _resting_sphere(points: np.ndarray, plane: float) -> tuple[float, float] | N
     return (float(centre[0]), float(centre[1]))
 
 
+def plane_hypothesis(points: np.ndarray, distance: float, iterations: int,
+                     rng: np.random.Generator, *, vertical_normal: bool,
+                     max_tilt: float) -> tuple[np.ndarray, float] | None:
+    """RANSAC's best guess: of ``iterations`` planes through three of ``points`` (at least
+    three) drawn at random, whose normal lies within ``max_tilt`` of the vertical
+    (``vertical_normal``: a floor, a table) or of the horizontal (a wall, a door's leaf),
+    the one most points lie within ``distance`` of (scored on at most ``_SAMPLE`` of
+    them): ``(normal, offset)`` of ``normal·p + offset = 0``; None when no draw gives
+    such a plane."""
+    count = len(points)
+    scored = points if count <= _SAMPLE else points[rng.choice(count, _SAMPLE, replace=False)]
+    picks = points[rng.integers(0, count, (iterations, 3))]
+    normals = np.cross(picks[:, 1] - picks[:, 0], picks[:, 2] - picks[:, 0])
+    length = np.linalg.norm(normals, axis=1)
+    vertical = np.abs(normals[:, 2])
+    kept = (length > 1e-9) & (vertical >= np.cos(max_tilt) * length if vertical_normal
+                              else vertical <= np.sin(max_tilt) * length)
+    if not np.any(kept):
+        return None
+    normals, picks = normals[kept] / length[kept, None], picks[kept]
+    offsets = -np.einsum("ij,ij->i", normals, picks[:, 0])
+    residuals = np.abs(scored @ normals.T + offsets)  # (points, hypotheses)
+    best = int(np.argmax((residuals < distance).sum(axis=0)))
+    return normals[best], float(offsets[best])
+
+
 def segment_plane(points: np.ndarray, distance: float, iterations: int,
                   rng: np.random.Generator,
                   max_tilt: float = _MAX_TILT) -> tuple[np.ndarray, np.ndarray]:
@@ -149,21 +176,13 @@ def segment_plane(points: np.ndarray, distance: float, iterations: int,
     Returns ``(model, inlier_indices)``: ``model`` is ``(a, b, c)`` of ``z = a x + b y + c``
     (least squares over the inliers); empty inliers when no plane was found.
     """
-    count = len(points)
-    if count < 3:
+    if len(points) < 3:
         return np.zeros(3), np.zeros(0, dtype=np.int64)
-    scored = points if count <= _SAMPLE else points[rng.choice(count, _SAMPLE, replace=False)]
-    picks = points[rng.integers(0, count, (iterations, 3))]
-    normals = np.cross(picks[:, 1] - picks[:, 0], picks[:, 2] - picks[:, 0])
-    length = np.linalg.norm(normals, axis=1)
-    upright = (length > 1e-9) & (np.abs(normals[:, 2]) >= np.cos(max_tilt) * length)
-    if not np.any(upright):
+    found = plane_hypothesis(points, distance, iterations, rng, vertical_normal=True,
+                             max_tilt=max_tilt)
+    if found is None:
         return np.zeros(3), np.zeros(0, dtype=np.int64)
-    normals, picks = normals[upright] / length[upright, None], picks[upright]
-    offsets = -np.einsum("ij,ij->i", normals, picks[:, 0])
-    residuals = np.abs(scored @ normals.T + offsets)  # (points, hypotheses)
-    best = int(np.argmax((residuals < distance).sum(axis=0)))
-    normal, offset = normals[best], offsets[best]
+    normal, offset = found
     inliers = np.flatnonzero(np.abs(points @ normal + offset) < distance)
     model = _fit(points[inliers])
     residual = np.abs(points[:, 2] - (model[0] * points[:, 0] + model[1] * points[:, 1]
