@@ -26,8 +26,9 @@ from homebot.world import World
 if TYPE_CHECKING:
     from homebot.embodied import BodyRobot
     from homebot.sim.hearing import PersonVoice
+    from homebot.trials.following import FollowEpisode
 
-__all__ = ["embodied_robot", "embodied_robot_in"]
+__all__ = ["embodied_robot", "embodied_robot_in", "follow_me_episode"]
 
 # Seed stream of the robot's own filter, apart from the simulation's and the body's.
 _LOCALISATION_STREAM = 303
@@ -114,3 +115,24 @@ def embodied_robot(body: Body, world: World, navigator: Navigator, *, seed: int,
                                    acquaintances=robot.acquaintances,
                                    face_images=robot.face_views)
     return robot
+
+
+def follow_me_episode(world: World, seed: int, navigator: Navigator) -> FollowEpisode:
+    """One seeded Follow Me episode (``homebot.trials.following``): the embodied robot,
+    told only where it starts, follows the operator until told to stop; the verdict is
+    the arena referee's, by the truth."""
+    from homebot.embodied.following import FollowParameters
+    from homebot.sim.body import SimBody
+    from homebot.trials.following import FollowEpisode, follow_me_arena
+
+    arena = follow_me_arena(world, seed, navigator)
+    if isinstance(arena, FollowEpisode):
+        return arena
+    robot = embodied_robot_in(arena.sim, navigator)
+    robot.localisation.initialise(arena.robot_pose, spread=0.05, angle_spread=0.05)
+    body = robot.body
+    assert isinstance(body, SimBody)
+    arena.start(body)
+    # the walk, its pauses, and time to find the operator again if lost
+    result = robot.following(FollowParameters(budget=1.5 * arena.walk_seconds + 60.0)).follow()
+    return arena.judge(body, result.end.value, result.lost_count)

@@ -13,6 +13,7 @@ the home: what was said comes only through the microphone.
 
 from __future__ import annotations
 
+import contextlib
 from collections.abc import Callable
 from typing import TYPE_CHECKING
 
@@ -55,6 +56,7 @@ class Conversation:
         self.events = events
         self._make_recogniser = recogniser
         self._recogniser: AnswerRecognizer | None = None
+        self._overheard: list[np.ndarray] = []  #: what the microphone gave since the last word
 
     def say(self, text: str) -> bool:
         """Speak ``text`` aloud; False when the body has no speaker or no voice."""
@@ -134,6 +136,38 @@ class Conversation:
         heard = recogniser.hear(audio, state, denied=denied)
         self.events.record("robot.heard", text=heard.text, state=state, reason=heard.reason)
         return heard
+
+    def start_overhearing(self) -> None:
+        """Forget what the microphone heard so far (before ``overheard`` calls)."""
+        with contextlib.suppress(PartMissing):
+            self.body.microphone().read()
+        self._overheard = []
+
+    def overheard(self, state: str) -> str | None:
+        """Without waiting: what someone finished saying since the last call, heard in
+        ``state`` (None: nothing, or nothing the state knows). For words said while the
+        robot does something else, as "stop" while it follows someone."""
+        from homebot.speech.audio import SAMPLE_RATE, resample
+
+        try:
+            microphone = self.body.microphone()
+            recogniser = self._ears()
+        except (PartMissing, ImportError, SpeechError):
+            return None
+        self._overheard.append(resample(microphone.read(), microphone.rate, SAMPLE_RATE))
+        audio = np.concatenate(self._overheard)
+        utterances = recogniser.segmenter.utterances(audio)
+        if not utterances:
+            # keep only a little quiet before whatever comes next
+            self._overheard = [audio[-round(_END_OF_TURN * SAMPLE_RATE):]]
+            return None
+        if audio.size - utterances[-1].end < _END_OF_TURN * SAMPLE_RATE and \
+                audio.size < _LONGEST_ANSWER * SAMPLE_RATE:
+            return None  # still speaking
+        self._overheard = []
+        heard = recogniser.hear(audio, state)
+        self.events.record("robot.heard", text=heard.text, state=state, reason=heard.reason)
+        return heard.text
 
     def _ears(self) -> AnswerRecognizer:
         if self._recogniser is None:

@@ -47,7 +47,10 @@ from homebot.perception.people import (
 from homebot.robot import Body, PersonPercept, PersonView, Twist
 from homebot.world import OccupancyGrid, PlacementKind, World, surface_height
 
-__all__ = ["PeopleLook"]
+__all__ = ["UNREAD", "PeopleLook"]
+
+#: ``PeopleLook.clothes_at`` of someone whose clothes the camera could not read
+UNREAD = ("unread",)
 
 _WATCH = 1.0  #: seconds of sweeps the robot watches for legs
 _STOPPING = 1.0  #: seconds the base may take to come to rest before it looks
@@ -158,6 +161,26 @@ class PeopleLook:
         self.body.point_head(0.0, 0.0)
         return percepts
 
+    def clothes_at(self, pose: Pose, spot: tuple[float, float]) -> tuple[str, ...] | None:
+        """What the person the head camera sees at ``spot`` (map frame) from ``pose``
+        wears ("red top", ...), the head turned to them: () when the camera sees nobody
+        there, ``UNREAD`` when it sees someone but not their clothes, None when the head
+        cannot turn so far (or there is no camera). For telling a person one follows from
+        others who come near them, or from a thing the laser took for legs."""
+        bearing = wrap_angle(math.atan2(spot[1] - pose.y, spot[0] - pose.x) - pose.theta)
+        if abs(bearing) > _PAN_LIMIT:
+            return None
+        self.body.point_head(bearing, 0.0)
+        seen = self._camera_points(pose)
+        if seen is None:
+            return None
+        near = [body for body in _bodies(*seen)
+                if math.dist(body.position, spot) <= _SAME_PERSON]
+        if not near:
+            return ()
+        nearest = min(near, key=lambda body: math.dist(body.position, spot))
+        return _appearance(nearest)[1] or UNREAD
+
     def _come_to_rest(self) -> None:
         """Stop the base: sweeps placed by one pose must be taken from that pose."""
         body = self.body
@@ -190,7 +213,7 @@ class PeopleLook:
             body.tick()
             scan = body.scan()
             legs = detect_legs(scan, pose)
-            tracker.update(body.now(), legs[self._away_from_the_map(legs)], scan, pose)
+            tracker.update(body.now(), legs[self.off_the_map(legs)], scan, pose)
             if tick % every == every - 1 and tick // every < len(_VIEWS):
                 seen = self._camera_points(pose)
                 if seen is not None:
@@ -229,7 +252,7 @@ class PeopleLook:
                       0, rows - 1)
         return row, column
 
-    def _away_from_the_map(self, legs: np.ndarray) -> np.ndarray:
+    def off_the_map(self, legs: np.ndarray) -> np.ndarray:
         """Which legs stand clear of the map's walls and furniture."""
         if len(legs) == 0:
             return np.zeros(0, dtype=bool)

@@ -31,6 +31,7 @@ from shapely.geometry import Point as ShapelyPoint
 from homebot.cancel import CancelToken
 from homebot.embodied.conversation import Conversation
 from homebot.embodied.doors import WayThrough, door_seen_open, way_through
+from homebot.embodied.following import FollowEnd, Following, FollowParameters
 from homebot.embodied.looking import TableLook
 from homebot.embodied.people_look import PeopleLook
 from homebot.errors import NavigationError, PartMissing
@@ -56,6 +57,10 @@ from homebot.world import PlacementKind, World
 
 if TYPE_CHECKING:
     from homebot.speech.answers import AnswerRecognizer
+
+#: the dialogue state in which "stop" is heard (``homebot.speech.answers.STOP``; named here
+#: so that the speech extra loads only when the robot first listens)
+STOP = "stop"
 
 __all__ = ["BodyRobot"]
 
@@ -368,28 +373,37 @@ class BodyRobot(Robot):
 
     def follow(self, person: str, goal: Pose | None, *,
                cancel: CancelToken | None = None) -> MoveReport:
+        """Follow ``person`` by tracking them (``homebot.embodied.following``): asked to
+        go ahead (to the room of ``goal`` when given), they lead; the robot keeps behind
+        until they say stop, show it, or stand still where they were going."""
         seen = self._seen_near(person, _FOLLOWING_REACH)
         if not seen or math.dist(seen[0].position, self.pose().xy()) > _FOLLOWING_REACH:
             return MoveReport(False, self.pose(), 0.0, Blocker.NO_PATH)
-        destination = goal.xy() if goal else seen[0].position
-        plan = self.navigator.plan(self.pose().xy(), destination)
-        if plan is None:
-            return MoveReport(False, self.pose(), 0.0, Blocker.NO_PATH)
-        # The person is asked to walk ahead to the room; the robot keeps behind, stopping
-        # short of where it was told they go.
-        room = self.world.room_at(*destination) if goal is not None else None
+        room = self.world.room_at(*goal.xy()) if goal is not None else None
         if room is not None:
             self.say(f"{person}, please go ahead to the {room}, I will follow you.")
-        behind = plan.waypoints[-2] if len(plan.waypoints) > 1 else self.pose().xy()
-        dx, dy = destination[0] - behind[0], destination[1] - behind[1]
-        norm = math.hypot(dx, dy) or 1.0
-        stop = Pose(destination[0] - dx / norm * 0.8, destination[1] - dy / norm * 0.8,
-                    math.atan2(dy, dx))
-        self._walking_with = person
-        try:
-            return self.move_to(stop, cancel=cancel)
-        finally:
-            self._walking_with = None
+        else:
+            self.say(f"{person}, please go ahead, I will follow you. Say stop when we are "
+                     f"there.")
+        result = self.following().follow(room, cancel=cancel, person_near=seen[0].position)
+        pose = self.pose()
+        if result.end is FollowEnd.CANCELLED:
+            return MoveReport(False, pose, result.travelled, Blocker.CANCELLED)
+        if result.end in (FollowEnd.STOP_SAID, FollowEnd.STOP_SHOWN, FollowEnd.ARRIVED):
+            return MoveReport(True, pose, result.travelled)
+        return MoveReport(False, pose, result.travelled, Blocker.NO_PATH, None, person)
+
+    def following(self, parameters: FollowParameters | None = None) -> Following:
+        """A follower of one person with this robot's laser, map, ears and eyes."""
+        conversation = self.conversation
+        conversation.start_overhearing()
+        people_look = self.people_look
+        return Following(
+            self.body, self.world, self.navigator, self.controller, self.localise,
+            people_look.off_the_map if people_look is not None else _everywhere,
+            self.events, heard_stop=lambda: conversation.overheard(STOP) is not None,
+            clothes=people_look.clothes_at if people_look is not None else None,
+            parameters=parameters)
 
     # ------------------------------------------------------------ perception and hands
 
@@ -546,3 +560,8 @@ def _answer_recogniser(world: World) -> AnswerRecognizer:
     if key not in _RECOGNISERS:
         _RECOGNISERS[key] = AnswerRecognizer(world)
     return _RECOGNISERS[key]
+
+
+def _everywhere(legs: np.ndarray) -> np.ndarray:
+    """Every leg counts (no map to tell furniture's legs from people's)."""
+    return np.ones(len(legs), dtype=bool)

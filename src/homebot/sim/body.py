@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 import random
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import replace
 
 import numpy as np
@@ -138,12 +138,14 @@ class SimBody(Body):
             SceneGeometry.of(world), np.random.default_rng([simulation.seed, _CAMERA_STREAM]))
         self._body_tracker = BodyTracker(self)
         self._face_camera = FaceCamera(self, half_angle=face_half_angle)
+        #: called after every tick: referees watching the truth as it unfolds (never the robot)
+        self.referees: list[Callable[[], None]] = []
         self._travelled_since_point = 0.0
         self._trajectory: list[tuple[float, float]] = [self._rounded_position()]
         #: the simulation's sounds: what the speaker plays and the microphone hears
         self.audio = AudioScene(simulation.clock.now, simulation.seed)
         #: the people hearing the robot, answering aloud and doing what it asks
-        self.hearing = PeopleHearing(simulation, self.audio, voice)
+        self.hearing = PeopleHearing(simulation, self.audio, voice, self.people.walk_route)
         self._speaker = SimSpeaker(self.audio, simulation.events, self.tick, self.tick_period,
                                    self.hearing.robot_said)
         self._microphone = SimMicrophone(self.audio, simulation.clock.now)
@@ -328,6 +330,8 @@ class SimBody(Body):
         self.people.advance(dt, self.sim.robot_pose[:2], self.radius + _PERSONAL_SPACE)
         self._last_tick_end = self.sim.clock.advance(dt)
         self.hands.advance(dt)
+        for watch in self.referees:
+            watch()
         if self.components is not None:  # the components live on the body's clock
             self.components.advance(max(0.0, self._last_tick_end - self.components.now))
 

@@ -19,6 +19,7 @@ from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
+import shapely
 
 from homebot.geometry import yaw_rotation
 from homebot.robot import CameraIntrinsics, HeadState, RgbdFrame
@@ -83,10 +84,17 @@ class SceneGeometry:
 
     @classmethod
     def of(cls, world: World) -> SceneGeometry:
+        # the rooms' outlines but for their doorways: the camera sees through an open
+        # door (a shut one is drawn as its leaf, ``door_solids``)
+        outlines = shapely.union_all([polygon.exterior
+                                      for polygon in world.room_polygons.values()])
+        openings = shapely.union_all([shapely.Point(door.position).buffer(door.width / 2)
+                                      for door in world.doors.values()])
         walls: list[tuple[float, float, float, float]] = []
-        for polygon in world.room_polygons.values():
-            xs, ys = polygon.exterior.xy
-            walls.extend((xs[i], ys[i], xs[i + 1], ys[i + 1]) for i in range(len(xs) - 1))
+        for line in shapely.get_parts(shapely.line_merge(outlines.difference(openings))):
+            coordinates = shapely.get_coordinates(line)
+            walls.extend((*coordinates[i], *coordinates[i + 1])
+                         for i in range(len(coordinates) - 1))
         boxes = []
         for placement in world.placements.values():
             if placement.model.kind is PlacementKind.FURNITURE:

@@ -15,9 +15,8 @@ them. The simulator understands English for them (it has the text) and has them:
 - do what they are asked, if they are cooperative: open a door the request names, step
   off the robot's way ("let me through", "step aside"), come along behind the robot
   ("follow me": they stand behind it whenever it comes to rest, ``robot_stopped``) or go
-  ahead to a room it names ("go ahead to the kitchen"); and say "yes, sure" or "no, sorry".
-
-Moving a person is a jump (``Simulation.move_person``) until people walk on their own.
+  ahead to a room it names ("go ahead to the kitchen": they walk there at their own pace,
+  ``homebot.sim.routes``); and say "yes, sure" or "no, sorry".
 """
 
 from __future__ import annotations
@@ -29,6 +28,7 @@ from collections.abc import Callable
 import numpy as np
 
 from homebot.sim.audio import AudioScene, Sound
+from homebot.sim.routes import RouteWalk, plan_route
 from homebot.sim.simulation import Simulation
 from homebot.text import fold
 from homebot.world import DoorState
@@ -41,11 +41,14 @@ PersonVoice = Callable[[str, str], np.ndarray]
 EARSHOT = 3.5  #: metres within which a person hears the robot in its room
 THROUGH_A_DOOR = 1.5  #: metres within which a person in another room hears it
 _PAUSE = 0.6  #: seconds between the robot's last word and the person's first
+_GOING_AHEAD_PACE = (0.3, 0.45)  #: m/s: someone sent ahead walks slowly, to be followed
 _BEHIND = 0.6  #: metres behind the robot where someone who comes along stands
 _STEP_ASIDE = ("let me through", "let me pass", "let me by", "step aside", "make way")
 _COME_ALONG = ("follow me",)
 _HERE_IS = ("here is", "here are", "here you are", "here you go", "this is for you")
 _GO_AHEAD = re.compile(r"go ahead to (?:the )?(.+?)(?:,|\.|$)")
+_LEAD = ("i will follow you",)  #: "go ahead, I will follow you": they go where they wish
+_ARRIVED = "We are here."  #: what someone the robot followed says on arriving
 _YES, _NO = "Yes, sure.", "No, sorry."
 _DID_YOU_SAY = re.compile(r"\s*did you say (.+?)\s*\?*\s*$")
 #: words that frame an answer without carrying it ("my name is", "i said", "a")
@@ -61,13 +64,17 @@ class PeopleHearing:
         simulation: the truth: people, doors, how they answer.
         audio: the home's sounds, where the robot's voice is and the answers go.
         voice: how each person sounds; None: people hear but cannot answer aloud.
+        walk: sets someone walking a route of their own (``PeopleWalking.walk_route``);
+            None: people asked to go somewhere stay where they are.
     """
 
     def __init__(self, simulation: Simulation, audio: AudioScene,
-                 voice: PersonVoice | None) -> None:
+                 voice: PersonVoice | None,
+                 walk: Callable[[RouteWalk], None] | None = None) -> None:
         self.sim = simulation
         self.audio = audio
         self.voice = voice
+        self._walk = walk
         #: who comes along behind the robot (asked to "follow me")
         self.coming_along: str | None = None
         #: who was asked to put something in the robot's hand, and what ("please put the
@@ -164,7 +171,8 @@ class PeopleHearing:
 
     def _is_request(self, text: str) -> bool:
         return (self._door_named(text) is not None and "open" in text) or \
-            _says(text, _STEP_ASIDE) or _GO_AHEAD.search(text) is not None
+            _says(text, _STEP_ASIDE) or _GO_AHEAD.search(text) is not None or \
+            _says(text, _LEAD)
 
     def _door_named(self, text: str) -> str | None:
         named = [door for door in self.sim.door_state if fold(door) in text]
@@ -181,20 +189,46 @@ class PeopleHearing:
             sim.events.record("sim.person", person=person, did="opened", door=door)
             return True
         ahead = _GO_AHEAD.search(text)
-        if ahead is not None:
-            room = next((name for name in sim.world.room_polygons if fold(name) == ahead.group(1)),
-                        None)
-            if room is None:
-                return False
-            sim.move_person(person, sim.free_floor_in(room))
-            return True
+        if ahead is not None or _says(text, _LEAD):
+            return self._lead(person, None if ahead is None else ahead.group(1))
         # asked to let the robot by: off its way, or out of the doorway they stand in
         if not sim.step_aside(person, sim.people[person].blocking_door):
             return False
         sim.events.record("sim.person", person=person, did="stepped aside")
         return True
 
+    def _lead(self, person: str, room_words: str | None) -> bool:
+        """``person`` walks ahead, at their own pace, to the room named (else to a place
+        of their own choosing), and says they are there on arriving; whether they set off."""
+        sim = self.sim
+        if self._walk is None:
+            return False
+        choice = np.random.default_rng([sim.seed, len(self.audio.sounds)])
+        if room_words is None:
+            here = sim.people[person].room
+            rooms = sorted(room for room in sim.world.room_polygons if room != here)
+            if not rooms:
+                return False
+            room: str | None = rooms[int(choice.integers(len(rooms)))]
+        else:
+            room = next((name for name in sim.world.room_polygons
+                         if fold(name) == room_words), None)
+        if room is None:
+            return False
+        route = plan_route(sim, sim.people[person].position, [sim.free_floor_in(room)])
+        if route is None:
+            return False
+        # they set off once they have answered
+        self._walk(RouteWalk(person, route, float(choice.uniform(*_GOING_AHEAD_PACE)),
+                             starts_at=sim.clock.now() + 2.0, seed=sim.seed,
+                             at_end=lambda: self.say(person, _ARRIVED)))
+        return True
+
     # ------------------------------------------------------------ speaking
+
+    def say(self, person: str, text: str) -> None:
+        """``person`` says ``text`` aloud now (an operator telling the robot to stop)."""
+        self._say(person, text, self.sim.clock.now())
 
     def _say(self, person: str, text: str, start: float) -> None:
         self.sim.events.record("sim.person_said", person=person, text=text)

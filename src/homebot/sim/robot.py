@@ -139,11 +139,6 @@ class SimRobot(Robot):
         self._trail([*plan.waypoints[1:-1], stop])
         return MoveReport(True, self.pose(), plan.length, doors_passed=plan.doors)
 
-    def walk_to(self, person: str, point: tuple[float, float]) -> None:
-        """A person walks with the robot (guided, or leading it) to ``point``."""
-        if person in self.sim.people:
-            self.sim.move_person(person, point)
-
     # ------------------------------------------------------------ perception
 
     def perceive_objects(self, placement: str) -> list[Detection]:

@@ -12,9 +12,8 @@ import math
 import random
 from dataclasses import dataclass, field
 
-import numpy as np
-
 from homebot.sim.body_tracker import lying_body_outline
+from homebot.sim.routes import ROUND_ROBOT, RouteWalk, way_round_robot
 from homebot.sim.simulation import Simulation
 from homebot.world import PlacementKind, Posture
 
@@ -27,7 +26,6 @@ _LEG_SPREAD = 0.1  #: metres from a person's centre to each leg's
 _BESIDE = 0.75  #: metres sideways from a placement's approach spot, where people stand
 _YIELD_DISTANCE = 0.9  #: a walker waits when the robot's centre is this close ahead
 _PATIENCE = 4.0  #: seconds a walker waits for the robot before walking round it
-_ROUND_ROBOT = 0.75  #: metres a walker going round the robot keeps from its centre
 _DOORWAY = 0.9  #: metres from a door's centre within which nobody chooses to stand
 
 
@@ -65,6 +63,14 @@ class PeopleWalking:
                         for name in names]
         self._outlines: dict[tuple[str, tuple[float, float]],
                              list[tuple[float, float]] | None] = {}
+        #: people walking a route of their own (an operator, someone sent ahead), by name
+        self.routes: dict[str, RouteWalk] = {}
+
+    def walk_route(self, walk: RouteWalk) -> None:
+        """Have ``walk.name`` walk ``walk`` (instead of any schedule or earlier route)."""
+        if walk.name not in self.sim.people:
+            raise KeyError(f"nobody called {walk.name!r} is in the home")
+        self.routes[walk.name] = walk
 
     def legs(self) -> list[tuple[float, float]]:
         """Where every person's two legs are (walkers and those standing still)."""
@@ -75,6 +81,7 @@ class PeopleWalking:
         someone lying on the floor is a row of them along the body, someone lying on a bed
         none."""
         headings = {walker.name: walker.heading for walker in self.walkers}
+        headings.update((name, walk.heading) for name, walk in self.routes.items())
         legs: list[tuple[str, tuple[float, float]]] = []
         for name, state in sorted(self.sim.people.items()):
             lying = self._lying_outline(name)
@@ -103,6 +110,8 @@ class PeopleWalking:
 
     def facing(self, name: str) -> float:
         """Which way a person faces: where they walk, else the middle of their room."""
+        if name in self.routes:
+            return self.routes[name].heading
         walker = next((walker for walker in self.walkers if walker.name == name), None)
         if walker is not None:
             return walker.heading
@@ -113,9 +122,11 @@ class PeopleWalking:
     def advance(self, seconds: float, robot: tuple[float, float], keep_away: float) -> None:
         """Let ``seconds`` pass for every walker; nobody steps within ``keep_away`` of the robot."""
         now = self.sim.clock.now()
+        for walk in self.routes.values():
+            walk.advance(self.sim, seconds, robot)
         for walker in self.walkers:
             state = self.sim.people.get(walker.name)
-            if state is None or state.blocking_door is not None:
+            if state is None or state.blocking_door is not None or walker.name in self.routes:
                 continue
             if not walker.path:
                 if now >= walker.leaves_at:
@@ -150,7 +161,7 @@ class PeopleWalking:
         to_robot = (robot[0] - here[0], robot[1] - here[1])
         ahead = to_robot[0] * math.cos(heading) + to_robot[1] * math.sin(heading)
         beside = abs(to_robot[1] * math.cos(heading) - to_robot[0] * math.sin(heading))
-        if math.hypot(*to_robot) < _YIELD_DISTANCE and ahead > -0.1 and beside < _ROUND_ROBOT:
+        if math.hypot(*to_robot) < _YIELD_DISTANCE and ahead > -0.1 and beside < ROUND_ROBOT[0]:
             # The robot is in the way: wait for it to pass, and if it does not, go round it
             # (a robot waiting for the person to move would otherwise wait for ever).
             now = self.sim.clock.now()
@@ -181,19 +192,10 @@ class PeopleWalking:
                   robot: tuple[float, float]) -> bool:
         """A new way to the walker's goal that keeps clear of the robot, or else a step
         aside to let the robot by; False if neither."""
-        sim = self.sim
-        path = sim.navigator.plan_around(here, walker.path[-1], sim.closed_doors(),
-                                         np.asarray([robot]), _ROUND_ROBOT)
-        if path is not None:
-            walker.path = list(path[1:])
-            return True
-        # No way round (the robot stands in the doorway they need): let it by first.
-        spot = sim.spot_aside(here)
-        way = None if spot is None else sim.navigator.plan_around(
-            here, spot, sim.closed_doors(), np.asarray([robot]), _ROUND_ROBOT)
+        way = way_round_robot(self.sim, here, walker.path, robot)
         if way is None:
             return False
-        walker.path = [*way[1:], *walker.path]
+        walker.path = way
         return True
 
     def _arrive(self, walker: Walker) -> None:

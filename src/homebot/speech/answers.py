@@ -28,16 +28,18 @@ from homebot.speech.grammar import (
     Grammar,
     drink_grammar,
     name_grammar,
+    stop_grammar,
     words_of,
     yes_no_grammar,
 )
 from homebot.speech.recognizer import Hearing, Recognizer, state_for_question
 from homebot.speech.segmentation import Segmenter
 
-__all__ = ["EVERYDAY_ANSWERS", "OPEN", "AnswerRecognizer", "answer_state", "household_grammar",
-           "open_grammar", "question_grammar"]
+__all__ = ["EVERYDAY_ANSWERS", "OPEN", "STOP", "AnswerRecognizer", "answer_state",
+           "household_grammar", "open_grammar", "question_grammar"]
 
 OPEN = "open"
+STOP = "stop"  #: said to end following or guiding
 QUESTION = "question"
 _HOUSEHOLD = "household_name"
 #: What people commonly answer about themselves, beside the home's own names: foods,
@@ -140,6 +142,7 @@ class AnswerRecognizer:
         drinks = drink_grammar(world)
         if "<VOID>" not in drinks.rules["drink"]:
             grammars["drink"] = drinks
+        grammars[STOP] = stop_grammar()
         rng = random.Random(seed)
         training = {state: grammar.sample(rng, _SAMPLES_PER_STATE)
                     for state, grammar in grammars.items()}

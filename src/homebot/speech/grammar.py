@@ -222,6 +222,16 @@ def yes_no_grammar() -> Grammar:
     }, slots=("yes", "no"))
 
 
+def stop_grammar() -> Grammar:
+    """What a person says to end being followed or guided ("stop", "you can stop now")."""
+    return Grammar("stop", "answer", {
+        "answer": "[ok | okay] [robot] <stop> [here | now] [please] [thank you]"
+                  " | [ok | okay] we are here | that is far enough | [ok | okay] you can stop"
+                  " [here | now] [thank you]",
+        "stop": "stop [following me | following] | halt | wait",
+    }, slots=("stop",))
+
+
 #: First names a robot expects besides its household's when it asks someone their name
 #: (common English first names; RoboCup@Home's guests come from such a list).
 COMMON_NAMES = (

@@ -1,0 +1,393 @@
+"""Following a person by tracking them with the laser (Cosero §7.1.1, §8.2 *Follow Me*).
+
+The robot keeps the person it follows as one track of its leg tracker
+(``perception.people.PeopleTracker``: a Kalman filter per person over the laser's leg
+detections). Every control period it plans a path on the static map to where the person
+is (round corners, through doors) and drives it with the local controller, stopping
+``FollowParameters.distance`` short of them; the local controller keeps clear of the
+person's and everyone else's legs, as it does of anything the laser sees.
+
+Someone crossing between the robot and the person, a corner or a door frame hides the
+person. The tracker coasts the track for a while; when it ends, the robot re-identifies
+the person among the tracks that start near where the person was heading. A track that
+was seen at the same time as the person, somewhere else, is someone else and is never
+taken for them. The head camera keeps the person in view: what they wear (the colour of
+their top, as ``PeopleLook.clothes_at`` reads it) is learnt at the start and checked
+every ``FollowParameters.check_every`` seconds, so a track that slipped onto someone
+else (two people passing close, the tracker's legs swapped) is dropped, and a candidate
+in other clothes is not taken. Faces are no help here: the person walks ahead, their
+back to the robot. Not found again, the robot keeps to where the person was heading;
+after ``FollowParameters.give_up`` seconds it reports the person lost.
+
+Following ends when the person says "stop" (the microphone, heard in the ``stop``
+state), shows the stop gesture (when the robot can read gestures), stands still in the
+room they were to lead it to, or, without such a room, stands still for
+``FollowParameters.still_end`` seconds. Nothing here reads the simulator: the person is
+only what the laser shows.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from enum import StrEnum
+
+import numpy as np
+
+from homebot.cancel import CancelToken
+from homebot.embodied.people_look import UNREAD
+from homebot.events import EventLog
+from homebot.geometry import Pose, wrap_angle
+from homebot.navigation import Navigator
+from homebot.navigation.localmap import LocalController
+from homebot.perception.people import PeopleTracker, Track, detect_legs
+from homebot.robot import Body, Twist
+from homebot.world import World
+
+__all__ = ["FollowEnd", "FollowParameters", "FollowResult", "Following"]
+
+
+class FollowEnd(StrEnum):
+    """Why following ended."""
+
+    STOP_SAID = "stop_said"  #: the person said "stop"
+    STOP_SHOWN = "stop_shown"  #: the person showed the stop gesture
+    ARRIVED = "arrived"  #: the person stood still where they were going
+    LOST = "lost"  #: the robot lost the person and did not find them again
+    CANCELLED = "cancelled"
+    NOBODY = "nobody"  #: nobody stood in front of the robot to follow
+
+
+@dataclass(frozen=True, slots=True)
+class FollowParameters:
+    """How closely the robot follows, and how long it looks for someone lost."""
+
+    distance: float = 1.0  #: metres: the robot stops this far short of the person
+    start_reach: float = 2.5  #: metres: the person to follow stands this near at the start
+    replan_every: float = 0.5  #: seconds between global paths to the person
+    reidentify_gate: float = 0.8  #: metres round the person's predicted spot, at first
+    reidentify_growth: float = 0.6  #: metres the gate grows per second lost
+    reidentify_most: float = 3.0  #: metres the gate grows to at most
+    prediction: float = 1.5  #: seconds the person's last velocity is carried on, at most
+    give_up: float = 25.0  #: seconds lost before the robot gives up
+    still_speed: float = 0.12  #: m/s: a person slower than this stands still
+    still_arrived: float = 3.0  #: seconds standing in the goal room: arrived
+    still_end: float = 15.0  #: seconds standing anywhere, with no goal room: arrived
+    listen_every: float = 0.25  #: seconds between looks at what the microphone heard
+    check_every: float = 1.0  #: seconds between looks at what the person followed wears
+    mismatches: int = 2  #: looks in a row at other clothes that drop a track
+    camera_reach: float = 3.5  #: metres within which the camera sees whoever stands there
+    budget: float = 600.0  #: seconds: following never lasts longer
+
+
+@dataclass
+class FollowResult:
+    """How following went."""
+
+    end: FollowEnd
+    travelled: float = 0.0
+    last_seen: tuple[float, float] | None = None
+    lost_count: int = 0  #: times the person was lost and found again
+    seconds: float = 0.0
+
+
+@dataclass
+class _Target:
+    """What the robot knows of the person it follows."""
+
+    track_id: int
+    position: tuple[float, float]
+    velocity: tuple[float, float]
+    seen_at: float
+    still_since: float | None = None
+    others: set[int] = field(default_factory=set)  #: tracks seen beside the person
+    wears: str | None = None  #: the colour of their top, as the camera saw it
+    mismatches: int = 0  #: looks in a row at the track that showed other clothes
+
+
+class Following:
+    """Follows one person with a body's laser (see the module docstring).
+
+    Args:
+        body: the sensors and the base.
+        world: the map's rooms (where the person was to lead the robot).
+        navigator: stage 1 on the static map.
+        controller: stage 2, the local planner.
+        localise: the pose estimate after feeding it the latest sensors.
+        off_the_map: which of (n, 2) leg positions stand clear of the map's walls and
+            furniture (legs near them are the furniture's).
+        events: where following is recorded.
+        heard_stop: whether the person said stop since the last call (None: deaf).
+        stop_shown: whether the person at a map position shows the stop gesture (None:
+            gestures unseen).
+        clothes: what the person the camera sees at a map position wears, from a pose
+            (``PeopleLook.clothes_at``; None: no camera, people told apart by the laser
+            alone).
+    """
+
+    def __init__(self, body: Body, world: World, navigator: Navigator,
+                 controller: LocalController, localise: Callable[[], Pose],
+                 off_the_map: Callable[[np.ndarray], np.ndarray], events: EventLog, *,
+                 heard_stop: Callable[[], bool] | None = None,
+                 stop_shown: Callable[[tuple[float, float]], bool] | None = None,
+                 clothes: Callable[[Pose, tuple[float, float]], tuple[str, ...] | None]
+                 | None = None,
+                 parameters: FollowParameters | None = None) -> None:
+        self.body = body
+        self.world = world
+        self.navigator = navigator
+        self.controller = controller
+        self.localise = localise
+        self.off_the_map = off_the_map
+        self.events = events
+        self.heard_stop = heard_stop
+        self.stop_shown = stop_shown
+        self.clothes = clothes
+        self.parameters = parameters or FollowParameters()
+        self.tracker = PeopleTracker()
+
+    # ------------------------------------------------------------ the loop
+
+    def follow(self, goal_room: str | None = None, *,
+               cancel: CancelToken | None = None,
+               person_near: tuple[float, float] | None = None) -> FollowResult:
+        """Follow the person in front (nearest ``person_near`` when given) until they say
+        stop, stand still where they were going, or are lost."""
+        p = self.parameters
+        body = self.body
+        started = body.now()
+        target = self._first_sight(person_near)
+        if target is None:
+            return FollowResult(FollowEnd.NOBODY)
+        self.events.record("robot.following", track=target.track_id,
+                           at=[round(v, 2) for v in target.position])
+        result = FollowResult(FollowEnd.LOST, last_seen=target.position)
+        path: list[tuple[float, float]] = []
+        planned_at = -math.inf
+        listened_at = checked_at = body.now()
+        lost_since: float | None = None
+        last_odometry = body.odometry().pose
+        while True:
+            now = body.now()
+            if cancel is not None and cancel.cancelled:
+                result.end = FollowEnd.CANCELLED
+                break
+            if now - started > p.budget:
+                result.end = FollowEnd.LOST
+                break
+            pose = self.localise()
+            seen = self._sense(pose, target)
+            if seen:
+                if lost_since is not None:
+                    self.events.record("robot.following_found", track=target.track_id,
+                                       lost_for=round(now - lost_since, 2))
+                    result.lost_count += 1
+                    lost_since = None
+                    planned_at = -math.inf
+                result.last_seen = target.position
+            elif lost_since is None and now - target.seen_at > self.tracker.parameters.coast:
+                lost_since = target.seen_at
+                self.events.record("robot.following_lost", track=target.track_id,
+                                   at=[round(v, 2) for v in target.position])
+            if lost_since is not None and now - lost_since > p.give_up:
+                result.end = FollowEnd.LOST
+                break
+            if seen and now - checked_at >= p.check_every:
+                checked_at = now
+                if not self._looks_right(pose, target):
+                    self.events.record("robot.following_dropped", track=target.track_id)
+                    target.others.add(target.track_id)
+                    target.track_id = -1
+                    target.seen_at = now - self.tracker.parameters.coast
+            if now - listened_at >= p.listen_every:
+                listened_at = now
+                if self.heard_stop is not None and self.heard_stop():
+                    result.end = FollowEnd.STOP_SAID
+                    break
+                if seen and self.stop_shown is not None and self.stop_shown(target.position):
+                    result.end = FollowEnd.STOP_SHOWN
+                    break
+            if seen and self._arrived(target, goal_room, now):
+                result.end = FollowEnd.ARRIVED
+                break
+            aim = self._aim(target, now)
+            if now - planned_at >= p.replan_every or not path:
+                path = self._path_to(pose, aim)
+                planned_at = now
+            body.command_velocity(self._command(pose, aim, path, seen))
+            body.tick()
+            odometry = body.odometry().pose
+            result.travelled += math.dist(odometry.xy(), last_odometry.xy())
+            last_odometry = odometry
+        self._stop_base()
+        result.seconds = round(body.now() - started, 3)
+        result.travelled = round(result.travelled, 3)
+        self.events.record("robot.followed", end=result.end.value, lost=result.lost_count,
+                           travelled=result.travelled)
+        return result
+
+    # ------------------------------------------------------------ tracking
+
+    def _first_sight(self, near: tuple[float, float] | None) -> _Target | None:
+        """Watch a second standing still; the confirmed track nearest ``near`` (else the
+        nearest in front of the robot) within reach."""
+        body = self.body
+        body.command_velocity(Twist())
+        pose = self.localise()
+        for _ in range(max(1, round(1.0 / body.tick_period))):
+            body.tick()
+            self._update_tracker(self.localise())
+        reach = self.parameters.start_reach
+        here = pose.xy()
+        centre = near or here
+        candidates = [track for track in self.tracker.confirmed()
+                      if math.dist(track.position, here) <= reach + (
+                          0.0 if near is None else 1.0)]
+        if near is None:
+            candidates = [track for track in candidates if abs(wrap_angle(math.atan2(
+                track.position[1] - pose.y, track.position[0] - pose.x) - pose.theta))
+                <= math.pi / 2]
+        if not candidates:
+            return None
+        chosen = min(candidates, key=lambda track: math.dist(track.position, centre))
+        target = _Target(chosen.id, chosen.position, chosen.velocity, body.now(),
+                         others={track.id for track in candidates if track.id != chosen.id})
+        if self.clothes is not None:
+            wears = self.clothes(self.localise(), chosen.position)
+            target.wears = wears[0] if wears and wears != UNREAD else None
+        return target
+
+    def _update_tracker(self, pose: Pose) -> list[Track]:
+        scan = self.body.scan()
+        legs = detect_legs(scan, pose)
+        if len(legs):
+            legs = legs[self.off_the_map(legs)]
+        return self.tracker.update(self.body.now(), legs, scan, pose)
+
+    def _sense(self, pose: Pose, target: _Target) -> bool:
+        """Update the tracker; whether the person was seen this sweep (their track, or a
+        new one where they would be)."""
+        p = self.parameters
+        now = self.body.now()
+        confirmed = self._update_tracker(pose)
+        mine = next((track for track in self.tracker.tracks if track.id == target.track_id),
+                    None)
+        if mine is not None and mine.seen >= now - 1e-9:
+            self._take(target, mine, now)
+            target.others.update(track.id for track in confirmed
+                                 if track.id != mine.id and
+                                 math.dist(track.position, mine.position) > 0.5)
+            return True
+        if mine is not None and mine.confirmed:
+            return False  # coasting: hidden for a moment
+        lost_for = now - target.seen_at
+        gate = min(p.reidentify_most, p.reidentify_gate + p.reidentify_growth * lost_for)
+        predicted = self._predicted(target, now)
+        candidates = [track for track in confirmed if track.id not in target.others
+                      and track.seen >= now - 1e-9
+                      and math.dist(track.position, predicted) <= gate]
+        for chosen in sorted(candidates, key=lambda track: math.dist(track.position, predicted)):
+            if self._wears_other(pose, target, chosen.position):
+                target.others.add(chosen.id)
+                continue
+            target.track_id, target.mismatches = chosen.id, 0
+            self._take(target, chosen, now)
+            return True
+        return False
+
+    def _wears_other(self, pose: Pose, target: _Target, where: tuple[float, float]) -> bool:
+        """Whether the camera sees nobody at ``where``, or someone dressed unlike the
+        person followed (False when it cannot tell: no camera, out of the head's turn,
+        clothes unread)."""
+        if self.clothes is None:
+            return False
+        wears = self.clothes(pose, where)
+        if wears is None:
+            return False
+        if not wears:
+            return math.dist(where, pose.xy()) <= self.parameters.camera_reach
+        return target.wears is not None and wears != UNREAD and wears[0] != target.wears
+
+    def _looks_right(self, pose: Pose, target: _Target) -> bool:
+        """Look at the track followed: False once it showed nobody, or other clothes,
+        ``mismatches`` times in a row (it slipped onto someone or something else)."""
+        if self._wears_other(pose, target, target.position):
+            target.mismatches += 1
+        else:
+            target.mismatches = 0
+        return target.mismatches < self.parameters.mismatches
+
+    def _take(self, target: _Target, track: Track, now: float) -> None:
+        moving = math.hypot(*track.velocity) >= self.parameters.still_speed
+        if moving:
+            target.still_since = None
+        elif target.still_since is None:
+            target.still_since = now
+        target.position, target.velocity, target.seen_at = track.position, track.velocity, now
+
+    def _predicted(self, target: _Target, now: float) -> tuple[float, float]:
+        ahead = min(self.parameters.prediction, now - target.seen_at)
+        return (target.position[0] + target.velocity[0] * ahead,
+                target.position[1] + target.velocity[1] * ahead)
+
+    def _arrived(self, target: _Target, goal_room: str | None, now: float) -> bool:
+        if target.still_since is None:
+            return False
+        still = now - target.still_since
+        if goal_room is not None:
+            return still >= self.parameters.still_arrived and \
+                self.world.room_at(*target.position) == goal_room
+        return still >= self.parameters.still_end
+
+    # ------------------------------------------------------------ driving
+
+    def _aim(self, target: _Target, now: float) -> tuple[float, float]:
+        """Where to drive: to the person while seen; where they were last heading when
+        not (round the corner they turned)."""
+        return target.position if now - target.seen_at < 0.5 else self._predicted(target, now)
+
+    def _path_to(self, pose: Pose, aim: tuple[float, float]) -> list[tuple[float, float]]:
+        plan = self.navigator.plan(pose.xy(), aim)
+        if plan is None:
+            return [pose.xy(), aim]
+        return [tuple(point) for point in plan.waypoints]  # type: ignore[misc]
+
+    def _command(self, pose: Pose, aim: tuple[float, float],
+                 path: list[tuple[float, float]], seen: bool) -> Twist:
+        """Drive along ``path`` to ``distance`` short of its end; there, turn to face the
+        person."""
+        body = self.body
+        short = _shortened(path, self.parameters.distance)
+        if short is None:
+            bearing = wrap_angle(math.atan2(aim[1] - pose.y, aim[0] - pose.x) - pose.theta)
+            turn = max(-body.limits.angular, min(body.limits.angular, 1.5 * bearing))
+            return Twist(0.0, 0.0, turn if abs(bearing) > 0.15 else 0.0)
+        return self.controller.plan(pose, body.odometry().twist, body.scan(), short,
+                                    body.limits, body.drive, body.radius)
+
+    def _stop_base(self) -> None:
+        body = self.body
+        body.command_velocity(Twist())
+        for _ in range(60):
+            if body.odometry().twist.is_zero():
+                break
+            body.tick()
+
+
+def _shortened(path: list[tuple[float, float]], by: float
+               ) -> list[tuple[float, float]] | None:
+    """``path`` without its last ``by`` metres (None: it is no longer than that)."""
+    left = by
+    points = list(path)
+    while len(points) >= 2:
+        (x0, y0), (x1, y1) = points[-2], points[-1]
+        length = math.hypot(x1 - x0, y1 - y0)
+        if length > left:
+            t = (length - left) / length
+            points[-1] = (x0 + t * (x1 - x0), y0 + t * (y1 - y0))
+            return points if math.dist(points[0], points[-1]) > 0.05 or len(points) > 2 \
+                else None
+        left -= length
+        points.pop()
+    return None
