@@ -304,7 +304,6 @@ class SimBody(Body):
                                    points=[list(p) for p in points])
             self.sim.trail.extend(points[1:])
         self._trajectory = [here]
-        self.hearing.robot_stopped(self.sim.robot_pose)
 
     # ------------------------------------------------------------ one tick
 

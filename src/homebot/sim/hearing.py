@@ -14,7 +14,9 @@ them. The simulator understands English for them (it has the text) and has them:
   in my hand");
 - do what they are asked, if they are cooperative: open a door the request names, step
   off the robot's way ("let me through", "step aside"), come along behind the robot
-  ("follow me": they stand behind it whenever it comes to rest, ``robot_stopped``) or go
+  ("follow me": they walk after it by their own rule, ``homebot.sim.guided``, until it
+  asks or hands them something else; one who wandered off follows again when asked from
+  near) or go
   ahead to a room it names ("go ahead to the kitchen": they walk there at their own pace,
   ``homebot.sim.routes``); and say "yes, sure" or "no, sorry".
 """
@@ -28,6 +30,7 @@ from collections.abc import Callable
 import numpy as np
 
 from homebot.sim.audio import AudioScene, Sound
+from homebot.sim.guided import GuidedWalk, Personality, personality_of
 from homebot.sim.routes import RouteWalk, plan_route
 from homebot.sim.simulation import Simulation
 from homebot.text import fold
@@ -42,7 +45,6 @@ EARSHOT = 3.5  #: metres within which a person hears the robot in its room
 THROUGH_A_DOOR = 1.5  #: metres within which a person in another room hears it
 _PAUSE = 0.6  #: seconds between the robot's last word and the person's first
 _GOING_AHEAD_PACE = (0.3, 0.45)  #: m/s: someone sent ahead walks slowly, to be followed
-_BEHIND = 0.6  #: metres behind the robot where someone who comes along stands
 _STEP_ASIDE = ("let me through", "let me pass", "let me by", "step aside", "make way")
 _COME_ALONG = ("follow me",)
 _HERE_IS = ("here is", "here are", "here you are", "here you go", "this is for you")
@@ -64,19 +66,23 @@ class PeopleHearing:
         simulation: the truth: people, doors, how they answer.
         audio: the home's sounds, where the robot's voice is and the answers go.
         voice: how each person sounds; None: people hear but cannot answer aloud.
-        walk: sets someone walking a route of their own (``PeopleWalking.walk_route``);
-            None: people asked to go somewhere stay where they are.
+        walk: sets someone walking a route of their own, or after the robot
+            (``PeopleWalking.walk_route``); None: people asked to go somewhere, or to
+            follow, stay where they are.
     """
 
     def __init__(self, simulation: Simulation, audio: AudioScene,
                  voice: PersonVoice | None,
-                 walk: Callable[[RouteWalk], None] | None = None) -> None:
+                 walk: Callable[[RouteWalk | GuidedWalk], None] | None = None) -> None:
         self.sim = simulation
         self.audio = audio
         self.voice = voice
         self._walk = walk
-        #: who comes along behind the robot (asked to "follow me")
+        #: who comes along behind the robot (asked to "follow me"), and how they walk
         self.coming_along: str | None = None
+        self.guided: GuidedWalk | None = None
+        #: how someone guided follows, by name (a trial's choice; default ``personality_of``)
+        self.personalities: dict[str, Personality] = {}
         #: who was asked to put something in the robot's hand, and what ("please put the
         #: cup in my hand"); ``homebot.sim.hands`` has them do it
         self.asked_to_give: tuple[str, str] | None = None
@@ -96,8 +102,10 @@ class PeopleHearing:
             return
         model = self.sim.people[listener].model
         self.sim.events.record("sim.heard", person=listener, text=sound.text)
-        if listener == self.coming_along and not _says(text, _COME_ALONG):
-            self.coming_along = None  # spoken to about something else: the walk is over
+        if listener == self.coming_along and not _says(text, _COME_ALONG) and (
+                "?" in text or "in my hand" in text or _says(text, _HERE_IS)
+                or self._is_request(text)):
+            self._end_guided_walk()  # asked or handed something else: the walk is over
         reply: str | None
         if "in my hand" in text:
             named = [obj for obj in self.sim.world.objects if fold(obj) in text]
@@ -113,9 +121,7 @@ class PeopleHearing:
         elif request:
             reply = _YES if model.cooperative and self._do(listener, text) else _NO
         elif _says(text, _COME_ALONG):
-            if model.cooperative:
-                self.coming_along = listener
-            reply = _YES if model.cooperative else _NO
+            reply = self._come_along(listener)
         else:
             return
         if reply:
@@ -143,14 +149,30 @@ class PeopleHearing:
         choice = np.random.default_rng([self.sim.seed, len(self.audio.sounds)])
         return forms[int(choice.integers(len(forms)))]
 
-    def robot_stopped(self, pose: tuple[float, float, float]) -> None:
-        """The robot's base came to rest: someone coming along stands behind it."""
-        name = self.coming_along
-        if name is None or name not in self.sim.people:
-            return
-        x, y, theta = pose
-        self.sim.move_person(name, self.sim.free_floor_near(
-            (x - _BEHIND * math.cos(theta), y - _BEHIND * math.sin(theta))))
+    def _come_along(self, person: str) -> str | None:
+        """``person`` was asked to follow the robot: they set off after it (``GuidedWalk``),
+        or, already following, go on; one who wandered off follows again only when asked
+        from near (from farther they do not answer). Their answer."""
+        sim = self.sim
+        if not sim.people[person].model.cooperative:
+            return _NO
+        walk = self.guided
+        if walk is not None and not walk.finished and walk.name == person:
+            return _YES if walk.asked_again(sim) else None
+        self._end_guided_walk()
+        self.coming_along = person
+        if self._walk is not None:
+            personality = self.personalities.get(person) or personality_of(sim.seed, person)
+            self.guided = GuidedWalk.start(sim, person, personality)
+            self._walk(self.guided)
+            sim.events.record("sim.person", person=person, did="follows",
+                              personality=personality.value)
+        return _YES
+
+    def _end_guided_walk(self) -> None:
+        if self.guided is not None:
+            self.guided.finished = True
+        self.guided = self.coming_along = None
 
     def _listener(self, text: str) -> str | None:
         """Who takes ``text`` as said to them: the person named among those who hear it,

@@ -13,6 +13,7 @@ import random
 from dataclasses import dataclass, field
 
 from homebot.sim.body_tracker import lying_body_outline
+from homebot.sim.guided import GuidedWalk
 from homebot.sim.routes import ROUND_ROBOT, RouteWalk, way_round_robot
 from homebot.sim.simulation import Simulation
 from homebot.world import PlacementKind, Posture
@@ -63,10 +64,11 @@ class PeopleWalking:
                         for name in names]
         self._outlines: dict[tuple[str, tuple[float, float]],
                              list[tuple[float, float]] | None] = {}
-        #: people walking a route of their own (an operator, someone sent ahead), by name
-        self.routes: dict[str, RouteWalk] = {}
+        #: people walking a route of their own (an operator, someone sent ahead) or after
+        #: the robot (someone guided), by name
+        self.routes: dict[str, RouteWalk | GuidedWalk] = {}
 
-    def walk_route(self, walk: RouteWalk) -> None:
+    def walk_route(self, walk: RouteWalk | GuidedWalk) -> None:
         """Have ``walk.name`` walk ``walk`` (instead of any schedule or earlier route)."""
         if walk.name not in self.sim.people:
             raise KeyError(f"nobody called {walk.name!r} is in the home")
