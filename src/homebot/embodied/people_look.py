@@ -15,12 +15,13 @@ A look at the people around (Cosero §7.1, CAESAR §2.4), standing still:
    look keeps them.
 3. Each body gives posture (``posture_from_profile``) and clothes colours
    (``clothes_colour``, on its trunk's and legs' pixels). The head turns to each
-   person, nearest first: the skeleton tracker's arm keypoints give the gesture
-   (``person_gesture``), and within face range the face is recognised among the
-   people the robot has met (``Acquaintances``); else the person is nameless.
+   person, nearest first, and watches them for a second: the depth frames give
+   their head, shoulders and arms and so the gesture (``gesture_from_depth``),
+   and within face range the face is recognised among the people the robot has
+   met (``Acquaintances``); else the person is nameless.
 
 Nothing is read from the simulator's truth here: only the ``Body`` port's laser,
-head camera, skeleton tracker and face close-ups.
+head camera and face close-ups.
 """
 
 from __future__ import annotations
@@ -35,8 +36,9 @@ from scipy import ndimage
 
 from homebot.errors import PartMissing
 from homebot.geometry import Pose, from_frame, wrap_angle
+from homebot.perception.body_parts import looking_tilt
 from homebot.perception.faces import Acquaintances
-from homebot.perception.gestures import person_gesture
+from homebot.perception.gestures import gesture_from_depth
 from homebot.perception.people import (
     STATIC_CLEARANCE,
     PeopleTracker,
@@ -44,7 +46,7 @@ from homebot.perception.people import (
     detect_legs,
     posture_from_profile,
 )
-from homebot.robot import Body, PersonPercept, PersonView, Twist
+from homebot.robot import Body, CameraIntrinsics, PersonPercept, RgbdFrame, Twist
 from homebot.world import OccupancyGrid, PlacementKind, World, surface_height
 
 __all__ = ["UNREAD", "PeopleLook"]
@@ -62,6 +64,8 @@ _VIEWS = tuple((pan, tilt) for tilt in _TILTS for pan in (_PANS if tilt == _TILT
 _TRUNK_DEPTH = 0.15  #: metres from a trunk's seen surface back to its middle
 _POINT_STEP = 2  #: every second row and column of the depth image
 _HEAD_TURN = 0.3  #: seconds the head takes to turn to a person and settle
+_GESTURE_FRAMES = 10  #: head-camera frames watched for a gesture ...
+_GESTURE_EVERY = 0.1  #: ... one every so many seconds
 _FACE_RANGE = 2.5  #: metres within which the head camera's close-up shows a face
 _FACE_VIEWS = 6  #: face views weighed together to name a person (identify_views)
 _PAN_LIMIT = 2.6  #: radians the head turns either way
@@ -77,6 +81,9 @@ _HEAD = 0.25  #: metres from the top of a body down to its shoulders
 _HIDDEN_LEGS = 0.4  #: metres: a body seen no lower than this has its legs hidden
 _SEATED_TOP = 1.5  #: metres: a body whose top is lower sits (adults stand taller)
 _EDGE = 0.08  #: metres below the picture's top edge where a body's top may be cut off
+_HEAD_COLUMN = 0.15  #: metres round a body's middle where its head's points lie
+_MIN_COLUMN = 5  #: points of a head
+_ABOVE_HEAD_TOP = 0.05  #: metres over the head's top a body's own points still reach
 
 
 @dataclass(frozen=True, slots=True)
@@ -133,6 +140,7 @@ class PeopleLook:
         margin = 2 * round(_FURNITURE_MARGIN / resolution) + 1
         self._tops = ndimage.grey_dilation(_furniture_tops(world, grid), size=(margin, margin))
         self._off_walls = _distance_to_walls(world, grid)
+        self._intrinsics: CameraIntrinsics | None = None  #: the head camera's, once seen
 
     def look(self) -> list[PersonPercept]:
         """The people in the robot's room, as its sensors show them (nearest first)."""
@@ -157,7 +165,7 @@ class PeopleLook:
         seen = sorted((_seen_from(pose, where, body) for where, body in spots
                        if self._in_room(where, room)),
                       key=lambda person: person.distance)
-        percepts = [self._percept(person, room or "") for person in seen]
+        percepts = [self._percept(person, room or "", pose) for person in seen]
         self.body.point_head(0.0, 0.0)
         return percepts
 
@@ -231,6 +239,7 @@ class PeopleLook:
             frame = self.body.camera()
         except PartMissing:
             return None
+        self._intrinsics = frame.intrinsics
         base, rgb = frame.points(_POINT_STEP)
         on_map = from_frame(pose, base[:, :2])
         xs, ys = on_map[:, 0], on_map[:, 1]
@@ -260,7 +269,7 @@ class PeopleLook:
         clear: np.ndarray = self._clearance[row, column] > STATIC_CLEARANCE
         return clear
 
-    def _percept(self, person: _Seen, room: str) -> PersonPercept:
+    def _percept(self, person: _Seen, room: str, pose: Pose) -> PersonPercept:
         """Turn the head to ``person``: their gesture and, from near, who they are."""
         body = self.body
         name: str | None = None
@@ -269,21 +278,29 @@ class PeopleLook:
         if person.body is not None:
             posture, clothes = _appearance(person.body)
         if abs(person.bearing) <= _PAN_LIMIT:
-            body.point_head(person.bearing, 0.0)
+            body.point_head(person.bearing, looking_tilt(person.distance, self._intrinsics)
+                            if self._intrinsics is not None else 0.0)
             body.tick(max(1, round(_HEAD_TURN / body.tick_period)))
-            view = self._view((person.distance * math.cos(person.bearing),
-                               person.distance * math.sin(person.bearing)))
-            if view is not None:
-                gesture = person_gesture(view.arm, (0.0, 0.0))  # the arm is in the base frame
+            frames = self._burst()
+            if frames:
+                gesture = gesture_from_depth(frames, [pose] * len(frames), person.position)
+            body.point_head(person.bearing, 0.0)
             if person.distance <= _FACE_RANGE:
                 name = self._name()
         return PersonPercept(name, posture, gesture, clothes, person.position, room)
 
-    def _view(self, spot: tuple[float, float]) -> PersonView | None:
-        try:
-            return self.body.person_view(spot)
-        except PartMissing:
-            return None
+    def _burst(self) -> list[RgbdFrame]:
+        """About a second of head-camera frames, the body ticking between them (none
+        without a camera)."""
+        body = self.body
+        frames = []
+        for _ in range(_GESTURE_FRAMES):
+            body.tick(max(1, round(_GESTURE_EVERY / body.tick_period)))
+            try:
+                frames.append(body.camera())
+            except PartMissing:
+                return []
+        return frames
 
     def _name(self) -> str | None:
         if self.acquaintances is None or self.face_images is None:
@@ -353,8 +370,21 @@ def _seen_from(pose: Pose, spot: tuple[float, float], body: _Body | None) -> _Se
     return _Seen(spot, math.dist(spot, pose.xy()), bearing, body)
 
 
+def _below_the_head(body: _Body) -> _Body:
+    """The body without what rises above the head's top (a raised hand makes no one
+    taller): the head is the top of the points round the body's middle."""
+    x, y = body.position
+    flat = np.hypot(body.points[:, 0] - x, body.points[:, 1] - y)
+    column = body.points[flat < _HEAD_COLUMN, 2]
+    if len(column) < _MIN_COLUMN:
+        return body
+    keep = body.points[:, 2] <= float(np.percentile(column, 98)) + _ABOVE_HEAD_TOP
+    return _Body(body.points[keep], body.colours[keep], body.cut)
+
+
 def _appearance(body: _Body) -> tuple[str, tuple[str, ...]]:
     """Posture and clothes colours from the camera's points on a person's body."""
+    body = _below_the_head(body)
     posture = posture_from_profile(body.points)
     z = body.points[:, 2]
     top = float(z.max())

@@ -17,22 +17,26 @@ segmentation gives them.
 
 ``person_gesture`` names what a person does as the world's people are described:
 ``raising_left_arm``, ``pointing_right`` and so on, left and right being the
-person's own, who faces the robot.
+person's own, who faces the robot. ``gesture_from_depth`` reads it from a burst of
+head-camera frames: the keypoints come from the depth image (``perception.body_parts``).
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
-from homebot.geometry import Point3, Ray, nearest_by_angle
+from homebot.geometry import Point3, Pose, Ray, nearest_by_angle
+from homebot.perception.body_parts import arm_track
+from homebot.robot import RgbdFrame
 
 __all__ = [
     "Surface",
     "classify_gesture",
+    "gesture_from_depth",
     "person_gesture",
     "pointed_object",
     "pointed_target",
@@ -107,6 +111,18 @@ def person_gesture(frames: np.ndarray, robot: tuple[float, float]) -> str:
         return f"raising_{side}_arm"
     side = "right" if float((hand - head)[:2] @ their_right) > 0 else "left"
     return f"pointing_{side}"
+
+
+def gesture_from_depth(frames: Sequence[RgbdFrame], poses: Sequence[Pose],
+                       person: tuple[float, float]) -> str:
+    """What the person near ``person`` (map frame, as the leg tracker places them) does in a
+    burst of head-camera ``frames`` (about a second at 10 Hz), each taken from the robot's
+    pose of the same index in ``poses``: ``person_gesture``'s names ("stop",
+    "pointing_left", "waving", ...), "none" when the frames show no one there."""
+    track = arm_track(frames, poses, person)
+    if track is None:
+        return "none"
+    return person_gesture(track, (poses[-1].x, poses[-1].y))
 
 
 def pointing_ray(frames: np.ndarray) -> Ray:

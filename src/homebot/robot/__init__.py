@@ -19,7 +19,7 @@ from homebot.robot.body import (
     VelocityLimits,
     Wrench,
 )
-from homebot.robot.camera import CameraIntrinsics, PersonView, RgbdFrame
+from homebot.robot.camera import CameraIntrinsics, RgbdFrame
 from homebot.robot.port import (
     Blocker,
     Detection,
@@ -49,7 +49,6 @@ __all__ = [
     "MoveReport",
     "Odometry",
     "PersonPercept",
-    "PersonView",
     "Pose",
     "RgbdFrame",
     "Robot",

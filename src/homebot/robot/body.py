@@ -24,7 +24,7 @@ import numpy as np
 
 from homebot.errors import BodyError, PartMissing
 from homebot.geometry import Pose
-from homebot.robot.camera import PersonView, RgbdFrame
+from homebot.robot.camera import RgbdFrame
 
 __all__ = [
     "Arm",
@@ -301,12 +301,6 @@ class Body(ABC):
     def camera(self) -> RgbdFrame:
         """The head's RGB-D camera image, taken now with the head where it points."""
         raise PartMissing("RGB-D camera")
-
-    def person_view(self, spot: tuple[float, float]) -> PersonView | None:
-        """The head camera's body segmentation of the person standing at ``spot`` (x, y in
-        the base frame, as the laser's legs place them), with the head turned to them;
-        None when nobody stands there or they are out of the camera's sight."""
-        raise PartMissing("body tracker")
 
     def face_crops(self, views: int) -> list[np.ndarray]:
         """The head camera's close-ups of the face of the person in front (grey images), so

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["CameraIntrinsics", "PersonView", "RgbdFrame"]
+__all__ = ["CameraIntrinsics", "RgbdFrame"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -68,22 +68,6 @@ class RgbdFrame:
             base[:, axis] = (x * rotation[axis, 0] + y * rotation[axis, 1]
                              + z * rotation[axis, 2] + translation[axis])
         return base, self.rgb[::step, ::step][valid]
-
-
-@dataclass(frozen=True)
-class PersonView:
-    """What the head camera's skeleton tracker (OpenNI/NITE, a ROS ``body_tracker``) gives
-    of the person it looks at, in the robot's base frame (x forward, y left, z up from
-    the floor).
-
-    Attributes:
-        stamp: seconds on the body's clock.
-        arm: (frames, 4, 3) head, shoulder, elbow and hand of the arm they move most, over
-            the second or so the camera watched.
-    """
-
-    stamp: float
-    arm: np.ndarray
 
 
 @functools.lru_cache(maxsize=8)

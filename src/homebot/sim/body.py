@@ -29,7 +29,6 @@ from homebot.robot import (
     LaserScan,
     Microphone,
     Odometry,
-    PersonView,
     RgbdFrame,
     Speaker,
     Twist,
@@ -37,9 +36,10 @@ from homebot.robot import (
     Wrench,
 )
 from homebot.sim.audio import AudioScene, SimMicrophone, SimSpeaker
-from homebot.sim.body_tracker import BodyTracker, person_solids
+from homebot.sim.body_tracker import PeopleArms, person_solids
 from homebot.sim.camera import (
     CameraSimulator,
+    Limb,
     SceneGeometry,
     Solid,
     door_solids,
@@ -136,7 +136,8 @@ class SimBody(Body):
         self._catalogue = object_catalogue(world)
         self.camera_simulator = CameraSimulator(
             SceneGeometry.of(world), np.random.default_rng([simulation.seed, _CAMERA_STREAM]))
-        self._body_tracker = BodyTracker(self)
+        #: how people move their arms, as the head camera sees them
+        self.arms = PeopleArms(simulation.seed)
         self._face_camera = FaceCamera(self, half_angle=face_half_angle)
         #: called after every tick: referees watching the truth as it unfolds (never the robot)
         self.referees: list[Callable[[], None]] = []
@@ -212,8 +213,8 @@ class SimBody(Body):
 
     def camera(self) -> RgbdFrame:
         """The head camera's frame of the true home: furniture, walls, shut doors' leaves
-        and handles, the objects on their surfaces and the people (``homebot.sim.camera``,
-        ``sim.body_tracker``)."""
+        and handles, the objects on their surfaces and the people, their arms as they move
+        them at this moment (``homebot.sim.camera``, ``sim.body_tracker``)."""
         self._first_looks()
         return self.camera_simulator.render(self.now(), self.sim.robot_pose, self._head,
                                             self._solids())
@@ -225,11 +226,6 @@ class SimBody(Body):
         for name, placement in sorted(self.sim.world.placements.items()):
             if placement.footprint.distance(here) <= _LOOKING_REACH:
                 self.sim.maybe_move_during_task(name)
-
-    def person_view(self, spot: tuple[float, float]) -> PersonView | None:
-        """The skeleton tracker's view of the person standing at ``spot``
-        (``homebot.sim.body_tracker``)."""
-        return self._body_tracker(spot)
 
     def face_crops(self, views: int) -> list[np.ndarray]:
         """Rendered views of the face of the person in front (``homebot.sim.faces``)."""
@@ -250,9 +246,9 @@ class SimBody(Body):
             raise PartMissing("arm in physics (MuJoCo): pip install 'homebot[embodied]'")
         return self.hands.driver()
 
-    def _solids(self) -> list[Solid]:
+    def _solids(self) -> list[Solid | Limb]:
         sim = self.sim
-        solids = []
+        solids: list[Solid | Limb] = []
         for name, where in sorted(sim.object_location.items()):
             placement = sim.world.placements.get(where or "")
             if placement is None:
@@ -264,6 +260,8 @@ class SimBody(Body):
         for name, state in sorted(sim.people.items()):
             solids.extend(person_solids(sim.world, name, state.model, state.posture,
                                         state.position, self.people.facing(name)))
+            solids.extend(self.arms.solids(name, state.model, state.posture, state.position,
+                                           sim.robot_pose[:2], self.now()))
         for door, door_state in sorted(sim.door_state.items()):
             if door_state is not DoorState.OPEN:
                 solids.extend(door_solids(sim.world, door))

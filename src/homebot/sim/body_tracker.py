@@ -1,30 +1,28 @@
-"""People as the head camera shows them: solids in the RGB-D image, and arm keypoints.
+"""People as the head camera shows them: their bodies and arms as solids in the RGB-D image.
 
 ``person_solids`` builds a person for the camera's ray caster in their true
 posture: standing (legs, trunk and head one above the other), sitting (trunk on
 a seat, legs forward) or lying (a long low body on the floor or on the bed under
 them), the top in the colour of their upper clothes and the legs in their
-trousers'. ``BodyTracker`` is the skeleton tracker a real head camera runs
-(OpenNI/NITE, a ROS ``body_tracker``): turned to a person, it gives the
-keypoints of the arm they gesture with (``keypoints.gesture_keypoints``), with
-noise, in the robot's base frame. What people do is read from the truth only to
-render it; naming it is perception's work. Deterministic by the simulation's seed
-and the body's clock.
+trousers'. ``PeopleArms`` adds their arms as they move them at the frame's moment
+(``keypoints.ArmMotion``: the gesture their world entry names, or one a trial
+gives them): sleeved upper arm and forearm, elbow and bare hand. What people do is
+read from the truth only to draw it; reading it from the depth image is perception's
+work (``homebot.perception.body_parts``). Deterministic by the simulation's seed and
+the body's clock.
 """
 
 from __future__ import annotations
 
 import math
 import zlib
-from typing import TYPE_CHECKING
+from dataclasses import replace
 
 import numpy as np
 from shapely.geometry import Point as ShapelyPoint
 
-from homebot.geometry import Pose, to_frame, wrap_angle
-from homebot.robot import PersonView
-from homebot.sim.camera import Solid
-from homebot.sim.keypoints import gesture_keypoints
+from homebot.sim.camera import Limb, Solid
+from homebot.sim.keypoints import ArmMotion, draw_motion
 from homebot.world import (
     COLOUR_PALETTE,
     LEG_GARMENTS,
@@ -37,15 +35,11 @@ from homebot.world import (
     surface_height,
 )
 
-if TYPE_CHECKING:
-    from homebot.sim.body import SimBody
-
-__all__ = ["BodyTracker", "clothes_rgb", "lying_body_outline", "person_height",
+__all__ = ["PeopleArms", "arm_solids", "clothes_rgb", "lying_body_outline", "person_height",
            "person_solids"]
 
-_SPOT = 0.6  #: metres from the spot looked at within which a person is the one seen
-_RANGE = 6.0  #: metres: the depth camera's reach
-_HALF_VIEW = math.radians(29.0)  #: half the camera's horizontal field of view
+_ARM_RADIUS = 0.045  #: metres: a sleeved arm's
+_HAND_RADIUS = 0.05  #: metres: a hand's, fingers closed
 _POINTING_REACH = 2.0  #: metres to the side a pointing person points, at table height
 _UNKNOWN_CLOTH = (128, 128, 128)
 _LEGS_RGB = (60, 60, 75)  #: trousers of no stated colour: dark
@@ -135,62 +129,83 @@ def lying_body_outline(world: World, name: str, model: PersonModel, posture: Pos
             for t in along]
 
 
-class BodyTracker:
-    """The skeleton tracker of a ``SimBody``'s head camera: ``PersonView`` s of the
-    person standing at a spot the head is turned to.
+class PeopleArms:
+    """How the simulation's people move their arms, for the head camera to draw.
+
+    Each person makes the gesture their world entry names (``PersonModel.gesture``), facing
+    the robot, with the other arm hanging; how they make it (``keypoints.ArmMotion``: which
+    arm waves, the aiming error, the waving beat) is drawn once per person from the seed.
+    A pointing person points about 2 m to their side at table height. ``gestures`` may
+    give a person another motion (a trial's, a scenario's), replacing their entry's.
 
     Args:
-        body: the simulated body whose head camera looks.
+        seed: the simulation's seed.
     """
 
-    def __init__(self, body: SimBody) -> None:
-        self.body = body
-        self._looks = 0  #: each look renders anew, even at the same moment
+    def __init__(self, seed: int) -> None:
+        self.seed = seed
+        self._motions: dict[tuple[str, Gesture], ArmMotion] = {}
+        #: people's motions set by a trial or scenario, instead of their world entry's
+        self.gestures: dict[str, ArmMotion] = {}
 
-    def __call__(self, spot: tuple[float, float]) -> PersonView | None:
-        body = self.body
-        pose = body.true_pose()
-        target = pose.apply(*spot)
-        near = sorted((math.dist(state.position, target), name)
-                      for name, state in body.sim.people.items())
-        if not near or near[0][0] > _SPOT:
-            return None
-        name = near[0][1]
-        state = body.sim.people[name]
-        distance = math.dist(state.position, pose.xy())
-        bearing = math.atan2(state.position[1] - pose.y, state.position[0] - pose.x)
-        axis = pose.theta + body.head().pan
-        if distance > _RANGE or abs(wrap_angle(bearing - axis)) > _HALF_VIEW:
-            return None
-        self._looks += 1
-        rng = np.random.default_rng([body.sim.seed, zlib.crc32(name.encode()),
-                                     round(body.now() * 1000), self._looks])
-        arm = self._arm(state.model, state.position, pose, person_height(name, state.model), rng)
-        return PersonView(stamp=body.now(),
-                          arm=_to_base(arm.reshape(-1, 3), pose).reshape(arm.shape))
+    def solids(self, name: str, model: PersonModel, posture: Posture,
+               position: tuple[float, float], robot: tuple[float, float], now: float
+               ) -> list[Solid | Limb]:
+        """Both arms of a standing or seated person at time ``now`` (none when lying)."""
+        if posture is Posture.LYING:
+            return []
+        height = person_height(name, model)
+        motion = self.gestures.get(name) or self._motion(name, model, position, robot, height)
+        other = "left" if motion.side == "right" else "right"
+        times = np.array([now])
+        arms = [motion.at(position, robot, times)[0],
+                ArmMotion("none", other, height).at(position, robot, times)[0]]
+        if posture is Posture.SITTING:  # the same arms, lower by the seated head's drop
+            drop = height - (_SEAT + 0.53 * height)
+            arms = [arm - np.array([0.0, 0.0, drop]) for arm in arms]
+        sleeve = clothes_rgb(model.clothes, bottom=False) or _UNKNOWN_CLOTH
+        return [part for arm in arms for part in arm_solids(arm, sleeve)]
 
-    @staticmethod
-    def _arm(model: PersonModel, position: tuple[float, float], pose: Pose, height: float,
-             rng: np.random.Generator) -> np.ndarray:
+    def _motion(self, name: str, model: PersonModel, position: tuple[float, float],
+                robot: tuple[float, float], height: float) -> ArmMotion:
         gesture = model.gesture
-        robot = pose.xy()
-        if gesture is Gesture.WAVING:
-            return gesture_keypoints("waving", position, robot, rng, height=height)
-        if gesture in (Gesture.RAISING_LEFT_ARM, Gesture.RAISING_RIGHT_ARM):
-            side = "left" if gesture is Gesture.RAISING_LEFT_ARM else "right"
-            return gesture_keypoints("raising", position, robot, rng, side=side, height=height)
-        if gesture in (Gesture.POINTING_LEFT, Gesture.POINTING_RIGHT):
-            side = "left" if gesture is Gesture.POINTING_LEFT else "right"
-            # facing the robot, the person's right is the robot's left
-            facing = math.atan2(robot[1] - position[1], robot[0] - position[0])
-            turn = -math.pi / 2 if side == "right" else math.pi / 2
-            target = (position[0] + _POINTING_REACH * math.cos(facing + turn),
-                      position[1] + _POINTING_REACH * math.sin(facing + turn), 0.75)
-            return gesture_keypoints("pointing", position, robot, rng, target=target,
-                                     side=side, height=height)
-        return gesture_keypoints("none", position, robot, rng, height=height)
+        key = (name, gesture)
+        if key not in self._motions:
+            rng = np.random.default_rng([self.seed, zlib.crc32(f"arms:{name}".encode())])
+            kind, side = _GESTURE_MOTIONS[gesture]
+            self._motions[key] = draw_motion(kind, rng, side=side, height=height,
+                                             target=(0.0, 0.0, 0.0))
+        motion = self._motions[key]
+        if motion.gesture != "pointing":
+            return motion
+        # facing the robot, the person's right is the robot's left
+        facing = math.atan2(robot[1] - position[1], robot[0] - position[0])
+        turn = -math.pi / 2 if motion.side == "right" else math.pi / 2
+        target = (position[0] + _POINTING_REACH * math.cos(facing + turn),
+                  position[1] + _POINTING_REACH * math.sin(facing + turn), 0.75)
+        return replace(motion, target=target)
 
 
-def _to_base(points: np.ndarray, pose: Pose) -> np.ndarray:
-    """Map-frame points (n, 3) into the base frame of a robot at ``pose``."""
-    return to_frame(pose, points)
+#: the arm motion and arm of each gesture a world file gives a person
+_GESTURE_MOTIONS: dict[Gesture, tuple[str, str | None]] = {
+    Gesture.NONE: ("none", None),
+    Gesture.WAVING: ("waving", None),
+    Gesture.RAISING_LEFT_ARM: ("raising", "left"),
+    Gesture.RAISING_RIGHT_ARM: ("raising", "right"),
+    Gesture.POINTING_LEFT: ("pointing", "left"),
+    Gesture.POINTING_RIGHT: ("pointing", "right"),
+}
+
+
+def arm_solids(keypoints: np.ndarray, sleeve: tuple[int, int, int]) -> list[Solid | Limb]:
+    """An arm posed by its keypoints (head, shoulder, elbow, hand; map frame) as the
+    camera draws it: the sleeved upper arm and forearm, the elbow, and the bare hand."""
+    _, shoulder, elbow, hand = (tuple(float(v) for v in point) for point in keypoints)
+    return [Limb((shoulder[0], shoulder[1], shoulder[2]), (elbow[0], elbow[1], elbow[2]),
+                 _ARM_RADIUS, sleeve),
+            Limb((elbow[0], elbow[1], elbow[2]), (hand[0], hand[1], hand[2]),
+                 _ARM_RADIUS, sleeve),
+            Solid(Shape.SPHERE, (2 * _ARM_RADIUS,) * 3, sleeve, elbow[0], elbow[1],
+                  elbow[2] - _ARM_RADIUS),
+            Solid(Shape.SPHERE, (2 * _HAND_RADIUS,) * 3, _SKIN_RGB, hand[0], hand[1],
+                  hand[2] - _HAND_RADIUS)]

@@ -2,7 +2,8 @@
 
 Every pixel's ray meets the floor, the walls, the furniture (boxes from their
 footprints up to their surface height), the catalogue objects standing on
-them (boxes turned about their vertical axis, upright cylinders, spheres) and
+them (boxes turned about their vertical axis, upright cylinders, spheres),
+people's limbs (``Limb``: a round segment at any slant, for arms held out) and
 shut doors (``door_solids``: the leaf and a lever handle on each face, boxes). The
 nearest hit gives the depth and a Lambert-shaded colour. Depth is noisy as a
 Kinect's is (σ grows with the square of the distance, Nguyen et al. 2012),
@@ -29,6 +30,7 @@ __all__ = [
     "CAMERA_HEIGHT",
     "DEFAULT_INTRINSICS",
     "CameraSimulator",
+    "Limb",
     "SceneGeometry",
     "Solid",
     "camera_pose",
@@ -68,6 +70,18 @@ class Solid:
     y: float
     z: float  #: its bottom (the surface it stands on)
     yaw: float = 0.0
+
+
+@dataclass(frozen=True, slots=True)
+class Limb:
+    """A person's upper arm or forearm as the camera sees it: a round segment (an open
+    cylinder) from ``start`` to ``end`` (map frame, metres) at any slant; the joints at
+    its ends are spheres of their own."""
+
+    start: tuple[float, float, float]
+    end: tuple[float, float, float]
+    radius: float
+    rgb: tuple[int, int, int]
 
 
 def object_yaw(name: str, seed: int) -> float:
@@ -184,7 +198,7 @@ class CameraSimulator:
         self._norms = np.linalg.norm(self._rays, axis=-1).astype(np.float32)
 
     def render(self, stamp: float, robot: tuple[float, float, float], head: HeadState,
-               solids: Sequence[Solid]) -> RgbdFrame:
+               solids: Sequence[Solid | Limb]) -> RgbdFrame:
         """The frame the camera takes with the base at ``robot`` (x, y, heading; map frame)."""
         pose = camera_pose(head)
         x, y, theta = robot
@@ -205,7 +219,10 @@ class CameraSimulator:
                 continue
             _box(buffers, window, origin, rays, (x0, y0, 0.0), (x1, y1, top), _FURNITURE_RGB)
         for solid in solids:
-            self._solid(buffers, solid, origin, rays, rotation, everywhere)
+            if isinstance(solid, Limb):
+                self._limb(buffers, solid, origin, rays, rotation, everywhere)
+            else:
+                self._solid(buffers, solid, origin, rays, rotation, everywhere)
         return self._frame(stamp, buffers, pose)
 
     # ------------------------------------------------------------ surfaces
@@ -265,6 +282,15 @@ class CameraSimulator:
             _cylinder(buffers, window, origin, rays[window], solid)
         else:
             _sphere(buffers, window, origin, rays[window], solid)
+
+    def _limb(self, buffers: _Buffers, limb: Limb, origin: np.ndarray, rays: np.ndarray,
+              rotation: np.ndarray, everywhere: tuple[slice, slice]) -> None:
+        ends = np.array([limb.start, limb.end])
+        low, high = ends.min(axis=0) - limb.radius, ends.max(axis=0) + limb.radius
+        corners = _box_corners(low[0], low[1], high[0], high[1], low[2], high[2])
+        window = self._window(corners, origin, rotation, everywhere)
+        if window is not None:
+            _open_cylinder(buffers, window, origin, rays[window], limb)
 
     def _window(self, corners: np.ndarray, origin: np.ndarray, rotation: np.ndarray,
                 everywhere: tuple[slice, slice]) -> tuple[slice, slice] | None:
@@ -372,6 +398,34 @@ def _cylinder(buffers: _Buffers, window: tuple[slice, slice], origin: np.ndarray
     side_facing = np.abs(hx * d[..., 0] + hy * d[..., 1]) / (radius * norm)
     facing = np.where(cap & (t == t_top), np.abs(d[..., 2]) / norm, side_facing)
     buffers.write(window, t, solid.rgb, np.nan_to_num(facing))
+
+
+def _open_cylinder(buffers: _Buffers, window: tuple[slice, slice], origin: np.ndarray,
+                   d: np.ndarray, limb: Limb) -> None:
+    """The round side of a slanted segment (no caps: the joints' spheres close it)."""
+    if d.size == 0:
+        return
+    start = np.asarray(limb.start)
+    axis = np.asarray(limb.end) - start
+    length = float(np.linalg.norm(axis))
+    if length < 1e-9:
+        return
+    axis /= length
+    m = origin - start
+    du = d @ axis
+    mu = float(m @ axis)
+    a = np.einsum("...i,...i->...", d, d) - du * du
+    b = d @ m - mu * du  # half the quadratic's linear term
+    c = float(m @ m) - mu * mu - limb.radius ** 2
+    disc = b * b - a * c
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t = (-b - np.sqrt(np.maximum(disc, 0.0))) / a
+    along = mu + t * du
+    hit = (disc >= 0) & (t > 0) & (along >= 0) & (along <= length)
+    points = m + t[..., None] * d - along[..., None] * axis
+    facing = np.abs(np.einsum("...i,...i->...", points, d)) / (
+        limb.radius * buffers.norms[window])
+    buffers.write(window, np.where(hit, t, np.inf), limb.rgb, np.nan_to_num(facing))
 
 
 def _sphere(buffers: _Buffers, window: tuple[slice, slice], origin: np.ndarray,

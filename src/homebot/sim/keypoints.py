@@ -1,27 +1,126 @@
-"""Arm keypoints of a person making a gesture, as a depth camera's body segmentation gives them.
+"""How a person moves their arm in a gesture, and its keypoints as a skeleton tracker gives them.
 
 Each frame holds four points in the map frame (metres, z up): head, shoulder,
 elbow and hand of the gesturing arm (Cosero §7.1.3 finds the same four). The
 person stands at a place facing the robot and points at a target (the eye-hand
 line aims at it, with a few degrees of aiming error), waves (the raised hand
 swings from side to side), shows stop (a raised open hand held out towards the
-robot), raises the arm straight up, or stands with the arm hanging. Every point
-carries Gaussian noise. Deterministic by seed.
+robot), raises the arm straight up, or stands with the arm hanging.
+
+``ArmMotion`` is one person's way of making a gesture (which arm, how they aim,
+how fast they wave) and ``ArmMotion.at`` the arm's posture at given moments: the
+simulator draws people's arms in the head camera's image from it
+(``body_tracker.person_arms``). ``gesture_keypoints`` draws a motion and samples it
+with Gaussian noise on every point, as a skeleton tracker's output. Deterministic by seed.
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["GESTURES", "gesture_keypoints"]
+__all__ = ["GESTURES", "ArmMotion", "draw_motion", "gesture_keypoints"]
 
 GESTURES = ("pointing", "waving", "stop", "raising", "none")
 _HEIGHT = 1.75  #: metres: the person the proportions below are for
 _HEAD = 1.62  #: metres
 _SHOULDER = (0.19, 1.42)  #: sideways from the head's axis, height
 _UPPER, _FORE = 0.30, 0.32  #: arm segment lengths, metres
+
+
+@dataclass(frozen=True)
+class ArmMotion:
+    """One person's way of making ``gesture`` with their ``side`` arm.
+
+    Attributes:
+        gesture: one of ``GESTURES``.
+        side: the person's ``left`` or ``right`` arm.
+        height: the person's height, metres (places head and shoulders).
+        target: where a pointing gesture aims (map frame).
+        aim_error: the offset added to the unit pointing direction (their aiming error).
+        beat: waves a second.
+        phase: radians: where in a wave they are at time 0.
+    """
+
+    gesture: str
+    side: str
+    height: float = _HEIGHT
+    target: tuple[float, float, float] | None = None
+    aim_error: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    beat: float = 2.0
+    phase: float = 0.0
+
+    def at(self, person: tuple[float, float], robot: tuple[float, float],
+           times: np.ndarray) -> np.ndarray:
+        """Keypoints (len(times), 4, 3) of the person standing at ``person`` facing the
+        robot at ``robot``: head, shoulder, elbow, hand, at ``times`` (seconds)."""
+        facing = math.atan2(robot[1] - person[1], robot[0] - person[0])
+        forward = np.array([math.cos(facing), math.sin(facing), 0.0])
+        right = np.array([math.sin(facing), -math.cos(facing), 0.0])
+        # facing the robot, the person's right hand is on the robot's left ("right" vector)
+        side_sign = 1.0 if self.side == "right" else -1.0
+        scale = self.height / _HEIGHT
+        head = np.array([person[0], person[1], _HEAD * scale])
+        shoulder = head + side_sign * _SHOULDER[0] * right
+        shoulder[2] = _SHOULDER[1] * scale
+        frames = len(times)
+        hands = np.empty((frames, 3))
+        elbows = np.empty((frames, 3))
+        if self.gesture == "pointing":
+            if self.target is None:
+                raise ValueError("a pointing gesture needs a target")
+            ray = np.asarray(self.target, dtype=float) - head
+            ray /= np.linalg.norm(ray)
+            turned = ray + np.asarray(self.aim_error)
+            ray = turned / np.linalg.norm(turned)
+            # the hand on the eye-target line, an arm's length from the shoulder
+            hand = _on_ray(head, ray, shoulder, _UPPER + _FORE - 0.02)
+            hands[:] = hand
+            elbows[:] = shoulder + (hand - shoulder) * 0.48 - np.array([0, 0, 0.03])
+        elif self.gesture == "stop":
+            hand = shoulder + 0.45 * forward + np.array([0.0, 0.0, 0.25])
+            hands[:] = hand
+            elbows[:] = shoulder + 0.22 * forward + np.array([0.0, 0.0, 0.05])
+        elif self.gesture == "raising":
+            elbows[:] = shoulder + np.array([0.0, 0.0, _UPPER]) + 0.04 * side_sign * right
+            hands[:] = elbows + np.array([0.0, 0.0, _FORE]) + 0.02 * forward
+        elif self.gesture == "waving":
+            swing = 0.15 * np.sin(2 * math.pi * self.beat * times + self.phase)
+            elbow = shoulder + 0.12 * forward + side_sign * 0.18 * right - np.array(
+                [0.0, 0.0, 0.12])
+            elbows[:] = elbow
+            hands[:] = elbow + np.array([0.0, 0.0, 0.28]) + swing[:, None] * right[None, :]
+        else:
+            elbows[:] = shoulder - np.array([0.0, 0.0, _UPPER]) + 0.03 * forward
+            hands[:] = elbows - np.array([0.0, 0.0, _FORE]) + 0.06 * forward
+        heads = np.repeat(head[None, :], frames, axis=0)
+        shoulders = np.repeat(shoulder[None, :], frames, axis=0)
+        return np.stack((heads, shoulders, elbows, hands), axis=1)
+
+
+def draw_motion(gesture: str, rng: np.random.Generator, *,
+                target: tuple[float, float, float] | None = None, aim: float = 0.03,
+                side: str | None = None, height: float = _HEIGHT) -> ArmMotion:
+    """A person's way of making ``gesture``, drawn from ``rng``: the arm (``side`` None:
+    either), the aiming error (standard deviation ``aim``, radians) and the waving beat."""
+    if gesture not in GESTURES:
+        raise ValueError(f"unknown gesture {gesture!r}; one of {', '.join(GESTURES)}")
+    chosen = side if side is not None else ("right" if rng.random() < 0.5 else "left")
+    if chosen not in ("left", "right"):
+        raise ValueError(f"unknown side {side!r}; left or right")
+    aim_error = (0.0, 0.0, 0.0)
+    beat, phase = 2.0, 0.0
+    if gesture == "pointing":
+        if target is None:
+            raise ValueError("a pointing gesture needs a target")
+        error = rng.normal(0.0, aim, 3)
+        aim_error = (float(error[0]), float(error[1]), float(error[2]))
+    elif gesture == "waving":
+        beat = float(rng.uniform(1.5, 2.5))  # waves a second
+        phase = float(rng.uniform(0, 2 * math.pi))
+    return ArmMotion(gesture, chosen, height, target, aim_error, beat, phase)
 
 
 def gesture_keypoints(gesture: str, person: tuple[float, float], robot: tuple[float, float],
@@ -36,62 +135,10 @@ def gesture_keypoints(gesture: str, person: tuple[float, float], robot: tuple[fl
     ``side`` is the arm, the person's ``left`` or ``right`` (None: either, at random);
     ``height`` the person's, which places their head and shoulders.
     """
-    if gesture not in GESTURES:
-        raise ValueError(f"unknown gesture {gesture!r}; one of {', '.join(GESTURES)}")
-    facing = math.atan2(robot[1] - person[1], robot[0] - person[0])
-    forward = np.array([math.cos(facing), math.sin(facing), 0.0])
-    right = np.array([math.sin(facing), -math.cos(facing), 0.0])
-    chosen = side if side is not None else ("right" if rng.random() < 0.5 else "left")
-    if chosen not in ("left", "right"):
-        raise ValueError(f"unknown side {side!r}; left or right")
-    # facing the robot, the person's right hand is on the robot's left ("right" vector)
-    side_sign = 1.0 if chosen == "right" else -1.0
-    scale = height / _HEIGHT
-    head = np.array([person[0], person[1], _HEAD * scale])
-    shoulder = head + side_sign * _SHOULDER[0] * right
-    shoulder[2] = _SHOULDER[1] * scale
-    frames = round(seconds * rate)
-    times = np.arange(frames) / rate
-    hands = np.empty((frames, 3))
-    elbows = np.empty((frames, 3))
-    if gesture == "pointing":
-        if target is None:
-            raise ValueError("a pointing gesture needs a target")
-        ray = np.asarray(target, dtype=float) - head
-        ray /= np.linalg.norm(ray)
-        ray = _perturb(ray, aim, rng)
-        # the hand on the eye-target line, an arm's length from the shoulder
-        hand = _on_ray(head, ray, shoulder, _UPPER + _FORE - 0.02)
-        hands[:] = hand
-        elbows[:] = shoulder + (hand - shoulder) * 0.48 - np.array([0, 0, 0.03])
-    elif gesture == "stop":
-        hand = shoulder + 0.45 * forward + np.array([0.0, 0.0, 0.25])
-        hands[:] = hand
-        elbows[:] = shoulder + 0.22 * forward + np.array([0.0, 0.0, 0.05])
-    elif gesture == "raising":
-        elbows[:] = shoulder + np.array([0.0, 0.0, _UPPER]) + 0.04 * side_sign * right
-        hands[:] = elbows + np.array([0.0, 0.0, _FORE]) + 0.02 * forward
-    elif gesture == "waving":
-        beat = rng.uniform(1.5, 2.5)  # waves a second
-        swing = 0.15 * np.sin(2 * math.pi * beat * times + rng.uniform(0, 2 * math.pi))
-        elbow = shoulder + 0.12 * forward + side_sign * 0.18 * right - np.array([0.0, 0.0, 0.12])
-        elbows[:] = elbow
-        hands[:] = elbow + np.array([0.0, 0.0, 0.28]) + swing[:, None] * right[None, :]
-    else:
-        elbows[:] = shoulder - np.array([0.0, 0.0, _UPPER]) + 0.03 * forward
-        hands[:] = elbows - np.array([0.0, 0.0, _FORE]) + 0.06 * forward
-    heads = np.repeat(head[None, :], frames, axis=0)
-    shoulders = np.repeat(shoulder[None, :], frames, axis=0)
-    points = np.stack((heads, shoulders, elbows, hands), axis=1)
+    motion = draw_motion(gesture, rng, target=target, aim=aim, side=side, height=height)
+    points = motion.at(person, robot, np.arange(round(seconds * rate)) / rate)
     noisy: np.ndarray = points + rng.normal(0.0, noise, points.shape)
     return noisy
-
-
-def _perturb(direction: np.ndarray, sigma: float, rng: np.random.Generator) -> np.ndarray:
-    """``direction`` turned by a small random angle (radians, standard deviation ``sigma``)."""
-    turned = direction + rng.normal(0.0, sigma, 3)
-    unit: np.ndarray = turned / np.linalg.norm(turned)
-    return unit
 
 
 def _on_ray(origin: np.ndarray, ray: np.ndarray, centre: np.ndarray, radius: float
