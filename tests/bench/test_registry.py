@@ -43,6 +43,8 @@ TINY: dict[str, tuple[list[str], set[str], set[str]]] = {
     "localisation": (["--runs", "1", "--only", "timing"], {"runs", "figures"},
                      {"update timing"}),
     "perception": (["--scenes", "1", "--only", "objects"], {"figures"}, {"objects"}),
+    "guide": (["--runs", "1", "--world", "family_home"], {"success_rate", "ran", "episodes"},
+              set()),
     "manipulation": (["--scenes", "1", "--hri-trials", "1"], {"figures"},
                      {"grasping", "physical HRI"}),
     "speech": (["--count", "1", "--rejection", "0", "--babble-talkers", "0",

@@ -77,6 +77,8 @@ BENCHMARKS: tuple[Benchmark, ...] = (
            "global localisation, kidnapping", "embodied"),
     _bench("perception", "perception: table-top objects (detection, recognition, position), "
            "people, faces, pointing", "embodied"),
+    _bench("guide", "guiding: a person led 6-20 m through doors, lagging or wandering off by "
+           "seed; at the goal by the truth, no collisions", "embodied"),
     _bench("manipulation", "manipulation in physics: grasping generated table-top scenes, "
            "physical HRI", "embodied"),
     _bench("speech", "speech: spoken commands heard by the two reconciled decoders, clean and "

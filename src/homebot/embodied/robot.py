@@ -32,6 +32,7 @@ from homebot.cancel import CancelToken
 from homebot.embodied.conversation import Conversation
 from homebot.embodied.doors import WayThrough, door_seen_open, way_through
 from homebot.embodied.following import FollowEnd, Following, FollowParameters
+from homebot.embodied.guiding import Guiding
 from homebot.embodied.looking import TableLook
 from homebot.embodied.people_look import PeopleLook
 from homebot.errors import NavigationError, PartMissing
@@ -155,6 +156,9 @@ class BodyRobot(Robot):
     def move_to(self, goal: Pose, avoid_doors: frozenset[str] = frozenset(),
                 escort: str | None = None, *,
                 cancel: CancelToken | None = None) -> MoveReport:
+        if escort is not None and self.people_look is not None:
+            # leading someone: in stretches, looking back for them (``embodied.guiding``)
+            return Guiding(self).guide(escort, goal, avoid_doors, cancel=cancel)
         start = self.pose()
         plan = self.navigator.plan(start.xy(), goal.xy(), avoid_doors)
         if plan is None:

@@ -61,6 +61,7 @@ _WANDER_REACH = (1.5, 3.0)  #: metres from where they are to the spot they walk 
 _OFF_THE_TRAIL = 0.8  #: metres the spot they walk off to keeps from the robot's trail
 _WANDER_WALK = 4.5  #: metres they walk at most to get there
 _WANDER_DIRECTIONS = 16
+_DOORWAY = 0.9  #: metres from a door's centre within which nobody wanders off to stand
 _NOTICES = 3.0  #: metres within which someone standing turns to face the robot
 
 
@@ -233,8 +234,10 @@ class GuidedWalk:
             angle = 2 * math.pi * turn / _WANDER_DIRECTIONS
             reach = self._rng.uniform(*_WANDER_REACH)
             spot = (here[0] + reach * math.cos(angle), here[1] + reach * math.sin(angle))
-            if sim.world.room_at(*spot) is None:
-                continue
+            if sim.world.room_at(*spot) is None or any(
+                    math.dist(spot, door.position) < _DOORWAY
+                    for door in sim.world.doors.values()):
+                continue  # nobody chooses to stand about in a doorway
             cell = grid.cell_of(*spot)
             rows, columns = grid.shape
             if not (0 <= cell[0] < rows and 0 <= cell[1] < columns) or grid.blocked[cell] or \

@@ -121,7 +121,7 @@ class PeopleHearing:
         elif request:
             reply = _YES if model.cooperative and self._do(listener, text) else _NO
         elif _says(text, _COME_ALONG):
-            reply = self._come_along(listener)
+            reply = self._come_along(listener, text)
         else:
             return
         if reply:
@@ -149,11 +149,15 @@ class PeopleHearing:
         choice = np.random.default_rng([self.sim.seed, len(self.audio.sounds)])
         return forms[int(choice.integers(len(forms)))]
 
-    def _come_along(self, person: str) -> str | None:
-        """``person`` was asked to follow the robot: they set off after it (``GuidedWalk``),
-        or, already following, go on; one who wandered off follows again only when asked
-        from near (from farther they do not answer). Their answer."""
+    def _come_along(self, person: str, text: str) -> str | None:
+        """``person`` was asked to follow the robot (in ``text``): they set off after it
+        (``GuidedWalk``), or, already following, go on; one who wandered off follows again
+        only when asked from near (from farther they do not answer), and nobody follows
+        when asked by someone else's name. Their answer."""
         sim = self.sim
+        named = [name for name in sim.people if re.search(rf"\b{re.escape(fold(name))}\b", text)]
+        if named and person not in named:
+            return None
         if not sim.people[person].model.cooperative:
             return _NO
         walk = self.guided
