@@ -73,6 +73,8 @@ BENCHMARKS: tuple[Benchmark, ...] = (
            "in one home"),
     _bench("navigation", "navigation: stage-1 A* timing, and goals driven through the "
            "apartment with people walking", "embodied"),
+    _bench("follow", "Follow Me: the operator walks 15-25 m with two people crossing; within "
+           "3 m, stop on 'stop', no collisions (embodied, by the truth)", "embodied", "speech"),
     _bench("localisation", "Monte Carlo localisation in the embodied apartment: tracking, "
            "global localisation, kidnapping", "embodied"),
     _bench("perception", "perception: table-top objects (detection, recognition, position), "

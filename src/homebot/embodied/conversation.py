@@ -143,10 +143,10 @@ class Conversation:
             self.body.microphone().read()
         self._overheard = []
 
-    def overheard(self, state: str) -> str | None:
+    def overheard(self, state: str) -> Hearing | None:
         """Without waiting: what someone finished saying since the last call, heard in
-        ``state`` (None: nothing, or nothing the state knows). For words said while the
-        robot does something else, as "stop" while it follows someone."""
+        ``state`` (None: nobody finished saying anything). For words said while the robot
+        does something else, as "stop" while it follows someone."""
         from homebot.speech.audio import SAMPLE_RATE, resample
 
         try:
@@ -167,7 +167,7 @@ class Conversation:
         self._overheard = []
         heard = recogniser.hear(audio, state)
         self.events.record("robot.heard", text=heard.text, state=state, reason=heard.reason)
-        return heard.text
+        return heard
 
     def _ears(self) -> AnswerRecognizer:
         if self._recogniser is None:

@@ -28,6 +28,7 @@ only what the laser shows.
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -42,10 +43,30 @@ from homebot.geometry import Pose, wrap_angle
 from homebot.navigation import Navigator
 from homebot.navigation.localmap import LocalController
 from homebot.perception.people import PeopleTracker, Track, detect_legs
-from homebot.robot import Body, Twist
+from homebot.robot import Body, LaserScan, Twist
 from homebot.world import World
 
-__all__ = ["FollowEnd", "FollowParameters", "FollowResult", "Following"]
+__all__ = ["FollowEnd", "FollowParameters", "FollowResult", "Following", "shortened"]
+
+_OWN_LEGS = 0.6  #: metres round the person followed whose returns are their own legs
+#: metres from the person beyond which a track seen with them is someone else for good (a
+#: nearer one may be them, the tracker having swapped two people passing close)
+_SURELY_SOMEONE_ELSE = 1.5
+_TRAIL_STEP = 0.15  #: metres between the points kept of the way the person walked
+_ON_THE_TRAIL = 1.0  #: metres from their trail within which the robot drives along it
+_DOORWAY_REACH = 0.6  #: metres either side of a doorway where the robot's way is squared
+_PURSUIT = 0.5  #: metres along the path to the point the robot steers for
+_PROGRESS = 0.15  #: metres the robot must move on by ...
+_STALLED = 2.5  #: ... within so many seconds, or it is stalled ...
+_DETOUR = 4.0  #: ... and plans round what it sees for so long
+_PURSUIT_TURN = 2.0  #: rad/s of turn per radian off that point
+_TURN_ON_THE_SPOT = 0.6  #: radians off it beyond which the robot turns before driving
+_PURSUIT_SLOWING = 0.8  #: m/s per metre still to go (slowing to a stop at the end)
+_PURSUIT_CLEAR = 0.05  #: metres beside the footprint the strip ahead must be free
+_PURSUIT_STOPPING = 1.0  #: seconds of driving ahead that must be free
+_PASSING = 0.15  #: metres the robot's path keeps from others, beyond its radius
+_SEARCH_SHORT = 0.3  #: metres short of where a lost person was heading the robot stops
+_SEARCH_TURN = 0.6  #: rad/s the robot turns there, looking round for them
 
 
 class FollowEnd(StrEnum):
@@ -67,8 +88,8 @@ class FollowParameters:
     start_reach: float = 2.5  #: metres: the person to follow stands this near at the start
     replan_every: float = 0.5  #: seconds between global paths to the person
     reidentify_gate: float = 0.8  #: metres round the person's predicted spot, at first
-    reidentify_growth: float = 0.6  #: metres the gate grows per second lost
-    reidentify_most: float = 3.0  #: metres the gate grows to at most
+    reidentify_growth: float = 1.0  #: metres the gate grows per second lost (a brisk walk)
+    reidentify_most: float = 8.0  #: metres the gate grows to at most
     prediction: float = 1.5  #: seconds the person's last velocity is carried on, at most
     give_up: float = 25.0  #: seconds lost before the robot gives up
     still_speed: float = 0.12  #: m/s: a person slower than this stands still
@@ -77,7 +98,8 @@ class FollowParameters:
     listen_every: float = 0.25  #: seconds between looks at what the microphone heard
     check_every: float = 1.0  #: seconds between looks at what the person followed wears
     mismatches: int = 2  #: looks in a row at other clothes that drop a track
-    camera_reach: float = 3.5  #: metres within which the camera sees whoever stands there
+    #: metres between which the head camera sees whoever stands there, head to knees
+    camera_reach: tuple[float, float] = (1.0, 3.5)
     budget: float = 600.0  #: seconds: following never lasts longer
 
 
@@ -103,6 +125,7 @@ class _Target:
     still_since: float | None = None
     others: set[int] = field(default_factory=set)  #: tracks seen beside the person
     wears: str | None = None  #: the colour of their top, as the camera saw it
+    trail: list[tuple[float, float]] = field(default_factory=list)  #: where they walked
     mismatches: int = 0  #: looks in a row at the track that showed other clothes
 
 
@@ -117,6 +140,9 @@ class Following:
         localise: the pose estimate after feeding it the latest sensors.
         off_the_map: which of (n, 2) leg positions stand clear of the map's walls and
             furniture (legs near them are the furniture's).
+        unexpected: the scan's returns on the map that the static map does not explain
+            (people, a chair moved: ``ObstacleMemory.unexpected``); paths to the person
+            go round them.
         events: where following is recorded.
         heard_stop: whether the person said stop since the last call (None: deaf).
         stop_shown: whether the person at a map position shows the stop gesture (None:
@@ -128,7 +154,8 @@ class Following:
 
     def __init__(self, body: Body, world: World, navigator: Navigator,
                  controller: LocalController, localise: Callable[[], Pose],
-                 off_the_map: Callable[[np.ndarray], np.ndarray], events: EventLog, *,
+                 off_the_map: Callable[[np.ndarray], np.ndarray],
+                 unexpected: Callable[[Pose, LaserScan], np.ndarray], events: EventLog, *,
                  heard_stop: Callable[[], bool] | None = None,
                  stop_shown: Callable[[tuple[float, float]], bool] | None = None,
                  clothes: Callable[[Pose, tuple[float, float]], tuple[str, ...] | None]
@@ -140,6 +167,7 @@ class Following:
         self.controller = controller
         self.localise = localise
         self.off_the_map = off_the_map
+        self.unexpected = unexpected
         self.events = events
         self.heard_stop = heard_stop
         self.stop_shown = stop_shown
@@ -168,6 +196,8 @@ class Following:
         listened_at = checked_at = body.now()
         lost_since: float | None = None
         last_odometry = body.odometry().pose
+        progress = (body.now(), self.localise().xy())  #: when the robot last moved on, where
+        detour_until = -math.inf
         while True:
             now = body.now()
             if cancel is not None and cancel.cancelled:
@@ -212,8 +242,16 @@ class Following:
                 result.end = FollowEnd.ARRIVED
                 break
             aim = self._aim(target, now)
+            if math.dist(pose.xy(), progress[1]) > _PROGRESS or \
+                    math.dist(pose.xy(), aim) <= p.distance + _PROGRESS:
+                progress = (now, pose.xy())
+            elif now - progress[0] > _STALLED:
+                # the person's own way is too tight for the robot here (someone sits
+                # beside it): plan round what the laser sees for a while
+                detour_until, progress, path = now + _DETOUR, (now, pose.xy()), []
+                self.events.record("robot.following_detour")
             if now - planned_at >= p.replan_every or not path:
-                path = self._path_to(pose, aim)
+                path = self._path_to(pose, aim, target, trail=now >= detour_until)
                 planned_at = now
             body.command_velocity(self._command(pose, aim, path, seen))
             body.tick()
@@ -277,7 +315,7 @@ class Following:
             self._take(target, mine, now)
             target.others.update(track.id for track in confirmed
                                  if track.id != mine.id and
-                                 math.dist(track.position, mine.position) > 0.5)
+                                 math.dist(track.position, mine.position) > _SURELY_SOMEONE_ELSE)
             return True
         if mine is not None and mine.confirmed:
             return False  # coasting: hidden for a moment
@@ -306,7 +344,8 @@ class Following:
         if wears is None:
             return False
         if not wears:
-            return math.dist(where, pose.xy()) <= self.parameters.camera_reach
+            return self.parameters.camera_reach[0] <= math.dist(where, pose.xy()) <= \
+                self.parameters.camera_reach[1]
         return target.wears is not None and wears != UNREAD and wears[0] != target.wears
 
     def _looks_right(self, pose: Pose, target: _Target) -> bool:
@@ -325,6 +364,8 @@ class Following:
         elif target.still_since is None:
             target.still_since = now
         target.position, target.velocity, target.seen_at = track.position, track.velocity, now
+        if not target.trail or math.dist(target.trail[-1], track.position) >= _TRAIL_STEP:
+            target.trail.append(track.position)
 
     def _predicted(self, target: _Target, now: float) -> tuple[float, float]:
         ahead = min(self.parameters.prediction, now - target.seen_at)
@@ -347,24 +388,106 @@ class Following:
         not (round the corner they turned)."""
         return target.position if now - target.seen_at < 0.5 else self._predicted(target, now)
 
-    def _path_to(self, pose: Pose, aim: tuple[float, float]) -> list[tuple[float, float]]:
-        plan = self.navigator.plan(pose.xy(), aim)
+    def _path_to(self, pose: Pose, aim: tuple[float, float], target: _Target, *,
+                 trail: bool = True) -> list[tuple[float, float]]:
+        """The way the person walked (their trail, from where it passes nearest the
+        robot), which is free and goes through doorways where people do, and on from its
+        end to where they were heading when the robot lost them. Where the robot has
+        strayed from the trail, a path planned round what the laser sees that the map
+        lacks (others on the way), but for the person themself."""
+        here = pose.xy()
+        walked = target.trail
+        if walked and trail:
+            gaps = np.hypot(*(np.asarray(walked) - np.asarray(here)).T)
+            nearest = int(np.argmin(gaps))
+            if gaps[nearest] <= _ON_THE_TRAIL:
+                del walked[:nearest]
+                path = [here, *walked[1:]]
+                if aim != target.position:
+                    plan = self.navigator.plan(path[-1], aim)
+                    path.extend(plan.waypoints[1:] if plan is not None else [aim])
+                return self._through_doorways(path) if len(path) > 1 else [here, aim]
+        obstacles = self.unexpected(pose, self.body.scan())
+        if len(obstacles):
+            obstacles = obstacles[np.hypot(*(obstacles - np.asarray(aim)).T) > _OWN_LEGS]
+        way = self.navigator.plan_around(here, aim, frozenset(), obstacles,
+                                         self.body.radius + _PASSING, near_goal=_OWN_LEGS)
+        if way is not None:
+            return list(way)
+        plan = self.navigator.plan(here, aim)
         if plan is None:
-            return [pose.xy(), aim]
+            return [here, aim]
         return [tuple(point) for point in plan.waypoints]  # type: ignore[misc]
+
+    def _through_doorways(self, path: list[tuple[float, float]]) -> list[tuple[float, float]]:
+        """``path`` up to the first doorway it goes through, crossed square: the points
+        near the doorway replaced by one in front of it, its middle and one beyond, where
+        the path then ends (a trail that crosses a doorway at a slant, or turns right
+        after it, leads the robot into the jamb). The robot stops short of the person
+        only on a path that ends at them (``_DoorwayPath`` marks one that does not)."""
+        world = self.world
+        crossings = []
+        for name, door in world.doors.items():
+            inside = [index for index, point in enumerate(path)
+                      if math.dist(point, door.position) <= _DOORWAY_REACH]
+            if not inside or inside[0] == 0:
+                continue
+            first, last = inside[0], inside[-1]
+            before = world.room_at(*path[first - 1])
+            after = world.room_at(*path[min(last + 1, len(path) - 1)])
+            if before is not None and after is not None and before != after and \
+                    before in door.rooms and after in door.rooms:
+                crossings.append((first, name, before, after))
+        if not crossings:
+            return path
+        first, name, before, after = min(crossings)
+        square = [world.point_before_door(name, room, _DOORWAY_REACH).xy()
+                  for room in (before, after)]
+        return _DoorwayPath([*path[:first], square[0], world.doors[name].position, square[1]])
 
     def _command(self, pose: Pose, aim: tuple[float, float],
                  path: list[tuple[float, float]], seen: bool) -> Twist:
-        """Drive along ``path`` to ``distance`` short of its end; there, turn to face the
-        person."""
+        """Drive along ``path`` to ``distance`` short of its end and there turn to face
+        the person; not seeing them, drive on to where they were heading, and there
+        turn round, looking for them."""
         body = self.body
-        short = _shortened(path, self.parameters.distance)
+        short = path if isinstance(path, _DoorwayPath) else \
+            shortened(path, self.parameters.distance if seen else _SEARCH_SHORT)
         if short is None:
+            if not seen:
+                return Twist(0.0, 0.0, _SEARCH_TURN)
             bearing = wrap_angle(math.atan2(aim[1] - pose.y, aim[0] - pose.x) - pose.theta)
             turn = max(-body.limits.angular, min(body.limits.angular, 1.5 * bearing))
             return Twist(0.0, 0.0, turn if abs(bearing) > 0.15 else 0.0)
+        pursued = self._pursue(pose, short)
+        if pursued is not None:
+            return pursued
         return self.controller.plan(pose, body.odometry().twist, body.scan(), short,
                                     body.limits, body.drive, body.radius)
+
+    def _pursue(self, pose: Pose, path: list[tuple[float, float]]) -> Twist | None:
+        """Pure pursuit of a point a short way along ``path`` (which runs where the person
+        walked, or square through a doorway): turn on the spot towards it when it lies
+        well off the heading, else drive at it, slowing near the path's end. None when
+        something stands in the strip the base would drive through (the local controller
+        then steers round it)."""
+        body = self.body
+        target = _along(path, _PURSUIT)
+        remaining = _length(path)
+        error = wrap_angle(math.atan2(target[1] - pose.y, target[0] - pose.x) - pose.theta)
+        limits = body.limits
+        turn = max(-limits.angular, min(limits.angular, _PURSUIT_TURN * error))
+        if abs(error) > _TURN_ON_THE_SPOT:
+            return Twist(0.0, 0.0, turn)
+        speed = min(limits.linear, _PURSUIT_SLOWING * remaining) * math.cos(error)
+        ahead = body.radius + _PURSUIT_CLEAR + speed * _PURSUIT_STOPPING
+        points = body.scan().points()
+        if len(points):
+            blocked = (points[:, 0] > 0.0) & (points[:, 0] < ahead) & \
+                (np.abs(points[:, 1]) < body.radius + _PURSUIT_CLEAR)
+            if blocked.any():
+                return None
+        return Twist(speed, 0.0, turn)
 
     def _stop_base(self) -> None:
         body = self.body
@@ -375,7 +498,11 @@ class Following:
             body.tick()
 
 
-def _shortened(path: list[tuple[float, float]], by: float
+class _DoorwayPath(list[tuple[float, float]]):
+    """A path that ends beyond a doorway, not at the person: driven to its end."""
+
+
+def shortened(path: list[tuple[float, float]], by: float
                ) -> list[tuple[float, float]] | None:
     """``path`` without its last ``by`` metres (None: it is no longer than that)."""
     left = by
@@ -391,3 +518,18 @@ def _shortened(path: list[tuple[float, float]], by: float
         left -= length
         points.pop()
     return None
+
+
+def _length(path: list[tuple[float, float]]) -> float:
+    return sum(math.dist(a, b) for a, b in itertools.pairwise(path))
+
+
+def _along(path: list[tuple[float, float]], distance: float) -> tuple[float, float]:
+    """The point ``distance`` metres along ``path`` (its end when shorter)."""
+    for a, b in itertools.pairwise(path):
+        length = math.dist(a, b)
+        if length >= distance and length > 0:
+            t = distance / length
+            return (a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]))
+        distance -= length
+    return path[-1]

@@ -31,7 +31,7 @@ from shapely.geometry import Point as ShapelyPoint
 from homebot.cancel import CancelToken
 from homebot.embodied.conversation import Conversation
 from homebot.embodied.doors import WayThrough, door_seen_open, way_through
-from homebot.embodied.following import FollowEnd, Following, FollowParameters
+from homebot.embodied.following import FollowEnd, Following, FollowParameters, shortened
 from homebot.embodied.guiding import Guiding
 from homebot.embodied.looking import TableLook
 from homebot.embodied.people_look import PeopleLook
@@ -58,10 +58,13 @@ from homebot.world import PlacementKind, World
 
 if TYPE_CHECKING:
     from homebot.speech.answers import AnswerRecognizer
+    from homebot.speech.recognizer import Hearing
 
 #: the dialogue state in which "stop" is heard (``homebot.speech.answers.STOP``; named here
 #: so that the speech extra loads only when the robot first listens)
 STOP = "stop"
+_STOP_WORDS = frozenset({"stop", "halt"})  #: the words that end following on their own
+_NO = frozenset({"no", "nope", "not", "wrong"})  #: first words of a refusal
 
 __all__ = ["BodyRobot"]
 
@@ -78,6 +81,7 @@ _PARTICLES_SHOWN = 500
 _IN_THE_WAY = 0.8  #: metres from the robot's way within which a person stands in it
 _FOLLOWING_REACH = 2.0  #: metres within which the person to follow must stand
 _ASKING_DISTANCE = 1.2  #: metres from a person where the robot stops to ask them something
+_COMING_UP = (_ASKING_DISTANCE, 0.9, 0.7)  #: metres short of someone the robot comes up to
 _INTRODUCTION_VIEWS = 20  #: face views enrolled while a person says their name (2 s at 10 Hz)
 _RECOGNITION_VIEWS = 10  #: face views weighed together to name the person in front
 
@@ -389,13 +393,34 @@ class BodyRobot(Robot):
         else:
             self.say(f"{person}, please go ahead, I will follow you. Say stop when we are "
                      f"there.")
+        answer = self.conversation.listen("yes_no")
+        if answer.text is not None and answer.text.split()[0] in _NO:
+            return MoveReport(False, self.pose(), 0.0, Blocker.NO_PATH, None, person)
         result = self.following().follow(room, cancel=cancel, person_near=seen[0].position)
         pose = self.pose()
         if result.end is FollowEnd.CANCELLED:
             return MoveReport(False, pose, result.travelled, Blocker.CANCELLED)
         if result.end in (FollowEnd.STOP_SAID, FollowEnd.STOP_SHOWN, FollowEnd.ARRIVED):
-            return MoveReport(True, pose, result.travelled)
+            if result.last_seen is not None and \
+                    self.world.room_at(*result.last_seen) != self.world.room_at(*pose.xy()):
+                # stopped behind them across a doorway: come into their room, up to them
+                self._come_up_to(result.last_seen)
+            return MoveReport(True, self.pose(), result.travelled)
         return MoveReport(False, pose, result.travelled, Blocker.NO_PATH, None, person)
+
+    def _come_up_to(self, person: tuple[float, float]) -> None:
+        """Drive along the way to ``person`` until ``_ASKING_DISTANCE`` short of them (or
+        nearer, to be in their room), facing them."""
+        plan = self.navigator.plan(self.pose().xy(), person)
+        if plan is None:
+            return
+        points = [(float(x), float(y)) for x, y in plan.waypoints]
+        room = self.world.room_at(*person)
+        spots = [way[-1] for short in _COMING_UP if (way := shortened(points, short))]
+        spot = next((spot for spot in spots if self.world.room_at(*spot) == room), None)
+        if spot is not None:
+            self.move_to(Pose(spot[0], spot[1], math.atan2(person[1] - spot[1],
+                                                           person[0] - spot[0])))
 
     def following(self, parameters: FollowParameters | None = None) -> Following:
         """A follower of one person with this robot's laser, map, ears and eyes."""
@@ -405,7 +430,8 @@ class BodyRobot(Robot):
         return Following(
             self.body, self.world, self.navigator, self.controller, self.localise,
             people_look.off_the_map if people_look is not None else _everywhere,
-            self.events, heard_stop=lambda: conversation.overheard(STOP) is not None,
+            self.navigation.memory.unexpected, self.events,
+            heard_stop=lambda: _says_stop(conversation.overheard(STOP)),
             clothes=people_look.clothes_at if people_look is not None else None,
             parameters=parameters)
 
@@ -564,6 +590,20 @@ def _answer_recogniser(world: World) -> AnswerRecognizer:
     if key not in _RECOGNISERS:
         _RECOGNISERS[key] = AnswerRecognizer(world)
     return _RECOGNISERS[key]
+
+
+def _says_stop(heard: Hearing | None) -> bool:
+    """Whether someone said stop: heard in the stop state, or the word itself in both
+    decoders' hypotheses (a short "stop here." the two decoders word differently)."""
+    if heard is None:
+        return False
+    if heard.text is not None:
+        return True
+    if heard.reason != "disagree":  # the grammar's search did not reach a whole sentence
+        return False
+    words = {word for hypothesis in heard.ngram_hypotheses[:3] for word in hypothesis.split()}
+    said = set((heard.grammar_hypothesis or "").split())
+    return bool(_STOP_WORDS & said & words)
 
 
 def _everywhere(legs: np.ndarray) -> np.ndarray:

@@ -45,6 +45,7 @@ EARSHOT = 3.5  #: metres within which a person hears the robot in its room
 THROUGH_A_DOOR = 1.5  #: metres within which a person in another room hears it
 _PAUSE = 0.6  #: seconds between the robot's last word and the person's first
 _GOING_AHEAD_PACE = (0.3, 0.45)  #: m/s: someone sent ahead walks slowly, to be followed
+_STEPPING_PACE = 0.7  #: m/s: someone stepping off the robot's way
 _STEP_ASIDE = ("let me through", "let me pass", "let me by", "step aside", "make way")
 _COME_ALONG = ("follow me",)
 _HERE_IS = ("here is", "here are", "here you are", "here you go", "this is for you")
@@ -218,9 +219,26 @@ class PeopleHearing:
         if ahead is not None or _says(text, _LEAD):
             return self._lead(person, None if ahead is None else ahead.group(1))
         # asked to let the robot by: off its way, or out of the doorway they stand in
-        if not sim.step_aside(person, sim.people[person].blocking_door):
+        if not self._step_aside(person):
             return False
         sim.events.record("sim.person", person=person, did="stepped aside")
+        return True
+
+    def _step_aside(self, person: str) -> bool:
+        """``person`` walks off the robot's way (``Simulation.spot_aside``), or out of the
+        doorway they block into their room; whether they set off. Without walking
+        (``walk`` None) they are put there."""
+        sim = self.sim
+        state = sim.people[person]
+        if self._walk is None:
+            return sim.step_aside(person, state.blocking_door)
+        spot = sim.spot_aside(state.position)
+        if spot is None and state.blocking_door is not None:
+            spot = sim.free_floor_in(state.room)
+        route = None if spot is None else plan_route(sim, state.position, [spot])
+        if route is None:
+            return False
+        self._walk(RouteWalk(person, route, _STEPPING_PACE, pause_chance=0.0, seed=sim.seed))
         return True
 
     def _lead(self, person: str, room_words: str | None) -> bool:

@@ -28,6 +28,7 @@ _OPENING = 1.5  #: seconds a person takes to open a door
 _YIELD = 0.8  #: metres: the robot's centre this close ahead stops a walker...
 _PASS = 0.5  #: ... when it is nearer than this to the way they walk on
 _CORNER = math.radians(45.0)  #: a turn this sharp is a corner, where people may pause
+_OFF_WALLS = 0.35  #: metres people keep from walls and furniture as they walk
 _PATIENCE = 3.0  #: seconds a walker waits for the robot before walking round it
 ROUND_ROBOT = (0.75, 0.55)  #: metres a walker going round the robot keeps from its centre
 
@@ -181,16 +182,20 @@ def way_round_robot(sim: Simulation, here: tuple[float, float],
 def plan_route(sim: Simulation, start: tuple[float, float],
                places: Sequence[tuple[float, float]]) -> list[tuple[float, float]] | None:
     """The points a person walks from ``start`` through ``places`` in order, on paths they
-    plan themselves (through shut doors, which they open); None when a leg has no path.
-    A locked door is no way for anyone."""
+    plan themselves (through shut doors, which they open), keeping off walls and furniture
+    as people do; None when a leg has no path. A locked door is no way for anyone."""
     locked = frozenset(name for name, state in sim.door_state.items()
                        if state is DoorState.LOCKED)
     points: list[tuple[float, float]] = []
     here = start
     for place in places:
-        plan = sim.navigator.plan(here, place, locked)
-        if plan is None:
-            return None
-        points.extend(plan.waypoints[1:])
+        way = sim.navigator.plan_around(here, place, locked, np.zeros((0, 2)), 0.0,
+                                        static_clearance=_OFF_WALLS)
+        if way is None:
+            plan = sim.navigator.plan(here, place, locked)
+            if plan is None:
+                return None
+            way = plan.waypoints
+        points.extend(way[1:])
         here = place
     return points

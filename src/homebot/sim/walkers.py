@@ -111,9 +111,15 @@ class PeopleWalking:
         return self._outlines[key]
 
     def facing(self, name: str) -> float:
-        """Which way a person faces: where they walk, else the middle of their room."""
-        if name in self.routes:
-            return self.routes[name].heading
+        """Which way a person faces: where they walk; having walked a route, the robot;
+        else the middle of their room."""
+        walk = self.routes.get(name)
+        if walk is not None and not walk.finished:
+            return walk.heading
+        if walk is not None:  # arrived: they turn to the robot that came along
+            x, y = self.sim.people[name].position
+            robot = self.sim.robot_pose
+            return math.atan2(robot[1] - y, robot[0] - x)
         walker = next((walker for walker in self.walkers if walker.name == name), None)
         if walker is not None:
             return walker.heading

@@ -43,7 +43,9 @@ WITHIN = 3.0  #: metres: the robot keeps this close to the operator
 STOP_SAID = "stop_said"  #: the robot's reason for ending that counts as stopping when told
 STOP_WITHIN = 5.0  #: seconds after "stop" is said within which following ends
 ROUTE_LENGTH = (15.0, 25.0)  #: metres the operator walks
-_PACE = (0.35, 0.5)  #: m/s: the operator's pace (the robot's top speed is 0.5 m/s)
+#: m/s: the operator's pace, a slow walk that a robot with the shipped worlds' top speed
+#: (0.5 m/s) can keep up with, as RoboCup@Home operators walk for their robots
+_PACE = (0.3, 0.45)
 _CROSSING_PACE = (0.5, 0.8)  #: m/s: the passers-by's
 _BEHIND = 1.3  #: metres from the operator to the robot at the start
 _CLEAR = 0.5  #: metres of free floor round every spot a person is sent to

@@ -1,0 +1,54 @@
+"""Following a person by tracking them (``homebot.embodied.following``), judged by the truth:
+the person walks on their own (``homebot.sim.routes``), the robot keeps up and stops when
+told."""
+
+from __future__ import annotations
+
+import itertools
+import math
+
+import pytest
+
+from homebot.app import Fidelity, RunSettings, build_run
+from homebot.app.embodied import follow_me_episode
+from homebot.navigation import Navigator
+from homebot.sim.body import SimBody
+from homebot.task import Step, Task
+from homebot.world import World
+
+pytest.importorskip("cv2")
+pytest.importorskip("pocketsphinx")
+
+
+def test_follow_me_the_robot_keeps_within_three_metres_and_stops_when_told(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    episode = follow_me_episode(apartment, 7, apartment_navigator)
+    assert episode.skipped is None
+    assert episode.route_length >= 15.0 and episode.crossers >= 1
+    assert episode.end == "stop_said"  # it heard the operator's "stop" ...
+    assert episode.stopped  # ... ended soon after it, and stood still
+    assert episode.max_gap <= 3.0  # by the truth, never more than 3 m behind
+    assert episode.collisions == []
+    assert episode.success
+
+
+def test_find_and_follow_the_person_walks_on_their_own_and_the_robot_comes_along(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    run = build_run(RunSettings(world=apartment, seed=0, navigator=apartment_navigator,
+                                fidelity=Fidelity.EMBODIED))
+    sim = run.simulation
+    start = sim.people["Maria"].position
+    positions: list[tuple[float, float]] = []
+    body = run.robot.body  # type: ignore[attr-defined]
+    assert isinstance(body, SimBody)
+    body.referees.append(lambda: positions.append(sim.people["Maria"].position))
+    report = run.run(Task((Step("find_person", {"person": {"name": "Maria"}, "room": "kitchen"}),
+                           Step("follow", {}))))
+    assert report.success
+    assert report.steps[-1].status == "verified"
+    maria = sim.people["Maria"].position
+    assert math.dist(start, maria) > 2.0  # she went somewhere ...
+    steps = [math.dist(a, b) for a, b in itertools.pairwise(positions)]
+    assert max(steps) < 0.05  # ... walking, never jumping
+    assert math.dist(sim.robot_pose[:2], maria) < 2.0  # and the robot came along
+    assert sim.collisions == []
