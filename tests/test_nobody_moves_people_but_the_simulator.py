@@ -26,6 +26,7 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "homebot"
 ARENA_SET_UP = {
     "trials/following.py": "places the operator and the passers-by before Follow Me starts",
     "trials/looks.py": "places the people of each look before the robot looks",
+    "trials/guiding.py": "places the person to guide before the robot asks them along",
     "scenarios/library/butler.py": "Luis's scripted day in the Golem-III butler story",
     "bench/console.py": "puts the person to follow beside the robot before a stop trial",
 }
