@@ -38,12 +38,13 @@ import numpy as np
 
 from homebot.cancel import CancelToken
 from homebot.embodied.people_look import UNREAD
+from homebot.errors import PartMissing
 from homebot.events import EventLog
 from homebot.geometry import Pose, wrap_angle
 from homebot.navigation import Navigator
 from homebot.navigation.localmap import LocalController
 from homebot.perception.people import PeopleTracker, Track, detect_legs
-from homebot.robot import Body, LaserScan, Twist
+from homebot.robot import Body, LaserScan, RgbdFrame, Twist
 from homebot.world import World
 
 __all__ = ["FollowEnd", "FollowParameters", "FollowResult", "Following", "shortened"]
@@ -55,6 +56,10 @@ _SURELY_SOMEONE_ELSE = 1.5
 _TRAIL_STEP = 0.15  #: metres between the points kept of the way the person walked
 _ON_THE_TRAIL = 1.0  #: metres from their trail within which the robot drives along it
 _DOORWAY_REACH = 0.6  #: metres either side of a doorway where the robot's way is squared
+_STILL_BEFORE_LOOKING = 0.5  #: seconds a person stands still before the robot reads their arms
+_BURST = 10  #: head-camera frames read as one gesture ...
+_BURST_RATE = 10.0  #: ... taken so many a second
+_HEAD_TURN = 2.6  #: radians the head turns either way
 _PURSUIT = 0.5  #: metres along the path to the point the robot steers for
 _PROGRESS = 0.15  #: metres the robot must move on by ...
 _STALLED = 2.5  #: ... within so many seconds, or it is stalled ...
@@ -145,8 +150,9 @@ class Following:
             go round them.
         events: where following is recorded.
         heard_stop: whether the person said stop since the last call (None: deaf).
-        stop_shown: whether the person at a map position shows the stop gesture (None:
-            gestures unseen).
+        stop_shown: whether the person at a map position shows the stop gesture in a burst
+            of head-camera frames taken from the poses given
+            (``perception.gestures.gesture_from_depth``); None: gestures unseen.
         clothes: what the person the camera sees at a map position wears, from a pose
             (``PeopleLook.clothes_at``; None: no camera, people told apart by the laser
             alone).
@@ -157,7 +163,8 @@ class Following:
                  off_the_map: Callable[[np.ndarray], np.ndarray],
                  unexpected: Callable[[Pose, LaserScan], np.ndarray], events: EventLog, *,
                  heard_stop: Callable[[], bool] | None = None,
-                 stop_shown: Callable[[tuple[float, float]], bool] | None = None,
+                 stop_shown: Callable[[list[RgbdFrame], list[Pose], tuple[float, float]], bool]
+                 | None = None,
                  clothes: Callable[[Pose, tuple[float, float]], tuple[str, ...] | None]
                  | None = None,
                  parameters: FollowParameters | None = None) -> None:
@@ -174,6 +181,8 @@ class Following:
         self.clothes = clothes
         self.parameters = parameters or FollowParameters()
         self.tracker = PeopleTracker()
+        #: head-camera frames of the person standing still, and the poses they were taken from
+        self._burst: list[tuple[RgbdFrame, Pose]] = []
 
     # ------------------------------------------------------------ the loop
 
@@ -235,9 +244,10 @@ class Following:
                 if self.heard_stop is not None and self.heard_stop():
                     result.end = FollowEnd.STOP_SAID
                     break
-                if seen and self.stop_shown is not None and self.stop_shown(target.position):
-                    result.end = FollowEnd.STOP_SHOWN
-                    break
+
+            if seen and self._shows_stop(pose, target, now):
+                result.end = FollowEnd.STOP_SHOWN
+                break
             if seen and self._arrived(target, goal_room, now):
                 result.end = FollowEnd.ARRIVED
                 break
@@ -371,6 +381,31 @@ class Following:
         ahead = min(self.parameters.prediction, now - target.seen_at)
         return (target.position[0] + target.velocity[0] * ahead,
                 target.position[1] + target.velocity[1] * ahead)
+
+    def _shows_stop(self, pose: Pose, target: _Target, now: float) -> bool:
+        """Whether the person, standing still and turned to the robot, shows the stop
+        gesture: once they stood still a moment, the head camera takes a burst of frames
+        of them (``_BURST`` at ``_BURST_RATE``), read as a whole."""
+        if self.stop_shown is None or target.still_since is None or \
+                now - target.still_since < _STILL_BEFORE_LOOKING or \
+                math.dist(pose.xy(), target.position) > self.parameters.camera_reach[1]:
+            self._burst.clear()
+            return False
+        if self._burst and now - self._burst[-1][0].stamp < 1.0 / _BURST_RATE - 1e-6:
+            return False
+        bearing = wrap_angle(math.atan2(target.position[1] - pose.y,
+                                        target.position[0] - pose.x) - pose.theta)
+        self.body.point_head(max(-_HEAD_TURN, min(_HEAD_TURN, bearing)), 0.0)
+        try:
+            self._burst.append((self.body.camera(), pose))
+        except PartMissing:
+            self.stop_shown = None
+            return False
+        if len(self._burst) < _BURST:
+            return False
+        frames, poses = zip(*self._burst, strict=True)
+        self._burst.clear()
+        return self.stop_shown(list(frames), list(poses), target.position)
 
     def _arrived(self, target: _Target, goal_room: str | None, now: float) -> bool:
         if target.still_since is None:

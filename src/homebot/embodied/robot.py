@@ -45,6 +45,7 @@ from homebot.navigation.navigate import StopReason
 from homebot.navigation.recovery import RecoveringNavigation, scan_on_map
 from homebot.navigation.straight import drive_straight
 from homebot.perception.faces import Acquaintances
+from homebot.perception.gestures import gesture_from_depth
 from homebot.robot import (
     Blocker,
     Body,
@@ -52,6 +53,7 @@ from homebot.robot import (
     HelpRequest,
     MoveReport,
     PersonPercept,
+    RgbdFrame,
     Robot,
 )
 from homebot.world import PlacementKind, World
@@ -432,6 +434,7 @@ class BodyRobot(Robot):
             people_look.off_the_map if people_look is not None else _everywhere,
             self.navigation.memory.unexpected, self.events,
             heard_stop=lambda: _says_stop(conversation.overheard(STOP)),
+            stop_shown=_shows_stop,
             clothes=people_look.clothes_at if people_look is not None else None,
             parameters=parameters)
 
@@ -590,6 +593,12 @@ def _answer_recogniser(world: World) -> AnswerRecognizer:
     if key not in _RECOGNISERS:
         _RECOGNISERS[key] = AnswerRecognizer(world)
     return _RECOGNISERS[key]
+
+
+def _shows_stop(frames: list[RgbdFrame], poses: list[Pose],
+                person: tuple[float, float]) -> bool:
+    """Whether the person at ``person`` shows the stop gesture in the burst ``frames``."""
+    return gesture_from_depth(frames, poses, person) == "stop"
 
 
 def _says_stop(heard: Hearing | None) -> bool:

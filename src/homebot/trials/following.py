@@ -10,7 +10,8 @@ One episode, in the embodied fidelity, seeded:
   pace, pausing at some corners (``homebot.sim.routes``);
 - two other people cross the route between the operator and the robot, on their own,
   setting off as the operator comes by;
-- at the end the operator says "stop" (one of a few phrasings), aloud.
+- at the end the operator turns to the robot and says "stop" (one of a few phrasings),
+  aloud, or, one time in three, shows the stop gesture (a raised open hand held out).
 
 The robot (built by the caller, ``homebot.bench.follow``) follows from the start.
 The referee watches the simulator's truth every tick (``SimBody.referees``) and never the
@@ -33,14 +34,18 @@ from homebot.geometry import Pose
 from homebot.navigation import Navigator
 from homebot.sim import Simulation
 from homebot.sim.body import SimBody
+from homebot.sim.body_tracker import person_height
+from homebot.sim.keypoints import draw_motion
 from homebot.sim.routes import RouteWalk, plan_route
 from homebot.world import World
 
-__all__ = ["STOP_SAID", "STOP_WITHIN", "WITHIN", "FollowEpisode", "FollowMeArena",
+__all__ = ["STOPPED_BY", "STOP_WITHIN", "WITHIN", "FollowEpisode", "FollowMeArena",
            "follow_me_arena"]
 
 WITHIN = 3.0  #: metres: the robot keeps this close to the operator
-STOP_SAID = "stop_said"  #: the robot's reason for ending that counts as stopping when told
+#: the robot's reason for ending that counts as stopping when told, by how it was told
+STOPPED_BY = {"voice": "stop_said", "gesture": "stop_shown"}
+_SHOWN_STOP = 1.0 / 3.0  #: the share of operators who show the stop gesture instead of saying it
 STOP_WITHIN = 5.0  #: seconds after "stop" is said within which following ends
 ROUTE_LENGTH = (15.0, 25.0)  #: metres the operator walks
 #: m/s: the operator's pace, a slow walk that a robot with the shipped worlds' top speed
@@ -72,7 +77,8 @@ class FollowEpisode:
     max_gap: float = 0.0  #: metres, the farthest the robot fell behind the operator
     kept_within: bool = False
     stopped: bool = False  #: ended following soon after "stop" and then stood still
-    stop_delay: float | None = None  #: seconds from the end of "stop" to following's end
+    stop_by: str = ""  #: how the operator told the robot to stop: voice or gesture
+    stop_delay: float | None = None  #: seconds from "stop" (its end, said) to following's end
     end: str = ""  #: why the robot says following ended
     lost: int = 0  #: times the robot lost the operator and found them again
     collisions: list[dict[str, object]] = field(default_factory=list)
@@ -114,7 +120,14 @@ class FollowMeArena:
         sim, operator, rng = self.sim, self.operator, self._rng
         self._t0 = sim.clock.now()
 
-        def say_stop() -> None:
+        self.episode.stop_by = "gesture" if rng.random() < _SHOWN_STOP else "voice"
+
+        def tell_to_stop() -> None:
+            if self.episode.stop_by == "gesture":
+                body.arms.gestures[operator] = draw_motion(
+                    "stop", rng, height=person_height(operator, sim.people[operator].model))
+                self._said_end = sim.clock.now()
+                return
             phrase = _STOP_PHRASES[int(rng.integers(len(_STOP_PHRASES)))]
             before = len(body.audio.sounds)
             body.hearing.say(operator, phrase)
@@ -122,7 +135,7 @@ class FollowMeArena:
             self._said_end = sounds[-1].end if sounds else sim.clock.now()
 
         body.people.walk_route(RouteWalk(operator, list(self.route), self.pace,
-                                         starts_at=self._t0 + _SET_OFF, at_end=say_stop,
+                                         starts_at=self._t0 + _SET_OFF, at_end=tell_to_stop,
                                          seed=self.seed))
         self.episode.crossers = _send_crossers(sim, body, self.navigator, operator,
                                                self.operator_start, self.route, rng)
@@ -147,7 +160,7 @@ class FollowMeArena:
         episode.kept_within = bool(self._gaps) and episode.max_gap <= WITHIN
         if self._said_end is not None:
             episode.stop_delay = round(ended - self._said_end, 3)
-        episode.stopped = (end == STOP_SAID and episode.stop_delay is not None
+        episode.stopped = (end == STOPPED_BY[episode.stop_by] and episode.stop_delay is not None
                            and -0.5 <= episode.stop_delay <= STOP_WITHIN and still)
         episode.collisions = list(sim.collisions)
         episode.success = episode.kept_within and episode.stopped and not episode.collisions
