@@ -3,9 +3,9 @@
 Each look is a seeded situation in a world: the robot stands at a free spot of a
 room, turned at random, and 1 to 4 of the world's people stand, sit or lie about
 it (lying on a bed or sofa of the room when it has one, else on the floor), each
-with a gesture and a top of a random colour. The robot looks once
-(``BodyRobot.perceive_people``: legs in the laser, bodies in the head camera,
-faces, the skeleton tracker) from a pose estimate it was given, so the look is
+with a gesture (none when lying) and a top of a random colour. The robot looks once
+(``BodyRobot.perceive_people``: legs in the laser, bodies, arms and faces in the
+head camera) from a pose estimate it was given, so the look is
 judged and not the localisation. A percept matches a person within 0.5 m (one to
 one, Hungarian assignment); recall, precision and the median position error; of
 the matched: posture, top colour and gesture right; names right, wrong or not
@@ -71,9 +71,11 @@ def look_figures(world: World, looks: int, seed: int, *, simulation: Simulation,
             if spot is None:
                 continue
             taken.append(spot)
+            gesture = Gesture(rng.choice([g.value for g in Gesture]))
+            if posture is Posture.LYING:  # lying down, nobody gestures (sim.body_tracker)
+                gesture = Gesture.NONE
             model = originals[name].model_copy(update={
-                "posture": posture,
-                "gesture": Gesture(rng.choice([g.value for g in Gesture])),
+                "posture": posture, "gesture": gesture,
                 "clothes": [f"{rng.choice(_TOPS)} shirt"]})
             simulation.people[name].model = model
             simulation.move_person(name, spot)

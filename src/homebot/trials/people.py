@@ -16,6 +16,17 @@ the simulator's truth (``homebot bench perception`` prints what they return):
 - ``pointing_figures``: a person 1–4 m from a placement of the apartment points
   at it (eye-hand line, 3° aim error, 2 cm keypoint noise); the gesture is
   classified and the ray intersected with every placement's top.
+- ``depth_gesture_figures``: a person of the apartment points at a placement 1–4 m
+  off, waves, raises an arm, shows stop or stands still, drawn into the head camera's
+  RGB-D frames (``sim.body_tracker``); the robot, 1.5–3 m away with its pose and the
+  person's place known only roughly, reads the gesture from a second of frames
+  (the person stands clear of walls and furniture, the robot off the line pointed
+  along)
+  (``perception.body_parts``, ``perception.gestures``), judged by the gesture made and
+  the placement aimed at.
+- ``dynamic_gesture_figures``: the same person draws a circle, swipes left or right,
+  beckons or waves; the robot follows the hand over two seconds of frames and names
+  the stroke with the $1 recogniser (``perception.strokes``).
 - ``lateration_figures``: tags on the apartment's placements, four receivers at
   the corners, 30 beacons each; position error, and how often the tag's
   placement is the first hint.
@@ -29,11 +40,15 @@ import time
 from typing import Any
 
 import numpy as np
+import shapely
 
+from homebot.geometry import Pose
+from homebot.perception.body_parts import arm_track, looking_tilt
 from homebot.perception.faces import FaceDetector, FaceMemory
 from homebot.perception.gestures import (
     Surface,
     classify_gesture,
+    person_gesture,
     pointed_target,
     pointing_ray,
 )
@@ -45,19 +60,33 @@ from homebot.perception.people import (
     detect_legs,
     posture_from_profile,
 )
+from homebot.perception.strokes import StrokeRecogniser
+from homebot.robot import HeadState, RgbdFrame
+from homebot.sim.body_tracker import PeopleArms, person_solids
+from homebot.sim.camera import CameraSimulator, SceneGeometry
 from homebot.sim.crowd import CrowdLaser, crowd_scene
 from homebot.sim.faces import background_patch, face_identity, face_view
-from homebot.sim.keypoints import GESTURES, gesture_keypoints
+from homebot.sim.keypoints import DYNAMIC_MOTIONS, GESTURES, draw_motion, gesture_keypoints
 from homebot.sim.radio import rssi_readings
 from homebot.sim.silhouettes import POSTURES, person_cloud, torso_patch
-from homebot.world import PlacementKind, World
+from homebot.world import PersonModel, PlacementKind, Posture, World
 from homebot.world.catalogue import surface_height
 
-__all__ = ["face_figures", "lateration_figures", "people_figures", "pointing_figures"]
+__all__ = ["depth_gesture_figures", "dynamic_gesture_figures", "face_figures",
+           "lateration_figures", "people_figures", "pointing_figures"]
 
 _MATCH = 0.5  #: metres: a track within this of a person is that person (motmetrics)
 _LOOK = 3  #: views of a face in one look, for the per-person face figures
 _ROBOT_LOOK = 6  #: views of a face in one look of the robot's (embodied.people_look)
+_BURST = 10  #: head-camera frames of a look at a gesture, as embodied.people_look takes them
+_BURST_EVERY = 0.1  #: seconds between them
+_STROKE_BURST = 20  #: frames watched for a dynamic gesture (two seconds)
+_PLACED = 0.1  #: metres: how far off the leg tracker places a person (standard deviation)
+_LOCALISED = (0.03, 0.02)  #: metres, radians: the robot's pose error (standard deviations)
+#: the depth figures' gestures: what the person does, and the name a right answer gives
+_DEPTH_GESTURES = ("pointing", "waving", "raising", "stop", "none")
+_OFF_WALLS = 0.35  #: metres: people gesture standing clear of walls (and of furniture)
+_IN_LINE = math.radians(45.0)  #: the robot watches a pointing person from off this line
 
 
 def people_figures(seed: int, scenes: int) -> dict[str, Any]:
@@ -279,6 +308,181 @@ def pointing_figures(seed: int, trials: int = 1000) -> dict[str, Any]:
                               for band, hits in by_distance.items()},
         "gestures_classified_as": confusion,
         "targets": {"right_placement": 0.9},
+    }
+
+
+def depth_gesture_figures(seed: int, trials: int = 40) -> dict[str, Any]:
+    """Each gesture made ``trials`` times in the apartment and read from the head camera's
+    depth frames: how often the robot names it right (pointing: and the placement
+    aimed at), and what it took the others for."""
+    world = World.load("apartment")
+    surfaces = apartment_surfaces(world)
+    names = sorted(surfaces)
+    camera = CameraSimulator(SceneGeometry.of(world), np.random.default_rng([seed, 23]))
+    walls = shapely.union_all([room.exterior for room in world.room_polygons.values()])
+    rng = np.random.default_rng([seed, 29])
+    right: dict[str, int] = dict.fromkeys(_DEPTH_GESTURES, 0)
+    seen_as: dict[str, dict[str, int]] = {gesture: {} for gesture in _DEPTH_GESTURES}
+    started = time.thread_time()
+    for gesture in _DEPTH_GESTURES:
+        made = 0
+        while made < trials:
+            target = names[int(rng.integers(len(names)))]
+            surface = surfaces[target]
+            spot = _standing_spot(world, surfaces, surface, rng)
+            if spot is None or walls.distance(shapely.Point(spot[0])) < _OFF_WALLS:
+                continue
+            person = spot[0]
+            aim = (surface.center[0], surface.center[1], surface.height)
+            robot = _watching_spot(world, surfaces, person, aim, rng)
+            if robot is None:
+                continue
+            made += 1
+            label, found = _read_gesture(world, camera, rng, gesture, person, robot, aim,
+                                         surfaces)
+            seen_as[gesture][label] = seen_as[gesture].get(label, 0) + 1
+            right[gesture] += label == gesture and (gesture != "pointing" or found == target)
+    seconds = time.thread_time() - started
+    return {
+        "trials_per_gesture": trials,
+        "right": {gesture: round(count / trials, 3) for gesture, count in right.items()},
+        "read_as": seen_as,
+        "cpu_s_per_look": round(seconds / (trials * len(_DEPTH_GESTURES)), 2),
+        "look": f"{_BURST} frames at {1 / _BURST_EVERY:.0f} Hz, robot 1.5-3 m away and "
+                f"{math.degrees(_IN_LINE):.0f}-{180 - math.degrees(_IN_LINE):.0f}° off the line "
+                "pointed along",
+        "targets": {"pointing": 0.9, "waving": 0.9, "raising": 0.9},
+    }
+
+
+def _watching_spot(world: World, surfaces: dict[str, Surface], person: tuple[float, float],
+                   aim: tuple[float, float, float], rng: np.random.Generator
+                   ) -> tuple[float, float, float] | None:
+    """Where the robot stands to watch a person: 1.5–3 m from them in their room, clear
+    of furniture, facing them (x, y, heading), and not near the line they would point
+    along at ``aim`` (within ``_IN_LINE`` either way: an arm held out towards the robot
+    shows it something or says stop, Cosero §7.1.3; one pointed straight away from it
+    is hidden behind the person)."""
+    room = world.room_at(*person)
+    towards_aim = math.atan2(aim[1] - person[1], aim[0] - person[0])
+    for _ in range(50):
+        distance = float(rng.uniform(1.5, 3.0))
+        bearing = float(rng.uniform(0.0, 2 * math.pi))
+        x, y = person[0] + distance * math.cos(bearing), person[1] + distance * math.sin(bearing)
+        off_line = _IN_LINE <= abs(math.remainder(bearing - towards_aim, 2 * math.pi)
+                                   ) <= math.pi - _IN_LINE
+        clear = off_line and all(abs(x - other.center[0]) > other.size[0] / 2 + 0.4 or
+                    abs(y - other.center[1]) > other.size[1] / 2 + 0.4
+                    for other in surfaces.values())
+        if clear and world.room_at(x, y) == room:
+            return x, y, bearing + math.pi + float(rng.normal(0.0, 0.3))
+    return None
+
+
+def _read_gesture(world: World, camera: CameraSimulator, rng: np.random.Generator,
+                  gesture: str, person: tuple[float, float],
+                  robot: tuple[float, float, float], aim: tuple[float, float, float],
+                  surfaces: dict[str, Surface]) -> tuple[str, str | None]:
+    """Draw a person making ``gesture`` (pointing: at ``aim``) and let the robot at
+    ``robot`` read it from a burst of frames: the gesture as the robot names it (left and
+    right dropped; a raised arm on the wrong side is ``raising (wrong arm)``), and the
+    placement a pointing ray meets (else None)."""
+    track, robot_at, side = _watched_arm(world, camera, rng, gesture, person, robot, aim,
+                                         _BURST)
+    if track is None:
+        return "none", None
+    named = person_gesture(track, robot_at)
+    if named.startswith("pointing"):
+        return "pointing", pointed_target(pointing_ray(track), surfaces)
+    if named.startswith("raising"):
+        raised = named == f"raising_{side}_arm"
+        return ("raising" if raised else "raising (wrong arm)"), None
+    return named, None
+
+
+def _watched_arm(world: World, camera: CameraSimulator, rng: np.random.Generator,
+                 gesture: str, person: tuple[float, float], robot: tuple[float, float, float],
+                 aim: tuple[float, float, float], frames: int
+                 ) -> tuple[np.ndarray | None, tuple[float, float], str]:
+    """Draw a person making ``gesture`` (pointing: at ``aim``; with a random height and
+    clothes), watched by the robot at ``robot`` for ``frames`` frames: the arm keypoints
+    the robot finds in them (``arm_track``, from its own pose estimate and the person's
+    rough place), where it believes it stands, and the arm the person moves."""
+    height = float(rng.uniform(1.55, 1.95))
+    model = PersonModel(name="Pat", room=world.room_at(*person) or "", position=person,
+                        height=height, clothes=[["red sweater"], ["blue shirt", "black jeans"],
+                                                ["white shirt"]][int(rng.integers(3))])
+    facing = math.atan2(robot[1] - person[1], robot[0] - person[0])
+    their_right = (math.sin(facing), -math.cos(facing))
+    side = None
+    if gesture == "pointing":  # with the arm on the target's side
+        side = "right" if (aim[0] - person[0]) * their_right[0] + (
+            aim[1] - person[1]) * their_right[1] > 0 else "left"
+    arms = PeopleArms(int(rng.integers(1 << 30)))
+    arms.gestures["Pat"] = draw_motion(gesture, rng, target=aim, side=side, height=height)
+    body = person_solids(world, "Pat", model, Posture.STANDING, person, facing)
+    # the robot's own idea of its pose and of where the person stands
+    believed = Pose(robot[0] + float(rng.normal(0.0, _LOCALISED[0])),
+                    robot[1] + float(rng.normal(0.0, _LOCALISED[0])),
+                    robot[2] + float(rng.normal(0.0, _LOCALISED[1])))
+    placed = (person[0] + float(rng.normal(0.0, _PLACED)),
+              person[1] + float(rng.normal(0.0, _PLACED)))
+    bearing = math.atan2(placed[1] - believed.y, placed[0] - believed.x) - believed.theta
+    head = HeadState(math.atan2(math.sin(bearing), math.cos(bearing)),
+                     looking_tilt(math.dist(placed, believed.xy()), camera.intrinsics))
+    start = float(rng.uniform(0.0, 2.0))
+    burst: list[RgbdFrame] = []
+    for index in range(frames):
+        now = start + index * _BURST_EVERY
+        solids = [*body, *arms.solids("Pat", model, Posture.STANDING, person, robot[:2], now)]
+        burst.append(camera.render(now, robot, head, solids))
+    track = arm_track(burst, [believed] * len(burst), placed)
+    return track, believed.xy(), arms.gestures["Pat"].side
+
+
+def dynamic_gesture_figures(seed: int, trials: int = 30) -> dict[str, Any]:
+    """Each dynamic gesture (``sim.keypoints.DYNAMIC_MOTIONS`` and waving) made ``trials``
+    times in the apartment and read from two seconds of head-camera frames by the $1
+    recogniser on the hand's path (``perception.strokes``): how often it is named right,
+    and what it was taken for ("none": no template near enough)."""
+    world = World.load("apartment")
+    surfaces = apartment_surfaces(world)
+    names = sorted(surfaces)
+    camera = CameraSimulator(SceneGeometry.of(world), np.random.default_rng([seed, 41]))
+    walls = shapely.union_all([room.exterior for room in world.room_polygons.values()])
+    recogniser = StrokeRecogniser()
+    rng = np.random.default_rng([seed, 43])
+    right: dict[str, int] = {}
+    read_as: dict[str, dict[str, int]] = {}
+    started = time.thread_time()
+    for motion in (*DYNAMIC_MOTIONS, "waving"):
+        gesture = "wave" if motion == "waving" else motion
+        right[gesture], read_as[gesture] = 0, {}
+        made = 0
+        while made < trials:
+            surface = surfaces[names[int(rng.integers(len(names)))]]
+            spot = _standing_spot(world, surfaces, surface, rng)
+            if spot is None or walls.distance(shapely.Point(spot[0])) < _OFF_WALLS:
+                continue
+            aim = (surface.center[0], surface.center[1], surface.height)
+            robot = _watching_spot(world, surfaces, spot[0], aim, rng)
+            if robot is None:
+                continue
+            made += 1
+            track, robot_at, _ = _watched_arm(world, camera, rng, motion, spot[0], robot, aim,
+                                              _STROKE_BURST)
+            name = None if track is None else recogniser.read(track, robot_at)
+            label = name or "none"
+            read_as[gesture][label] = read_as[gesture].get(label, 0) + 1
+            right[gesture] += label == gesture
+    seconds = time.thread_time() - started
+    looks = trials * len(right)
+    return {
+        "trials_per_gesture": trials,
+        "right": {gesture: round(count / trials, 3) for gesture, count in right.items()},
+        "read_as": read_as,
+        "cpu_s_per_look": round(seconds / looks, 2),
+        "look": f"{_STROKE_BURST} frames at {1 / _BURST_EVERY:.0f} Hz, robot 1.5-3 m away",
     }
 
 

@@ -3,11 +3,14 @@
 The four positions p1…p4 lie in a row on the apartment's kitchen table, p1 leftmost
 as the person sees it from the table's front. The person wants ``--goal`` (the
 cups for p1, p2, p3) and, for each cup in a seeded order, says "put the <colour> cup
-there" while pointing at its position: a scripted gesture stands in for the
-perception's (shoulder and hand, the hand aimed at the position with ``--spread``
-metres of seeded error). The robot reads the request (``deictic_request``), follows
-the ray from shoulder through hand to the table top and takes the position closest
-to it by the fuzzy closeness of the table's frame (``pointed_place``); when two
+there" while pointing at its position (aimed at it with ``--spread`` metres of
+seeded error). The simulator draws the person, their pointing arm included, into the
+head camera's RGB-D frames of a robot watching from beside the table
+(``sim.body_tracker``); the robot segments head, shoulder and hand from a second of
+depth frames (``perception.body_parts``), checks that it is a pointing gesture, and
+follows the ray from the eyes through the hand to the table top (``pointing_ray``).
+It reads the request (``deictic_request``) and takes the position closest to where the
+ray meets the top by the fuzzy closeness of the table's frame (``pointed_place``); when two
 positions are about as close, or the position is already given to another cup or is
 p4 (which stays free), it asks, and the person points again. The goal order
 so understood goes to the Order Cups program (``order_cups_demo``, Alg. 3), whose
@@ -23,20 +26,29 @@ import math
 import random
 from typing import Any
 
+import numpy as np
+import shapely
 from rich.console import Console
 
-from homebot.geometry import Ray
+from homebot.geometry import Pose, Ray
 from homebot.golog import Interpreter, SimulatedExecutor, State
 from homebot.golog.build import do
 from homebot.golog.domains import CUPS, POSITIONS, cups_theory, minimum_moves
+from homebot.perception.body_parts import arm_track, looking_tilt
+from homebot.perception.gestures import person_gesture, pointing_ray
+from homebot.robot import HeadState
 from homebot.scenarios.library.order_cups import goal_order
 from homebot.scenarios.running import OptionKind, RunBuilder, SharedOption
 from homebot.scenarios.summary import scenario_summary
+from homebot.sim.body_tracker import PeopleArms, person_solids
+from homebot.sim.camera import CameraSimulator, SceneGeometry
+from homebot.sim.keypoints import draw_motion
 from homebot.space.deixis import deictic_request, pointed_place
 from homebot.space.frames import frames_of
-from homebot.world import World, object_positions
+from homebot.world import PersonModel, Posture, World, object_positions
 
-__all__ = ["SHARED_OPTIONS", "TABLE", "add_arguments", "position_points", "run"]
+__all__ = ["SHARED_OPTIONS", "TABLE", "add_arguments", "position_points", "run",
+           "watching_pose"]
 
 SHARED_OPTIONS = (SharedOption(OptionKind.PROBABILITY, "--spread", 0.04,
                                "how far off a pointing gesture aims (standard deviation, "
@@ -44,9 +56,11 @@ SHARED_OPTIONS = (SharedOption(OptionKind.PROBABILITY, "--spread", 0.04,
 
 TABLE = "kitchen table"
 TABLE_HEIGHT = 0.75  #: metres: the table top's plane
-SHOULDER = 1.4  #: metres: the person's shoulder height
 _LATERAL = (0.45, 0.15, -0.15, -0.45)  #: p1…p4 to the person's left of the table's middle
 _TRIES = 3  #: points per cup before the robot gives up
+_WATCHING = 1.5  #: metres beside the person (along the table's front) the robot watches from
+_FRAMES, _EVERY = 10, 0.1  #: the head camera's burst: frames, seconds between them
+_PERSON = "Pat"
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -67,15 +81,60 @@ def position_points(world: World) -> tuple[dict[str, tuple[float, float]], tuple
     return points, frame.to_map((depth / 2 + 0.45, 0.0)), frame.scale
 
 
-def _gesture(rng: random.Random, person: tuple[float, float], target: tuple[float, float],
-             spread: float) -> Ray:
-    aim = (target[0] + rng.gauss(0.0, spread), target[1] + rng.gauss(0.0, spread), TABLE_HEIGHT)
-    shoulder = (person[0], person[1], SHOULDER)
-    ray = tuple(a - s for a, s in zip(aim, shoulder, strict=True))
-    length = math.sqrt(sum(component * component for component in ray))
-    hand = tuple(s + 0.6 * component / length for s, component in zip(shoulder, ray,
-                                                                          strict=True))
-    return Ray(shoulder, (hand[0], hand[1], hand[2]))
+def watching_pose(world: World, person: tuple[float, float]) -> Pose:
+    """Where the robot stands to watch the person point: beside them along the table's
+    front, on the side with the more room, facing them."""
+    frame = frames_of(world, object_positions(world, 0))[TABLE]
+    depth = world.placements[TABLE].model.size[1] if abs(math.sin(frame.front)) > 0.5 else (
+        world.placements[TABLE].model.size[0])
+    room = world.room_at(*person)
+    for side in (1.0, -1.0):
+        x, y = frame.to_map((depth / 2 + 0.45, side * _WATCHING))
+        if world.room_at(x, y) == room and not any(
+                p.footprint.distance(shapely.Point(x, y)) < 0.3 for p in world.placements.values()):
+            return Pose(x, y, math.atan2(person[1] - y, person[0] - x))
+    raise ValueError(f"no room beside the {TABLE} to watch from")
+
+
+class _PointingPerson:
+    """The person at the table, drawn by the simulator pointing at a spot, and the robot's
+    head camera watching them: the ray the robot reads from its depth frames."""
+
+    def __init__(self, world: World, person: tuple[float, float], seed: int) -> None:
+        self.world = world
+        self.person = person
+        self.rng = np.random.default_rng([seed, 31])
+        self.camera = CameraSimulator(SceneGeometry.of(world), np.random.default_rng([seed, 37]))
+        self.robot = watching_pose(world, person)
+        self.model = PersonModel(name=_PERSON, room=world.room_at(*person) or "",
+                                 position=person, clothes=["green sweater", "blue jeans"])
+        self.now = 0.0
+
+    def point_at(self, aim: tuple[float, float, float]) -> Ray | None:
+        """The ray from the eyes through the hand the robot sees the person point along at
+        ``aim``; None when it sees no pointing."""
+        robot, person = self.robot, self.person
+        facing = math.atan2(robot.y - person[1], robot.x - person[0])
+        their_right = (math.sin(facing), -math.cos(facing))
+        side = "right" if (aim[0] - person[0]) * their_right[0] + (
+            aim[1] - person[1]) * their_right[1] > 0 else "left"
+        arms = PeopleArms(0)
+        arms.gestures[_PERSON] = draw_motion("pointing", self.rng, target=aim, side=side,
+                                             aim=0.0)
+        body = person_solids(self.world, _PERSON, self.model, Posture.STANDING, person, facing)
+        head = HeadState(0.0, looking_tilt(math.dist(person, robot.xy()),
+                                           self.camera.intrinsics))
+        frames = []
+        for _ in range(_FRAMES):
+            self.now += _EVERY
+            solids = [*body, *arms.solids(_PERSON, self.model, Posture.STANDING, person,
+                                          robot.xy(), self.now)]
+            frames.append(self.camera.render(self.now, (robot.x, robot.y, robot.theta), head,
+                                             solids))
+        track = arm_track(frames, [robot] * len(frames), person)
+        if track is None or not person_gesture(track, robot.xy()).startswith("pointing"):
+            return None
+        return pointing_ray(track)
 
 
 def run(args: argparse.Namespace, console: Console | None, build: RunBuilder) -> dict[str, Any]:
@@ -86,6 +145,7 @@ def run(args: argparse.Namespace, console: Console | None, build: RunBuilder) ->
     initial = dict(zip(CUPS, rng.sample(POSITIONS, len(CUPS)), strict=True))
     world = World.load("apartment")
     points, person, scale = position_points(world)
+    pointer = _PointingPerson(world, person, args.seed)
     understood: dict[str, str] = {}
     dialogue: list[str] = []
     asked = 0
@@ -95,8 +155,9 @@ def run(args: argparse.Namespace, console: Console | None, build: RunBuilder) ->
         for _ in range(_TRIES):
             dialogue.append(f"person: {said} (pointing)")
             what = deictic_request(said)
-            place, _ = pointed_place(_gesture(rng, person, target, spread), points,
-                                     TABLE_HEIGHT, scale)
+            ray = pointer.point_at((target[0] + rng.gauss(0.0, spread),
+                                    target[1] + rng.gauss(0.0, spread), TABLE_HEIGHT))
+            place = None if ray is None else pointed_place(ray, points, TABLE_HEIGHT, scale)[0]
             taken = place in understood.values() or place == POSITIONS[-1]
             if what is not None and place is not None and not taken:
                 understood[what.removesuffix(" cup")] = place
