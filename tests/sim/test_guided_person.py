@@ -145,3 +145,18 @@ def test_personalities_are_drawn_by_seed_in_their_shares() -> None:
     for personality, share in ((Personality.STEADY, 0.6), (Personality.LAGGING, 0.2),
                                (Personality.WANDERING, 0.2)):
         assert abs(drawn.count(personality) / len(drawn) - share) < 0.07
+
+
+def test_a_guided_person_does_not_stop_in_a_doorway_or_out_of_sight(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    # the robot stops 1.3 m past the living room door: a metre of trail behind it is the
+    # doorway, where nobody stands about (and the robot's laser tells no legs from jambs)
+    body = _guided(apartment, apartment_navigator, Personality.STEADY, (3.0, 2.9), (3.6, 2.0))
+    sim = body.sim
+    _drive_along(body, [(2.5, 3.0), (2.5, 5.3)], speed=0.3)
+    resting, _ = _drive(body, Twist(), 8.0)
+    door = apartment.doors["living room door"].position
+    assert resting[-1] == resting[-20]  # they stand
+    assert math.dist(resting[-1], door) >= 0.6
+    assert sim.people["Alex"].room == "corridor"
+    assert math.dist(resting[-1], sim.robot_pose[:2]) >= apartment.robot.radius + PERSONAL_SPACE

@@ -2,9 +2,11 @@
 
 The robot drives its route to the goal in stretches (``BodyRobot.move_to`` without an
 escort, so doors are looked at and passed as ever): ``GuideParameters.look_every``
-metres at most, and a stretch ends before every door. After each
-stretch it looks back for the person it guides, with its leg tracker
-(``perception.people``: legs in the laser, tracked over a second of sweeps).
+metres at most, and a stretch ends before every door. After each stretch it looks back
+for the person it guides, with its leg tracker (``perception.people``: legs in the laser,
+tracked over a second of sweeps); of several people there, the one nearest where the
+follower should be, dressed as they were at the start, and never one whose face the head
+camera knows as someone else's.
 
 Why stop and turn to look: the laser sees 270° in front, so someone walking a metre
 straight behind the robot stands in its blind cone, and the head camera's turn
@@ -12,20 +14,22 @@ straight behind the robot stands in its blind cone, and the head camera's turn
 angle would need a wide way, which corridors and doorways are not. So the robot stops
 and turns its base just far enough that where the person should be (on its own trail,
 about a metre back) lies ``GuideParameters.side_on`` radians off its heading: well inside
-the laser's view and the head's turn (the camera then checks what they wear), and a
-quarter turn rather than a half one. Before a door it looks so as not to leave anyone
-behind in another room.
+the laser's view and the head's turn (the camera then checks their clothes and face), and
+a quarter turn rather than a half one; not seen there, it turns to face that spot. Before
+a door it looks so as not to leave anyone behind in another room.
 
-- Seen near (within ``keeps_up``): on to the next stretch.
+- Seen near (within ``keeps_up``; at the goal, ``at_goal``): on to the next stretch.
 - Seen farther back (a slow walker, someone who stopped to look round): the robot
   waits (``robot.guide_waiting``), watching them come; someone seen who stands still
   for ``stalled`` seconds instead of coming is fetched.
 - Not seen: the robot watches for ``lost_after`` seconds (they may be round a corner);
-  then it says it lost them (``robot.guide_lost``), drives back to where it last saw
-  them, looks round there, drives up to each person its tracker finds, nearest first,
-  recognises them by face (someone else is passed over), and asks again "please follow
-  me" by name: a yes heard is them (``robot.guide_fetched``), silence someone else.
-  Then it leads on from there.
+  then it says it lost them (``robot.guide_lost``) and searches: back where it last saw
+  them, looking all round, then just through each door near there (someone who stepped
+  into the next room is out of the laser's sight through a doorway), then the same
+  round where they should have been, just behind it. It drives up to each person its
+  tracker finds there, recognises them by face (someone else is passed over), and asks
+  again "please follow me" by name: a yes heard is them (``robot.guide_fetched``),
+  silence someone else. Then it leads on from there.
 
 At the goal it turns to face them, so that a look (the Guide skill's monitor) sees and
 names them. Nothing here reads the simulator: the person is only what the laser, the
@@ -52,6 +56,9 @@ if TYPE_CHECKING:
 
 __all__ = ["GuideParameters", "Guiding"]
 
+_PAN_LIMIT = 2.6  #: radians the head turns either way
+_FACE_RANGE = 2.5  #: metres within which the head camera's close-up shows a face
+
 
 @dataclass(frozen=True, slots=True)
 class GuideParameters:
@@ -63,6 +70,7 @@ class GuideParameters:
     watch: float = 1.0  #: seconds of laser sweeps per look
     behind: float = 1.0  #: metres back along its trail where the person should walk
     keeps_up: float = 2.2  #: metres: someone this near the robot keeps up
+    at_goal: float = 1.4  #: metres: at the goal, the robot waits until they are this near
     reach: float = 5.0  #: metres round the robot within which the person is looked for
     wait: float = 40.0  #: seconds the robot waits for someone coming
     stalled: float = 6.0  #: seconds someone seen behind stands still before being fetched
@@ -92,12 +100,14 @@ class Guiding:
         self.tracker = PeopleTracker()
         self._follower = _Follower()
         self._came_from: tuple[float, float] | None = None
+        self._person: str | None = None
 
     def guide(self, person: str, goal: Pose, avoid_doors: frozenset[str] = frozenset(), *,
               cancel: CancelToken | None = None) -> MoveReport:
         """Lead ``person`` (just asked to follow) to ``goal``; the motion's report."""
         robot, p = self.robot, self.parameters
         events = robot.events
+        self._person = person
         self._first_sight()
         events.record("robot.guiding", person=person, seen=self._follower.position is not None)
         travelled, fetches = 0.0, 0
@@ -118,7 +128,7 @@ class Guiding:
             passed.extend(report.doors_passed)
             if not report.reached:
                 return replace(report, distance=travelled, doors_passed=tuple(passed))
-            with_us, went_back = self._check(person), False
+            with_us, went_back = self._check(p.at_goal if final else p.keeps_up), False
             while not with_us and fetches < p.fetches:
                 fetches, went_back = fetches + 1, True
                 with_us = self._fetch(person, cancel)
@@ -175,7 +185,7 @@ class Guiding:
         wears = look.clothes_at(robot.localise(), chosen.position) if look else None
         self._follower.wears = wears[0] if wears and wears != UNREAD else None
 
-    def _check(self, person: str) -> bool:
+    def _check(self, near: float) -> bool:
         """Look back for the follower; wait while they come; whether they are with the
         robot (else lost, or standing apart: to be fetched)."""
         p, robot = self.parameters, self.robot
@@ -191,9 +201,9 @@ class Guiding:
             if seen is None:
                 return False
         pose = robot.pose()
-        if math.dist(seen, pose.xy()) <= p.keeps_up:
+        if math.dist(seen, pose.xy()) <= near:
             return True
-        robot.events.record("robot.guide_waiting", person=person,
+        robot.events.record("robot.guide_waiting", person=self._person,
                             at=[round(v, 2) for v in seen])
         closest, closest_since = math.dist(seen, pose.xy()), robot.now()
         while robot.now() - waited_since < p.wait:
@@ -201,7 +211,7 @@ class Guiding:
             if found is None:
                 continue
             gap = math.dist(found, robot.pose().xy())
-            if gap <= p.keeps_up:
+            if gap <= near:
                 return True
             if gap < closest - 0.3:
                 closest, closest_since = gap, robot.now()
@@ -257,7 +267,7 @@ class Guiding:
     def _find_in(self, pose: Pose) -> tuple[float, float] | None:
         """The follower among the tracks seen now: the nearest to where they should be,
         within ``reach``; of several, one dressed as they are first (clothes told wrong
-        never hide the only one there)."""
+        never hide the only one there); never one whose face is someone else's."""
         now = self.robot.body.now()
         expected = self._expected(pose)
         candidates = sorted((track for track in self.tracker.confirmed()
@@ -266,10 +276,26 @@ class Guiding:
                             key=lambda track: math.dist(track.position, expected))
         if len(candidates) > 1:
             candidates.sort(key=lambda track: self._dressed_otherwise(pose, track.position))
-        if not candidates:
-            return None
-        self._saw(candidates[0].position, pose)
-        return candidates[0].position
+        for track in candidates:
+            if self._someone_else(pose, track.position):
+                continue
+            self._saw(track.position, pose)
+            return track.position
+        return None
+
+    def _someone_else(self, pose: Pose, where: tuple[float, float]) -> bool:
+        """Whether the face of whoever stands at ``where`` is known as someone else's
+        (False when the head cannot turn to them, they are beyond face range, or the face
+        is not recognised)."""
+        robot, person = self.robot, self._person
+        bearing = wrap_angle(math.atan2(where[1] - pose.y, where[0] - pose.x) - pose.theta)
+        if person is None or abs(bearing) > _PAN_LIMIT or \
+                math.dist(where, pose.xy()) > _FACE_RANGE:
+            return False
+        robot.body.point_head(bearing, 0.0)
+        name = robot.face_in_front()
+        robot.body.point_head(0.0, 0.0)
+        return name is not None and name != person
 
     def _dressed_otherwise(self, pose: Pose, where: tuple[float, float]) -> bool:
         look, wears = self.robot.people_look, self._follower.wears
@@ -284,52 +310,70 @@ class Guiding:
     # ------------------------------------------------------------ fetching
 
     def _fetch(self, person: str, cancel: CancelToken | None) -> bool:
-        """Go back to where the follower was last seen, find them (tracker and face), and
-        ask them again to follow; whether they were found and asked."""
-        robot, p = self.robot, self.parameters
+        """Look for the follower round where they were last seen, then round where they
+        should have been (just behind); find them (tracker and face), and ask them again to
+        follow; whether they were found and asked."""
+        robot = self.robot
         last = self._follower.position
         robot.say(f"I have lost {person}. I will go back and look for them.")
         robot.events.record("robot.guide_lost", person=person,
                             last_seen=None if last is None else [round(v, 2) for v in last])
-        if last is None:
-            return False
+        behind = self._expected(robot.localise())
+        centres = [behind] if last is None else [last] if math.dist(last, behind) < 2.0 \
+            else [last, behind]
+        spots: list[tuple[Pose, tuple[float, ...]]] = []
+        for centre in centres:
+            spots.extend(spot for spot in self._search_spots(centre)
+                         if all(math.dist(spot[0].xy(), other[0].xy()) > 1.0 for other in spots))
         tried: list[tuple[float, float]] = []
-        for spot, turns in self._search_spots(last):
+        for spot, turns in spots:
             if cancel is not None and cancel.cancelled:
                 return False
-            if math.dist(robot.pose().xy(), spot.xy()) > 0.5:
-                robot.move_to(spot, cancel=cancel)
-            robot.navigation.face((spot.x + math.cos(spot.theta), spot.y + math.sin(spot.theta)))
-            pose = robot.localise()
-            for turn in turns:
-                if turn:
-                    heading = pose.theta + turn
-                    robot.navigation.face((pose.x + math.cos(heading),
-                                           pose.y + math.sin(heading)))
-                pose = self._watch()
-                candidates = sorted(
-                    (track.position for track in self.tracker.confirmed()
-                     if track.seen >= robot.body.now() - 1e-9
-                     and math.dist(track.position, last) <= p.search_reach
-                     and all(math.dist(track.position, other) > 0.5 for other in tried)),
-                    key=lambda where: math.dist(where, last))
-                robot.events.record("robot.guide_search", at=[round(v, 2) for v in pose.xy()],
-                                    seen=[[round(v, 2) for v in where] for where in candidates])
-                for where in candidates:
-                    tried.append(where)
-                    if self._ask_if_them(person, where, cancel):
-                        return True
-                    pose = robot.localise()
+            if self._search_at(person, spot, turns, centres, tried, cancel):
+                return True
+        return False
+
+    def _search_at(self, person: str, spot: Pose, turns: tuple[float, ...],
+                   centres: list[tuple[float, float]], tried: list[tuple[float, float]],
+                   cancel: CancelToken | None) -> bool:
+        """Look round from ``spot`` for the follower, among the people within
+        ``search_reach`` of the ``centres`` and not ``tried`` already; whether they were
+        found and asked."""
+        robot, p = self.robot, self.parameters
+        if math.dist(robot.pose().xy(), spot.xy()) > 0.5:
+            robot.move_to(spot, cancel=cancel)
+        robot.navigation.face((spot.x + math.cos(spot.theta), spot.y + math.sin(spot.theta)))
+        pose = robot.localise()
+        for turn in turns:
+            if turn:
+                heading = pose.theta + turn
+                robot.navigation.face((pose.x + math.cos(heading),
+                                       pose.y + math.sin(heading)))
+            pose = self._watch()
+            candidates = sorted(
+                (track.position for track in self.tracker.confirmed()
+                 if track.seen >= robot.body.now() - 1e-9
+                 and min(math.dist(track.position, centre) for centre in centres)
+                 <= p.search_reach
+                 and all(math.dist(track.position, other) > 0.5 for other in tried)),
+                key=lambda where: math.dist(where, robot.pose().xy()))
+            robot.events.record("robot.guide_search", at=[round(v, 2) for v in pose.xy()],
+                                seen=[[round(v, 2) for v in where] for where in candidates])
+            for where in candidates:
+                tried.append(where)
+                if self._ask_if_them(person, where, cancel):
+                    return True
+                pose = robot.localise()
         return False
 
     def _search_spots(self, last: tuple[float, float]
                       ) -> list[tuple[Pose, tuple[float, ...]]]:
         """Where to look for someone last seen at ``last``, and the turns to make there:
         near that spot, all round; then just through each door of its room within
-        ``door_reach`` of it, all round (they may have stepped into the next room, where
-        the laser sees little through the doorway)."""
+        ``door_reach`` of it, all round, nearest the robot first (they may have stepped
+        into the next room, where the laser sees little through the doorway)."""
         robot, p = self.robot, self.parameters
-        all_round = (0.0, 2.1, 2.1)
+        all_round = (0.0, 2.4)  # the laser's 270 degrees, then the cone behind
         spots: list[tuple[Pose, tuple[float, ...]]] = []
         near = self._spot_before(last)
         if near is not None:
@@ -337,7 +381,8 @@ class Guiding:
         room = robot.world.room_at(*last)
         if room is None:
             return spots
-        doors = sorted((math.dist(door.position, last), name)
+        here = robot.pose().xy()
+        doors = sorted((math.dist(door.position, here), name)
                        for name, door in robot.world.doors.items()
                        if room in door.rooms and math.dist(door.position, last) <= p.door_reach)
         for _, name in doors:

@@ -4,8 +4,10 @@ Asked to follow, a person walks after the robot at a human pace along where it w
 true trail, dropped as crumbs every ``_CRUMB`` metres (a path the robot's body fitted
 through, so through open doors and never through walls or furniture), joined to where
 they stand by a path they plan themselves (``Simulation.navigator``). They keep about
-``gap`` metres of trail behind the robot, stop when they are that near (so they stop when
-it stops), and never step within ``PERSONAL_SPACE`` of its body. Where the robot doubles
+``gap`` metres of trail behind the robot, stop when they are that near and see it (so they
+stop when it stops; round a corner or a door frame from it, or in a doorway, they come
+on until they see it from clear floor), and never step within ``PERSONAL_SPACE`` of its
+body. Where the robot doubles
 back, the loop it drove is cut from the trail: they go straight to where it came back.
 
 People differ (``Personality``, drawn by seed and name, ``personality_of``):
@@ -62,6 +64,8 @@ _OFF_THE_TRAIL = 0.8  #: metres the spot they walk off to keeps from the robot's
 _WANDER_WALK = 4.5  #: metres they walk at most to get there
 _WANDER_DIRECTIONS = 16
 _DOORWAY = 0.9  #: metres from a door's centre within which nobody wanders off to stand
+_STANDS_CLEAR_OF_DOOR = 0.6  #: metres from a door's centre: nobody stops to stand nearer
+_END = 0.15  #: metres at either end of a line of sight that may touch furniture or a wall
 _NOTICES = 3.0  #: metres within which someone standing turns to face the robot
 
 
@@ -151,10 +155,13 @@ class GuidedWalk:
                 self.heading = _towards(here, robot)
             return
         ahead = self._trail_length(here, robot) - self.gap
-        if ahead <= 0.0 or math.dist(here, robot) <= self.gap:
+        near = ahead <= 0.0 or math.dist(here, robot) <= self.gap
+        if near and _in_sight(sim, here, robot) and not _in_doorway(sim, here):
             self.heading = _towards(here, robot)  # near enough: they stand and watch it
             return
-        moved = self._walk_on(sim, here, min(self.pace * seconds, ahead), robot, keep_away)
+        # round a corner or a door frame from it, or in a doorway, they come on
+        step = self.pace * seconds if near else min(self.pace * seconds, ahead)
+        moved = self._walk_on(sim, here, step, robot, keep_away)
         self.walked += moved
         if moved > 0.0 and self.personality is Personality.LAGGING and \
                 self._rng.random() < _LOOK_ROUND_RATE * seconds:
@@ -254,6 +261,24 @@ class GuidedWalk:
         self.wandered = True
         sim.events.record("sim.person", person=self.name, did="wandered off",
                           to=[round(v, 2) for v in self.path[-1]])
+
+
+def _in_sight(sim: Simulation, here: tuple[float, float], there: tuple[float, float]) -> bool:
+    """Whether no wall or furniture stands between ``here`` and ``there``."""
+    grid = sim.navigator.grid
+    length = math.dist(here, there)
+    steps = int(length / (grid.resolution / 2))
+    for index in range(1, steps):
+        along = index / steps
+        if _END <= along * length <= length - _END and grid.occupied[grid.cell_of(
+                here[0] + along * (there[0] - here[0]), here[1] + along * (there[1] - here[1]))]:
+            return False
+    return True
+
+
+def _in_doorway(sim: Simulation, here: tuple[float, float]) -> bool:
+    return any(math.dist(here, door.position) < _STANDS_CLEAR_OF_DOOR
+               for door in sim.world.doors.values())
 
 
 def _towards(here: tuple[float, float], there: tuple[float, float]) -> float:
