@@ -45,6 +45,8 @@ TINY: dict[str, tuple[list[str], set[str], set[str]]] = {
     "perception": (["--scenes", "1", "--only", "objects"], {"figures"}, {"objects"}),
     "guide": (["--runs", "1", "--world", "family_home"], {"success_rate", "ran", "episodes"},
               set()),
+    "follow": (["--runs", "1", "--seed", "7", "--worlds", "apartment"],
+               {"success_rate", "ran", "episodes"}, set()),
     "manipulation": (["--scenes", "1", "--hri-trials", "1"], {"figures"},
                      {"grasping", "physical HRI"}),
     "speech": (["--count", "1", "--rejection", "0", "--babble-talkers", "0",

@@ -79,7 +79,7 @@ def _figures(episodes: list[dict[str, Any]]) -> dict[str, Any]:
     return {
         "succeeded": succeeded,
         "ran": len(ran),
-        "skipped": len(episodes) - len(ran),
+        "skipped_runs": len(episodes) - len(ran),  # no arena of the length in the home
         "success_rate": round(succeeded / len(ran), 3) if ran else None,
         "kept_within": sum(e["kept_within"] for e in ran),
         "stopped": sum(e["stopped"] for e in ran),
