@@ -108,3 +108,14 @@ def test_the_depth_gesture_figures_judge_by_the_gesture_made() -> None:
     assert sum(sum(read.values()) for read in figures["read_as"].values()) == 15
     # three looks at each gesture: at most one missed of each
     assert all(share >= 2 / 3 for share in figures["right"].values()), figures
+
+
+@pytest.mark.parametrize("motion", ["circle", "swipe_right", "swipe_left"])
+def test_a_dynamic_gesture_is_read_from_the_hands_path(apartment: World, motion: str) -> None:
+    from homebot.perception.strokes import StrokeRecogniser
+
+    drawn = draw_motion(motion, np.random.default_rng(6), side="right", height=HEIGHT)
+    frames = _burst(apartment, drawn, frames=30)
+    track = arm_track(frames, [Pose(*ROBOT)] * len(frames), PERSON)
+    assert track is not None
+    assert StrokeRecogniser().read(track, ROBOT[:2]) == motion

@@ -17,8 +17,9 @@ position, map frame):
    top of the points round the axis; the shoulders lie a fixed share of a body
    below the head's top (anthropometry: about 0.19 of the stature, 0.33 m).
 3. The arms: the person's points well out of the trunk's column (or above the
-   trunk, beside the head), split into the person's left and right by the side
-   of the line to the robot they lie on (a gesturing person faces the robot).
+   trunk, beside the head), each connected piece given to the shoulder it comes
+   nearest: the person's left or right (a gesturing person faces the robot, so
+   their shoulders lie across the line to it).
    The hand is the far end of the arm, followed along its points from the
    shoulder (shortest paths on a grid, ``scipy.sparse.csgraph``), set back by a
    hand's radius; the elbow lies an upper arm's length along it.
@@ -159,10 +160,8 @@ def body_parts(frame: RgbdFrame, pose: Pose, person: tuple[float, float]) -> Bod
     out = person_mask & (z > shoulder_height - _ARM_DROP) & (
         (distance > _OUT_OF_TRUNK) | ((z > top - _TRUNK_TOP) & (from_head > _BESIDE_HEAD)))
     arm_points = points[out]
-    across = (arm_points[:, :2] - axis) @ right
     arms = {}
-    for side, sign in (("right", 1.0), ("left", -1.0)):
-        chosen = arm_points[sign * across > 0]
+    for side, chosen in _by_shoulder(arm_points, shoulders).items():
         if len(chosen) < _MIN_ARM:
             continue
         # an arm reaches well out of the trunk or over it; the trunk's rim does neither
@@ -231,6 +230,24 @@ def _regions(points: np.ndarray) -> np.ndarray:
     labels, _ = ndimage.label(grid, structure=np.ones((3, 3, 3)))
     regions: np.ndarray = labels[cells[:, 0], cells[:, 1], cells[:, 2]]
     return regions
+
+
+def _by_shoulder(points: np.ndarray, shoulders: dict[str, np.ndarray]
+                 ) -> dict[str, np.ndarray]:
+    """The arm points of each side: each connected piece goes to the shoulder it comes
+    nearest (a hand swept across the body stays with its own shoulder)."""
+    pieces: dict[str, list[np.ndarray]] = {side: [] for side in shoulders}
+    if len(points) == 0:
+        return {side: np.zeros((0, 3)) for side in shoulders}
+    labels = _regions(points)
+    reach = {side: np.linalg.norm(points - shoulder, axis=1)
+             for side, shoulder in shoulders.items()}
+    for label in np.unique(labels):
+        mine = labels == label
+        side = min(shoulders, key=lambda name: float(reach[name][mine].min()))
+        pieces[side].append(points[mine])
+    return {side: np.concatenate(parts) if parts else np.zeros((0, 3))
+            for side, parts in pieces.items()}
 
 
 def _attached(points: np.ndarray, regions: np.ndarray, others: np.ndarray,

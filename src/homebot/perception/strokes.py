@@ -13,9 +13,9 @@ uniform (by the larger side), which keeps a straight swipe straight ($1's
 non-uniform scaling blows a line up into noise across it).
 
 The templates are drawn, not recorded: circles (either way round, from any start,
-one to one and a half loops), swipes left and right, beckoning (the hand brought
-up towards the face and down again, two to four times) and waving (side to side,
-three to five times).
+one to three loops), swipes left and right, beckoning (the hand brought up towards
+the face and down again) and waving (side to side), both from any point of a
+swing, two to eight swings: a look catches a periodic gesture anywhere in it.
 """
 
 from __future__ import annotations
@@ -34,6 +34,7 @@ _ROTATION = math.radians(30.0)  #: searched either way round (directions matter)
 _PRECISION = math.radians(2.0)  #: the golden section search's stopping width
 _PHI = 0.5 * (-1.0 + math.sqrt(5.0))
 _MIN_EXTENT = 0.15  #: metres the hand's path spans in a dynamic gesture (less: held still)
+_JUMP = 0.3  #: metres between two frames' hands: the hand was lost in between
 _MIN_SCORE = 0.75  #: $1's score (1: a template's exact shape) a stroke must reach
 
 
@@ -79,7 +80,13 @@ class StrokeRecogniser:
         map frame, as ``body_parts.arm_track`` gives them) of a person facing the robot at
         ``robot``; None when the hand draws none of them."""
         track = np.asarray(track, dtype=float)
-        return self.recognise(frontal_stroke(track[:, 3], track[:, 0].mean(axis=0), robot))[0]
+        stroke = frontal_stroke(track[:, 3], track[:, 0].mean(axis=0), robot)
+        # where the hand jumps, it was lost in between (a swipe's arm dropped and raised
+        # again): the stroke is the widest unbroken piece
+        jumps = np.flatnonzero(np.linalg.norm(np.diff(stroke, axis=0), axis=1) > _JUMP) + 1
+        pieces = np.split(stroke, jumps)
+        widest = max(pieces, key=lambda piece: float(np.ptp(piece, axis=0).max()))
+        return self.recognise(widest)[0]
 
     def recognise(self, stroke: np.ndarray) -> tuple[str | None, float]:
         """The gesture a stroke (n, 2; right and up, metres) is, and $1's score; None when
@@ -141,7 +148,7 @@ def _drawn_templates() -> list[tuple[str, np.ndarray]]:
     """Each gesture's strokes as people make them, in the frontal plane (right, up)."""
     templates: list[tuple[str, np.ndarray]] = []
     turn = np.linspace(0.0, 1.0, 200)
-    for loops in (1.0, 1.25, 1.5):
+    for loops in np.arange(1.0, 3.01, 0.25):
         for start in np.arange(8) * math.pi / 4:
             for way in (1.0, -1.0):
                 angle = start + way * 2 * math.pi * loops * turn
@@ -151,14 +158,12 @@ def _drawn_templates() -> list[tuple[str, np.ndarray]]:
         arc = bow * (1.0 - line ** 2)
         templates.append(("swipe_right", np.column_stack((line, arc))))
         templates.append(("swipe_left", np.column_stack((-line, arc))))
-    for cycles in (2, 3, 4):
-        phase = np.linspace(0.0, 2 * math.pi * cycles, 60 * cycles)
-        for sign in (1.0, -1.0):
-            swing = sign * np.sin(phase)
-            templates.append(("beckon", np.column_stack((0.15 * swing, swing))))
-    for cycles in (3, 4, 5):
-        phase = np.linspace(0.0, 2 * math.pi * cycles, 60 * cycles)
-        for sign in (1.0, -1.0):
-            swing = sign * np.sin(phase)
-            templates.append(("wave", np.column_stack((swing, 0.15 * swing))))
+    # to and fro along a line, from any point of a swing, 2 to 8 swings: beckoning is
+    # up and down, waving side to side
+    for cycles in np.arange(2.0, 8.01, 0.25):
+        for start in np.arange(8) / 8:
+            swing = np.sin(2 * math.pi * (start + np.linspace(0.0, cycles, 200)))
+            flat = np.zeros_like(swing)
+            templates.append(("beckon", np.column_stack((flat, swing))))
+            templates.append(("wave", np.column_stack((swing, flat))))
     return templates

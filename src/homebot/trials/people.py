@@ -25,7 +25,7 @@ the simulator's truth (``homebot bench perception`` prints what they return):
   (``perception.body_parts``, ``perception.gestures``), judged by the gesture made and
   the placement aimed at.
 - ``dynamic_gesture_figures``: the same person draws a circle, swipes left or right,
-  beckons or waves; the robot follows the hand over two seconds of frames and names
+  beckons or waves; the robot follows the hand over three seconds of frames and names
   the stroke with the $1 recogniser (``perception.strokes``).
 - ``lateration_figures``: tags on the apartment's placements, four receivers at
   the corners, 30 beacons each; position error, and how often the tag's
@@ -80,7 +80,7 @@ _LOOK = 3  #: views of a face in one look, for the per-person face figures
 _ROBOT_LOOK = 6  #: views of a face in one look of the robot's (embodied.people_look)
 _BURST = 10  #: head-camera frames of a look at a gesture, as embodied.people_look takes them
 _BURST_EVERY = 0.1  #: seconds between them
-_STROKE_BURST = 20  #: frames watched for a dynamic gesture (two seconds)
+_STROKE_BURST = 30  #: frames watched for a dynamic gesture (three seconds: a whole swipe)
 _PLACED = 0.1  #: metres: how far off the leg tracker places a person (standard deviation)
 _LOCALISED = (0.03, 0.02)  #: metres, radians: the robot's pose error (standard deviations)
 #: the depth figures' gestures: what the person does, and the name a right answer gives
@@ -442,7 +442,7 @@ def _watched_arm(world: World, camera: CameraSimulator, rng: np.random.Generator
 
 def dynamic_gesture_figures(seed: int, trials: int = 30) -> dict[str, Any]:
     """Each dynamic gesture (``sim.keypoints.DYNAMIC_MOTIONS`` and waving) made ``trials``
-    times in the apartment and read from two seconds of head-camera frames by the $1
+    times in the apartment and read from three seconds of head-camera frames by the $1
     recogniser on the hand's path (``perception.strokes``): how often it is named right,
     and what it was taken for ("none": no template near enough)."""
     world = World.load("apartment")
