@@ -33,7 +33,7 @@ def test_the_robot_guides_someone_to_the_goal_and_they_walk_there(
         apartment: World, apartment_navigator: Navigator) -> None:
     sim, episode = _guide(apartment, apartment_navigator, Personality.STEADY)
     assert episode["end_distance"] is not None and episode["end_distance"] <= GOAL_REACH
-    assert episode["success"] and episode["person_collisions"] == 0
+    assert episode["success"] and episode["at_goal"] and episode["person_collisions"] == 0
     assert episode["robot_verdict"] == "verified"  # the robot saw them there itself
     assert 0.0 < episode["fastest"] <= PACE_LIMIT + 1e-9  # they walked, never jumped
     assert sim.people["Alex"].room == "office"

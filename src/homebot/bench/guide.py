@@ -85,6 +85,8 @@ def _figures(episodes: list[dict[str, Any]]) -> dict[str, Any]:
         "skipped_runs": len(episodes) - len(ran),
         "success_rate": round(succeeded / len(ran), 3) if ran else None,
         "by_personality": by_personality,
+        "at_goal_any_time": sum(e["at_goal"] for e in ran),
+        "over_time": sum(e["at_goal"] and not e["in_time"] for e in ran),
         "wandered_off": sum(e["wandered_off"] for e in ran),
         "noticed_lost": sum(e["noticed"] for e in ran),
         "fetched": sum(e["fetched"] for e in ran),

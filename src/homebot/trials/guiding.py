@@ -59,6 +59,7 @@ class GuideEpisode:
     doors: int = 0
     success: bool = False
     end_distance: float | None = None  #: metres from the person to the goal at the end
+    at_goal: bool = False  #: they ended within ``GOAL_REACH`` of it (in time or not)
     in_time: bool = False
     robot_verdict: str = ""  #: the Guide skill's status (what the robot believes)
     wandered_off: int = 0  #: times the person walked off (truth)
@@ -136,7 +137,8 @@ class GuideArena:
                                         if hit.get("with") == f"person {self.person}")
         episode.nearest = round(self._nearest, 3) if math.isfinite(self._nearest) else 0.0
         episode.fastest = round(self._fastest, 3)
-        episode.success = (episode.end_distance <= GOAL_REACH and episode.in_time
+        episode.at_goal = episode.end_distance <= GOAL_REACH
+        episode.success = (episode.at_goal and episode.in_time
                            and not episode.collisions)
         episode.wall_seconds = round(time.perf_counter() - self._began, 2)
         return episode
