@@ -14,7 +14,7 @@ time target is judged on the CPU time: on a shared core the wall clock also coun
 the time spent waiting for it.
 
 **Look** (``homebot.trials.looks``): people as the embodied robot's look at a
-room reports them (laser, head camera, faces, skeleton tracker), against the truth.
+room reports them (laser, head camera, faces, gestures from depth bursts), against the truth.
 
 **People, faces, pointing** come from ``homebot.perception.people``, ``faces``
 and ``gestures``, and tags from ``lateration``, with the figure functions in
