@@ -2,10 +2,13 @@
 
 The robot keeps the person it follows as one track of its leg tracker
 (``perception.people.PeopleTracker``: a Kalman filter per person over the laser's leg
-detections). Every control period it plans a path on the static map to where the person
-is (round corners, through doors) and drives it with the local controller, stopping
-``FollowParameters.distance`` short of them; the local controller keeps clear of the
-person's and everyone else's legs, as it does of anything the laser sees.
+detections). It drives along the way the person walked (their trail: free floor, and
+through doorways where people go), steering by pure pursuit a short way ahead and stopping
+``FollowParameters.distance`` short of them; each doorway on the way is crossed square (a
+point in front of it, its middle, a point beyond). Where something stands in the strip the
+base would drive through, the local controller steers round it; where the person's way is
+too tight for the robot (someone seated beside it), the robot plans round what the laser
+sees that the map lacks.
 
 Someone crossing between the robot and the person, a corner or a door frame hides the
 person. The tracker coasts the track for a while; when it ends, the robot re-identifies
@@ -205,7 +208,7 @@ class Following:
         listened_at = checked_at = body.now()
         lost_since: float | None = None
         last_odometry = body.odometry().pose
-        progress = (body.now(), self.localise().xy())  #: when the robot last moved on, where
+        progress = (body.now(), self.localise().xy())  # when the robot last moved on, where
         detour_until = -math.inf
         while True:
             now = body.now()
@@ -244,7 +247,6 @@ class Following:
                 if self.heard_stop is not None and self.heard_stop():
                     result.end = FollowEnd.STOP_SAID
                     break
-
             if seen and self._shows_stop(pose, target, now):
                 result.end = FollowEnd.STOP_SHOWN
                 break
