@@ -1,7 +1,8 @@
 """Guiding a person by tracking them (Cosero §8.2): the robot leads, and looks back.
 
-The robot drives its route to the goal in stretches (``BodyRobot.move_to`` without an
-escort, so doors are looked at and passed as ever): ``GuideParameters.look_every``
+The robot drives its route to the goal in stretches (``BodyRobot.move_with``: ``move_to``
+with the person as a companion who may show stop, so doors are looked at and passed as
+ever): ``GuideParameters.look_every``
 metres at most, and a stretch ends before every door. After each stretch it looks back
 for the person it guides, with its leg tracker (``perception.people``: legs in the laser,
 tracked over a second of sweeps); of several people there, the one nearest where the
@@ -123,7 +124,7 @@ class Guiding:
                                   doors_passed=tuple(passed))
             target, stood_before, final = stretch
             self._came_from = robot.pose().xy()
-            report = robot.move_to(target, avoid_doors, cancel=cancel)
+            report = robot.move_with(person, target, avoid_doors, cancel=cancel)
             travelled += report.distance
             passed.extend(report.doors_passed)
             if not report.reached:

@@ -216,6 +216,16 @@ class BodyRobot(Robot):
         self._record_view()
         return MoveReport(True, self.pose(), travelled, doors_passed=tuple(passed))
 
+    def move_with(self, companion: str, goal: Pose, avoid_doors: frozenset[str] = frozenset(),
+                  *, cancel: CancelToken | None = None) -> MoveReport:
+        """``move_to`` ``goal`` with ``companion`` walking along (a stretch of guiding them):
+        the motion stops when they show stop (``stop_shown``)."""
+        self._walking_with = companion
+        try:
+            return self.move_to(goal, avoid_doors, cancel=cancel)
+        finally:
+            self._walking_with = None
+
     def _drive_leg(self, target: Pose, avoid_doors: frozenset[str], final: bool,
                    companion: str | None = None, cancel: CancelToken | None = None,
                    near_enough: float = 0.0) -> MoveReport:
