@@ -31,7 +31,6 @@ only what the laser shows.
 
 from __future__ import annotations
 
-import itertools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -46,6 +45,7 @@ from homebot.events import EventLog
 from homebot.geometry import Pose, wrap_angle
 from homebot.navigation import Navigator
 from homebot.navigation.localmap import LocalController
+from homebot.navigation.navigator import point_along, polyline_length
 from homebot.perception.people import PeopleTracker, Track, detect_legs
 from homebot.robot import Body, LaserScan, RgbdFrame, Twist
 from homebot.world import World
@@ -509,8 +509,9 @@ class Following:
         something stands in the strip the base would drive through (the local controller
         then steers round it)."""
         body = self.body
-        target = _along(path, _PURSUIT)
-        remaining = _length(path)
+        found = point_along(path, _PURSUIT)
+        target = found[0] if found is not None else path[-1]
+        remaining = polyline_length(path)
         error = wrap_angle(math.atan2(target[1] - pose.y, target[0] - pose.x) - pose.theta)
         limits = body.limits
         turn = max(-limits.angular, min(limits.angular, _PURSUIT_TURN * error))
@@ -556,17 +557,3 @@ def shortened(path: list[tuple[float, float]], by: float
         points.pop()
     return None
 
-
-def _length(path: list[tuple[float, float]]) -> float:
-    return sum(math.dist(a, b) for a, b in itertools.pairwise(path))
-
-
-def _along(path: list[tuple[float, float]], distance: float) -> tuple[float, float]:
-    """The point ``distance`` metres along ``path`` (its end when shorter)."""
-    for a, b in itertools.pairwise(path):
-        length = math.dist(a, b)
-        if length >= distance and length > 0:
-            t = distance / length
-            return (a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]))
-        distance -= length
-    return path[-1]

@@ -14,7 +14,7 @@ from homebot.navigation.astar import astar
 from homebot.navigation.topology import TopologicalMap
 from homebot.world import NavigationPlan, OccupancyGrid, World
 
-__all__ = ["Navigator", "polyline_length"]
+__all__ = ["Navigator", "point_along", "polyline_length"]
 
 # Metres round the start and goal of plan_around where only the robot's radius is kept clear.
 _END_ALLOWANCE = 0.6
@@ -189,3 +189,17 @@ def _simplify(points: list[tuple[float, float]]) -> list[tuple[float, float]]:
 def polyline_length(points: Sequence[tuple[float, float]]) -> float:
     """The length of the polyline through ``points``, metres."""
     return sum(math.dist(a, b) for a, b in itertools.pairwise(points))
+
+
+def point_along(points: Sequence[tuple[float, float]], distance: float
+                ) -> tuple[tuple[float, float], float] | None:
+    """The point ``distance`` metres along the polyline through ``points`` and its heading
+    there; None when the polyline is shorter."""
+    for a, b in itertools.pairwise(points):
+        length = math.dist(a, b)
+        if length > 0 and distance <= length:
+            t = distance / length
+            return ((a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])),
+                    math.atan2(b[1] - a[1], b[0] - a[0]))
+        distance -= length
+    return None

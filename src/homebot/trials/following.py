@@ -22,7 +22,6 @@ operator throughout, ended following within ``STOP_WITHIN`` seconds of the opera
 
 from __future__ import annotations
 
-import itertools
 import math
 import time
 from dataclasses import asdict, dataclass, field
@@ -32,11 +31,13 @@ import numpy as np
 
 from homebot.geometry import Pose
 from homebot.navigation import Navigator
+from homebot.navigation.navigator import point_along, polyline_length
 from homebot.sim import Simulation
 from homebot.sim.body import SimBody
 from homebot.sim.body_tracker import person_height
 from homebot.sim.keypoints import draw_motion
 from homebot.sim.routes import RouteWalk, plan_route
+from homebot.trials.arena import free_floor
 from homebot.world import World
 
 __all__ = ["STOPPED_BY", "STOP_WITHIN", "WITHIN", "FollowEpisode", "FollowMeArena",
@@ -103,7 +104,7 @@ class FollowMeArena:
         self.operator_start = start
         self.pace = float(rng.uniform(*_PACE))
         self.episode = FollowEpisode(seed, sim.world.name, operator,
-                                     round(_length([start, *route]), 2))
+                                     round(polyline_length([start, *route]), 2))
         self._rng = rng
         self._said_end: float | None = None
         self._gaps: list[float] = []
@@ -202,7 +203,7 @@ def _arena(sim: Simulation, navigator: Navigator, rng: np.random.Generator
             continue
         heading = math.atan2(route[0][1] - start[1], route[0][0] - start[0])
         behind = (start[0] - _BEHIND * math.cos(heading), start[1] - _BEHIND * math.sin(heading))
-        if not _free(navigator, behind, world.robot.radius + 0.15) or \
+        if not free_floor(navigator, behind, world.robot.radius + 0.15) or \
                 world.room_at(*behind) != world.room_at(*start):
             continue
         if any(math.dist(state.position, spot) < _ROOM_AROUND for name, state in
@@ -227,7 +228,7 @@ def _route(sim: Simulation, spots: list[tuple[float, float]], start: tuple[float
         route = plan_route(sim, start, places)
         if route is None:
             return None
-        length = _length([start, *route])
+        length = polyline_length([start, *route])
         if length > ROUTE_LENGTH[1]:
             return None
         if length >= ROUTE_LENGTH[0] and len(places) >= 2:
@@ -243,7 +244,7 @@ def _send_crossers(sim: Simulation, body: SimBody, navigator: Navigator, operato
     others = [name for name in sorted(sim.people) if name != operator]
     rng.shuffle(others)
     points = [start, *route]
-    total = _length(points)
+    total = polyline_length(points)
     sent = 0
     for shares in _CROSSING_SHARES:
         if sent >= len(others):
@@ -278,7 +279,7 @@ def _crossing(navigator: Navigator, points: list[tuple[float, float]], total: fl
     robot's spots); None: nowhere near those shares."""
     side = 1 if rng.random() < 0.5 else -1
     for share in shares:
-        found = _along(points, share * total)
+        found = point_along(points, share * total)
         if found is None:
             continue
         (x, y), heading = found
@@ -286,7 +287,7 @@ def _crossing(navigator: Navigator, points: list[tuple[float, float]], total: fl
         for reach in _CROSSING_REACHES:
             ends = [(x + side * sign * reach * normal[0], y + side * sign * reach * normal[1])
                     for sign in (1, -1)]
-            if all(_free(navigator, end, 0.3) and
+            if all(free_floor(navigator, end, 0.3) and
                    min(math.dist(end, spot) for spot in away_from) >= _ROOM_AROUND
                    for end in ends):
                 return ends
@@ -308,28 +309,3 @@ def _open_floor(navigator: Navigator, world: World) -> list[tuple[float, float]]
                 spots.append((round(float(x), 2), round(float(y), 2)))
     return spots
 
-
-def _free(navigator: Navigator, point: tuple[float, float], clear: float) -> bool:
-    cell = navigator.grid.cell_of(*point)
-    rows, columns = navigator.grid.shape
-    if not (0 <= cell[0] < rows and 0 <= cell[1] < columns):
-        return False
-    return bool(navigator.clearance()[cell] >= clear) and \
-        navigator.world.room_at(*point) is not None
-
-
-def _length(points: list[tuple[float, float]]) -> float:
-    return sum(math.dist(a, b) for a, b in itertools.pairwise(points))
-
-
-def _along(points: list[tuple[float, float]], distance: float
-           ) -> tuple[tuple[float, float], float] | None:
-    """The point ``distance`` metres along ``points`` and the heading there."""
-    for a, b in itertools.pairwise(points):
-        length = math.dist(a, b)
-        if length > 0 and distance <= length:
-            t = distance / length
-            return ((a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])),
-                    math.atan2(b[1] - a[1], b[0] - a[0]))
-        distance -= length
-    return None

@@ -33,6 +33,7 @@ from homebot.navigation import Navigator
 from homebot.sim import Simulation
 from homebot.sim.body import SimBody
 from homebot.sim.guided import Personality, personality_of
+from homebot.trials.arena import free_floor
 from homebot.world import DoorState, PlacementKind, World
 
 __all__ = ["GOAL_REACH", "ROUTE_LENGTH", "GuideArena", "GuideEpisode", "arranged_arena",
@@ -163,7 +164,7 @@ def guide_arena(world: World, seed: int, navigator: Navigator) -> GuideArena | G
         start = spots[int(rng.integers(len(spots)))]
         facing = float(rng.uniform(-math.pi, math.pi))
         robot = (start[0] + _IN_FRONT * math.cos(facing), start[1] + _IN_FRONT * math.sin(facing))
-        if not _free(navigator, robot, world.robot.radius + 0.15) or \
+        if not free_floor(navigator, robot, world.robot.radius + 0.15) or \
                 world.room_at(*robot) != world.room_at(*start):
             continue
         if any(math.dist(state.position, spot) < _ROOM_AROUND for name, state in
@@ -213,11 +214,3 @@ def _open_floor(navigator: Navigator, world: World) -> list[tuple[float, float]]
                 spots.append(spot)
     return spots
 
-
-def _free(navigator: Navigator, point: tuple[float, float], clear: float) -> bool:
-    cell = navigator.grid.cell_of(*point)
-    rows, columns = navigator.grid.shape
-    if not (0 <= cell[0] < rows and 0 <= cell[1] < columns):
-        return False
-    return bool(navigator.clearance()[cell] >= clear) and \
-        navigator.world.room_at(*point) is not None
