@@ -54,3 +54,31 @@ def test_find_and_follow_the_person_walks_on_their_own_and_the_robot_comes_along
     assert max(steps) < 0.05  # ... walking, never jumping
     assert math.dist(sim.robot_pose[:2], maria) < 2.0  # and the robot came along
     assert sim.collisions == []
+
+
+def test_a_follower_stalled_by_someone_standing_in_its_way_asks_them_to_let_it_through(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    # Follow Me seed 1: a passer-by ends their crossing standing in the corridor the
+    # operator walks on along; the robot cannot pass beside them.
+    from homebot.app.embodied import embodied_robot_in
+    from homebot.embodied.following import FollowParameters
+    from homebot.trials.following import FollowMeArena, follow_me_arena
+
+    arena = follow_me_arena(apartment, 1, apartment_navigator)
+    assert isinstance(arena, FollowMeArena)
+    robot = embodied_robot_in(arena.sim, apartment_navigator)
+    robot.localisation.initialise(arena.robot_pose, spread=0.05, angle_spread=0.05)
+    body = robot.body
+    assert isinstance(body, SimBody)
+    arena.start(body)
+    robot.following(FollowParameters(budget=arena.walk_seconds + 60.0)).follow()
+    events = arena.sim.events.events
+    asked = [event for event in events if event.kind == "robot.following_asked_way"]
+    assert asked
+    spoken = [event for event in events if event.kind == "sim.speech" and
+              "let me through" in str(event.data.get("text"))]
+    assert spoken
+    # ... and the person who heard it walked off the robot's way, in the simulator
+    aside = [event for event in events if event.kind == "sim.person" and
+             event.data.get("did") == "stepped aside"]
+    assert aside and aside[0].time >= spoken[0].time

@@ -168,6 +168,24 @@ def test_a_person_asked_aside_steps_off_the_robots_way(apartment: World,
         assert math.dist(spot, robot) >= 1.0
 
 
+def test_a_person_asked_aside_keeps_off_the_way_the_robot_faces(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    # The robot faces along the corridor, the person stands off to one side of that line
+    # (ahead of it, not straight ahead): they step away from where the robot is going,
+    # not onto it.
+    import math
+
+    from shapely.geometry import LineString, Point
+
+    simulation = Simulation(apartment, seed=1, navigator=apartment_navigator)
+    simulation.robot_pose = (9.4, 5.0, math.pi)  # in the corridor, facing west along it
+    person = (8.4, 4.6)
+    spot = simulation.spot_aside(person)
+    assert spot is not None
+    faced = LineString([(9.4, 5.0), (9.4 - 3.6, 5.0)])
+    assert faced.distance(Point(spot)) >= 0.9
+
+
 def test_objects_put_on_a_surface_stand_apart_on_it(apartment: World,
                                                     apartment_navigator: Navigator) -> None:
     # Moved by people (disturbances, walkers), not stacked on its centre: the camera would

@@ -13,14 +13,17 @@ sees that the map lacks.
 Someone crossing between the robot and the person, a corner or a door frame hides the
 person. The tracker coasts the track for a while; when it ends, the robot re-identifies
 the person among the tracks that start near where the person was heading. A track that
-was seen at the same time as the person, somewhere else, is someone else and is never
-taken for them. The head camera keeps the person in view: what they wear (the colour of
-their top, as ``PeopleLook.clothes_at`` reads it) is learnt at the start and checked
-every ``FollowParameters.check_every`` seconds, so a track that slipped onto someone
-else (two people passing close, the tracker's legs swapped) is dropped, and a candidate
-in other clothes is not taken. Faces are no help here: the person walks ahead, their
-back to the robot. Not found again, the robot keeps to where the person was heading;
-after ``FollowParameters.give_up`` seconds it reports the person lost.
+was seen at the same time as the person, somewhere else, is someone else, and is taken
+for them again only when the camera sees their clothes. The head camera keeps the person
+in view: what they wear (the colour of their top, as ``PeopleLook.clothes_at`` reads it)
+is learnt at the start and checked every ``FollowParameters.check_every`` seconds, so a
+track that slipped onto someone else (two people passing close, the tracker's legs
+swapped) is dropped for a while, and a candidate in other clothes is not taken. The
+camera is not asked while someone nearer stands in its line of sight. Faces are no help
+here: the person walks ahead, their back to the robot. Not found again, the robot keeps
+to where the person was heading; after ``FollowParameters.give_up`` seconds it reports
+the person lost. Stalled by someone standing on its way, the robot asks them, once, to
+let it through.
 
 Following ends when the person says "stop" (the microphone, heard in the ``stop``
 state), shows the stop gesture (when the robot can read gestures), stands still in the
@@ -56,6 +59,11 @@ _OWN_LEGS = 0.6  #: metres round the person followed whose returns are their own
 #: metres from the person beyond which a track seen with them is someone else for good (a
 #: nearer one may be them, the tracker having swapped two people passing close)
 _SURELY_SOMEONE_ELSE = 1.5
+#: metres from the camera's line of sight to the person within which someone nearer hides them
+_IN_THE_WAY = 0.4
+#: seconds a track dropped for showing other clothes is not taken for the person again (it
+#: may be them after all: seen past someone's shoulder, or in another light)
+_DROPPED_FOR = 4.0
 _TRAIL_STEP = 0.15  #: metres between the points kept of the way the person walked
 _ON_THE_TRAIL = 1.0  #: metres from their trail within which the robot drives along it
 _DOORWAY_REACH = 0.6  #: metres either side of a doorway where the robot's way is squared
@@ -68,11 +76,13 @@ _PROGRESS = 0.15  #: metres the robot must move on by ...
 _STALLED = 2.5  #: ... within so many seconds, or it is stalled ...
 _DETOUR = 4.0  #: ... and plans round what it sees for so long
 _PURSUIT_TURN = 2.0  #: rad/s of turn per radian off that point
-_TURN_ON_THE_SPOT = 0.6  #: radians off it beyond which the robot turns before driving
-_PURSUIT_SLOWING = 0.8  #: m/s per metre still to go (slowing to a stop at the end)
+_TURN_ON_THE_SPOT = 0.9  #: radians off it beyond which the robot turns before driving
+_PURSUIT_SLOWING = 1.5  #: m/s per metre still to go (slowing to a stop at the end)
 _PURSUIT_CLEAR = 0.05  #: metres beside the footprint the strip ahead must be free
 _PURSUIT_STOPPING = 1.0  #: seconds of driving ahead that must be free
 _PASSING = 0.15  #: metres the robot's path keeps from others, beyond its radius
+_IN_MY_WAY = 1.5  #: metres of its way ahead on which someone standing blocks a stalled robot
+_LET_ME_THROUGH = "Excuse me, could you let me through, please?"
 _SEARCH_SHORT = 0.3  #: metres short of where a lost person was heading the robot stops
 _SEARCH_TURN = 0.6  #: rad/s the robot turns there, looking round for them
 
@@ -132,6 +142,7 @@ class _Target:
     seen_at: float
     still_since: float | None = None
     others: set[int] = field(default_factory=set)  #: tracks seen beside the person
+    dropped: dict[int, float] = field(default_factory=dict)  #: tracks dropped, and when
     wears: str | None = None  #: the colour of their top, as the camera saw it
     trail: list[tuple[float, float]] = field(default_factory=list)  #: where they walked
     mismatches: int = 0  #: looks in a row at the track that showed other clothes
@@ -159,6 +170,8 @@ class Following:
         clothes: what the person the camera sees at a map position wears, from a pose
             (``PeopleLook.clothes_at``; None: no camera, people told apart by the laser
             alone).
+        ask_way: says something aloud, to ask someone in the robot's way to let it by
+            (None: mute).
     """
 
     def __init__(self, body: Body, world: World, navigator: Navigator,
@@ -170,6 +183,7 @@ class Following:
                  | None = None,
                  clothes: Callable[[Pose, tuple[float, float]], tuple[str, ...] | None]
                  | None = None,
+                 ask_way: Callable[[str], object] | None = None,
                  parameters: FollowParameters | None = None) -> None:
         self.body = body
         self.world = world
@@ -182,6 +196,8 @@ class Following:
         self.heard_stop = heard_stop
         self.stop_shown = stop_shown
         self.clothes = clothes
+        self.ask_way = ask_way
+        self._asked: set[int] = set()  #: tracks asked to let the robot by
         self.parameters = parameters or FollowParameters()
         self.tracker = PeopleTracker()
         #: head-camera frames of the person standing still, and the poses they were taken from
@@ -239,7 +255,7 @@ class Following:
                 checked_at = now
                 if not self._looks_right(pose, target):
                     self.events.record("robot.following_dropped", track=target.track_id)
-                    target.others.add(target.track_id)
+                    target.dropped[target.track_id] = now
                     target.track_id = -1
                     target.seen_at = now - self.tracker.parameters.coast
             if now - listened_at >= p.listen_every:
@@ -259,7 +275,9 @@ class Following:
                 progress = (now, pose.xy())
             elif now - progress[0] > _STALLED:
                 # the person's own way is too tight for the robot here (someone sits
-                # beside it): plan round what the laser sees for a while
+                # beside it): ask whoever stands in the way to let it by, and plan round
+                # what the laser sees for a while
+                self._ask_way(path or [pose.xy(), aim], target)
                 detour_until, progress, path = now + _DETOUR, (now, pose.xy()), []
                 self.events.record("robot.following_detour")
             if now - planned_at >= p.replan_every or not path:
@@ -308,6 +326,26 @@ class Following:
             target.wears = wears[0] if wears and wears != UNREAD else None
         return target
 
+    def _ask_way(self, path: list[tuple[float, float]], target: _Target) -> None:
+        """Ask someone standing on the robot's way just ahead (not the person followed),
+        once each, to let the robot through."""
+        if self.ask_way is None:
+            return
+        ahead = [found[0] for metres in np.arange(0.0, _IN_MY_WAY, 0.1)
+                 if (found := point_along(path, float(metres))) is not None]
+        if not ahead:
+            return
+        reach = self.body.radius + _OWN_LEGS
+        for track in self.tracker.confirmed():
+            if track.id == target.track_id or track.id in self._asked or \
+                    math.dist(track.position, target.position) <= _OWN_LEGS:
+                continue
+            if min(math.dist(track.position, point) for point in ahead) <= reach:
+                self._asked.add(track.id)
+                self.events.record("robot.following_asked_way", track=track.id)
+                self.ask_way(_LET_ME_THROUGH)
+                return
+
     def _update_tracker(self, pose: Pose) -> list[Track]:
         scan = self.body.scan()
         legs = detect_legs(scan, pose)
@@ -334,11 +372,17 @@ class Following:
         lost_for = now - target.seen_at
         gate = min(p.reidentify_most, p.reidentify_gate + p.reidentify_growth * lost_for)
         predicted = self._predicted(target, now)
-        candidates = [track for track in confirmed if track.id not in target.others
+        candidates = [track for track in confirmed
+                      if now - target.dropped.get(track.id, -math.inf) > _DROPPED_FOR
                       and track.seen >= now - 1e-9
                       and math.dist(track.position, predicted) <= gate]
         for chosen in sorted(candidates, key=lambda track: math.dist(track.position, predicted)):
-            if self._wears_other(pose, target, chosen.position):
+            if chosen.id in target.others:
+                # taken for someone else while the robot followed a track that had slipped
+                # onto them: only the camera, seeing the person's clothes, can tell
+                if not self._wears_same(pose, target, chosen.position):
+                    continue
+            elif self._wears_other(pose, target, chosen.position):
                 target.others.add(chosen.id)
                 continue
             target.track_id, target.mismatches = chosen.id, 0
@@ -349,8 +393,8 @@ class Following:
     def _wears_other(self, pose: Pose, target: _Target, where: tuple[float, float]) -> bool:
         """Whether the camera sees nobody at ``where``, or someone dressed unlike the
         person followed (False when it cannot tell: no camera, out of the head's turn,
-        clothes unread)."""
-        if self.clothes is None:
+        someone nearer in the way, clothes unread)."""
+        if self.clothes is None or self._hidden(pose, where):
             return False
         wears = self.clothes(pose, where)
         if wears is None:
@@ -359,6 +403,31 @@ class Following:
             return self.parameters.camera_reach[0] <= math.dist(where, pose.xy()) <= \
                 self.parameters.camera_reach[1]
         return target.wears is not None and wears != UNREAD and wears[0] != target.wears
+
+    def _wears_same(self, pose: Pose, target: _Target, where: tuple[float, float]) -> bool:
+        """Whether the camera sees someone dressed like the person followed at ``where``,
+        nobody standing in the way."""
+        if self.clothes is None or target.wears is None or self._hidden(pose, where):
+            return False
+        wears = self.clothes(pose, where)
+        return bool(wears) and wears != UNREAD and wears is not None and \
+            wears[0] == target.wears
+
+    def _hidden(self, pose: Pose, where: tuple[float, float]) -> bool:
+        """Whether someone the laser tracks stands between the robot and ``where`` (the
+        camera would see them, not whoever stands there)."""
+        here = np.asarray(pose.xy())
+        sight = np.asarray(where) - here
+        length = float(np.hypot(*sight))
+        for track in self.tracker.confirmed():
+            if length < 1e-6 or math.dist(track.position, where) <= _OWN_LEGS:
+                continue
+            offset = np.asarray(track.position) - here
+            along = float(offset @ sight) / length
+            across = abs(float(sight[0] * offset[1] - sight[1] * offset[0])) / length
+            if 0.0 < along < length and across < _IN_THE_WAY:
+                return True
+        return False
 
     def _looks_right(self, pose: Pose, target: _Target) -> bool:
         """Look at the track followed: False once it showed nobody, or other clothes,
@@ -388,9 +457,10 @@ class Following:
         """Whether the person, standing still and turned to the robot, shows the stop
         gesture: once they stood still a moment, the head camera takes a burst of frames
         of them (``_BURST`` at ``_BURST_RATE``), read as a whole."""
+        near, far = self.parameters.camera_reach  # nearer, the camera sees no arms
         if self.stop_shown is None or target.still_since is None or \
                 now - target.still_since < _STILL_BEFORE_LOOKING or \
-                math.dist(pose.xy(), target.position) > self.parameters.camera_reach[1]:
+                not near <= math.dist(pose.xy(), target.position) <= far:
             self._burst.clear()
             return False
         if self._burst and now - self._burst[-1][0].stamp < 1.0 / _BURST_RATE - 1e-6:

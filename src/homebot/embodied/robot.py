@@ -446,7 +446,7 @@ class BodyRobot(Robot):
             heard_stop=lambda: _says_stop(conversation.overheard(STOP)),
             stop_shown=_shows_stop,
             clothes=people_look.clothes_at if people_look is not None else None,
-            parameters=parameters)
+            ask_way=conversation.say, parameters=parameters)
 
     # ------------------------------------------------------------ perception and hands
 

@@ -11,7 +11,7 @@ import math
 import random
 from dataclasses import dataclass
 
-from shapely.geometry import LineString
+from shapely.geometry import MultiLineString
 from shapely.geometry import Point as ShapelyPoint
 
 from homebot.clock import Clock
@@ -253,15 +253,19 @@ class Simulation:
     def spot_aside(self, position: tuple[float, float]) -> tuple[float, float] | None:
         """Where a person at ``position`` steps to get out of the robot's way: the
         nearby spot with the most room round it, as people step into open floor, and to
-        the side of the way the robot comes from, not further along it (None: no free
+        the side of the way the robot comes from, not further along it: neither on the
+        line from the robot through them nor on the one it faces along (None: no free
         spot within reach)."""
         grid, clearance = self.navigator.grid, self.navigator.clearance()
-        robot = self.robot_pose[:2]
+        x, y, heading = self.robot_pose
+        robot = (x, y)
         away = math.dist(robot, position)
         ahead = (position if away < 1e-6 else
                  (position[0] + _ALONG_THE_WAY * (position[0] - robot[0]) / away,
                   position[1] + _ALONG_THE_WAY * (position[1] - robot[1]) / away))
-        way = LineString([robot, ahead])
+        faced = (x + (away + _ALONG_THE_WAY) * math.cos(heading),
+                 y + (away + _ALONG_THE_WAY) * math.sin(heading))
+        way = MultiLineString([[robot, ahead], [robot, faced]])
         best: tuple[float, tuple[float, float]] | None = None
         for reach in _STEP_ASIDE:
             for turn in range(_ASIDE_DIRECTIONS):

@@ -182,6 +182,7 @@ def follow_me_arena(world: World, seed: int, navigator: Navigator
         return FollowEpisode(seed, world.name, skipped="no free start and route of 15-25 m")
     operator, start, robot_pose, route = arena
     sim.move_person(operator, start)
+    sim.people[operator].got_up = True  # whoever sat or lay in the world file, stands
     sim.robot_pose = (robot_pose.x, robot_pose.y, robot_pose.theta)
     return FollowMeArena(sim, navigator, seed, operator, start, robot_pose, route, rng)
 
@@ -257,6 +258,7 @@ def _send_crossers(sim: Simulation, body: SimBody, navigator: Navigator, operato
         name = others[sent]
         crossing_pace = float(rng.uniform(*_CROSSING_PACE))
         sim.move_person(name, ends[0])
+        sim.people[name].got_up = True
         middle = ((ends[0][0] + ends[1][0]) / 2, (ends[0][1] + ends[1][1]) / 2)
 
         def operator_near(middle: tuple[float, float] = middle) -> bool:
