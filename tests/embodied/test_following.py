@@ -82,3 +82,4 @@ def test_a_follower_stalled_by_someone_standing_in_its_way_asks_them_to_let_it_t
     aside = [event for event in events if event.kind == "sim.person" and
              event.data.get("did") == "stepped aside"]
     assert aside and aside[0].time >= spoken[0].time
+    assert arena.sim.collisions == []  # it stood still while it spoke

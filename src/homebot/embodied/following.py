@@ -343,6 +343,7 @@ class Following:
             if min(math.dist(track.position, point) for point in ahead) <= reach:
                 self._asked.add(track.id)
                 self.events.record("robot.following_asked_way", track=track.id)
+                self._stop_base()  # the body's clock runs while it speaks
                 self.ask_way(_LET_ME_THROUGH)
                 return
 
