@@ -14,6 +14,7 @@ from __future__ import annotations
 import copy
 import functools
 import math
+import os
 import pickle
 from collections.abc import Iterator, Mapping
 
@@ -137,7 +138,10 @@ def _taught(names: tuple[str, ...]) -> FaceMemory:
                                 for _ in range(_ENROLMENT_VIEWS)] for name in names})
     try:
         cached.parent.mkdir(parents=True, exist_ok=True)
-        cached.write_bytes(pickle.dumps(memory))
+        # written whole, then renamed: another process may be reading it meanwhile
+        partial = cached.with_suffix(f".{os.getpid()}.partial")
+        partial.write_bytes(pickle.dumps(memory))
+        os.replace(partial, cached)
     except OSError:
         pass  # a read-only home: train again next time
     return memory

@@ -49,8 +49,9 @@ from homebot.geometry import Pose, wrap_angle
 from homebot.navigation import Navigator
 from homebot.navigation.localmap import LocalController
 from homebot.navigation.navigator import point_along, polyline_length
+from homebot.perception.body_parts import looking_tilt
 from homebot.perception.people import PeopleTracker, Track, detect_legs
-from homebot.robot import Body, LaserScan, RgbdFrame, Twist
+from homebot.robot import Body, CameraIntrinsics, LaserScan, RgbdFrame, Twist
 from homebot.world import World
 
 __all__ = ["FollowEnd", "FollowParameters", "FollowResult", "Following", "shortened"]
@@ -61,6 +62,8 @@ _OWN_LEGS = 0.6  #: metres round the person followed whose returns are their own
 _SURELY_SOMEONE_ELSE = 1.5
 #: metres from the camera's line of sight to the person within which someone nearer hides them
 _IN_THE_WAY = 0.4
+#: metres between two people within which the camera cannot tell which is which
+_SIDE_BY_SIDE = 0.9
 #: seconds a track dropped for showing other clothes is not taken for the person again (it
 #: may be them after all: seen past someone's shoulder, or in another light)
 _DROPPED_FOR = 4.0
@@ -68,6 +71,9 @@ _TRAIL_STEP = 0.15  #: metres between the points kept of the way the person walk
 _ON_THE_TRAIL = 1.0  #: metres from their trail within which the robot drives along it
 _DOORWAY_REACH = 0.6  #: metres either side of a doorway where the robot's way is squared
 _STILL_BEFORE_LOOKING = 0.5  #: seconds a person stands still before the robot reads their arms
+#: metres from the person beyond which the head camera sees their arms whole (nearer, a
+#: hand held out reads as anything)
+_ARMS_IN_VIEW = 0.8
 _BURST = 10  #: head-camera frames read as one gesture ...
 _BURST_RATE = 10.0  #: ... taken so many a second
 _HEAD_TURN = 2.6  #: radians the head turns either way
@@ -83,6 +89,8 @@ _PURSUIT_STOPPING = 1.0  #: seconds of driving ahead that must be free
 _PASSING = 0.15  #: metres the robot's path keeps from others, beyond its radius
 _IN_MY_WAY = 1.5  #: metres of its way ahead on which someone standing blocks a stalled robot
 _LET_ME_THROUGH = "Excuse me, could you let me through, please?"
+_LOOP_SLACK = 0.5  #: metres farther than its nearest point the trail may be joined, later on
+_MOST_PUSHED = 0.25  #: metres a point of the person's trail is moved off a wall, at most
 _SEARCH_SHORT = 0.3  #: metres short of where a lost person was heading the robot stops
 _SEARCH_TURN = 0.6  #: rad/s the robot turns there, looking round for them
 
@@ -146,6 +154,18 @@ class _Target:
     wears: str | None = None  #: the colour of their top, as the camera saw it
     trail: list[tuple[float, float]] = field(default_factory=list)  #: where they walked
     mismatches: int = 0  #: looks in a row at the track that showed other clothes
+    #: where they stood when the camera last saw nothing wrong with the track followed
+    trusted: tuple[float, float] | None = None
+
+    def back_to_trusted(self) -> None:
+        """Forget what the track showed since it last looked right: it had slipped onto
+        someone or something else."""
+        if self.trusted is None:
+            return
+        self.position, self.velocity = self.trusted, (0.0, 0.0)
+        gaps = [math.dist(point, self.trusted) for point in self.trail]
+        if gaps:
+            del self.trail[int(np.argmin(gaps)) + 1:]
 
 
 class Following:
@@ -202,6 +222,7 @@ class Following:
         self.tracker = PeopleTracker()
         #: head-camera frames of the person standing still, and the poses they were taken from
         self._burst: list[tuple[RgbdFrame, Pose]] = []
+        self._intrinsics: CameraIntrinsics | None = None  #: the head camera's, once seen
 
     # ------------------------------------------------------------ the loop
 
@@ -256,6 +277,7 @@ class Following:
                 if not self._looks_right(pose, target):
                     self.events.record("robot.following_dropped", track=target.track_id)
                     target.dropped[target.track_id] = now
+                    target.back_to_trusted()
                     target.track_id = -1
                     target.seen_at = now - self.tracker.parameters.coast
             if now - listened_at >= p.listen_every:
@@ -415,13 +437,19 @@ class Following:
             wears[0] == target.wears
 
     def _hidden(self, pose: Pose, where: tuple[float, float]) -> bool:
-        """Whether someone the laser tracks stands between the robot and ``where`` (the
-        camera would see them, not whoever stands there)."""
+        """Whether someone the laser tracks stands between the robot and ``where``, or
+        right beside it (the camera would see them, or could not tell them apart from
+        whoever stands there)."""
         here = np.asarray(pose.xy())
         sight = np.asarray(where) - here
         length = float(np.hypot(*sight))
         for track in self.tracker.confirmed():
-            if length < 1e-6 or math.dist(track.position, where) <= _OWN_LEGS:
+            beside = math.dist(track.position, where)
+            if beside <= _OWN_LEGS / 3:
+                continue  # the one at ``where``
+            if beside <= _SIDE_BY_SIDE:
+                return True
+            if length < 1e-6:
                 continue
             offset = np.asarray(track.position) - here
             along = float(offset @ sight) / length
@@ -437,6 +465,7 @@ class Following:
             target.mismatches += 1
         else:
             target.mismatches = 0
+            target.trusted = target.position
         return target.mismatches < self.parameters.mismatches
 
     def _take(self, target: _Target, track: Track, now: float) -> None:
@@ -458,22 +487,29 @@ class Following:
         """Whether the person, standing still and turned to the robot, shows the stop
         gesture: once they stood still a moment, the head camera takes a burst of frames
         of them (``_BURST`` at ``_BURST_RATE``), read as a whole."""
-        near, far = self.parameters.camera_reach  # nearer, the camera sees no arms
         if self.stop_shown is None or target.still_since is None or \
                 now - target.still_since < _STILL_BEFORE_LOOKING or \
-                not near <= math.dist(pose.xy(), target.position) <= far:
+                not _ARMS_IN_VIEW <= math.dist(pose.xy(), target.position) \
+                <= self.parameters.camera_reach[1]:
             self._burst.clear()
             return False
         if self._burst and now - self._burst[-1][0].stamp < 1.0 / _BURST_RATE - 1e-6:
             return False
         bearing = wrap_angle(math.atan2(target.position[1] - pose.y,
                                         target.position[0] - pose.x) - pose.theta)
-        self.body.point_head(max(-_HEAD_TURN, min(_HEAD_TURN, bearing)), 0.0)
+        # tilted up so that a hand held up stays in the picture, however near they stand
+        tilt = 0.0 if self._intrinsics is None else \
+            looking_tilt(math.dist(pose.xy(), target.position), self._intrinsics)
+        self.body.point_head(max(-_HEAD_TURN, min(_HEAD_TURN, bearing)), tilt)
         try:
-            self._burst.append((self.body.camera(), pose))
+            frame = self.body.camera()
         except PartMissing:
             self.stop_shown = None
             return False
+        if self._intrinsics is None:  # the first frame shows what the camera sees
+            self._intrinsics = frame.intrinsics
+            return False
+        self._burst.append((frame, pose))
         if len(self._burst) < _BURST:
             return False
         frames, poses = zip(*self._burst, strict=True)
@@ -509,8 +545,13 @@ class Following:
             gaps = np.hypot(*(np.asarray(walked) - np.asarray(here)).T)
             nearest = int(np.argmin(gaps))
             if gaps[nearest] <= _ON_THE_TRAIL:
+                # where the person came back past the robot (a way back, a loop), their
+                # trail is joined where it last passes near, not driven round
+                near = np.flatnonzero(gaps <= gaps[nearest] + _LOOP_SLACK)
+                nearest = next((int(index) for index in near[::-1]
+                                if self._in_sight(here, walked[int(index)])), nearest)
                 del walked[:nearest]
-                path = [here, *walked[1:]]
+                path = [here, *self._off_the_walls(walked[1:])]
                 if aim != target.position:
                     plan = self.navigator.plan(path[-1], aim)
                     path.extend(plan.waypoints[1:] if plan is not None else [aim])
@@ -526,6 +567,49 @@ class Following:
         if plan is None:
             return [here, aim]
         return [tuple(point) for point in plan.waypoints]  # type: ignore[misc]
+
+    def _in_sight(self, start: tuple[float, float], end: tuple[float, float]) -> bool:
+        """Whether the robot's body fits along the straight line between two points, by
+        the map's walls and furniture."""
+        navigator = self.navigator
+        grid, clearance = navigator.grid, navigator.clearance()
+        steps = max(1, math.ceil(math.dist(start, end) / grid.resolution))
+        for t in np.linspace(0.0, 1.0, steps + 1):
+            row, column = grid.cell_of(start[0] + t * (end[0] - start[0]),
+                                       start[1] + t * (end[1] - start[1]))
+            if not (0 <= row < clearance.shape[0] and 0 <= column < clearance.shape[1]) or \
+                    clearance[row, column] < self.body.radius:
+                return False
+        return True
+
+    def _off_the_walls(self, points: list[tuple[float, float]]) -> list[tuple[float, float]]:
+        """The points of a person's trail moved off the map's walls and furniture to where
+        the robot's body keeps ``_PASSING`` clear of them, as far as the floor allows (a
+        person walks closer to a wall than the robot fits; a doorway's middle stays put)."""
+        navigator = self.navigator
+        grid, clearance = navigator.grid, navigator.clearance()
+        rows, columns = clearance.shape
+        step = grid.resolution
+
+        def clear_at(x: float, y: float) -> float:
+            row, column = grid.cell_of(x, y)
+            if not (0 <= row < rows and 0 <= column < columns):
+                return 0.0
+            return float(clearance[row, column])
+
+        needed = self.body.radius + _PASSING
+        moved = []
+        for x, y in points:
+            short = needed - clear_at(x, y)
+            if short > 0.0:
+                gradient = ((clear_at(x + step, y) - clear_at(x - step, y)) / (2 * step),
+                            (clear_at(x, y + step) - clear_at(x, y - step)) / (2 * step))
+                norm = math.hypot(*gradient)
+                if norm > 0.5:  # a clear way off the wall (not a doorway's middle)
+                    push = min(short, _MOST_PUSHED) / norm
+                    x, y = x + push * gradient[0], y + push * gradient[1]
+            moved.append((x, y))
+        return moved
 
     def _through_doorways(self, path: list[tuple[float, float]]) -> list[tuple[float, float]]:
         """``path`` up to the first doorway it goes through, crossed square: the points
