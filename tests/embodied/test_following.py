@@ -83,3 +83,23 @@ def test_a_follower_stalled_by_someone_standing_in_its_way_asks_them_to_let_it_t
              event.data.get("did") == "stepped aside"]
     assert aside and aside[0].time >= spoken[0].time
     assert arena.sim.collisions == []  # it stood still while it spoke
+
+
+def test_a_gesture_shown_by_someone_else_the_track_slipped_onto_does_not_stop_following(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    # Follow Me seed 12: the operator walks close past Maria, seated with a hand raised;
+    # the leg track slips onto her for a moment. Her gesture is hers, not the operator's:
+    # their clothes differ, and following goes on until the operator says stop.
+    episode = follow_me_episode(apartment, 12, apartment_navigator)
+    assert episode.stop_by == "voice"
+    assert episode.end == STOPPED_BY["voice"]
+    assert episode.stop_delay is not None and episode.stop_delay >= -0.5
+
+
+def test_the_stop_gesture_is_read_from_the_following_distance() -> None:
+    # Family home seed 1: the robot has come up to 1 m of the operator, who shows the stop
+    # gesture; the head tilts up so that the raised hand stays in the picture.
+    home = World.load("family_home")
+    episode = follow_me_episode(home, 1, Navigator(home))
+    assert episode.stop_by == "gesture" and episode.end == STOPPED_BY["gesture"]
+    assert episode.stopped

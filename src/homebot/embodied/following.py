@@ -299,7 +299,8 @@ class Following:
                 # the person's own way is too tight for the robot here (someone sits
                 # beside it): ask whoever stands in the way to let it by, and plan round
                 # what the laser sees for a while
-                self._ask_way(path or [pose.xy(), aim], target)
+                self._ask_way(self._their_way(pose, target) or path or [pose.xy(), aim],
+                              target)
                 detour_until, progress, path = now + _DETOUR, (now, pose.xy()), []
                 self.events.record("robot.following_detour")
             if now - planned_at >= p.replan_every or not path:
@@ -348,9 +349,19 @@ class Following:
             target.wears = wears[0] if wears and wears != UNREAD else None
         return target
 
+    def _their_way(self, pose: Pose, target: _Target) -> list[tuple[float, float]] | None:
+        """The way the person walked on from where it passes nearest the robot (None: the
+        robot is not near it)."""
+        walked = target.trail
+        if not walked:
+            return None
+        gaps = np.hypot(*(np.asarray(walked) - np.asarray(pose.xy())).T)
+        nearest = int(np.argmin(gaps))
+        return [pose.xy(), *walked[nearest:]] if gaps[nearest] <= _ON_THE_TRAIL else None
+
     def _ask_way(self, path: list[tuple[float, float]], target: _Target) -> None:
-        """Ask someone standing on the robot's way just ahead (not the person followed),
-        once each, to let the robot through."""
+        """Ask someone standing on ``path`` just ahead (the person's own way, where the
+        robot cannot pass them; not the person followed), once each, to let it through."""
         if self.ask_way is None:
             return
         ahead = [found[0] for metres in np.arange(0.0, _IN_MY_WAY, 0.1)
@@ -514,7 +525,10 @@ class Following:
             return False
         frames, poses = zip(*self._burst, strict=True)
         self._burst.clear()
-        return self.stop_shown(list(frames), list(poses), target.position)
+        # a track that slipped onto someone else (a seated person with a hand up, passed
+        # close by) shows their gesture, not the person's: their clothes tell
+        return self.stop_shown(list(frames), list(poses), target.position) and \
+            not self._wears_other(pose, target, target.position)
 
     def _arrived(self, target: _Target, goal_room: str | None, now: float) -> bool:
         if target.still_since is None:
