@@ -19,11 +19,11 @@ in view: what they wear (the colour of their top, as ``PeopleLook.clothes_at`` r
 is learnt at the start and checked every ``FollowParameters.check_every`` seconds, so a
 track that slipped onto someone else (two people passing close, the tracker's legs
 swapped) is dropped for a while, and a candidate in other clothes is not taken. The
-camera is not asked while someone nearer stands in its line of sight. Faces are no help
-here: the person walks ahead, their back to the robot. Not found again, the robot keeps
-to where the person was heading; after ``FollowParameters.give_up`` seconds it reports
-the person lost. Stalled by someone standing on its way, the robot asks them, once, to
-let it through.
+camera is not asked while someone nearer stands in its line of sight, or someone stands
+right beside the person. Faces are no help here: the person walks ahead, their back to
+the robot. Not found again, the robot keeps to where the person was heading; after
+``FollowParameters.give_up`` seconds it reports the person lost. Stalled by someone
+standing on its way, the robot asks them, once, to let it through.
 
 Following ends when the person says "stop" (the microphone, heard in the ``stop``
 state), shows the stop gesture (when the robot can read gestures), stands still in the
@@ -444,7 +444,7 @@ class Following:
         if self.clothes is None or target.wears is None or self._hidden(pose, where):
             return False
         wears = self.clothes(pose, where)
-        return bool(wears) and wears != UNREAD and wears is not None and \
+        return wears is not None and wears != UNREAD and len(wears) > 0 and \
             wears[0] == target.wears
 
     def _hidden(self, pose: Pose, where: tuple[float, float]) -> bool:
