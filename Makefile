@@ -25,7 +25,7 @@ demo: $(STAMP_RUN)
 test: $(STAMP_DEV)
 	$(BIN)/ruff check src tests
 	$(BIN)/mypy
-	$(BIN)/python -m pytest
+	$(BIN)/python -m pytest -n auto --dist loadscope
 	$(MAKE) docs
 
 # The documentation site, built strictly (a broken link or an unrenderable docstring fails)

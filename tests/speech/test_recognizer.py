@@ -4,6 +4,7 @@ chooses the grammar. Skipped without the speech extra."""
 
 from __future__ import annotations
 
+from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
 import numpy as np
@@ -99,6 +100,17 @@ def test_speech_does_not_depend_on_what_was_said_before() -> None:
     espeak().synthesise("go to the corridor", VOICES[1])
     assert np.array_equal(espeak().synthesise(text, VOICES[0]), first)
     assert np.array_equal(espeak().synthesise(text, VOICES[0]), first)
+
+
+def test_speech_from_several_threads_is_what_one_thread_says() -> None:
+    # a process with threads (a web server, DDS, a test worker) must not fork for espeak-ng:
+    # synthesis runs in a process of its own, and its replies stay with their requests
+    texts = ["go to the kitchen", "yes", "bring me a cola from the kitchen table", "no"]
+    alone = [espeak().synthesise(text, VOICES[i]) for i, text in enumerate(texts)]
+    with ThreadPoolExecutor(max_workers=4) as pool:
+        together = list(pool.map(lambda i: espeak().synthesise(texts[i], VOICES[i]),
+                                 range(len(texts))))
+    assert all(np.array_equal(a, b) for a, b in zip(alone, together, strict=True))
 
 
 def test_hearing_is_deterministic(recognizer: Recognizer) -> None:

@@ -11,18 +11,25 @@ same voice came out differently on each call (5 different waveforms cycling for 
 sentence; about 20 % of the signal's energy differs), and a benchmark's audio depended
 on everything spoken before it in the process. ``espeak_ng_SetRandSeed``, libc ``srand``
 and re-initialising do not reset that state. Where the platform can fork, each utterance
-is therefore synthesised in a forked child of this process, which never synthesises
-itself: every utterance starts from the same state, so a text in a voice gives the same
-samples whatever was said before (``reproducible=False`` synthesises in-process).
+is therefore synthesised in a forked child of a process that never synthesises itself
+(``homebot.speech.synthesis_process``, started once): every utterance starts from the same
+state, so a text in a voice gives the same samples whatever was said before
+(``reproducible=False`` synthesises in-process).
 """
 
 from __future__ import annotations
 
 import ctypes
 import functools
+import importlib.util
+import json
 import os
+import struct
+import subprocess
+import sys
 import threading
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -30,13 +37,14 @@ from numpy.typing import NDArray
 
 from homebot.errors import SpeechError
 from homebot.speech.audio import SAMPLE_RATE, resample
+from homebot.speech.synthesis_process import NO_VOICE
 
-__all__ = ["HELD_OUT_VOICES", "VOICES", "Voice", "VoiceSettings", "espeak"]
+__all__ = ["HELD_OUT_VOICES", "VOICES", "EspeakLibrary", "Voice", "VoiceSettings", "espeak",
+           "in_process_voice"]
 
 _AUDIO_OUTPUT_SYNCHRONOUS = 2
 _CHARS_UTF8 = 1
 _RATE, _VOLUME, _PITCH = 1, 2, 3
-_NO_VOICE = 3  # a child's exit status: espeak-ng has no such voice
 _IPA = 0x02
 
 _CALLBACK = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.POINTER(ctypes.c_short), ctypes.c_int,
@@ -73,16 +81,23 @@ HELD_OUT_VOICES: tuple[VoiceSettings, ...] = (
 )
 
 
-class Voice:
-    """espeak-ng, loaded once: ``synthesise(text, settings)`` returns 16 kHz int16 samples."""
+_NO_EXTRA = SpeechError("text to speech needs the speech extra: pip install 'homebot[speech]'")
 
-    def __init__(self, *, reproducible: bool = hasattr(os, "fork")) -> None:
-        self.reproducible = reproducible
+
+def _no_such_voice(settings: VoiceSettings) -> SpeechError:
+    return SpeechError(f"espeak-ng has no voice '{settings.name}'; try en-us, en, en+m3 or "
+                       "en-us+f3")
+
+
+class EspeakLibrary:
+    """espeak-ng's C library in this process (one global synthesiser, so one per process:
+    ``in_process_voice()``); every call is serialised by a lock."""
+
+    def __init__(self) -> None:
         try:
             import espeakng_loader
         except ImportError:
-            raise SpeechError("text to speech needs the speech extra: "
-                              "pip install 'homebot[speech]'") from None
+            raise _NO_EXTRA from None
         try:
             self._lib = ctypes.CDLL(espeakng_loader.get_library_path())
             data = espeakng_loader.get_data_path()
@@ -119,66 +134,22 @@ class Voice:
 
     def _use(self, settings: VoiceSettings) -> None:
         if self._lib.espeak_SetVoiceByName(settings.name.encode()) != 0:
-            raise SpeechError(f"espeak-ng has no voice '{settings.name}'; try en-us, en, "
-                              "en+m3 or en-us+f3")
+            raise _no_such_voice(settings)
         self._lib.espeak_SetParameter(_RATE, max(80, min(450, settings.rate)), 0)
         self._lib.espeak_SetParameter(_PITCH, max(0, min(99, settings.pitch)), 0)
 
-    def synthesise(self, text: str, settings: VoiceSettings = VoiceSettings()) -> NDArray[
-            np.int16]:
-        """``text`` spoken in ``settings``, as 16 kHz mono int16 samples."""
-        if not text.strip():
-            raise SpeechError("there is nothing to say: give some text")
+    def synthesise_native(self, text: str, settings: VoiceSettings) -> NDArray[np.int16]:
+        """``text`` in ``settings`` at espeak-ng's own rate (``self.rate``)."""
         encoded = text.encode("utf-8") + b"\0"
         with self._lock:
-            if self.reproducible:
-                audio = self._synthesise_in_child(encoded, settings)
-            else:
-                audio = self._synthesise_here(encoded, settings)
-        return resample(audio, self.rate, SAMPLE_RATE)
-
-    def _synthesise_here(self, encoded: bytes, settings: VoiceSettings) -> NDArray[np.int16]:
-        self._use(settings)
-        self._chunks = []
-        self._lib.espeak_Synth(encoded, len(encoded), 0, 0, 0, _CHARS_UTF8, None, None)
-        self._lib.espeak_Synchronize()
-        chunks, self._chunks = self._chunks, []
+            self._use(settings)
+            self._chunks = []
+            self._lib.espeak_Synth(encoded, len(encoded), 0, 0, 0, _CHARS_UTF8, None, None)
+            self._lib.espeak_Synchronize()
+            chunks, self._chunks = self._chunks, []
         return np.concatenate(chunks) if chunks else np.zeros(0, dtype=np.int16)
 
-    def _synthesise_in_child(self, encoded: bytes, settings: VoiceSettings
-                             ) -> NDArray[np.int16]:
-        """Synthesise in a forked child (see the module docstring) and read its samples
-        through a pipe. The child chooses the voice, synthesises and writes: this process
-        leaves espeak-ng's state alone (choosing voices over and over without speaking
-        made a child crash after 83 utterances)."""
-        read, write = os.pipe()
-        pid = os.fork()
-        if pid == 0:  # pragma: no cover - runs in the child, which exits at once
-            status = 1
-            try:
-                os.close(read)
-                data = self._synthesise_here(encoded, settings).tobytes()
-                view = memoryview(data)
-                while view:
-                    view = view[os.write(write, view):]
-                status = 0
-            except SpeechError:
-                status = _NO_VOICE
-            finally:
-                os._exit(status)
-        os.close(write)
-        with os.fdopen(read, "rb") as handle:
-            data = handle.read()
-        _, status = os.waitpid(pid, 0)
-        if os.WIFEXITED(status) and os.WEXITSTATUS(status) == _NO_VOICE:
-            self._use(settings)  # raises the SpeechError naming the voice
-        if status != 0:  # pragma: no cover - the child crashed
-            raise SpeechError(f"espeak-ng failed to synthesise (status {status}); reinstall "
-                              "the speech extra: pip install --force-reinstall espeakng-loader")
-        return np.frombuffer(data, dtype=np.int16).copy()
-
-    def phonemes(self, word: str, settings: VoiceSettings = VoiceSettings()) -> str:
-        """How espeak-ng pronounces ``word``, in IPA (used for words not in the dictionary)."""
+    def phonemes(self, word: str, settings: VoiceSettings) -> str:
         with self._lock:
             self._use(settings)
             pointer = ctypes.c_char_p(word.encode("utf-8"))
@@ -189,6 +160,89 @@ class Voice:
                 if result:
                     parts.append(result.decode("utf-8"))
         return " ".join(parts)
+
+
+@functools.cache
+def in_process_voice() -> EspeakLibrary:
+    """This process's one espeak-ng."""
+    return EspeakLibrary()
+
+
+class _SynthesisClient:
+    """Talks to ``homebot.speech.synthesis_process``, started on first use."""
+
+    def __init__(self) -> None:
+        if importlib.util.find_spec("espeakng_loader") is None:
+            raise _NO_EXTRA
+        root = str(Path(__file__).resolve().parents[2])  # so the process imports this homebot
+        path = os.pathsep.join(filter(None, (root, os.environ.get("PYTHONPATH"))))
+        self._process = subprocess.Popen(
+            [sys.executable, "-c", "from homebot.speech.synthesis_process import serve; serve()"],
+            stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+            env={**os.environ, "PYTHONPATH": path})
+        self._lock = threading.Lock()
+        self.rate = struct.unpack("<i", self._read(4))[0]
+
+    def _read(self, size: int) -> bytes:
+        assert self._process.stdout is not None
+        data = self._process.stdout.read(size)
+        if len(data) < size:
+            raise SpeechError("the espeak-ng synthesis process stopped (status "
+                              f"{self._process.poll()}); reinstall the speech extra: "
+                              "pip install --force-reinstall espeakng-loader")
+        return data
+
+    def ask(self, op: str, text: str, settings: VoiceSettings) -> bytes:
+        request = json.dumps({"op": op, "text": text, "name": settings.name,
+                              "rate": settings.rate, "pitch": settings.pitch}).encode()
+        assert self._process.stdin is not None
+        with self._lock:
+            try:
+                self._process.stdin.write(struct.pack("<I", len(request)) + request)
+                self._process.stdin.flush()
+            except BrokenPipeError:
+                self._read(1)  # raises the SpeechError saying the process stopped
+            status, size = struct.unpack("<iI", self._read(8))
+            data = self._read(size) if size else b""
+        if os.WIFEXITED(status) and os.WEXITSTATUS(status) == NO_VOICE:
+            raise _no_such_voice(settings)
+        if status != 0:  # pragma: no cover - the child crashed
+            raise SpeechError(f"espeak-ng failed to synthesise (status {status}); reinstall "
+                              "the speech extra: pip install --force-reinstall espeakng-loader")
+        return data
+
+
+@functools.cache
+def _synthesis_client() -> _SynthesisClient:
+    return _SynthesisClient()
+
+
+class Voice:
+    """espeak-ng: ``synthesise(text, settings)`` returns 16 kHz int16 samples."""
+
+    def __init__(self, *, reproducible: bool = hasattr(os, "fork")) -> None:
+        self.reproducible = reproducible
+        engine = _synthesis_client() if reproducible else in_process_voice()
+        self.rate = engine.rate
+
+    def synthesise(self, text: str, settings: VoiceSettings = VoiceSettings()) -> NDArray[
+            np.int16]:
+        """``text`` spoken in ``settings``, as 16 kHz mono int16 samples."""
+        if not text.strip():
+            raise SpeechError("there is nothing to say: give some text")
+        if self.reproducible:
+            audio = np.frombuffer(_synthesis_client().ask("synthesise", text, settings),
+                                  dtype=np.int16).copy()
+        else:
+            audio = in_process_voice().synthesise_native(text, settings)
+        return resample(audio, self.rate, SAMPLE_RATE)
+
+    def phonemes(self, word: str, settings: VoiceSettings = VoiceSettings()) -> str:
+        """How espeak-ng pronounces ``word``, in IPA (used for words not in the dictionary)."""
+        if self.reproducible:
+            return _synthesis_client().ask("phonemes", word, settings).decode("utf-8")
+        return in_process_voice().phonemes(word, settings)
+
 
 
 @functools.cache
