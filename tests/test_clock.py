@@ -1,11 +1,14 @@
-"""The simulated clock: advances, observers (whole or in steps), and a cancelled advance."""
+"""The simulated clock: advances, observers (whole or in steps), a cancelled advance, and the
+calendar time a run starts at."""
 
 from __future__ import annotations
+
+from datetime import datetime
 
 import pytest
 
 from homebot.cancel import CancelToken
-from homebot.clock import Clock
+from homebot.clock import Clock, start_time
 
 
 def test_an_observer_sees_each_advance_with_the_time_before_and_after() -> None:
@@ -91,3 +94,19 @@ def test_time_cannot_run_backwards_and_steps_are_positive() -> None:
         clock.advance(-1.0)
     with pytest.raises(ValueError, match="positive"):
         clock.observe(lambda before, after: None, step=0.0)
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("2026-11-29 14:30", datetime(2026, 11, 29, 14, 30)),
+    ("2026-11-29T14:30:15", datetime(2026, 11, 29, 14, 30, 15)),
+    (" 2026-02-28 ", datetime(2026, 2, 28)),
+])
+def test_a_start_is_read_as_a_person_writes_it(text: str, expected: datetime) -> None:
+    assert start_time(text) == expected
+
+
+@pytest.mark.parametrize("text", ["tomorrow", "2026-13-01 10:00", "29/11/2026",
+                                  "2026-11-29 14:30+01:00", ""])
+def test_a_start_that_is_not_a_local_date_and_time_says_how_to_write_one(text: str) -> None:
+    with pytest.raises(ValueError, match="e.g. 2026-11-29 14:30"):
+        start_time(text)

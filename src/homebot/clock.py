@@ -11,10 +11,15 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from datetime import datetime
 
 from homebot.cancel import CancelToken
 
-__all__ = ["Clock", "ClockObserver"]
+__all__ = ["DEFAULT_START", "Clock", "ClockObserver", "start_time"]
+
+#: the calendar date and time a run starts at unless told otherwise (``--start``): fixed, so a
+#: run does not depend on the day it is run (a Monday, nine in the morning)
+DEFAULT_START = datetime(2026, 1, 5, 9, 0)
 
 #: called with (time before, time after) for each advance, or each step of one
 ClockObserver = Callable[[float, float], None]
@@ -71,3 +76,17 @@ class Clock:
         before, self.time = self.time, after
         for observer in list(self._observers):
             observer(before, after)
+
+
+def start_time(text: str) -> datetime:
+    """A run's start as a person writes it: ``2026-11-29 14:30`` (or ``2026-11-29T14:30``,
+    seconds allowed, or a date alone for midnight); ``ValueError`` says how to write it."""
+    try:
+        when = datetime.fromisoformat(text.strip())
+    except ValueError:
+        raise ValueError(f"'{text}' is not a date and time; write it as YYYY-MM-DD HH:MM, "
+                         "e.g. 2026-11-29 14:30") from None
+    if when.tzinfo is not None:
+        raise ValueError(f"'{text}' names a time zone; give the home's local time, "
+                         "e.g. 2026-11-29 14:30")
+    return when

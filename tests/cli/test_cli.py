@@ -134,6 +134,18 @@ def test_do_understands_and_carries_out_a_command(capsys: pytest.CaptureFixture[
     assert report["steps"][2]["args"]["object"] in {"apple", "banana", "orange", "lemon", "pear"}
 
 
+@pytest.mark.parametrize(("start", "command", "said"), [
+    ("2026-11-29 14:30", "tell me what day is today", "Today is Sunday."),
+    ("2026-11-29 14:30", "tell me what day is tomorrow", "Tomorrow is Monday."),
+    ("2026-11-22 08:00", "tell me the day of the month", "Today is the 22nd of November."),
+    ("2026-03-01 16:05", "tell me the time", "It is 16:05."),
+])
+def test_the_clock_starts_at_the_date_and_time_given(start: str, command: str, said: str,
+                                                     capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["do", command, "--start", start, "--json"]) == 0
+    assert said in json.loads(capsys.readouterr().out)["speech"][0]
+
+
 def test_do_refuses_the_impossible_with_a_reason(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["do", "fetch the kitchen", "--json"]) == 1
     said = json.loads(capsys.readouterr().out)["speech"][0]

@@ -8,11 +8,13 @@ from __future__ import annotations
 
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from datetime import datetime
 
 from homebot.app.embodied import embodied_robot_in
 from homebot.app.fidelity import Fidelity
 from homebot.beliefs import Beliefs
 from homebot.cancel import CancelToken
+from homebot.clock import DEFAULT_START
 from homebot.events import EventLog
 from homebot.executive import Executive, RunReport
 from homebot.executive.recovery import Protocol
@@ -48,6 +50,7 @@ class RunSettings:
     world: World
     seed: int = 0
     fidelity: Fidelity = Fidelity.SYMBOLIC
+    start: datetime = DEFAULT_START  #: the calendar date and time at simulated time 0
     #: how often things go wrong (``disturbed(level)``); None: nothing does
     disturbances: DisturbanceModel | None = None
     walkers: int = 0  #: embodied: how many people walk about on their own
@@ -120,7 +123,7 @@ def build_run(settings: RunSettings) -> Run:
     beliefs = Beliefs.from_world(world, simulation.events)
     context = SkillContext(robot=robot, world=world, navigator=navigator, beliefs=beliefs,
                            events=simulation.events, monitoring=settings.monitoring,
-                           retries=dict(settings.retries))
+                           retries=dict(settings.retries), started_at=settings.start)
     executive = Executive(context, recovery=settings.recovery, inference=settings.inference,
                           time_limit=settings.time_limit)
     if embodied is None:

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import json
+from datetime import datetime
 from pathlib import Path
 
 from rich.console import Console
@@ -18,6 +19,7 @@ from homebot.cli.options import (
     retry_budgets,
 )
 from homebot.cli.world import remember_last_run
+from homebot.clock import DEFAULT_START, start_time
 from homebot.errors import TaskError
 from homebot.events import EventLog
 from homebot.executive import RunReport, print_report
@@ -51,6 +53,16 @@ def add_run_options(parser: argparse.ArgumentParser, *,
     add_fidelity_option(parser)
     parser.add_argument("--walkers", type=_walker_count, default=0, metavar="N",
                         help="embodied: how many people walk about on their own (default 0)")
+    parser.add_argument("--start", type=_start, default=DEFAULT_START, metavar="WHEN",
+                        help="the date and time the run starts at, as YYYY-MM-DD HH:MM "
+                             "(default: Monday 2026-01-05 09:00)")
+
+
+def _start(text: str) -> datetime:
+    try:
+        return start_time(text)
+    except ValueError as error:
+        raise argparse.ArgumentTypeError(str(error)) from None
 
 
 def _walker_count(text: str) -> int:
@@ -67,7 +79,7 @@ def run_settings(args: argparse.Namespace, world: World, *,
         disturbances=disturbed(args.disturb) if args.disturb else None,
         monitoring=monitoring, fidelity=args.fidelity, walkers=args.walkers,
         interactive=args.interactive, retries=retry_budgets(args.retries),
-        time_limit=args.time_limit)
+        time_limit=args.time_limit, start=args.start)
 
 
 def simulated_run(args: argparse.Namespace, world: World, *, monitoring: bool = True) -> Run:

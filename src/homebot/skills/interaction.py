@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Mapping
+from datetime import timedelta
 from typing import Any
 
 from homebot.skills.places import people_in_view, person_name
@@ -12,23 +13,30 @@ from homebot.skills.wording import be, object_is_at, place_in
 __all__ = ["AnswerQuestion", "Ask", "Greet", "Say", "WhereIs", "answer_about_home",
            "talk_about", "where_sentence"]
 
+# in English whatever the process's locale (strftime's %A and %B follow the locale)
 _DAYS = ("Monday", "Tuesday", "Wednesday", "Thursday", "Friday", "Saturday", "Sunday")
+_MONTHS = ("January", "February", "March", "April", "May", "June", "July", "August",
+           "September", "October", "November", "December")
+
+
+def _ordinal(day: int) -> str:
+    suffix = "th" if 11 <= day % 100 <= 13 else {1: "st", 2: "nd", 3: "rd"}.get(day % 10, "th")
+    return f"{day}{suffix}"
 
 
 def talk_about(context: SkillContext, topic: str) -> str:
-    """A sentence on a GPSR talk topic; time and day come from the simulated clock."""
-    seconds = context.robot.now()
-    day = int(seconds // 86400)
-    minutes = int(seconds // 60) % (24 * 60)
+    """A sentence on a GPSR talk topic; time and day come from the simulated clock, counted
+    from the run's start date and time (``context.started_at``)."""
+    now = context.started_at + timedelta(seconds=context.robot.now())
     topic_key = topic.lower()
     if "time" in topic_key:
-        return f"It is {9 + minutes // 60:02d}:{minutes % 60:02d}."
+        return f"It is {now:%H:%M}."
     if "tomorrow" in topic_key:
-        return f"Tomorrow is {_DAYS[(day + 1) % 7]}."
+        return f"Tomorrow is {_DAYS[(now + timedelta(days=1)).weekday()]}."
     if "day" in topic_key and "month" in topic_key:
-        return f"Today is the {day + 1}th of the month."
+        return f"Today is the {_ordinal(now.day)} of {_MONTHS[now.month - 1]}."
     if "day" in topic_key:
-        return f"Today is {_DAYS[day % 7]}."
+        return f"Today is {_DAYS[now.weekday()]}."
     if "joke" in topic_key:
         return "Why did the robot go on holiday? It needed to recharge."
     if "yourself" in topic_key or "name" in topic_key:

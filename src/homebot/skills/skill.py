@@ -13,11 +13,13 @@ from __future__ import annotations
 from abc import ABC, abstractmethod
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from datetime import datetime
 from enum import StrEnum
 from typing import Any, ClassVar
 
 from homebot.beliefs import Beliefs
 from homebot.cancel import CancelToken
+from homebot.clock import DEFAULT_START
 from homebot.events import EventLog
 from homebot.robot import Robot
 from homebot.world import PathPlanner, World
@@ -123,6 +125,8 @@ class SkillContext:
     retries: dict[str, int] = field(default_factory=dict)
     deadline: float | None = None
     cancel: CancelToken = field(default_factory=CancelToken)
+    #: the calendar date and time at robot time 0 (``robot.now()`` counts from it)
+    started_at: datetime = DEFAULT_START
 
 
 def time_left(context: SkillContext) -> float:
