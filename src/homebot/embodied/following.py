@@ -586,31 +586,17 @@ class Following:
         """Whether the robot's body fits along the straight line between two points, by
         the map's walls and furniture."""
         navigator = self.navigator
-        grid, clearance = navigator.grid, navigator.clearance()
-        steps = max(1, math.ceil(math.dist(start, end) / grid.resolution))
-        for t in np.linspace(0.0, 1.0, steps + 1):
-            row, column = grid.cell_of(start[0] + t * (end[0] - start[0]),
-                                       start[1] + t * (end[1] - start[1]))
-            if not (0 <= row < clearance.shape[0] and 0 <= column < clearance.shape[1]) or \
-                    clearance[row, column] < self.body.radius:
-                return False
-        return True
+        steps = max(1, math.ceil(math.dist(start, end) / navigator.grid.resolution))
+        return all(navigator.clearance_at(start[0] + t * (end[0] - start[0]),
+                                          start[1] + t * (end[1] - start[1]))
+                   >= self.body.radius for t in np.linspace(0.0, 1.0, steps + 1))
 
     def _off_the_walls(self, points: list[tuple[float, float]]) -> list[tuple[float, float]]:
         """The points of a person's trail moved off the map's walls and furniture to where
         the robot's body keeps ``_PASSING`` clear of them, as far as the floor allows (a
         person walks closer to a wall than the robot fits; a doorway's middle stays put)."""
-        navigator = self.navigator
-        grid, clearance = navigator.grid, navigator.clearance()
-        rows, columns = clearance.shape
-        step = grid.resolution
-
-        def clear_at(x: float, y: float) -> float:
-            row, column = grid.cell_of(x, y)
-            if not (0 <= row < rows and 0 <= column < columns):
-                return 0.0
-            return float(clearance[row, column])
-
+        clear_at = self.navigator.clearance_at
+        step = self.navigator.grid.resolution
         needed = self.body.radius + _PASSING
         moved = []
         for x, y in points:

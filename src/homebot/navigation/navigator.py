@@ -151,6 +151,15 @@ class Navigator:
                 ~self.grid.occupied) * self.grid.resolution
         return self._static_clearance
 
+    def clearance_at(self, x: float, y: float) -> float:
+        """Metres from the map cell under ``(x, y)`` to the nearest wall or furniture cell
+        (0 off the map's grid)."""
+        row, column = self.grid.cell_of(x, y)
+        clearance = self.clearance()
+        if not (0 <= row < clearance.shape[0] and 0 <= column < clearance.shape[1]):
+            return 0.0
+        return float(clearance[row, column])
+
     def distance(self, start: tuple[float, float], goal: tuple[float, float],
                  closed_doors: frozenset[str] = frozenset()) -> float:
         """Path length from start to goal (infinite when unreachable)."""

@@ -458,17 +458,14 @@ class RecoveringNavigation:
         if float(distance.min()) > _CROWDED:
             return 0.0
         around, wide = body.radius + policy.obstacle_margin, body.radius + policy.static_margin
-        grid, clearance = navigator.grid, navigator.clearance()
         doors = [door.position for door in navigator.world.doors.values()]
         spots: list[tuple[float, tuple[float, float]]] = []
         for reach in _MAKE_WAY_REACH:
             for turn in range(_MAKE_WAY_DIRECTIONS):
                 angle = math.tau * turn / _MAKE_WAY_DIRECTIONS
                 spot = (here.x + reach * math.cos(angle), here.y + reach * math.sin(angle))
-                row, column = grid.cell_of(*spot)
-                if not (0 <= row < grid.shape[0] and 0 <= column < grid.shape[1]) \
-                        or navigator.world.room_at(*spot) is None \
-                        or clearance[row, column] < wide \
+                if navigator.world.room_at(*spot) is None \
+                        or navigator.clearance_at(*spot) < wide \
                         or any(math.dist(spot, door) < _DOORWAY for door in doors):
                     continue
                 away = float(np.min(np.hypot(obstacles[:, 0] - spot[0],

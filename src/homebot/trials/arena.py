@@ -10,9 +10,5 @@ __all__ = ["free_floor"]
 def free_floor(navigator: Navigator, point: tuple[float, float], clear: float) -> bool:
     """Whether ``point`` lies in some room of ``navigator``'s map with ``clear`` metres of
     floor round it (off the map's grid: never)."""
-    cell = navigator.grid.cell_of(*point)
-    rows, columns = navigator.grid.shape
-    if not (0 <= cell[0] < rows and 0 <= cell[1] < columns):
-        return False
-    return bool(navigator.clearance()[cell] >= clear) and \
+    return navigator.clearance_at(*point) >= clear and \
         navigator.world.room_at(*point) is not None
