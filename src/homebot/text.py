@@ -1,19 +1,29 @@
-"""Names compared as people mean them: one folded form, whatever the accents or the case.
+"""Names compared as people mean them: one folded form, whatever the accents or the case;
+and shown safely.
 
 "Patrícia", "patricia" and "PATRÍCIA" are one name; so are "Søren" and "Soren". Every
 comparison of a name with what a person typed, said or wrote in a file goes through
 ``fold`` (or ``find_name`` / ``closest_names``, built on it), on both sides; what is
-shown keeps the spelling of the file that defined the name. This module imports
+shown keeps the spelling of the file that defined the name, through ``terminal_safe``,
+so a name cannot carry escape sequences to the terminal. This module imports
 nothing of homebot, so every layer (the world included) may use it.
 """
 
 from __future__ import annotations
 
 import difflib
+import re
 import unicodedata
 from collections.abc import Iterable
 
-__all__ = ["closest_names", "find_name", "fold", "folded_index"]
+__all__ = ["closest_names", "find_name", "fold", "folded_index", "terminal_safe"]
+
+# What a terminal acts on rather than shows: C0 and C1 controls (escape sequences, bell,
+# carriage return, backspace), DEL, and the bidirectional overrides that reorder a line.
+# A tab is only white space; newlines are kept where a text is meant to be lines.
+_CONTROLS = r"\x00-\x08\x0b-\x1f\x7f-\x9f\u200e\u200f\u202a-\u202e\u2066-\u2069"
+_UNSAFE = re.compile(f"[{_CONTROLS}\n]")
+_UNSAFE_BUT_LINES = re.compile(f"[{_CONTROLS}]")
 
 # Letters Unicode does not decompose into a base letter and a mark, written the way a
 # keyboard or a speech recogniser without them writes them ("Søren" -> "soren").
@@ -60,3 +70,19 @@ def closest_names(text: str, names: Iterable[str], count: int = 1,
     index = folded_index(names)
     return [index[match] for match in
             difflib.get_close_matches(fold(text), list(index), n=count, cutoff=cutoff)]
+
+
+def terminal_safe(text: str, *, lines: bool = False) -> str:
+    """``text`` with every control character written out as an escape (``\\x1b``,
+    ``\\u202e``), for printing what a file or a person supplied to a terminal.
+
+    With ``lines`` newlines stay (a listing of many lines); otherwise they are escaped too,
+    so one message stays one line.
+    """
+    pattern = _UNSAFE_BUT_LINES if lines else _UNSAFE
+    return pattern.sub(_escaped, text)
+
+
+def _escaped(match: re.Match[str]) -> str:
+    code = ord(match.group())
+    return f"\\x{code:02x}" if code < 0x100 else f"\\u{code:04x}"

@@ -4,8 +4,9 @@ Every YAML file homebot reads (worlds, task files, maps, maintenance, dialogue m
 knowledge bases, imported pyrobosim and RoboCup files, robot profiles) goes through
 here, so a syntax error always names the file, the line and the column, a key written
 twice is an error (YAML would silently keep the last), and ``field_error`` names file,
-line and field for the checks that follow. This module imports nothing of homebot but
-its errors, so every layer may use it.
+line and field for the checks that follow; a file is read within its size limit
+(``homebot.files``). This module imports nothing of homebot but its errors and that
+reader, so every layer may use it.
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ from typing import Any
 import yaml
 
 from homebot.errors import HomebotError
+from homebot.files import read_text_file
 
 __all__ = [
     "LocatedDocument",
@@ -89,14 +91,9 @@ def _child_node(
 
 
 def read_yaml_text(path: Path | str, error_type: type[HomebotError]) -> str:
-    """The text of a YAML file; a missing or unreadable file raises ``error_type``."""
-    path = Path(path)
-    try:
-        return path.read_text(encoding="utf-8")
-    except FileNotFoundError:
-        raise error_type(f"{path}: no such file; check the path") from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise error_type(f"{path}: cannot be read ({error}); give a UTF-8 text file") from None
+    """The text of a YAML file; a missing, unreadable or oversized file (past
+    ``SIZE_LIMITS["yaml"]``) raises ``error_type``."""
+    return read_text_file(path, error_type, "yaml", "YAML file")
 
 
 def load_yaml_document(path: Path | str, error_type: type[HomebotError]) -> LocatedDocument:

@@ -52,7 +52,7 @@ def test_binary_and_directory_task_files_exit_2(tmp_path: Path,
     binary = tmp_path / "task.yaml"
     binary.write_bytes(bytes(range(256)))
     _fails_cleanly(capsys, main(["run-task", str(binary)]), "give a UTF-8 text file")
-    _fails_cleanly(capsys, main(["run-task", str(tmp_path)]), "cannot be read")
+    _fails_cleanly(capsys, main(["run-task", str(tmp_path)]), "cannot read it")
 
 
 def test_speech_with_markup_is_printed_as_said(tmp_path: Path,

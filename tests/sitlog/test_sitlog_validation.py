@@ -128,7 +128,10 @@ def test_missing_files_and_functions(tmp_path: Path) -> None:
     with pytest.raises(DialogueError, match="no dialogue file"):
         load_program(tmp_path / "nothing.yaml")
     message = _error(GOOD + "functions: [no_such_module_here]\n")
-    assert "cannot import functions 'no_such_module_here'" in message
+    assert "test.yaml, line 12" in message
+    assert "functions 'no_such_module_here' is neither a .py file in the model's folder" in message
+    message = _error(GOOD + "functions: [homebot.sitlog.functions.no_such_module]\n")
+    assert "cannot import functions 'homebot.sitlog.functions.no_such_module'" in message
 
 
 def test_dialogue_errors_are_homebot_errors() -> None:

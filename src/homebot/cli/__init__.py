@@ -90,9 +90,12 @@ def main(argv: Sequence[str] | None = None) -> int:
         from rich.console import Console
         from rich.markup import escape
 
-        # Escaped, as messages quote what the person typed; soft-wrapped, so one line stays one.
+        from homebot.text import terminal_safe
+
+        # Escaped (markup and control characters), as messages quote what the person typed
+        # or a file held; soft-wrapped, so one line stays one.
         Console(stderr=True, highlight=False, soft_wrap=True).print(
-            f"[bold red]error:[/] {escape(str(error))}", markup=True)
+            f"[bold red]error:[/] {escape(terminal_safe(str(error), lines=True))}", markup=True)
         return 2
     except BrokenPipeError:
         # The reader went away (`homebot ... | head`): stop quietly, as Unix tools do.

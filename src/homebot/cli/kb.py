@@ -18,7 +18,7 @@ from homebot.knowledge.coherence import warnings
 from homebot.knowledge.knowledge_base import shipped_kb_path
 from homebot.knowledge.syntax import kb_warnings
 from homebot.knowledge.terms import format_literal, format_value
-from homebot.text import find_name
+from homebot.text import find_name, terminal_safe
 
 __all__ = ["SERVICES", "register", "to_json"]
 
@@ -70,7 +70,7 @@ def _check(args: argparse.Namespace) -> int:
     taxonomy = kb.taxonomy
     literals, preferences = taxonomy.statement_count()
     found = warnings(taxonomy)
-    print(
+    _print(
         f"{args.file}: ok — {len(taxonomy.classes)} classes, {len(taxonomy.individuals)} "
         f"individuals, {literals} literals, {preferences} conditional defaults, "
         f"{len(found)} warnings"
@@ -81,7 +81,7 @@ def _check(args: argparse.Namespace) -> int:
     else:
         messages = [problem.message for problem in found]
     for message in messages:
-        print(f"warning: {message}")
+        _print(f"warning: {message}")
     return 0
 
 
@@ -102,7 +102,7 @@ def _query(args: argparse.Namespace) -> int:
     if args.json:
         print(json.dumps(to_json(answer), ensure_ascii=False))
     else:
-        print(_to_text(answer))
+        _print(_to_text(answer))
     return 0
 
 
@@ -119,18 +119,23 @@ def _explain(args: argparse.Namespace) -> int:
     args.individual = _as_in_kb(kb, args.individual)
     explanations = kb.explanations(args.individual)
     if not explanations:
-        print(f"{args.individual}: nothing to explain")
+        _print(f"{args.individual}: nothing to explain")
     for explanation in explanations:
         because = (
             "by default"
             if not explanation.antecedents
             else f"because {explanation.antecedent_text}"
         )
-        print(
+        _print(
             f"{args.individual}: {format_literal(explanation.consequent)} {because} "
             f"(weight {explanation.weight}, from {explanation.source})"
         )
     return 0
+
+
+def _print(text: str) -> None:
+    """Print a line that quotes the KB's names, escaped for the terminal."""
+    print(terminal_safe(text))
 
 
 def to_json(answer: Any) -> Any:

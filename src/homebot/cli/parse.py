@@ -9,6 +9,7 @@ from typing import Any
 
 from homebot.cli.options import load_world
 from homebot.errors import LanguageError
+from homebot.files import read_text_file
 from homebot.language import ParseResult, Vocabulary, parse_command
 
 __all__ = ["register"]
@@ -37,11 +38,8 @@ def _parse(args: argparse.Namespace) -> int:
 
 
 def _parse_file(path: Path, vocabulary: Vocabulary) -> int:
-    try:
-        lines = path.read_text(encoding="utf-8").splitlines()
-    except (OSError, UnicodeDecodeError) as error:
-        raise LanguageError(f"{path}: cannot be read ({error}); give a text file, "
-                            "one command a line") from None
+    lines = read_text_file(path, LanguageError, "text", "file of commands, one a line"
+                           ).splitlines()
     status = 0
     for number, line in enumerate(lines, 1):
         if not line.strip():

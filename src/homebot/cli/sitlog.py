@@ -1,4 +1,10 @@
-"""``homebot sitlog run|show``: interpret a SitLog program, or draw it (§4.3) as dot."""
+"""``homebot sitlog run|show|check``: interpret a SitLog program, draw it (§4.3) as dot, or
+check it.
+
+``show`` and ``check`` never run a model's code: they read it as data. ``run`` loads the
+user functions the model names (only from its own folder, homebot's own modules or
+installed entry points; see ``homebot.sitlog.loading``) and says on stderr which.
+"""
 
 from __future__ import annotations
 
@@ -13,6 +19,7 @@ from typing import Any
 from rich.console import Console
 
 from homebot.errors import DialogueError
+from homebot.files import read_text_file
 from homebot.executive import print_report
 from homebot.sitlog import (
     Environment,
@@ -26,6 +33,7 @@ from homebot.sitlog import (
     load_program,
 )
 from homebot.sitlog.model import FINAL
+from homebot.text import terminal_safe
 
 __all__ = ["register"]
 
@@ -53,15 +61,20 @@ def register(subparsers: Any) -> None:
     run.add_argument("--trace", action="store_true", help="print each transition as it is taken")
     run.add_argument("--json", action="store_true", help="print the result as JSON")
     run.set_defaults(handler=_run)
-    show = commands.add_parser("show", help="list a program's models, or draw them as dot")
+    show = commands.add_parser("show", help="list a program's models, or draw them as dot "
+                               "(runs none of its code)")
     show.add_argument("file", help="a dialogue YAML file, or a shipped one")
     show.add_argument("--dot", action="store_true", help="print the Graphviz diagram (§4.3)")
     show.set_defaults(handler=_show)
+    check = commands.add_parser("check", help="check a program without running any of its "
+                                "code")
+    check.add_argument("file", help="a dialogue YAML file, or a shipped one")
+    check.set_defaults(handler=_check)
     parser.set_defaults(handler=_no_command)
 
 
 def _no_command(args: argparse.Namespace) -> int:
-    raise DialogueError("name a sitlog command: run FILE or show FILE [--dot]")
+    raise DialogueError("name a sitlog command: run FILE, show FILE [--dot] or check FILE")
 
 
 @dataclass
@@ -81,12 +94,13 @@ class _Mixed:
 
 def _run(args: argparse.Namespace) -> int:
     program = load_program(args.file)
+    notes = Console(stderr=True, highlight=False, markup=False, soft_wrap=True)
+    for source in program.function_sources:
+        notes.print(f"note: user functions from {terminal_safe(source)}")
     inputs = list(args.input)
     if args.input_file is not None:
-        try:
-            inputs += [line for line in args.input_file.read_text().splitlines() if line.strip()]
-        except OSError as error:
-            raise DialogueError(f"{args.input_file}: cannot read it ({error.strerror})") from None
+        text = read_text_file(args.input_file, DialogueError, "text", "file of inputs")
+        inputs += [line for line in text.splitlines() if line.strip()]
     console = None if args.json else Console(highlight=False, markup=False)
     keyboard = _prompt if sys.stdin.isatty() and not args.json else None
     spoken = ScriptedPerception(inputs, read_line=keyboard, show=(
@@ -127,11 +141,25 @@ def _on_robot(args: argparse.Namespace,
 
 
 def _show(args: argparse.Namespace) -> int:
-    program = load_program(args.file)
+    program = load_program(args.file, run_code=False)
     if args.dot:
         sys.stdout.write(dot_diagram(program))
         return 0
-    Console(highlight=False, markup=False).print(_outline(program))
+    Console(highlight=False, markup=False).print(terminal_safe(_outline(program), lines=True))
+    return 0
+
+
+def _check(args: argparse.Namespace) -> int:
+    program = load_program(args.file, run_code=False)
+    situations = sum(len(model.situations) for model in program.models.values())
+    models = len(program.models)
+    lines = [f"{program.source}: ok: {models} dialogue model{'s' * (models != 1)}, "
+             f"{situations} situations, main {program.main[0]}"]
+    lines += [f"  functions from {source} (homebot's own)" for source in
+              program.function_sources]
+    lines += [f"  functions from {source}: not imported (run loads them)" for source in
+              program.unloaded_functions]
+    print(terminal_safe("\n".join(lines), lines=True))
     return 0
 
 

@@ -10,6 +10,7 @@ from pathlib import Path
 from typing import Any
 
 from homebot.errors import SpeechError
+from homebot.files import SIZE_LIMITS, size_text
 
 __all__ = ["NOT_UNDERSTOOD", "add_voice_options", "hear_file", "read_audio", "speak_to_file",
            "spoken_or_typed"]
@@ -35,7 +36,12 @@ def read_audio(source: Path) -> Any:
         if sys.stdin.isatty():
             raise SpeechError("stdin is a terminal; pipe a WAV file in: "
                               "homebot listen - < command.wav")
-        return read_wav(sys.stdin.buffer.read(), name="<stdin>")
+        limit = SIZE_LIMITS["audio"]
+        data = sys.stdin.buffer.read(limit + 1)
+        if len(data) > limit:
+            raise SpeechError(f"<stdin>: more than {size_text(limit)}, the limit for a WAV "
+                              "file; pipe in one command's recording")
+        return read_wav(data, name="<stdin>")
     return read_wav(source)
 
 

@@ -15,6 +15,7 @@ from rich.table import Table
 
 from homebot.cli.options import load_world
 from homebot.errors import WorldError
+from homebot.files import read_text_file
 from homebot.events import EventLog
 from homebot.world import World
 
@@ -143,7 +144,7 @@ def _path_from_events(events: Path, world: World) -> list[tuple[float, float]]:
     start = world.robot.pose.xy()
     path: list[tuple[float, float]] = [start]
     try:
-        for line in events.read_text(encoding="utf-8").splitlines():
+        for line in read_text_file(events, WorldError, "events", "event log").splitlines():
             event = json.loads(line)
             if event.get("kind") == "robot.path" and event.get("world") == world.name:
                 path.extend((float(x), float(y)) for x, y in event["points"])
@@ -160,7 +161,7 @@ def _embodied_from_events(events: Path, world: World) -> EmbodiedRun | None:
     if not events.exists():
         return None
     try:
-        lines = events.read_text(encoding="utf-8").splitlines()
+        lines = read_text_file(events, WorldError, "events", "event log").splitlines()
         return embodied_run((json.loads(line) for line in lines if line.strip()), world.name)
     except (OSError, ValueError, TypeError, KeyError, AttributeError) as error:
         raise WorldError(f"{events}: not a homebot event log of an embodied run ({error}); "
@@ -174,7 +175,7 @@ def _final_from_events(events: Path, world: World) -> FinalState | None:
     if not events.exists():
         return None
     try:
-        lines = events.read_text(encoding="utf-8").splitlines()
+        lines = read_text_file(events, WorldError, "events", "event log").splitlines()
         return final_state((json.loads(line) for line in lines if line.strip()), world.name)
     except (OSError, ValueError, TypeError, KeyError, AttributeError) as error:
         raise WorldError(f"{events}: its final state cannot be read ({error}); give the file "

@@ -6,6 +6,7 @@ from importlib import resources
 from pathlib import Path
 
 from homebot.errors import GologError
+from homebot.files import read_text_file
 from homebot.golog.program import Procedure
 from homebot.golog.syntax import parse_procedures
 
@@ -31,12 +32,5 @@ def shipped_procedures(name: str) -> list[Procedure]:
 def load_procedures(path: str | Path) -> list[Procedure]:
     """The procedures of a program file; a missing file raises ``GologError``."""
     file = Path(path)
-    try:
-        text = file.read_text(encoding="utf-8")
-    except OSError as error:
-        raise GologError(f"cannot read the Golog program {file}: {error.strerror}; "
-                         f"check the path") from None
-    except UnicodeDecodeError as error:
-        raise GologError(f"cannot read the Golog program {file}: byte {error.start} is not "
-                         f"UTF-8; save the file as UTF-8 text") from None
-    return parse_procedures(text, str(file))
+    return parse_procedures(read_text_file(file, GologError, "text", "Golog program"),
+                            str(file))

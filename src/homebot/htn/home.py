@@ -18,7 +18,7 @@ from typing import Any
 from homebot.beliefs import Beliefs
 from homebot.errors import KnowledgeError, PlanningError
 from homebot.htn.domain import Domain
-from homebot.htn.jshop import read_domain, read_domain_text
+from homebot.htn.jshop import read_domain
 from homebot.htn.state import Atom, State
 from homebot.knowledge import KnowledgeBase
 from homebot.task import Step
@@ -77,7 +77,7 @@ def home_domain_path() -> Path:
 def home_domain() -> Domain:
     """The home domain, read from its shipped file."""
     path = home_domain_path()
-    return read_domain_text(path.read_text(encoding="utf-8"), str(path))
+    return read_domain(path)
 
 
 def load_domain(path: str | Path | None,

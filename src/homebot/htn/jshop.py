@@ -38,6 +38,7 @@ from pathlib import Path
 from typing import Any, TypeVar
 
 from homebot.errors import PlanningError
+from homebot.files import read_text_file
 from homebot.htn.domain import Domain, Layout, Method, Operator, Problem, task_data
 from homebot.htn.logic import Functions
 from homebot.htn.sexpr import Form, plain, read_forms
@@ -257,10 +258,7 @@ def read_problem_text(text: str, source: str = "<problem>") -> list[Problem]:
 
 
 def _read(path: str | Path) -> str:
-    try:
-        return Path(path).read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as error:
-        raise PlanningError(f"cannot read '{path}': {error}; check the path") from None
+    return read_text_file(path, PlanningError, "text", "JSHOP2 file")
 
 
 def read_domain(path: str | Path, functions: Functions | None = None) -> Domain:

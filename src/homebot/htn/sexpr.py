@@ -3,7 +3,8 @@
 Symbols are kept as written (case-sensitive), or in lower case with ``fold_case``
 (JSHOP2 is case-insensitive); numbers become ``int`` or ``float``; ``"strings"``
 become ``Text``; ``;`` starts a comment to the end of the line. ``#'name`` (Lisp's
-function quote) reads as the symbol ``#'name``.
+function quote) reads as the symbol ``#'name``. Lists nest at most ``MAX_NESTING``
+deep: the reader itself is iterative, but the domain builders walk forms recursively.
 """
 
 from __future__ import annotations
@@ -14,7 +15,11 @@ from typing import Any
 
 from homebot.errors import PlanningError
 
-__all__ = ["Form", "Text", "plain", "read_forms"]
+__all__ = ["MAX_NESTING", "Form", "Text", "plain", "read_forms"]
+
+#: The deepest nesting of parentheses a file may write. JSHOP2's example domains nest
+#: about ten deep; this keeps the recursive builders far from Python's stack limit.
+MAX_NESTING = 100
 
 _TOKEN = re.compile(r"""\s+|;[^\n]*|(?P<open>\()|(?P<close>\))|(?P<string>"(?:[^"\\]|\\.)*")"""
                     r"""|(?P<bad>["'`,])|(?P<atom>[^\s()";]+)""")
@@ -44,6 +49,25 @@ def _location(text: str, offset: int) -> tuple[int, int]:
     return line, column
 
 
+class _Lines:
+    """Line and column of offsets met in increasing order, in one pass over the text
+    (counting from the start for every form would make a large file quadratic)."""
+
+    def __init__(self, text: str) -> None:
+        self.text = text
+        self.scanned = 0
+        self.line = 1
+        self.line_start = 0
+
+    def at(self, offset: int) -> tuple[int, int]:
+        newlines = self.text.count("\n", self.scanned, offset)
+        if newlines:
+            self.line += newlines
+            self.line_start = self.text.rfind("\n", self.scanned, offset) + 1
+        self.scanned = offset
+        return self.line, offset - self.line_start + 1
+
+
 def _atom(token: str) -> Any:
     try:
         return int(token)
@@ -62,8 +86,9 @@ def read_forms(text: str, source: str = "<text>", fold_case: bool = False) -> li
 
     With ``fold_case`` every symbol is read in lower case (strings stay as written).
     """
-    stack: list[tuple[list[Any], int]] = []
+    stack: list[tuple[list[Any], tuple[int, int]]] = []
     top: list[Any] = []
+    lines = _Lines(text)
     position = 0
     for match in _TOKEN.finditer(text):
         if match.start() != position:  # pragma: no cover - the pattern matches every character
@@ -73,14 +98,17 @@ def read_forms(text: str, source: str = "<text>", fold_case: bool = False) -> li
         if kind is None:
             continue
         if kind == "open":
-            stack.append(([], match.start()))
+            if len(stack) >= MAX_NESTING:
+                line, column = _location(text, match.start())
+                raise PlanningError(f"{source}:{line}:{column}: parentheses nest deeper than "
+                                    f"{MAX_NESTING} levels; flatten the expression")
+            stack.append(([], lines.at(match.start())))
         elif kind == "close":
             if not stack:
                 line, column = _location(text, match.start())
                 raise PlanningError(f"{source}:{line}:{column}: ')' without a matching '('; "
                                     "remove it or add the '(' it closes")
-            items, start = stack.pop()
-            line, column = _location(text, start)
+            items, (line, column) = stack.pop()
             form = Form(tuple(items), line, column)
             (stack[-1][0] if stack else top).append(form)
         elif kind == "bad":
@@ -95,7 +123,7 @@ def read_forms(text: str, source: str = "<text>", fold_case: bool = False) -> li
                 token.lower() if fold_case else token)
             (stack[-1][0] if stack else top).append(value)
     if stack:
-        line, column = _location(text, stack[-1][1])
+        line, column = stack[-1][1]
         raise PlanningError(f"{source}:{line}:{column}: this '(' is never closed; add the "
                             "missing ')'")
     return top

@@ -5,6 +5,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from homebot.errors import KnowledgeError
+from homebot.files import read_text_file
 from homebot.knowledge import coherence
 from homebot.knowledge.model import (
     ANY,
@@ -206,13 +207,9 @@ def kb_warnings(path: str | Path) -> list[str]:
 
 
 def read_kb_file_text(path: Path) -> str:
-    """The text of a KB file (either form); unreadable or non-UTF-8 files are KB errors."""
-    try:
-        return path.read_text(encoding="utf-8")
-    except OSError as error:
-        raise KnowledgeError(f"cannot read KB file {path}: {error.strerror}") from None
-    except UnicodeDecodeError as error:
-        raise KnowledgeError(f"{path} is not UTF-8 text: {error.reason}") from None
+    """The text of a KB file (either form); unreadable, non-UTF-8 or oversized files are KB
+    errors."""
+    return read_text_file(path, KnowledgeError, "text", "KB file")
 
 
 def read_kb(path: str | Path) -> Taxonomy:

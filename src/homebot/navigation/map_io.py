@@ -30,6 +30,7 @@ probability) counts as unknown; in ``raw`` mode the value is the occupancy in pe
 
 from __future__ import annotations
 
+import io
 import math
 import re
 import warnings
@@ -43,6 +44,7 @@ from PIL import Image, UnidentifiedImageError
 from scipy import ndimage
 
 from homebot.errors import MapError
+from homebot.files import read_bytes_file
 from homebot.geometry import wrap_angle
 from homebot.world import OccupancyGrid, World
 from homebot.yamlfile import load_yaml_document, short_repr
@@ -273,10 +275,14 @@ def _finite(value: Any, where: str) -> float:
 
 def _read_image(path: Path, where: str, mode: str) -> tuple[np.ndarray, np.ndarray]:
     """Brightness in [0, 1] per pixel (channels averaged, as map_server does) and opacity."""
+    if not path.exists():
+        raise MapError(f"{where}: the image {path} does not exist; write it beside the YAML "
+                       "or fix the name")
+    data = read_bytes_file(path, MapError, "image", "map image")
     try:
         with warnings.catch_warnings():
             warnings.simplefilter("error", Image.DecompressionBombWarning)
-            image = Image.open(path)
+            image = Image.open(io.BytesIO(data))
         with image:
             image.load()
             if image.mode not in ("1", "L", "LA", "P", "RGB", "RGBA"):
@@ -285,9 +291,6 @@ def _read_image(path: Path, where: str, mode: str) -> tuple[np.ndarray, np.ndarr
             has_alpha = image.mode in ("LA", "RGBA") or (
                 image.mode == "P" and "transparency" in image.info)
             rgba = np.asarray(image.convert("RGBA"), dtype=np.float64) / 255.0
-    except FileNotFoundError:
-        raise MapError(f"{where}: the image {path} does not exist; write it beside the YAML "
-                       "or fix the name") from None
     except (Image.DecompressionBombError, Image.DecompressionBombWarning) as error:
         raise MapError(f"{where}: {path} is too large to read ({error})") from None
     except (UnidentifiedImageError, SyntaxError, ValueError) as error:

@@ -2,33 +2,50 @@
 
 Files ending in ``.dm`` are read in SitLog's own notation (``prolog_form``). The YAML
 form mirrors Listing A1: a file holds ``dialogue_models`` (each with an
-``id``, ``situations`` and ``locals``), ``globals``, ``functions`` (Python modules
-or ``.py`` files next to the YAML that define ``user_functions()``), ``include``
-(other YAML files) and ``main``. Values are terms in SitLog's notation; an arc is
-``"Expectation : Action => Next"`` or ``{expect, action, next}``. Every error names
-the file, line and column; ``validation.check_program`` runs before a program is
-returned.
+``id``, ``situations`` and ``locals``), ``globals``, ``functions`` (Python code that
+defines ``user_functions()``), ``include`` (other YAML files) and ``main``. Values are
+terms in SitLog's notation; an arc is ``"Expectation : Action => Next"`` or
+``{expect, action, next}``. Every error names the file, line and column;
+``validation.check_program`` runs before a program is returned.
+
+Loading is not running. A model is data a person may have been sent, so what it names
+is trusted only from three places: ``.py`` files inside the model's own folder,
+homebot's own ``homebot.sitlog.functions`` modules, and modules that an installed
+package registers under the entry-point group ``homebot.sitlog_functions``. Anything
+else is refused by name before it is imported. With ``run_code=False`` (``sitlog show``
+and ``check``) nothing but homebot's own modules is imported at all. ``include`` reads
+only files inside the model's folder.
 """
 
 from __future__ import annotations
 
 import difflib
 import importlib
+import importlib.metadata
 import importlib.util
 import unicodedata
 from collections.abc import Mapping
 from pathlib import Path
+from types import ModuleType
 from typing import Any
 
 import yaml
 
 from homebot.errors import DialogueError
+from homebot.files import read_text_file
 from homebot.sitlog.model import Arc, DialogueModel, Program, Situation, UserFunction, functor_of
-from homebot.sitlog.terms import EMPTY, Struct, Term, Var, parse_term
+from homebot.sitlog.terms import MAX_TERM_DEPTH, EMPTY, Struct, Term, Var, parse_term
 from homebot.sitlog.validation import check_program
 from homebot.yamlfile import compose_yaml_text
 
-__all__ = ["load_program", "load_program_text", "shipped_dialogue_path"]
+__all__ = ["FUNCTION_ENTRY_POINTS", "load_program", "load_program_text",
+           "shipped_dialogue_path"]
+
+#: The entry-point group under which an installed package offers SitLog user functions:
+#: ``[project.entry-points."homebot.sitlog_functions"] my_functions = "my_package.module"``
+#: lets a model write ``functions: [my_functions]``.
+FUNCTION_ENTRY_POINTS = "homebot.sitlog_functions"
+_SHIPPED_FUNCTIONS = "homebot.sitlog.functions"
 
 _DATA_TOKEN = "$DATA"
 _TOP_KEYS = ("dialogue_models", "globals", "functions", "include", "main", "recovery", "types",
@@ -61,35 +78,49 @@ def shipped_dialogue_path(spec: str | Path) -> Path:
     raise DialogueError(f"no dialogue file '{text}'; give a path or a shipped name ({names})")
 
 
-def load_program(spec: str | Path,
-                 functions: Mapping[str, UserFunction] | None = None) -> Program:
+def load_program(spec: str | Path, functions: Mapping[str, UserFunction] | None = None, *,
+                 run_code: bool = True) -> Program:
     """Load and validate a program from a YAML file (or a shipped name such as ``appendix_a``).
 
-    ``functions`` adds user functions given in Python to those the file names.
+    ``functions`` adds user functions given in Python to those the file names. With
+    ``run_code`` false, function modules the file names are not imported (homebot's own
+    excepted) and are listed in ``Program.unloaded_functions``; the program can be shown
+    and checked, not run.
     """
     path = shipped_dialogue_path(spec)
-    reader = _Reader()
+    reader = _Reader(path.resolve().parent, run_code)
     reader.functions.update(functions or {})
     reader.read_file(path)
     return reader.program(str(path))
 
 
 def load_program_text(text: str, source: str = "<text>", base: Path | None = None,
-                      functions: Mapping[str, UserFunction] | None = None) -> Program:
-    """Load and validate a program from YAML text; ``base`` resolves relative includes."""
-    reader = _Reader()
+                      functions: Mapping[str, UserFunction] | None = None, *,
+                      run_code: bool = True) -> Program:
+    """Load and validate a program from YAML text; ``base`` (the model's folder, by default
+    the working directory) resolves includes and ``.py`` function files."""
+    folder = (base or Path.cwd()).resolve()
+    reader = _Reader(folder, run_code)
     reader.functions.update(functions or {})
-    reader.read_text(text, source, base or Path.cwd())
+    reader.read_text(text, source, folder)
     return reader.program(source)
 
 
 class _Reader:
-    """Collects models, globals and functions from one file and its includes."""
+    """Collects models, globals and functions from one file and its includes.
 
-    def __init__(self) -> None:
+    ``folder`` is the model's own folder: includes and ``.py`` function files must be in
+    it (or below it).
+    """
+
+    def __init__(self, folder: Path, run_code: bool) -> None:
+        self.folder = folder
+        self.run_code = run_code
         self.models: dict[tuple[str, int], DialogueModel] = {}
         self.globals: dict[str, Term] = {}
         self.functions: dict[str, UserFunction] = {}
+        self.function_sources: list[str] = []
+        self.unloaded: list[str] = []
         self.main: tuple[str, int] | None = None
         self.recovery: Term | None = None
         self.types: set[str] = set()
@@ -101,7 +132,8 @@ class _Reader:
         main = self.main or (("main", 0) if ("main", 0) in self.models else next(
             iter(self.models)))
         program = Program(self.models, main, self.globals, self.functions, self.recovery,
-                          source, {"types": frozenset(self.types)})
+                          source, {"types": frozenset(self.types)},
+                          tuple(self.function_sources), tuple(self.unloaded))
         check_program(program)
         return program
 
@@ -110,10 +142,7 @@ class _Reader:
         if path in self.seen:
             return
         self.seen.add(path)
-        try:
-            text = path.read_text(encoding="utf-8")
-        except (OSError, UnicodeDecodeError) as error:
-            raise DialogueError(f"{path}: cannot read it ({error}); check the path") from None
+        text = read_text_file(path, DialogueError, "yaml", "dialogue model")
         # Accents composed: "josé" written with a combining accent is still one atom.
         text = unicodedata.normalize("NFC", text)
         if path.suffix in (".dm", ".pl"):
@@ -150,7 +179,8 @@ class _Reader:
         if "repeat" in top:
             file.default_repeat = file.repeat(top["repeat"])
         for node in file.sequence(top.get("include"), "include"):
-            self.read_file(base / file.string(node, "an include"))
+            name = file.string(node, "an include")
+            self.read_file(self._inside(base / name, f"{file.place(node)}: include '{name}'"))
         for node in file.sequence(top.get("functions"), "functions"):
             self._functions(file, node)
         for name, node in file.pairs(top.get("globals"), "globals"):
@@ -172,22 +202,45 @@ class _Reader:
                                     f"here; models: {_names(self.models)}")
             self.main = main
 
+    def _inside(self, path: Path, what: str) -> Path:
+        """``path`` resolved, if it is inside the model's folder; else a ``DialogueError``
+        starting with ``what`` (which says where the path was written)."""
+        resolved = path.resolve()
+        if not resolved.is_relative_to(self.folder):
+            raise DialogueError(f"{what} is outside the model's folder {self.folder}; a model "
+                                "reads only files in its own folder: copy the file there")
+        return resolved
+
     def _functions(self, file: _File, node: yaml.Node, spec: str | None = None) -> None:
         spec = spec if spec is not None else file.string(node, "a module or .py file")
+        place = file.place(node)
+        shipped = spec == _SHIPPED_FUNCTIONS or spec.startswith(_SHIPPED_FUNCTIONS + ".")
+        if spec.endswith(".py"):
+            path = self._inside(file.base / spec, f"{place}: functions '{spec}'")
+            load, source = (lambda: _module_from_file(path)), str(path)
+        elif shipped:
+            load, source = (lambda: importlib.import_module(spec)), spec
+        else:
+            entry = _entry_point(spec)
+            if entry is None:
+                raise DialogueError(
+                    f"{place}: functions '{spec}' is neither a .py file in the model's folder, "
+                    f"a module of {_SHIPPED_FUNCTIONS} nor an entry point of the group "
+                    f"{FUNCTION_ENTRY_POINTS}; put the .py file beside the model, or register "
+                    "the module under that group in its package")
+            load, source = entry.load, f"{entry.value} (entry point {spec})"
+        if not (self.run_code or shipped):
+            self.unloaded.append(source)
+            return
         try:
-            if spec.endswith(".py"):
-                path = (file.base / spec).resolve()
-                module_spec = importlib.util.spec_from_file_location(f"sitlog_user_{path.stem}",
-                                                                     path)
-                if module_spec is None or module_spec.loader is None or not path.is_file():
-                    raise ImportError(f"no file {path}")
-                module = importlib.util.module_from_spec(module_spec)
-                module_spec.loader.exec_module(module)
-            else:
-                module = importlib.import_module(spec)
+            module = load()
         except Exception as error:  # any failure of the user's code is the file's problem
-            raise DialogueError(f"{file.place(node)}: cannot import functions '{spec}' "
-                                f"({error}); give a module path or a .py file") from None
+            raise DialogueError(f"{place}: cannot import functions '{spec}' "
+                                f"({error}); fix the module or the name") from None
+        if not isinstance(module, ModuleType):
+            raise DialogueError(f"{place}: '{spec}' is not a module; an entry point of "
+                                f"{FUNCTION_ENTRY_POINTS} names a module, not an object in it")
+        self.function_sources.append(source)
         provider = getattr(module, "user_functions", None)
         if not callable(provider):
             raise DialogueError(f"{file.place(node)}: '{spec}' has no user_functions(); define "
@@ -197,6 +250,23 @@ class _Reader:
             raise DialogueError(f"{file.place(node)}: user_functions() of '{spec}' must return "
                                 "a mapping of names to functions")
         self.functions.update(functions)
+
+
+def _module_from_file(path: Path) -> ModuleType:
+    if not path.is_file():
+        raise ImportError(f"no file {path}")
+    module_spec = importlib.util.spec_from_file_location(f"sitlog_user_{path.stem}", path)
+    if module_spec is None or module_spec.loader is None:
+        raise ImportError(f"{path} is not a Python module")
+    module = importlib.util.module_from_spec(module_spec)
+    module_spec.loader.exec_module(module)
+    return module
+
+
+def _entry_point(name: str) -> importlib.metadata.EntryPoint | None:
+    """The installed entry point ``name`` of the SitLog function group, if any."""
+    found = importlib.metadata.entry_points(group=FUNCTION_ENTRY_POINTS, name=name)
+    return next(iter(found), None)
 
 
 class _File:
@@ -248,10 +318,13 @@ class _File:
             raise DialogueError(f"{self.place(node)}: expected {what}")
         return str(node.value)
 
-    def term(self, node: yaml.Node, variables: dict[str, Var]) -> Term:
+    def term(self, node: yaml.Node, variables: dict[str, Var], depth: int = 1) -> Term:
         """A term from a scalar (parsed in SitLog notation) or a YAML list of terms."""
         if isinstance(node, yaml.SequenceNode):
-            return tuple(self.term(item, variables) for item in node.value)
+            if depth > MAX_TERM_DEPTH:
+                raise DialogueError(f"{self.place(node)}: the lists nest deeper than "
+                                    f"{MAX_TERM_DEPTH} levels; flatten them")
+            return tuple(self.term(item, variables, depth + 1) for item in node.value)
         if not isinstance(node, yaml.ScalarNode):
             raise DialogueError(f"{self.place(node)}: expected a term, not a mapping")
         if node.tag.startswith("!") or not node.tag.startswith("tag:yaml.org,2002:"):

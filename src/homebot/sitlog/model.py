@@ -147,6 +147,11 @@ class Program:
     recovery: Term | None = None
     source: str = "<program>"
     options: Mapping[str, Any] = field(default_factory=dict)
+    #: Where the user functions were loaded from (files, modules, entry points), in order.
+    function_sources: tuple[str, ...] = ()
+    #: Function modules the file names but the loader was told not to run (``sitlog show``):
+    #: while any is left out, calls of unknown functions are not errors yet.
+    unloaded_functions: tuple[str, ...] = ()
 
     @classmethod
     def build(cls, models: Sequence[DialogueModel], *, main: str | None = None,

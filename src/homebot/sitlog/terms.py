@@ -18,6 +18,7 @@ from homebot.errors import DialogueError
 
 __all__ = [
     "EMPTY",
+    "MAX_TERM_DEPTH",
     "Struct",
     "Term",
     "Text",
@@ -37,6 +38,11 @@ __all__ = [
 
 #: The atom SitLog uses for "nothing here" (an empty expectation or action).
 EMPTY = "empty"
+
+#: The deepest nesting of a term (structures, lists, operators) a file may write. A real
+#: dialogue model nests a few levels; the bound keeps the recursive printing, unifying
+#: and checking of terms far from Python's stack limit, whatever a file holds.
+MAX_TERM_DEPTH = 100
 
 
 @dataclass(frozen=True, slots=True)
@@ -267,14 +273,19 @@ class _Parser:
         self.index = 0
         self.variables: dict[str, Var] = {}
         self.positions = positions  #: id of each structure and list -> its offset
+        self.depth = 0  #: how deeply the term being read nests here
 
     def error(self, token: _Token, expected: str) -> DialogueError:
         found = f"'{token.text}'" if token.text else "the end"
         if "\n" in self.source:
-            return DialogueError(f"{self.where}, {place_in(self.source, token.column)}: expected "
-                                 f"{expected}, found {found}")
-        return DialogueError(f"{self.where}, column {self.offset + token.column + 1}: expected "
-                             f"{expected}, found {found} in {self.source!r}")
+            return DialogueError(f"{self.place(token)}: expected {expected}, found {found}")
+        return DialogueError(f"{self.place(token)}: expected {expected}, found {found} in "
+                             f"{_quoted(self.source)}")
+
+    def place(self, token: _Token) -> str:
+        if "\n" in self.source:
+            return f"{self.where}, {place_in(self.source, token.column)}"
+        return f"{self.where}, column {self.offset + token.column + 1}"
 
     def note(self, term: Term, offset: int) -> Term:
         if self.positions is not None:
@@ -295,9 +306,25 @@ class _Parser:
             raise self.error(token, f"'{text}'")
 
     def parse(self, max_priority: int = 1200) -> Term:
+        self.depth += 1
+        try:
+            return self._operators(max_priority)
+        finally:
+            self.depth -= 1
+
+    def _deeper(self, token: _Token, levels: int = 0) -> None:
+        """Refuse a term nested past ``MAX_TERM_DEPTH`` (``levels`` more than here)."""
+        if self.depth + levels > MAX_TERM_DEPTH:
+            raise DialogueError(f"{self.place(token)}: the term nests deeper than "
+                                f"{MAX_TERM_DEPTH} levels; flatten it (a list instead of "
+                                "nested structures, or several situations)")
+
+    def _operators(self, max_priority: int) -> Term:
+        self._deeper(self.peek())
         start = self.peek().column
         left = self.primary()
         left_priority = 0
+        chained = 0  # a left-associative chain (a-b-c) nests one level per operator
         while True:
             token = self.peek()
             operator = _INFIX.get(token.text) if token.kind in ("symbol", "name") else None
@@ -308,6 +335,8 @@ class _Parser:
             right_max = priority if kind == "xfy" else priority - 1
             if priority > max_priority or left_priority > left_max:
                 return left
+            chained += 1
+            self._deeper(token, chained)
             self.take()
             right = self.parse(right_max)
             left = self.note(Struct(token.text, (left, right)), start)
@@ -353,6 +382,13 @@ class _Parser:
         if token.text != closing:
             raise self.error(token, f"',' or '{closing}'")
         return tuple(items)
+
+
+def _quoted(source: str, most: int = 200) -> str:
+    """A term's source quoted in a message, cut in the middle when long."""
+    if len(source) <= most:
+        return repr(source)
+    return f"{source[:most // 2]!r}...{source[-most // 2:]!r}"
 
 
 def _unescape(text: str) -> str:

@@ -73,7 +73,8 @@ def _check_situation(program: Program, model: DialogueModel, situation: Situatio
                             "'Expectation : Action => Next'")
     for term in (*situation.shared_terms(), *situation.prog):
         _check_expression(program, term, variables, situation.place)
-    if situation.interpreter is not None and situation.interpreter not in program.functions:
+    if situation.interpreter is not None and not _known_function(program,
+                                                                 situation.interpreter):
         raise DialogueError(f"{situation.place}: interpreter '{situation.interpreter}' is not a "
                             f"user function; functions: {_listed(program.functions)}")
     embedded: DialogueModel | None = None
@@ -146,7 +147,8 @@ def _check_expression(program: Program, term: Term | None, variables: set[str],
             if key is None and not isinstance(function, Var):
                 raise DialogueError(f"{place}: bad expression {format_term(struct)}: apply takes "
                                     "a function such as f(X) and a list of arguments")
-            if key is not None and key[0] not in program.functions and key[0] not in OPERATORS:
+            if key is not None and not _known_function(program, key[0]) and (
+                    key[0] not in OPERATORS):
                 guess = difflib.get_close_matches(key[0], sorted(program.functions), n=1)
                 hint = f"did you mean '{guess[0]}'?" if guess else (
                     f"functions: {_listed(program.functions)}")
@@ -168,6 +170,11 @@ def _structs(term: Term | None) -> Iterator[Struct]:
     elif isinstance(term, tuple):
         for item in term:
             yield from _structs(item)
+
+
+def _known_function(program: Program, name: str) -> bool:
+    """Whether ``name`` is a user function; any name may be one of the modules not loaded."""
+    return name in program.functions or bool(program.unloaded_functions)
 
 
 def _listed(functions: Mapping[str, object]) -> str:

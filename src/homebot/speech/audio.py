@@ -19,6 +19,7 @@ from numpy.typing import NDArray
 from scipy.signal import resample_poly
 
 from homebot.errors import SpeechError
+from homebot.files import read_bytes_file
 
 __all__ = ["MAX_SECONDS", "SAMPLE_RATE", "Audio", "add_noise", "babble", "denoise", "read_wav",
            "resample", "tones", "wav_bytes", "write_wav"]
@@ -51,13 +52,7 @@ def read_wav(source: str | Path | bytes, *, name: str | None = None,
     if isinstance(source, bytes):
         data = source
     else:
-        try:
-            data = Path(source).read_bytes()
-        except IsADirectoryError:
-            raise SpeechError(f"{label}: is a folder; give a WAV file") from None
-        except OSError as error:
-            raise SpeechError(f"{label}: cannot be read ({error.strerror or error}); "
-                              "check the path") from None
+        data = read_bytes_file(source, SpeechError, "audio", "WAV file")
     if not data:
         raise SpeechError(f"{label}: the file is empty; record a command as a 16-bit WAV")
     if data[:4] != b"RIFF" or data[8:12] != b"WAVE":

@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from homebot.errors import WorldError
+from homebot.files import read_text_file
 from homebot.yamlfile import LocatedDocument, field_error, load_yaml_document, parse_yaml_text
 
 __all__ = ["RobocupImport", "import_robocup", "read_robocup_data", "room_table",
@@ -169,14 +170,11 @@ def _start(placements: list[dict[str, Any]], origins: dict[str, tuple[float, flo
 
 
 def _read(path: Path) -> str:
-    try:
-        return path.read_text(encoding="utf-8")
-    except FileNotFoundError:
+    if not path.exists():
         raise WorldError(f"{path}: no such file; a RoboCup@Home data directory has "
                          "names/names.md, maps/room_names.md, maps/location_names.md "
-                         "and objects/objects.md") from None
-    except (OSError, UnicodeDecodeError) as error:
-        raise WorldError(f"{path}: cannot be read ({error})") from None
+                         "and objects/objects.md")
+    return read_text_file(path, WorldError, "text", "RoboCup@Home data file")
 
 
 def _rows(text: str) -> list[tuple[int, str, list[str]]]:
