@@ -13,6 +13,7 @@ pytest.importorskip("espeakng_loader")
 
 from homebot.cli import main
 from homebot.speech.audio import read_wav, resample, wav_bytes, write_wav
+from homebot.speech.voice import MAX_SPOKEN_CHARACTERS, espeak
 
 COMMAND = "Bring me a cola from the kitchen table"
 
@@ -102,3 +103,15 @@ def test_say_refuses_nothing_and_bad_rates(tmp_path: Path,
                    "cannot be written")
     _fails_cleanly(capsys, main(["say", "hi", "-o", str(tmp_path / "b.wav"), "--voice",
                                  "nosuchvoice"]), "no voice 'nosuchvoice'")
+
+
+def test_say_refuses_a_text_too_long_to_speak_at_once(tmp_path: Path,
+                                                      capsys: pytest.CaptureFixture[str]) -> None:
+    # 96 KB of text took 2.25 GB to synthesise; it is refused before espeak-ng starts on it
+    path = tmp_path / "long.wav"
+    _fails_cleanly(capsys, main(["say", "bring me a cola " * 6_000, "-o", str(path)]),
+                   "a text of 96,000 characters is too long to say at once")
+    assert not path.exists()
+    longest = "a" * MAX_SPOKEN_CHARACTERS
+    assert espeak().synthesise(longest).size > 0
+

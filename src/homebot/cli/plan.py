@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import Any
 
 from rich.console import Console
+from rich.markup import escape
 
 from homebot.beliefs import Beliefs
 from homebot.cli.options import add_world_options, load_world
@@ -32,8 +33,10 @@ from homebot.htn import (
     task_network_text,
 )
 from homebot.htn.domain import task_data
+from homebot.htn.planner import DEEPEST_DECOMPOSITION
 from homebot.htn.logic import term_text
 from homebot.knowledge import KnowledgeBase
+from homebot.text import terminal_safe
 from homebot.world import World
 
 __all__ = ["carry_out_with_htn", "register"]
@@ -63,7 +66,8 @@ def register(subparsers: Any) -> None:
     parser.add_argument("--all", action="store_true", help="every plan (one per task network)")
     parser.add_argument("--cheapest", action="store_true", help="the plan of least cost")
     parser.add_argument("--limit", type=int, default=1000, help="most plans with --all")
-    parser.add_argument("--max-depth", type=int, default=100_000, help="deepest decomposition")
+    parser.add_argument("--max-depth", type=int, default=DEEPEST_DECOMPOSITION,
+                        help=f"deepest decomposition (at most {DEEPEST_DECOMPOSITION:,})")
     parser.add_argument("--max-expansions", type=int, default=1_000_000,
                         help="most task refinements")
     parser.add_argument("--json", action="store_true",
@@ -80,7 +84,18 @@ def _problem(args: argparse.Namespace, domain: Domain) -> Problem | None:
     problems = read_problems(args.problem)
     if not problems:
         raise PlanningError(f"{args.problem}: no (defproblem NAME DOMAIN (ATOMS) (TASKS)) found")
-    return problems[0]
+    problem = problems[0]
+    if problem.domain.lower() != domain.name.lower():  # JSHOP2 names are case-insensitive
+        _note(f"{problem.place}: problem {problem.name} is written for domain "
+              f"'{problem.domain}', but the domain given is '{domain.name}'; planning with "
+              f"'{domain.name}' (give --domain the problem's own domain, or correct its name)")
+    return problem
+
+
+def _note(text: str) -> None:
+    """A note on stderr, escaped for the terminal (it quotes names from files)."""
+    Console(stderr=True, soft_wrap=True).print(f"note: {terminal_safe(text)}", highlight=False,
+                                               markup=False)
 
 
 def _goal(args: argparse.Namespace, domain: Domain, world: World, names: Names,
@@ -109,13 +124,16 @@ def plan(args: argparse.Namespace) -> int:
                           ("--max-expansions", args.max_expansions)):
         if value < 1:
             raise PlanningError(f"{option} {value}: give a bound of 1 or more")
+    if args.max_depth > DEEPEST_DECOMPOSITION:
+        raise PlanningError(f"--max-depth {args.max_depth}: at most {DEEPEST_DECOMPOSITION:,} "
+                            "(each level holds a choice point of the search, about 4 KB)")
     world = load_world(args)
     functions: dict[str, Any] = {}
     for path in args.functions:
         functions.update(load_functions(path))
     domain = load_domain(args.domain, functions)
     for note in domain.notes:
-        Console(stderr=True).print(f"note: {note}", highlight=False, markup=False)
+        _note(note)
     problem = _problem(args, domain)
     names = Names()
     if problem is not None:
@@ -144,14 +162,15 @@ def plan(args: argparse.Namespace) -> int:
         if result.trace is not None:
             console.print("[bold]trace[/]", highlight=False)
             for line in result.trace:
-                console.print(f"  {line}", highlight=False, markup=False)
+                console.print(f"  {terminal_safe(line)}", highlight=False, markup=False)
         _print(console, result.plans, result.expansions, result.stopped, tasks)
     return 0 if result else 1
 
 
 def _print(console: Console, plans: list[Any], expansions: int, stopped: str | None,
            tasks: list[tuple[Any, ...]]) -> None:
-    goal = " ".join("(" + " ".join(term_text(item) for item in task) + ")" for task in tasks)
+    goal = escape(terminal_safe(" ".join("(" + " ".join(term_text(item) for item in task) + ")"
+                                         for task in tasks)))
     if not plans:
         why = f" (search stopped: {stopped} bound)" if stopped else ""
         console.print(f"[red]no plan[/] for {goal}{why}", highlight=False)
@@ -163,10 +182,12 @@ def _print(console: Console, plans: list[Any], expansions: int, stopped: str | N
                   highlight=False)
     for number, found in enumerate(plans, start=1):
         console.print(f"\n[bold]task network {number}[/] (cost {found.cost:g})", highlight=False)
-        console.print(task_network_text(found), highlight=False, markup=False)
+        console.print(terminal_safe(task_network_text(found), lines=True), highlight=False,
+                      markup=False)
         console.print(f"[bold]plan {number}[/]", highlight=False)
         for index, step in enumerate(found.steps, start=1):
-            console.print(f"  {index:2}. {step}", highlight=False, markup=False)
+            console.print(f"  {index:2}. {terminal_safe(str(step))}", highlight=False,
+                          markup=False)
 
 
 def carry_out_with_htn(args: argparse.Namespace, world: World, run: Any,

@@ -457,6 +457,7 @@ class Problem:
     atoms: tuple[Atom, ...]
     tasks: tuple[tuple[Term, ...], ...]
     layout: Layout | None = None  #: how the tasks are ordered (None: in order)
+    place: str = ""  #: where it was written (``file:line:column``)
 
 
 def _text(task: Sequence[Any]) -> str:

@@ -229,7 +229,8 @@ def _problem(form: Form, source: str) -> Problem:
     tasks, layout = _at(tasks_form, source, _network, tasks_form)
     return Problem(items[1], items[2],
                    tuple(_at(atoms_form, source, task_data, atom) for atom in atoms),
-                   tuple(_at(tasks_form, source, task_data, task) for task in tasks), layout)
+                   tuple(_at(tasks_form, source, task_data, task) for task in tasks), layout,
+                   form.where(source))
 
 
 def _forms(text: str, source: str) -> list[Form]:

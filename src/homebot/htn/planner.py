@@ -21,8 +21,13 @@ from homebot.htn.domain import Domain, Layout, task_data
 from homebot.htn.logic import Axiom, substitute, term_text
 from homebot.htn.state import Atom, State, Term, is_variable
 
-__all__ = ["DecompositionNode", "Plan", "PlanStep", "Planner", "PlanningResult",
-           "find_cheapest_plan", "find_plan", "find_plans"]
+__all__ = ["DEEPEST_DECOMPOSITION", "DecompositionNode", "Plan", "PlanStep", "Planner",
+           "PlanningResult", "find_cheapest_plan", "find_plan", "find_plans"]
+
+#: The largest ``max_depth`` a planner takes (and its default). Each level of decomposition
+#: holds a choice point of the depth-first search, about 4 KB: a recursive domain at this
+#: depth takes some 400 MB, and a bound of 10^8 took 1.9 GB before the expansions ran out.
+DEEPEST_DECOMPOSITION = 100_000
 
 #### plans and task networks
 
@@ -210,9 +215,12 @@ class Planner:
             explains why no plan was found and never changes the search).
     """
 
-    def __init__(self, domain: Domain, *, max_depth: int = 100_000,
+    def __init__(self, domain: Domain, *, max_depth: int = DEEPEST_DECOMPOSITION,
                  max_expansions: int = 1_000_000, time_limit: float | None = None,
                  clock: Callable[[], float] = time.perf_counter, trace: bool = False) -> None:
+        if not 1 <= max_depth <= DEEPEST_DECOMPOSITION:
+            raise PlanningError(f"max_depth {max_depth}: give a depth from 1 to "
+                                f"{DEEPEST_DECOMPOSITION:,}")
         self.domain = domain
         self.max_depth = max_depth
         self.max_expansions = max_expansions

@@ -39,8 +39,13 @@ from homebot.errors import SpeechError
 from homebot.speech.audio import SAMPLE_RATE, resample
 from homebot.speech.synthesis_process import NO_VOICE
 
-__all__ = ["HELD_OUT_VOICES", "VOICES", "EspeakLibrary", "Voice", "VoiceSettings", "espeak",
-           "in_process_voice"]
+__all__ = ["HELD_OUT_VOICES", "MAX_SPOKEN_CHARACTERS", "VOICES", "EspeakLibrary", "Voice",
+           "VoiceSettings", "espeak", "in_process_voice"]
+
+#: The longest text spoken at once: about two minutes of speech. Synthesis holds the whole
+#: utterance in memory several times over (about 23 KB a character: 96 KB of text took
+#: 2.25 GB), so a longer text is refused rather than spoken.
+MAX_SPOKEN_CHARACTERS = 2_000
 
 _AUDIO_OUTPUT_SYNCHRONOUS = 2
 _CHARS_UTF8 = 1
@@ -230,6 +235,10 @@ class Voice:
         """``text`` spoken in ``settings``, as 16 kHz mono int16 samples."""
         if not text.strip():
             raise SpeechError("there is nothing to say: give some text")
+        if len(text) > MAX_SPOKEN_CHARACTERS:
+            raise SpeechError(f"a text of {len(text):,} characters is too long to say at once; "
+                              f"the robot says at most {MAX_SPOKEN_CHARACTERS:,}: split it "
+                              "into sentences")
         if self.reproducible:
             audio = np.frombuffer(_synthesis_client().ask("synthesise", text, settings),
                                   dtype=np.int16).copy()
