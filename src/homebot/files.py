@@ -22,10 +22,12 @@ _MIB = 1 << 20
 
 #: The largest file of each format, in bytes; the shipped files are far smaller (the
 #: largest, a test corpus, is 40 KB), so a file past these is a mistake or an attack.
+#: YAML is read by PyYAML's pure-Python parser, at about 150 KB a second: 2 MiB keeps the
+#: longest read within some 15 s.
 SIZE_LIMITS = MappingProxyType({
-    "yaml": 8 * _MIB,  # worlds, task files, dialogue models, maps, robot profiles, KB YAML
-    "text": 8 * _MIB,  # KB text, JSHOP2 domains and problems, Golog, SitLog .dm, input lines
-    "events": 256 * _MIB,  # an event log (JSON lines) of a long run
+    "yaml": 2 * _MIB,  # worlds, task files, dialogue models, maps, robot profiles, KB YAML
+    "text": 4 * _MIB,  # KB text, JSHOP2 domains and problems, Golog, SitLog .dm, input lines
+    "events": 64 * _MIB,  # an event log (JSON lines) to draw a run from
     "image": 64 * _MIB,  # a map's PGM or PNG
     "audio": 64 * _MIB,  # a WAV recording (a command is at most a minute: 2 MB at 16 kHz)
 })

@@ -106,7 +106,8 @@ def parse_yaml_text(text: str, source: str, error_type: type[HomebotError]) -> L
     and column, a key written twice its line."""
     root = compose_yaml_text(text, source, error_type)
     try:
-        data = yaml.safe_load(text)
+        # Built from the nodes already composed: the text is parsed once.
+        data = None if root is None else yaml.SafeLoader("").construct_document(root)
     except yaml.YAMLError as error:  # composed, so only a value's constructor can fail
         raise _syntax_error(error, source, error_type, "fix the indentation or quoting"
                             ) from None

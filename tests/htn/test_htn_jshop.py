@@ -11,7 +11,7 @@ from hypothesis import strategies as st
 
 from homebot.errors import PlanningError
 from homebot.htn import State, find_plans, read_domain, read_domain_text, read_problem_text
-from homebot.htn.sexpr import read_forms
+from homebot.htn.sexpr import MAX_NESTING, read_forms
 
 DOMAIN = """\
 ; a small JSHOP2 domain: move boxes between rooms with a robot
@@ -159,3 +159,27 @@ def test_a_variable_effect_must_hold_atoms() -> None:
     domain = read_domain_text("(defdomain d ((:operator (!!note ?x) () () ?x)))")
     with pytest.raises(PlanningError, match="list of atoms"):
         find_plans(domain, State(), [("!!note", "oops")])
+
+
+@pytest.mark.parametrize("depth", [MAX_NESTING + 1, 100_000])
+def test_parentheses_nested_too_deep_are_an_error_with_their_place(depth: int) -> None:
+    # 100,000 nested parentheses once ended in a RecursionError
+    text = "(defdomain deep (\n  " + "(" * depth + ")" * depth + "))\n"
+    with pytest.raises(PlanningError, match=f"deep.jshop:2:{MAX_NESTING + 1}: parentheses nest "
+                                            f"deeper than {MAX_NESTING} levels"):
+        read_domain_text(text, "deep.jshop")
+
+
+def test_parentheses_nested_to_the_limit_are_read() -> None:
+    forms = read_forms("(" * MAX_NESTING + ")" * MAX_NESTING, "x")
+    depth, form = 0, forms[0]
+    while form.items:
+        depth, form = depth + 1, form.items[0]
+    assert depth == MAX_NESTING - 1
+
+
+def test_a_large_file_of_many_forms_is_read_in_linear_time() -> None:
+    # each form's line used to be counted from the start of the text: quadratic
+    text = "(a b)\n" * 50_000
+    forms = read_forms(text, "many")
+    assert len(forms) == 50_000 and (forms[-1].line, forms[-1].column) == (50_000, 1)

@@ -109,8 +109,8 @@ def test_a_module_name_that_is_not_trusted_is_refused_before_import(
     # greetings is importable (its folder is on sys.path), but a model may not name it
     monkeypatch.syspath_prepend(str(tmp_path / "site"))
     model = _model(tmp_path / "model", "greetings", tmp_path / "site")
-    with pytest.raises(DialogueError, match="line 2.*'greetings' is neither a .py file in "
-                                            "the model's folder"):
+    with pytest.raises(DialogueError, match=r"line 2.*'greetings' is neither a \.py file "
+                                            r"in the model's folder"):
         load_program(model)
     assert not _imported(tmp_path / "site")
 

@@ -8,7 +8,7 @@ from hypothesis import strategies as st
 
 from homebot.errors import DialogueError
 from homebot.sitlog import Struct, Text, Var, format_term, parse_term
-from homebot.sitlog.terms import Trail, copy_term, resolve, unify
+from homebot.sitlog.terms import MAX_TERM_DEPTH, Trail, copy_term, resolve, unify
 
 
 @pytest.mark.parametrize("source, printed", [
@@ -69,3 +69,23 @@ def test_printing_then_parsing_gives_the_term_back(term: object) -> None:
     if isinstance(term, Text) or "Text(" in repr(term):
         return  # texts print bare, as in SitLog's history; they are not re-readable
     assert parse_term(printed) == term
+
+
+@pytest.mark.parametrize("source", [
+    "f(" * 50_000 + "x" + ")" * 50_000,  # once a RecursionError
+    "[" * 50_000 + "]" * 50_000,
+    "a:" * 50_000 + "a",  # right-associative: the parser recursed
+    "a+" * 50_000 + "a",  # left-associative: a loop, but a term 50,000 deep
+    "f(" * (MAX_TERM_DEPTH + 1) + "x" + ")" * (MAX_TERM_DEPTH + 1),
+])
+def test_a_term_nested_too_deep_is_an_error_with_its_column(source: str) -> None:
+    with pytest.raises(DialogueError, match=f"arc.yaml, line 7, column \\d+: the term nests "
+                                            f"deeper than {MAX_TERM_DEPTH} levels; flatten it"):
+        parse_term(source, "arc.yaml, line 7")
+
+
+def test_a_term_nested_to_the_limit_is_read_printed_and_unified() -> None:
+    source = "f(" * (MAX_TERM_DEPTH - 1) + "X" + ")" * (MAX_TERM_DEPTH - 1)
+    term = parse_term(source)
+    assert format_term(term) == source
+    assert unify(term, parse_term(source.replace("X", "done")), Trail())

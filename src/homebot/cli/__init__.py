@@ -90,12 +90,16 @@ def main(argv: Sequence[str] | None = None) -> int:
         from rich.console import Console
         from rich.markup import escape
 
+        from homebot.errors import MOST_LISTED, problem_listing
         from homebot.text import terminal_safe
 
+        # Capped, as a message may list problems; one line more than a listing that is
+        # capped already (its "... and N more" line).
+        message = problem_listing(str(error).splitlines(), MOST_LISTED + 1)
         # Escaped (markup and control characters), as messages quote what the person typed
         # or a file held; soft-wrapped, so one line stays one.
         Console(stderr=True, highlight=False, soft_wrap=True).print(
-            f"[bold red]error:[/] {escape(terminal_safe(str(error), lines=True))}", markup=True)
+            f"[bold red]error:[/] {escape(terminal_safe(message, lines=True))}", markup=True)
         return 2
     except BrokenPipeError:
         # The reader went away (`homebot ... | head`): stop quietly, as Unix tools do.

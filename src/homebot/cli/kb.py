@@ -7,7 +7,7 @@ import json
 from collections.abc import Callable
 from typing import Any
 
-from homebot.errors import KnowledgeError
+from homebot.errors import KnowledgeError, problem_listing
 from homebot.knowledge import (
     Explanation,
     KnowledgeBase,
@@ -80,8 +80,8 @@ def _check(args: argparse.Namespace) -> int:
         messages = kb_warnings(path)
     else:
         messages = [problem.message for problem in found]
-    for message in messages:
-        _print(f"warning: {message}")
+    if messages:
+        _print(problem_listing([f"warning: {message}" for message in messages]), lines=True)
     return 0
 
 
@@ -133,9 +133,9 @@ def _explain(args: argparse.Namespace) -> int:
     return 0
 
 
-def _print(text: str) -> None:
-    """Print a line that quotes the KB's names, escaped for the terminal."""
-    print(terminal_safe(text))
+def _print(text: str, *, lines: bool = False) -> None:
+    """Print a line (or ``lines``) that quotes the KB's names, escaped for the terminal."""
+    print(terminal_safe(text, lines=lines))
 
 
 def to_json(answer: Any) -> Any:

@@ -33,8 +33,8 @@ from homebot.htn import (
     task_network_text,
 )
 from homebot.htn.domain import task_data
-from homebot.htn.planner import DEEPEST_DECOMPOSITION
 from homebot.htn.logic import term_text
+from homebot.htn.planner import DEEPEST_DECOMPOSITION
 from homebot.knowledge import KnowledgeBase
 from homebot.text import terminal_safe
 from homebot.world import World

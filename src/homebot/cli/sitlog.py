@@ -19,8 +19,8 @@ from typing import Any
 from rich.console import Console
 
 from homebot.errors import DialogueError
-from homebot.files import read_text_file
 from homebot.executive import print_report
+from homebot.files import read_text_file
 from homebot.sitlog import (
     Environment,
     Interpreter,
@@ -93,14 +93,14 @@ class _Mixed:
 
 
 def _run(args: argparse.Namespace) -> int:
-    program = load_program(args.file)
-    notes = Console(stderr=True, highlight=False, markup=False, soft_wrap=True)
-    for source in program.function_sources:
-        notes.print(f"note: user functions from {terminal_safe(source)}")
     inputs = list(args.input)
     if args.input_file is not None:
         text = read_text_file(args.input_file, DialogueError, "text", "file of inputs")
         inputs += [line for line in text.splitlines() if line.strip()]
+    program = load_program(args.file)
+    notes = Console(stderr=True, highlight=False, markup=False, soft_wrap=True)
+    for source in program.function_sources:
+        notes.print(f"note: user functions from {terminal_safe(source)}")
     console = None if args.json else Console(highlight=False, markup=False)
     keyboard = _prompt if sys.stdin.isatty() and not args.json else None
     spoken = ScriptedPerception(inputs, read_line=keyboard, show=(

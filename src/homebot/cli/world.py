@@ -15,8 +15,8 @@ from rich.table import Table
 
 from homebot.cli.options import load_world
 from homebot.errors import WorldError
-from homebot.files import read_text_file
 from homebot.events import EventLog
+from homebot.files import read_text_file
 from homebot.world import World
 
 if TYPE_CHECKING:

@@ -24,7 +24,7 @@ import importlib
 import importlib.metadata
 import importlib.util
 import unicodedata
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from pathlib import Path
 from types import ModuleType
 from typing import Any
@@ -34,7 +34,7 @@ import yaml
 from homebot.errors import DialogueError
 from homebot.files import read_text_file
 from homebot.sitlog.model import Arc, DialogueModel, Program, Situation, UserFunction, functor_of
-from homebot.sitlog.terms import MAX_TERM_DEPTH, EMPTY, Struct, Term, Var, parse_term
+from homebot.sitlog.terms import EMPTY, MAX_TERM_DEPTH, Struct, Term, Var, parse_term
 from homebot.sitlog.validation import check_program
 from homebot.yamlfile import compose_yaml_text
 
@@ -215,6 +215,7 @@ class _Reader:
         spec = spec if spec is not None else file.string(node, "a module or .py file")
         place = file.place(node)
         shipped = spec == _SHIPPED_FUNCTIONS or spec.startswith(_SHIPPED_FUNCTIONS + ".")
+        load: Callable[[], Any]
         if spec.endswith(".py"):
             path = self._inside(file.base / spec, f"{place}: functions '{spec}'")
             load, source = (lambda: _module_from_file(path)), str(path)

@@ -15,7 +15,7 @@ from shapely.geometry.base import BaseGeometry
 from shapely.ops import unary_union
 from shapely.prepared import prep
 
-from homebot.errors import WorldError
+from homebot.errors import WorldError, problem_listing
 from homebot.geometry import Pose
 from homebot.text import closest_names, fold, folded_index
 from homebot.world.loading import validate_document
@@ -113,7 +113,7 @@ class World:
         self._check_people()
         self._check_robot()
         if self._problems:
-            raise WorldError("\n".join(self._problems))
+            raise WorldError(problem_listing(self._problems))
 
     # ------------------------------------------------------------------ loading
 
@@ -294,7 +294,7 @@ class World:
                 self._problem(["rooms", index, "polygon"],
                               "polygon is not a simple area; list its corners in order")
         if self._problems:  # geometry on broken polygons fails; every later check would too
-            raise WorldError("\n".join(self._problems))
+            raise WorldError(problem_listing(self._problems))
         names = list(self.room_polygons)
         for i, first in enumerate(names):
             for second in names[i + 1:]:
