@@ -163,3 +163,15 @@ def test_sitlog_yaml_lists_nested_too_deep_are_an_error(
                      encoding="utf-8")
     _fails_cleanly(capsys, main(["sitlog", "check", str(model)]),
                    "the lists nest deeper than 100 levels; flatten them")
+
+
+def test_what_a_dialogue_model_says_is_printed_escaped(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    model = tmp_path / "odd.yaml"
+    model.write_text("dialogue_models:\n  - id: main\n    situations:\n      - id: is\n"
+                     "        type: neutral\n        arcs:\n"
+                     "          - \"empty : say('hi\\x1b[2J there') => fs\"\n"
+                     "      - {id: fs, type: final}\n", encoding="utf-8")
+    assert main(["sitlog", "run", str(model), "--trace"]) == 0
+    out = capsys.readouterr().out
+    assert "robot: hi\\x1b[2J there" in out and "\x1b" not in out

@@ -104,8 +104,9 @@ def _run(args: argparse.Namespace) -> int:
     console = None if args.json else Console(highlight=False, markup=False)
     keyboard = _prompt if sys.stdin.isatty() and not args.json else None
     spoken = ScriptedPerception(inputs, read_line=keyboard, show=(
-        lambda text: console.print(f"robot asks ({text})")) if console else None)
-    body = RecordingBody(echo=(lambda text: console.print(f"robot: {text}")) if console else None)
+        lambda text: console.print(terminal_safe(f"robot asks ({text})"))) if console else None)
+    body = RecordingBody(echo=(lambda text: console.print(terminal_safe(f"robot: {text}")))
+                         if console else None)
     perception: Any = spoken
     application = executive = None
     if args.person and not args.world:
@@ -113,7 +114,8 @@ def _run(args: argparse.Namespace) -> int:
     if args.world:
         perception, body_on_robot, application, executive = _on_robot(args, spoken)
         body = body_on_robot
-    trace = (lambda step: console.print(f"  {step}")) if console and args.trace else None
+    trace = (lambda step: console.print(terminal_safe(f"  {step}"))) if (
+        console and args.trace) else None
     result = Interpreter(program, perception, body=body, application=application,
                          on_transition=trace, executive=executive).run(args.call)
     if args.json:

@@ -14,6 +14,8 @@ from typing import Any, Generic, Protocol, TypeVar
 from rich.console import Console
 from rich.markup import escape
 
+from homebot.text import terminal_safe
+
 __all__ = ["RunDetail", "RunReport", "StepReport", "print_report"]
 
 
@@ -84,14 +86,16 @@ class RunReport(Generic[DetailT]):
 
 def print_report(console: Console, report: RunReport[Any], *, speech: bool = True) -> None:
     """Print a run for a person: the engine's lines (else each step), what the robot said
-    (unless ``speech`` is off, when it was shown as it was said) and how it ended."""
+    (unless ``speech`` is off, when it was shown as it was said) and how it ended; names and
+    texts from files with their control characters escaped."""
     lines = report.detail.lines() if report.detail is not None else []
     for line in lines or [f"  {step.line()}" for step in report.steps]:
-        console.print(line, highlight=False)
+        console.print(terminal_safe(line, lines=True), highlight=False)
     if speech:
         for text in report.speech:
-            console.print(f"  [cyan]robot:[/] {escape(text)}", highlight=False)
-    verdict = "[green]success[/]" if report.success else f"[red]failed[/]: {escape(report.reason)}"
+            console.print(f"  [cyan]robot:[/] {escape(terminal_safe(text))}", highlight=False)
+    verdict = "[green]success[/]" if report.success else (
+        f"[red]failed[/]: {escape(terminal_safe(report.reason))}")
     # a pure simulation of a program (no robot) takes no simulated time to speak of
     took = f" in {report.sim_time:.1f} s simulated" if report.sim_time else ""
     console.print(f"  {verdict}{took}", highlight=False)
