@@ -1,4 +1,5 @@
-"""The folded form names are compared in: accents, case and Unicode forms set aside."""
+"""The folded form names are compared in: accents, case and Unicode forms set aside; names
+and problem lists shown safely."""
 
 from __future__ import annotations
 
@@ -7,7 +8,15 @@ import unicodedata
 from hypothesis import given
 from hypothesis import strategies as st
 
-from homebot.text import closest_names, find_name, fold, folded_index
+from homebot.text import (
+    MOST_LISTED,
+    closest_names,
+    find_name,
+    fold,
+    folded_index,
+    problem_listing,
+    terminal_safe,
+)
 
 
 def test_accented_and_plain_spellings_fold_alike() -> None:
@@ -73,3 +82,19 @@ def test_the_text_module_imports_nothing_of_homebot() -> None:
                 for alias in node.names}
     imported |= {node.module or "" for node in ast.walk(tree) if isinstance(node, ast.ImportFrom)}
     assert not {name for name in imported if name.split(".")[0] == "homebot"}
+
+
+def test_terminal_safe_escapes_what_a_terminal_would_act_on() -> None:
+    assert terminal_safe("evil\x1b[2J\x07\x9b\u202ered\x7f") == (
+        "evil\\x1b[2J\\x07\\x9b\\u202ered\\x7f")
+    assert terminal_safe("a\nb\tc") == "a\\x0ab\tc"  # one line stays one line
+    assert terminal_safe("a\nb", lines=True) == "a\nb"
+    assert terminal_safe("Søren [bold] 'x'") == "Søren [bold] 'x'"  # text is left alone
+
+
+def test_problem_listing_shows_the_first_and_counts_the_rest() -> None:
+    problems = [f"problem {n}" for n in range(MOST_LISTED + 1_234)]
+    lines = problem_listing(problems).splitlines()
+    assert lines[:MOST_LISTED] == problems[:MOST_LISTED]
+    assert lines[MOST_LISTED:] == ["... and 1,234 more"]
+    assert problem_listing(problems[:MOST_LISTED]) == "\n".join(problems[:MOST_LISTED])

@@ -30,18 +30,16 @@ Hierarchy::
                                  gives malformed arguments
 
 Every message says what is wrong and how to fix it; the CLI prints it without a
-traceback and exits with status 2. An error that lists problems (a world with many)
-lists the first ``MOST_LISTED`` and counts the rest (``problem_listing``). Expected
-failures while acting in the world (an object not found, a door closed) are not
-errors: skills return them as ``Outcome`` values.
+traceback and exits with status 2; a message that lists problems lists the first
+twenty and counts the rest (``homebot.text.problem_listing``). Expected failures while
+acting in the world
+(an object not found, a door closed) are not errors: skills return them as
+``Outcome`` values.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-
 __all__ = [
-    "MOST_LISTED",
     "BenchmarkError",
     "BodyError",
     "CallError",
@@ -63,19 +61,7 @@ __all__ = [
     "TaskError",
     "TransportError",
     "WorldError",
-    "problem_listing",
 ]
-
-#: The most problems one error lists; a file with 200,000 of them once printed 21.5 MB.
-MOST_LISTED = 20
-
-
-def problem_listing(problems: Sequence[str], most: int = MOST_LISTED) -> str:
-    """``problems`` one a line: the first ``most``, then ``... and N more`` for the rest."""
-    shown = list(problems[:most])
-    if len(problems) > most:
-        shown.append(f"... and {len(problems) - most:,} more")
-    return "\n".join(shown)
 
 
 class HomebotError(Exception):

@@ -5,7 +5,8 @@ and shown safely.
 comparison of a name with what a person typed, said or wrote in a file goes through
 ``fold`` (or ``find_name`` / ``closest_names``, built on it), on both sides; what is
 shown keeps the spelling of the file that defined the name, through ``terminal_safe``,
-so a name cannot carry escape sequences to the terminal. This module imports
+so a name cannot carry escape sequences to the terminal; a long list of problems is
+shown through ``problem_listing``, the first twenty and a count of the rest. This module imports
 nothing of homebot, so every layer (the world included) may use it.
 """
 
@@ -14,9 +15,13 @@ from __future__ import annotations
 import difflib
 import re
 import unicodedata
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 
-__all__ = ["closest_names", "find_name", "fold", "folded_index", "terminal_safe"]
+__all__ = ["MOST_LISTED", "closest_names", "find_name", "fold", "folded_index",
+           "problem_listing", "terminal_safe"]
+
+#: The most problems one message lists; a file with 200,000 of them once printed 21.5 MB.
+MOST_LISTED = 20
 
 # What a terminal acts on rather than shows: C0 and C1 controls (escape sequences, bell,
 # carriage return, backspace), DEL, and the bidirectional overrides that reorder a line.
@@ -86,3 +91,11 @@ def terminal_safe(text: str, *, lines: bool = False) -> str:
 def _escaped(match: re.Match[str]) -> str:
     code = ord(match.group())
     return f"\\x{code:02x}" if code < 0x100 else f"\\u{code:04x}"
+
+
+def problem_listing(problems: Sequence[str], most: int = MOST_LISTED) -> str:
+    """``problems`` one a line: the first ``most``, then ``... and N more`` for the rest."""
+    shown = list(problems[:most])
+    if len(problems) > most:
+        shown.append(f"... and {len(problems) - most:,} more")
+    return "\n".join(shown)

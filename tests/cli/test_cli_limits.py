@@ -9,7 +9,8 @@ from pathlib import Path
 import pytest
 
 from homebot.cli import main
-from homebot.errors import MOST_LISTED, KnowledgeError
+from homebot.errors import KnowledgeError
+from homebot.text import MOST_LISTED
 
 DATA = Path(__file__).resolve().parents[2] / "src/homebot/data"
 JSHOP2 = Path(__file__).resolve().parents[1] / "htn/data/jshop2"

@@ -90,8 +90,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         from rich.console import Console
         from rich.markup import escape
 
-        from homebot.errors import MOST_LISTED, problem_listing
-        from homebot.text import terminal_safe
+        from homebot.text import MOST_LISTED, problem_listing, terminal_safe
 
         # Capped, as a message may list problems; one line more than a listing that is
         # capped already (its "... and N more" line).

@@ -7,7 +7,7 @@ import json
 from collections.abc import Callable
 from typing import Any
 
-from homebot.errors import KnowledgeError, problem_listing
+from homebot.errors import KnowledgeError
 from homebot.knowledge import (
     Explanation,
     KnowledgeBase,
@@ -18,7 +18,7 @@ from homebot.knowledge.coherence import warnings
 from homebot.knowledge.knowledge_base import shipped_kb_path
 from homebot.knowledge.syntax import kb_warnings
 from homebot.knowledge.terms import format_literal, format_value
-from homebot.text import find_name, terminal_safe
+from homebot.text import find_name, problem_listing, terminal_safe
 
 __all__ = ["SERVICES", "register", "to_json"]
 

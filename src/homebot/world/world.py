@@ -15,9 +15,9 @@ from shapely.geometry.base import BaseGeometry
 from shapely.ops import unary_union
 from shapely.prepared import prep
 
-from homebot.errors import WorldError, problem_listing
+from homebot.errors import WorldError
 from homebot.geometry import Pose
-from homebot.text import closest_names, fold, folded_index
+from homebot.text import closest_names, fold, folded_index, problem_listing
 from homebot.world.loading import validate_document
 from homebot.world.model import (
     DisturbanceModel,
