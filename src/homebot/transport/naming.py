@@ -7,10 +7,17 @@ and two topics (``_action/feedback``, ``_action/status``) under its name. QoS pr
 rmw's: the default (reliable, volatile, keep last 10), sensor data (best effort, keep last 5),
 services (reliable, volatile, keep last 10), the ``map`` topic as ``map_server`` offers it
 (reliable, transient local, keep last 1), and action status (reliable, transient local).
+
+Names follow ROS 2's rules (``check_name``, ``check_frame``): letters, digits, ``_`` and
+``/``; no token starting with a digit, no ``//`` or ``__``, no trailing ``/``; at most
+``MAX_NAME_LENGTH`` characters. A name that breaks them is refused here with the rule it
+breaks, before DDS sees it (DDS would refuse some with a bare ``DDSException``, or accept a
+name no ROS 2 node can subscribe to).
 """
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from enum import StrEnum
 
@@ -31,6 +38,8 @@ __all__ = [
     "Reliability",
     "action_service",
     "action_topic",
+    "check_frame",
+    "check_name",
     "reply_topic",
     "request_topic",
     "topic",
@@ -38,13 +47,42 @@ __all__ = [
 
 ACTION_SERVICES = ("send_goal", "get_result", "cancel_goal")
 ACTION_TOPICS = ("feedback", "status")
+#: rmw's limit on a topic name (255) less the longest prefix and suffix it adds.
+MAX_NAME_LENGTH = 247
+_TOKEN = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
+
+
+def check_name(name: object) -> str:
+    """``name`` when it is a valid ROS 2 topic, service or action name, else ``ValueError``
+    saying which rule it breaks. Absolute (``/scan``) or relative (``scan``): homebot has no
+    node namespace, so both mean the same; ``~`` and ``{}`` substitutions are not offered."""
+    if not isinstance(name, str):
+        raise ValueError(f"a ROS 2 name is text, not {type(name).__name__}")
+    shown = ascii(name[:60] + ("..." if len(name) > 60 else ""))
+    if not name.strip("/"):
+        raise ValueError("a ROS 2 name must not be empty")
+    if len(name) > MAX_NAME_LENGTH:
+        raise ValueError(f"the ROS 2 name {shown} has {len(name)} characters; "
+                         f"keep it to {MAX_NAME_LENGTH}")
+    if name.endswith("/") or "//" in name or "__" in name:
+        raise ValueError(f"the ROS 2 name {shown} ends in '/' or holds '//' or '__'")
+    for token in name.removeprefix("/").split("/"):
+        if not _TOKEN.fullmatch(token):
+            raise ValueError(f"the ROS 2 name {shown} is not letters, digits, '_' and '/' "
+                             f"with no part starting with a digit (part {ascii(token)})")
+    return name
+
+
+def check_frame(frame: object) -> str:
+    """``frame`` when it is a valid tf2 frame id (a ROS 2 name without a leading ``/``)."""
+    if isinstance(frame, str) and frame.startswith("/"):
+        raise ValueError(f"the frame id {ascii(frame[:60])} starts with '/'; tf2 frame ids "
+                         "do not (write it without)")
+    return check_name(frame)
 
 
 def _relative(name: str) -> str:
-    name = name.strip()
-    if not name or name == "/":
-        raise ValueError("a ROS 2 name must not be empty")
-    return name.lstrip("/")
+    return check_name(name).lstrip("/")
 
 
 def topic(name: str) -> str:

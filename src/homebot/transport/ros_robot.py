@@ -33,6 +33,7 @@ from homebot.robot import Blocker, Detection, HelpRequest, MoveReport, PersonPer
 from homebot.transport.actions import ActionClient, GoalStatus
 from homebot.transport.calls import decode_result, encode, move_report
 from homebot.transport.messages import pose_of, pose_stamped
+from homebot.transport.naming import check_frame, check_name
 from homebot.transport.node import Node
 from homebot.yamlfile import field_error, load_yaml_document
 
@@ -70,6 +71,14 @@ class RobotMapping:
             if not isinstance(value, (int, float)) or not 0 < value < math.inf:
                 raise TransportError(field_error(document, [key],
                                                  "must be a positive number of seconds"))
+        for key, check in (("navigate_action", check_name), ("speech_topic", check_name),
+                           ("robot_call", check_name), ("frame", check_frame)):
+            if key not in data or (data[key] is None and key in ("speech_topic", "robot_call")):
+                continue  # left out: homebot's default; null: the robot offers none
+            try:
+                check(data[key])
+            except ValueError as error:
+                raise TransportError(field_error(document, [key], str(error))) from None
         return cls(**data)
 
 
