@@ -89,6 +89,8 @@ BENCHMARKS: tuple[Benchmark, ...] = (
            "watchers at 10 updates/s", "web", "embodied"),
     _bench("transport", "ROS 2 transport: throughput between two processes, fetch over ROS 2, "
            "a lost robot's detection", "ros", "embodied"),
+    _bench("serve_fuzz", "malformed requests to homebot sim serve and ros serve over DDS: "
+           "every one answered, the servers alive and flat in memory", "ros"),
 )
 
 

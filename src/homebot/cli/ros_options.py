@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import logging
 import os
 from typing import TYPE_CHECKING
 
@@ -12,7 +13,10 @@ from homebot.transport import require_ros
 if TYPE_CHECKING:
     from homebot.transport.node import Node
 
-__all__ = ["add_transport_options", "transport_node"]
+__all__ = ["SERVER_KEEP", "add_transport_options", "serve_logging", "transport_node"]
+
+#: Events (and trail points) a server keeps in memory: a server runs for days.
+SERVER_KEEP = 5000
 
 
 def _domain_id(text: str) -> int:
@@ -43,3 +47,8 @@ def transport_node(args: argparse.Namespace) -> Node:
         return Node(settings)
     except HomebotError:
         raise
+
+
+def serve_logging() -> None:
+    """A server's log: one line on stderr per refused request (``homebot.transport``)."""
+    logging.basicConfig(format="%(name)s: %(levelname)s: %(message)s", level=logging.WARNING)

@@ -6,7 +6,12 @@ import argparse
 from typing import Any
 
 from homebot.cli.options import GPSR_TIME_LIMIT, load_world
-from homebot.cli.ros_options import add_transport_options, transport_node
+from homebot.cli.ros_options import (
+    SERVER_KEEP,
+    add_transport_options,
+    serve_logging,
+    transport_node,
+)
 from homebot.cli.simulated import add_run_options, simulated_run
 from homebot.language import Vocabulary, parse_command
 
@@ -26,12 +31,14 @@ def register(subparsers: Any) -> None:
 
 
 def _serve(args: argparse.Namespace) -> int:
+    serve_logging()
     node = transport_node(args)
     from homebot.transport.command_server import CommandOutcome, CommandServer
 
     world = load_world(args)
     vocabulary = Vocabulary.from_world(world)
     run = simulated_run(args, world)  # one home that persists from command to command
+    run.simulation.events.keep = run.simulation.trail_keep = SERVER_KEEP
 
     def carry_out(command: str) -> CommandOutcome:
         parsed = parse_command(command, vocabulary)

@@ -15,7 +15,12 @@ from homebot.cli.options import (
     disturbance_level,
     load_world,
 )
-from homebot.cli.ros_options import add_transport_options, transport_node
+from homebot.cli.ros_options import (
+    SERVER_KEEP,
+    add_transport_options,
+    serve_logging,
+    transport_node,
+)
 from homebot.world import World
 
 if TYPE_CHECKING:
@@ -47,6 +52,7 @@ def register(subparsers: Any) -> None:
 
 
 def _serve(args: argparse.Namespace) -> int:
+    serve_logging()
     node = transport_node(args)
     from homebot.transport.sim_server import SimServer
 
@@ -56,6 +62,7 @@ def _serve(args: argparse.Namespace) -> int:
     run = build_run(RunSettings(
         world=world, seed=args.seed, fidelity=args.fidelity,
         disturbances=disturbed(args.disturb) if args.disturb else None))
+    run.events.keep = run.simulation.trail_keep = SERVER_KEEP
     server = SimServer(node, run.robot, world, run.events, final_state=run.record_final_state)
     print(f"homebot sim serve: {world.name}, seed {args.seed}, ROS 2 domain {args.domain_id} "
           f"on {args.interface}", flush=True)

@@ -6,12 +6,18 @@ An action ``/navigate_to_pose`` of type ``nav2_msgs/action/NavigateToPose`` is t
 takes a new goal, runs ``execute`` to the end (which may publish feedback and ask whether a
 cancel came), then answers ``get_result``. The client sends a goal, then waits for the
 result while handing feedback to a callback, and notices when the server goes away.
+
+No goal stops the server: one that ``execute`` raises on ends ABORTED with the result
+``refuse(reason)`` builds, and is logged. A ``get_result`` for a goal the server never had
+is answered at once with status UNKNOWN (as rclcpp does), and the server keeps the results
+of its last ``KEPT_RESULTS`` goals only, so requests for made-up goals cost nothing lasting.
 """
 
 from __future__ import annotations
 
 import time
 import uuid
+from collections import OrderedDict
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from enum import IntEnum
@@ -33,10 +39,15 @@ from homebot.transport.node import (
     ServiceClient,
     Subscription,
     TransportError,
+    refusal,
     reply_ready,
 )
 
-__all__ = ["ActionClient", "ActionServer", "GoalContext", "GoalStatus"]
+__all__ = ["KEPT_RESULTS", "ActionClient", "ActionServer", "GoalContext", "GoalStatus"]
+
+#: Finished goals whose results a server keeps for ``get_result`` (rclcpp keeps them 15
+#: minutes; a count keeps memory bounded whatever the rate of goals).
+KEPT_RESULTS = 1000
 
 
 class GoalStatus(IntEnum):
@@ -79,10 +90,14 @@ class ActionServer:
 
     def __init__(self, node: Node, name: str, action: str,
                  execute: Callable[[Any, GoalContext], tuple[GoalStatus, dict[str, Any]]],
-                 clock: Callable[[], float] = time.time) -> None:
-        """``clock`` stamps goal acceptance and status (a simulator passes its own)."""
+                 clock: Callable[[], float] = time.time,
+                 refuse: Callable[[str], dict[str, Any]] = lambda reason: {}) -> None:
+        """``clock`` stamps goal acceptance and status (a simulator passes its own);
+        ``refuse(reason)`` is the result of a goal ``execute`` raised on (default: empty,
+        for an action whose result has no field to say why)."""
         self.node, self.name, self.action, self.execute = node, name, action, execute
-        self.clock = clock
+        self.clock, self.refuse = clock, refuse
+        self.refused = 0  #: goals ended ABORTED because ``execute`` raised
         types = node.types
         self._channels: dict[str, tuple[Subscription[Any], Publisher[Any], type[Any]]] = {}
         for part in ("send_goal", "get_result", "cancel_goal"):
@@ -97,9 +112,11 @@ class ActionServer:
                                        f"{action}_FeedbackMessage", DEFAULT_QOS)
         self.status = node.publisher(action_topic(name, "status"),
                                      "action_msgs/msg/GoalStatusArray", ACTION_STATUS_QOS)
-        self._finished: dict[bytes, _Finished] = {}
-        self._waiting: list[Any] = []  # get_result requests of goals not yet finished
-        self._active: dict[bytes, GoalContext] = {}
+        self._finished: OrderedDict[bytes, _Finished] = OrderedDict()
+
+    def request_subscriptions(self) -> list[Subscription[Any]]:
+        """The readers of the action's goal, result and cancel requests."""
+        return [requests for requests, _replies, _struct in self._channels.values()]
 
     def _service_type(self, part: str) -> str:
         if part == "cancel_goal":
@@ -152,23 +169,26 @@ class ActionServer:
                         stamp=stamp(self.node.types, self.clock()))
             self._publish_status(goal_id, GoalStatus.EXECUTING)
             context = GoalContext(self, goal_id)
-            status, result = self.execute(request.goal, context)
+            try:
+                status, result = self.execute(request.goal, context)
+            except Exception as error:  # no goal may stop the server
+                self.refused += 1
+                status, result = GoalStatus.ABORTED, self.refuse(refusal(self.name, error))
             self._finished[goal_id] = _Finished(status, result)
+            while len(self._finished) > KEPT_RESULTS:
+                self._finished.popitem(last=False)
             self._publish_status(goal_id, status)
         self._answer_results()
         return len(goals)
 
     def _answer_results(self) -> None:
-        self._waiting.extend(self._channels["get_result"][0].take())
-        still: list[Any] = []
-        for request in self._waiting:
-            finished = self._finished.get(bytes(request.goal_id.uuid))
-            if finished is None:
-                still.append(request)
-                continue
+        # Goals run to their end inside ``poll``, so a goal asked about is finished, or was
+        # never had (or its result is long gone): that is answered UNKNOWN, as rclcpp does.
+        for request in self._channels["get_result"][0].take():
+            finished = self._finished.get(bytes(request.goal_id.uuid),
+                                          _Finished(GoalStatus.UNKNOWN))
             result = self.node.types.new(f"{self.action}_Result", **finished.result)
             self._reply("get_result", request, status=int(finished.status), result=result)
-        self._waiting = still
 
 
 class ActionClient:

@@ -11,6 +11,12 @@
 
 The server is given two functions (``parse`` and ``carry_out``) and the event log; the
 command line wires them to the language layer and the executive.
+
+No request stops the server. A command that is empty, longer than the language layer's
+``MAX_COMMAND_LENGTH`` characters or holds control characters (a line break too) is refused
+before the language layer sees it: ``/homebot/parse`` answers ``understood: false`` with the
+reason in ``error``, a ``/homebot/command`` goal ends ABORTED with the reason in ``reason``.
+Any error while parsing or carrying out a command is answered the same way and logged.
 """
 
 from __future__ import annotations
@@ -20,12 +26,27 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
+from homebot.errors import TransportError
 from homebot.events import Event, EventLog
+from homebot.language.parser import MAX_COMMAND_LENGTH
 from homebot.transport.actions import ActionServer, GoalContext, GoalStatus
 from homebot.transport.naming import RELIABLE_ALL_QOS
-from homebot.transport.node import Node
+from homebot.transport.node import Arrivals, Node, shown
 
-__all__ = ["CommandOutcome", "CommandServer"]
+__all__ = ["CommandOutcome", "CommandServer", "check_command"]
+
+
+def check_command(text: str, where: str) -> str:
+    """``text`` when it can be a command; else ``TransportError`` saying why."""
+    if not text.strip():
+        raise TransportError(f"{where}: the command is empty; say what the robot should do")
+    if len(text) > MAX_COMMAND_LENGTH:
+        raise TransportError(f"{where}: the command has {len(text)} characters; keep it "
+                             f"under {MAX_COMMAND_LENGTH}, one task at a time")
+    if not text.isprintable():
+        raise TransportError(f"{where}: the command {shown(text)} holds control characters; "
+                             "send plain text")
+    return text
 
 
 @dataclass(frozen=True, slots=True)
@@ -47,14 +68,21 @@ class CommandServer:
         self.events_topic = node.publisher(f"{namespace}/events", "std_msgs/msg/String",
                                            RELIABLE_ALL_QOS)
         self.speech_topic = node.publisher(f"{namespace}/speech", "std_msgs/msg/String")
-        self.parser = node.service(f"{namespace}/parse", "homebot_msgs/srv/Parse", self._parse)
-        self.command = ActionServer(node, f"{namespace}/command", "homebot_msgs/action/Command",
-                                    self._command)
+        self.parser = node.service(f"{namespace}/parse", "homebot_msgs/srv/Parse", self._parse,
+                                   lambda reason: {"understood": False, "steps": "[]",
+                                                   "error": reason})
+        self.command = ActionServer(
+            node, f"{namespace}/command", "homebot_msgs/action/Command", self._command,
+            refuse=lambda reason: {"success": False, "speech": "", "reason": reason})
+        self._arrivals = Arrivals(node, [self.parser.requests,
+                                         *self.command.request_subscriptions()])
         self._goal: GoalContext | None = None
         events.listeners.append(self._publish)
 
     def spin_once(self, timeout: float = 0.1) -> int:
-        return self.command.poll() + self.parser.poll(timeout) + self.command.poll()
+        """Answer what arrived (waiting up to ``timeout`` s for a request); how many."""
+        self._arrivals.wait(timeout)
+        return self.command.poll() + self.parser.poll() + self.command.poll()
 
     def _publish(self, event: Event) -> None:
         types = self.node.types
@@ -70,7 +98,7 @@ class CommandServer:
             self._goal.publish_feedback(step=f"{event.data.get('skill')}({arguments})")
 
     def _parse(self, request: Any) -> dict[str, Any]:
-        parsed = self.parse(str(request.command))
+        parsed = self.parse(check_command(str(request.command), self.parser.name))
         understood = parsed.get("status") == "ok"
         return {"understood": understood,
                 "steps": json.dumps(parsed.get("steps", []), ensure_ascii=False),
@@ -78,9 +106,10 @@ class CommandServer:
                                                    parsed.get("reason") or "")}
 
     def _command(self, goal: Any, context: GoalContext) -> tuple[GoalStatus, dict[str, Any]]:
+        command = check_command(str(goal.command), self.command.name)
         self._goal = context
         try:
-            outcome = self.carry_out(str(goal.command))
+            outcome = self.carry_out(command)
         finally:
             self._goal = None
         return (GoalStatus.SUCCEEDED if outcome.success else GoalStatus.ABORTED,

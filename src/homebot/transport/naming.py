@@ -69,14 +69,14 @@ def check_name(name: object) -> str:
     for token in name.removeprefix("/").split("/"):
         if not _TOKEN.fullmatch(token):
             raise ValueError(f"the ROS 2 name {shown} is not letters, digits, '_' and '/' "
-                             f"with no part starting with a digit (part {ascii(token)})")
+                             f"with no part starting with a digit (part {token!a})")
     return name
 
 
 def check_frame(frame: object) -> str:
     """``frame`` when it is a valid tf2 frame id (a ROS 2 name without a leading ``/``)."""
     if isinstance(frame, str) and frame.startswith("/"):
-        raise ValueError(f"the frame id {ascii(frame[:60])} starts with '/'; tf2 frame ids "
+        raise ValueError(f"the frame id {frame[:60]!a} starts with '/'; tf2 frame ids "
                          "do not (write it without)")
     return check_name(frame)
 

@@ -7,11 +7,18 @@ its reply with a timeout. Waiting is always a DDS wait set with a deadline, neve
 ``TransportSettings`` chooses the DDS domain and the network: ``loopback(domain_id)``
 keeps everything on 127.0.0.1 (tests, several processes on one machine); a real robot
 names its network interface and leaves multicast discovery on.
+
+A server survives every request: a sample DDS cannot read is dropped (``Subscription.take``),
+a handler's error becomes the reply its ``refuse`` function builds, and both are logged
+(``homebot.transport`` logger, one line each). ``TransportSettings.max_sample`` caps the
+serialised size of any sample in either direction, so a huge request is dropped by DDS before
+it is read.
 """
 
 from __future__ import annotations
 
 import atexit
+import logging
 import os
 import time
 from collections.abc import Callable
@@ -34,7 +41,7 @@ from cyclonedds.sub import DataReader
 from cyclonedds.topic import Topic
 from cyclonedds.util import duration
 
-from homebot.errors import TransportError
+from homebot.errors import HomebotError, TransportError
 from homebot.transport.naming import (
     DEFAULT_QOS,
     SERVICE_QOS,
@@ -46,6 +53,7 @@ from homebot.transport.naming import topic as dds_topic
 from homebot.transport.types import MessageTypes
 
 __all__ = [
+    "Arrivals",
     "Node",
     "Publisher",
     "ServiceClient",
@@ -54,10 +62,27 @@ __all__ = [
     "TransportError",
     "TransportSettings",
     "loopback",
+    "refusal",
     "reply_ready",
+    "shown",
 ]
 
 T = TypeVar("T")
+
+log = logging.getLogger("homebot.transport")
+
+#: Bytes of a serialised sample, in or out: far above any message homebot sends (a 40 x 40 m
+#: map at 5 cm is 640 kB), far below what would strain the robot's memory.
+MAX_SAMPLE = 4 * 1024 * 1024
+
+
+def shown(text: object, limit: int = 80) -> str:
+    """``text`` fit for one log or error line: escaped (no control characters reach a
+    terminal) and cut to ``limit`` characters with its full length."""
+    value = str(text)
+    if len(value) <= limit:
+        return ascii(value)
+    return f"{value[:limit]!a}... ({len(value)} characters)"
 
 
 @dataclass(frozen=True, slots=True)
@@ -73,6 +98,7 @@ class TransportSettings:
     interface: str | None = None
     peers: tuple[str, ...] = ()
     lease: float = 1.0
+    max_sample: int = MAX_SAMPLE
 
     def __post_init__(self) -> None:
         if not 0 <= self.domain_id <= 232:
@@ -93,7 +119,9 @@ class TransportSettings:
                           f"<MaxAutoParticipantIndex>60</MaxAutoParticipantIndex>"
                           f"<Peers>{peers}</Peers>")
         return (f'<CycloneDDS><Domain id="any"><General>{general}</General>'
-                f"<Discovery>{discovery}</Discovery></Domain></CycloneDDS>")
+                f"<Discovery>{discovery}</Discovery>"
+                f"<Internal><MaxSampleSize>{self.max_sample}B</MaxSampleSize></Internal>"
+                "</Domain></CycloneDDS>")
 
 
 def loopback(domain_id: int) -> TransportSettings:
@@ -147,10 +175,19 @@ class Subscription(Generic[T]):
         self._waitset.attach(self._condition)
 
     def take(self, limit: int = 256) -> list[T]:
-        """Every sample that arrived since the last take (up to ``limit``)."""
+        """Every sample that arrived since the last take (up to ``limit``).
+
+        A sample that cannot be read (bytes that are not the type's CDR, text that is not
+        UTF-8: a foreign or hostile writer) is dropped and logged, and so are the samples
+        taken with it; the samples after it are read on the next take."""
+        try:
+            samples = self.reader.take(N=limit)
+        except Exception as error:  # any decoding error of a foreign sample
+            log.warning("%s: dropped unreadable samples (%s: %s)", self.name,
+                        type(error).__name__, shown(error))
+            return []
         # Invalid samples only tell of a writer's instance going away (unregister, dispose).
-        return [sample for sample in self.reader.take(N=limit)
-                if not isinstance(sample, InvalidSample)]
+        return [sample for sample in samples if not isinstance(sample, InvalidSample)]
 
     def wait(self, timeout: float) -> list[T]:
         """Wait up to ``timeout`` s for at least one sample; the samples (maybe none)."""
@@ -166,6 +203,21 @@ class Subscription(Generic[T]):
     def wait_for_publishers(self, count: int, timeout: float) -> bool:
         return _wait_matched(self.reader, DDSStatus.SubscriptionMatched,
                              lambda: self.publishers() >= count, timeout)
+
+
+class Arrivals:
+    """Waits until any of several subscriptions has a sample: a server that offers several
+    services and actions sleeps on all of them at once, so none waits for another's timeout."""
+
+    def __init__(self, node: Node, subscriptions: list[Subscription[Any]]) -> None:
+        self._waitset = WaitSet(node.participant)
+        for subscription in subscriptions:
+            self._waitset.attach(ReadCondition(
+                subscription.reader, SampleState.NotRead | ViewState.Any | InstanceState.Any))
+
+    def wait(self, timeout: float) -> None:
+        """Return when a sample has come to any of them, or after ``timeout`` s."""
+        _wait(self._waitset, timeout)
 
 
 def _wait_matched(entity: DataWriter[Any] | DataReader[Any], status: int,
@@ -188,12 +240,19 @@ def _wait_matched(entity: DataWriter[Any] | DataReader[Any], status: int,
 
 
 class ServiceServer:
-    """Answers a ROS 2 service: ``handler(request) -> response`` (the service's fields)."""
+    """Answers a ROS 2 service: ``handler(request) -> response`` (the service's fields).
+
+    A request the handler raises on is answered with ``refuse(reason)`` (the service's
+    fields for an error) and logged; the server goes on. A ``HomebotError`` is a bad
+    request and its message the reason; any other error is a fault of the server, logged
+    with its traceback and answered as an internal error."""
 
     def __init__(self, node: Node, name: str, service: str,
-                 handler: Callable[[Any], dict[str, Any]]) -> None:
+                 handler: Callable[[Any], dict[str, Any]],
+                 refuse: Callable[[str], dict[str, Any]]) -> None:
         self.name = name
-        self.handler = handler
+        self.handler, self.refuse = handler, refuse
+        self.refused = 0  #: requests answered with an error so far
         self._reply_struct: Any = node.types.reply_struct(service)
         self.requests = Subscription(node, request_topic(name),
                                      node.types.request_struct(service), SERVICE_QOS)
@@ -203,12 +262,26 @@ class ServiceServer:
         """Answer the requests that arrived (waiting up to ``timeout`` s); how many."""
         requests = self.requests.wait(timeout) if timeout else self.requests.take()
         for request in requests:
-            fields = self.handler(request)
+            try:
+                fields = self.handler(request)
+            except Exception as error:  # no request may stop the server
+                self.refused += 1
+                fields = self.refuse(refusal(self.name, error))
             reply_ready(self.requests, self.replies)
             self.replies.publish(self._reply_struct(
                 client_guid=request.client_guid, sequence=request.sequence,
                 **fields))
         return len(requests)
+
+
+def refusal(name: str, error: Exception) -> str:
+    """Why a request to ``name`` was refused, logged: a ``HomebotError`` is the request's
+    fault (its message says what to fix); anything else the server's (with a traceback)."""
+    if isinstance(error, HomebotError):
+        log.warning("%s: refused a request: %s", name, error)
+        return str(error)
+    log.error("%s: internal error on a request", name, exc_info=error)
+    return f"internal error of the server ({type(error).__name__}); see its log"
 
 
 def reply_ready(requests: Subscription[Any], replies: Publisher[Any],
@@ -325,9 +398,10 @@ class Node:
                      qos: QosProfile = DEFAULT_QOS) -> Subscription[Any]:
         return Subscription(self, dds_topic(name), self.types.struct(message), qos)
 
-    def service(self, name: str, service: str,
-                handler: Callable[[Any], dict[str, Any]]) -> ServiceServer:
-        return ServiceServer(self, name, service, handler)
+    def service(self, name: str, service: str, handler: Callable[[Any], dict[str, Any]],
+                refuse: Callable[[str], dict[str, Any]]) -> ServiceServer:
+        """A server of ``service`` at ``name``; ``refuse(reason)`` is its error reply."""
+        return ServiceServer(self, name, service, handler, refuse)
 
     def client(self, name: str, service: str) -> ServiceClient:
         return ServiceClient(self, name, service)

@@ -25,7 +25,7 @@ from homebot.geometry import Pose
 from homebot.robot import Body, DriveKind, HeadState, LaserScan, Odometry, Twist, VelocityLimits
 from homebot.transport.messages import orient, pose_of, seconds, stamp, yaw_of
 from homebot.transport.naming import DEFAULT_QOS, MAP_QOS, SENSOR_QOS
-from homebot.transport.node import Node, TransportError
+from homebot.transport.node import Node, TransportError, log
 
 __all__ = ["BodyServer", "RosBody"]
 
@@ -174,8 +174,12 @@ class BodyServer:
         """Tick once per velocity command that came (waiting up to ``timeout`` s)."""
         commands = self._cmd_vel.wait(timeout)
         for command in commands:
-            self.body.command_velocity(Twist(command.linear.x, command.linear.y,
-                                             command.angular.z))
+            twist = Twist(command.linear.x, command.linear.y, command.angular.z)
+            if not all(math.isfinite(value) for value in (twist.vx, twist.vy, twist.wz)):
+                log.warning("/cmd_vel: a velocity that is not finite (%s); the body stops",
+                            twist)
+                twist = Twist(0.0, 0.0, 0.0)
+            self.body.command_velocity(twist)
             self.body.tick()
             self.publish()
         return len(commands)

@@ -9,6 +9,11 @@ keeps the same event log as an in-process one). ``move_options`` sets the doors 
 and the person to escort for the next goal; ``last_move`` returns the last goal's report;
 ``final_state`` logs where the run left things (the simulator's truth, as an in-process
 run logs it).
+
+Every call is checked against its method's schema (``homebot.transport.calls``) before it
+reaches the robot; a call that fails (a bad method, malformed arguments, or an error in the
+robot) is answered with ``{"error": reason}`` as its result and logged, and the server goes
+on. A navigation goal whose pose is not finite, or not in the map frame, ends ABORTED.
 """
 
 from __future__ import annotations
@@ -25,10 +30,10 @@ from homebot.events import EventLog
 from homebot.geometry import Pose
 from homebot.robot import MoveReport, Robot
 from homebot.transport.actions import ActionServer, GoalContext, GoalStatus
-from homebot.transport.calls import encode, serve
+from homebot.transport.calls import MoveOptions, NoArguments, encode, parse_arguments, serve
 from homebot.transport.messages import pose_stamped, stamp, yaw_of
 from homebot.transport.naming import MAP_QOS
-from homebot.transport.node import Node
+from homebot.transport.node import Arrivals, Node, shown
 from homebot.world import OccupancyGrid, World
 
 __all__ = ["NAVIGATE_ACTION", "ROBOT_CALL", "SimServer"]
@@ -45,9 +50,12 @@ class SimServer:
                  final_state: Callable[[], None] | None = None) -> None:
         self.node, self.robot, self.world, self.events = node, robot, world, events
         self.final_state = final_state
-        self.calls = node.service(ROBOT_CALL, "homebot_msgs/srv/RobotCall", self._call)
+        self.calls = node.service(ROBOT_CALL, "homebot_msgs/srv/RobotCall", self._call,
+                                  self._refuse)
         self.navigate = ActionServer(node, NAVIGATE_ACTION, NAVIGATE_TO_POSE, self._navigate,
                                      clock=robot.now)
+        self._arrivals = Arrivals(node, [self.calls.requests,
+                                         *self.navigate.request_subscriptions()])
         self.map = node.publisher("/map", "nav_msgs/msg/OccupancyGrid", MAP_QOS)
         self.odom = node.publisher("/odom", "nav_msgs/msg/Odometry")
         self.tf = node.publisher("/tf", "tf2_msgs/msg/TFMessage")
@@ -60,33 +68,37 @@ class SimServer:
         self.publish_state()
 
     def spin_once(self, timeout: float = 0.1) -> int:
-        """Answer what arrived (waiting up to ``timeout`` s for a call); how many requests."""
-        handled = self.navigate.poll()
-        handled += self.calls.poll(timeout)
-        return handled + self.navigate.poll()
+        """Answer what arrived (waiting up to ``timeout`` s for a request); how many."""
+        self._arrivals.wait(timeout)
+        return self.navigate.poll() + self.calls.poll() + self.navigate.poll()
 
     # ------------------------------------------------------------ the calls
 
     def _call(self, request: Any) -> dict[str, Any]:
         self.calls_served += 1
-        method, arguments = request.method, request.arguments
-        try:
-            if method == "move_options":
-                options = json.loads(arguments or "{}")
-                self._avoid = frozenset(options.get("avoid_doors", ()))
-                self._escort = options.get("escort")
-                result = "null"
-            elif method == "final_state" and self.final_state is not None:
-                self.final_state()
-                result = "null"
-            elif method == "last_move":
-                result = json.dumps(encode(self._last_move))
-            else:
-                result = serve(self.robot, method, arguments)
-        except (CallError, ValueError) as error:
-            result = json.dumps({"error": str(error)})
+        result = self._run(str(request.method), str(request.arguments))
         self.publish_state()
         return {"result": result, "now": self.robot.now(), "events": self._new_events()}
+
+    def _run(self, method: str, arguments: str) -> str:
+        if method == "move_options":
+            options = parse_arguments(method, arguments, MoveOptions)
+            self._avoid, self._escort = frozenset(options.avoid_doors), options.escort
+            return "null"
+        if method in ("final_state", "last_move"):
+            parse_arguments(method, arguments, NoArguments)
+            if method == "last_move":
+                return json.dumps(encode(self._last_move))
+            if self.final_state is None:
+                raise CallError("RobotCall final_state: this server keeps no final state")
+            self.final_state()
+            return "null"
+        return serve(self.robot, method, arguments)
+
+    def _refuse(self, reason: str) -> dict[str, Any]:
+        """The reply to a call that failed: the reason as its result's ``error``."""
+        return {"result": json.dumps({"error": reason}), "now": self.robot.now(),
+                "events": self._new_events()}
 
     def _new_events(self) -> str:
         events = self.events.since(self._shipped)
@@ -96,7 +108,13 @@ class SimServer:
 
     def _navigate(self, goal: Any, context: GoalContext) -> tuple[GoalStatus, dict[str, Any]]:
         pose = goal.pose.pose
+        frame = str(goal.pose.header.frame_id)
+        if frame not in ("map", ""):
+            raise CallError(f"{NAVIGATE_ACTION}: a goal in frame {shown(frame)}; this robot "
+                            "takes goals in 'map'")
         target = Pose(pose.position.x, pose.position.y, yaw_of(pose.orientation))
+        if not all(math.isfinite(value) for value in (target.x, target.y, target.theta)):
+            raise CallError(f"{NAVIGATE_ACTION}: a goal pose that is not finite ({target})")
         report = self.robot.move_to(target, self._avoid, self._escort)
         self._avoid, self._escort, self._last_move = frozenset(), None, report
         self.publish_state()
