@@ -53,6 +53,8 @@ TINY: dict[str, tuple[list[str], set[str], set[str]]] = {
                 "--worlds", "apartment"], {"command_accuracy", "worlds", "speed"}, set()),
     "console": (["--trials", "1", "--clients", "0"], {"figures"}, {"estop_navigation"}),
     "transport": (["--seconds", "1", "--only", "throughput"], {"laser_scan"}, set()),
+    "serve_fuzz": (["--requests", "20", "--warm-up", "5", "--only", "sim"], {"servers", "seed"},
+                   set()),
 }
 
 

@@ -10,6 +10,7 @@ import pytest
 pytest.importorskip("cyclonedds")
 pytest.importorskip("rosbags")
 
+from homebot.errors import TransportError
 from homebot.geometry import Pose
 from homebot.transport.actions import (
     ActionClient,
@@ -102,3 +103,61 @@ def test_a_cancelled_goal_ends_cancelled(domain_id: int) -> None:
     status, _ = client.result(goal_id, 10.0)
     thread.join(10.0)
     assert status is GoalStatus.CANCELED
+
+
+def test_a_goal_that_raises_ends_aborted_with_its_reason_and_the_server_goes_on(
+        domain_id: int) -> None:
+    node = Node(loopback(domain_id))
+
+    def execute(goal: Any, context: GoalContext) -> tuple[GoalStatus, dict[str, Any]]:
+        if goal.command == "":
+            raise TransportError("the command is empty")
+        if goal.command == "bug":
+            raise ZeroDivisionError("a fault of the server")
+        return GoalStatus.SUCCEEDED, {"success": True, "speech": goal.command}
+
+    server = ActionServer(node, "/command", "homebot_msgs/action/Command", execute,
+                          refuse=lambda reason: {"success": False, "reason": reason})
+    client = ActionClient(Node(loopback(domain_id), node.types), "/command",
+                          "homebot_msgs/action/Command")
+    assert client.wait_for_server(10.0)
+    thread = _serve(server, 3)
+    outcomes = []
+    for command in ("", "bug", "hello"):
+        goal_id = client.send(5.0, command=command)
+        assert goal_id is not None
+        outcomes.append(client.result(goal_id, 10.0))
+    thread.join(10.0)
+    (empty, empty_result), (bug, bug_result), (hello, hello_result) = outcomes
+    assert empty is GoalStatus.ABORTED and empty_result.reason == "the command is empty"
+    assert bug is GoalStatus.ABORTED and "internal error" in bug_result.reason
+    assert hello is GoalStatus.SUCCEEDED and hello_result.speech == "hello"
+    assert server.refused == 2
+
+
+def test_results_of_goals_never_had_are_unknown_and_old_results_are_let_go(
+        domain_id: int, monkeypatch: pytest.MonkeyPatch) -> None:
+    import homebot.transport.actions as actions
+
+    monkeypatch.setattr(actions, "KEPT_RESULTS", 2)
+    node = Node(loopback(domain_id))
+    server = ActionServer(node, "/navigate_to_pose", NAVIGATE,
+                          lambda goal, context: (GoalStatus.SUCCEEDED, {}))
+    client = ActionClient(Node(loopback(domain_id), node.types), "/navigate_to_pose", NAVIGATE)
+    assert client.wait_for_server(10.0)
+    stop = threading.Event()
+
+    def serve() -> None:
+        for _ in range(400):  # bounded: at most 400 waits of 0.05 s
+            server.poll(0.05)
+            if stop.is_set():
+                return
+    thread = threading.Thread(target=serve, daemon=True)
+    thread.start()
+    goals = [client.send(5.0) for _ in range(3)]
+    assert None not in goals
+    assert client.result(bytes(16), 10.0)[0] is GoalStatus.UNKNOWN
+    assert client.result(goals[0] or b"", 10.0)[0] is GoalStatus.UNKNOWN  # let go
+    assert client.result(goals[2] or b"", 10.0)[0] is GoalStatus.SUCCEEDED
+    stop.set()
+    thread.join(10.0)

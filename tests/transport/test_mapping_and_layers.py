@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pytest
@@ -32,4 +33,21 @@ def test_a_mapping_file_names_the_robots_interfaces(tmp_path: Path) -> None:
         RobotMapping.load(path)
     path.write_text("timeout: -1\n", encoding="utf-8")
     with pytest.raises(HomebotError, match="line 1: timeout: must be a positive number"):
+        RobotMapping.load(path)
+
+
+@pytest.mark.parametrize(("text", "says"), [
+    ('speech_topic: "/tts\\x01"\n', r"line 1: speech_topic: the ROS 2 name '/tts\\x01' is not"),
+    ("robot_call: /robot//call\n", "line 1: robot_call: the ROS 2 name '/robot//call' ends"),
+    ("timeout: 5\nnavigate_action: 7\n", "line 2: navigate_action: a ROS 2 name is text"),
+    ("frame: /map\n", "line 1: frame: the frame id '/map' starts with '/'"),
+])
+def test_a_mapping_file_with_a_bad_ros2_name_says_file_line_and_rule(
+        tmp_path: Path, text: str, says: str) -> None:
+    pytest.importorskip("cyclonedds")
+    from homebot.transport.ros_robot import RobotMapping
+
+    path = tmp_path / "mapping.yaml"
+    path.write_text(text, encoding="utf-8")
+    with pytest.raises(HomebotError, match=f"{re.escape(str(path))}: {says}"):
         RobotMapping.load(path)

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import re
+
 import pytest
 
 pytest.importorskip("cyclonedds")
@@ -13,6 +15,8 @@ from homebot.transport.naming import (
     SENSOR_QOS,
     action_service,
     action_topic,
+    check_frame,
+    check_name,
     reply_topic,
     request_topic,
     topic,
@@ -45,3 +49,25 @@ def test_the_map_is_transient_local_and_sensors_best_effort() -> None:
     assert qos[Policy.Durability] == Policy.Durability.TransientLocal
     assert qos[Policy.History] == Policy.History.KeepLast(1)
     assert SENSOR_QOS.to_dds()[Policy.Reliability] == Policy.Reliability.BestEffort
+
+
+@pytest.mark.parametrize(("name", "rule"), [
+    ("/tts\x01", "not letters, digits"), ("", "empty"), ("/", "empty"), ("/a//b", "'//'"),
+    ("/a/", "ends in '/'"), ("/robot/1scan", "starting with a digit"), ("/a__b", "'__'"),
+    ("/" + "a" * 300, "keep it to 247"), ("~/scan", "not letters"), ("/{ns}/scan", "not "),
+    (5, "is text, not int"),
+])
+def test_a_name_that_breaks_ros2s_rules_is_refused_with_the_rule(name: object,
+                                                                  rule: str) -> None:
+    with pytest.raises(ValueError, match=re.escape(rule)):
+        check_name(name)
+    with pytest.raises(ValueError, match=re.escape(rule)):
+        topic(name)  # type: ignore[arg-type]
+
+
+def test_good_names_and_frames_pass() -> None:
+    for name in ("/scan", "robot1/odom", "/navigate_to_pose/_action/send_goal", "/_hidden"):
+        assert check_name(name) == name
+    assert check_frame("base_link") == "base_link"
+    with pytest.raises(ValueError, match="starts with '/'"):
+        check_frame("/map")

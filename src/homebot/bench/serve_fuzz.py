@@ -69,9 +69,9 @@ _TEMPLATES: dict[str, dict[str, Any]] = {
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--requests", type=count("--requests", 1, 1_000_000), default=10_000,
                         help="malformed requests to each server (default 10000)")
-    parser.add_argument("--warm-up", type=count("--warm-up", 0, 100_000), default=500,
+    parser.add_argument("--warm-up", type=count("--warm-up", 0, 100_000), default=2000,
                         help="malformed requests before the first memory reading "
-                             "(default 500)")
+                             "(default 2000: the server's bounded caches fill by then)")
     parser.add_argument("--oversized", type=count("--oversized", 0, 1000), default=1,
                         help="requests per thousand larger than DDS's sample limit "
                              "(default 1)")
@@ -95,9 +95,11 @@ class FuzzReport:
     seconds: float = 0.0  #: wall time of the malformed requests
     rss_start_mb: float = 0.0  #: the server's resident memory after the warm-up
     rss_end_mb: float = 0.0  #: and at the end
+    rss_series_mb: list[float] = field(default_factory=list)  #: after every 1000 requests
     alive: bool = False  #: the server process still runs at the end
     valid_answer: bool = False  #: and answered a valid request rightly
     log_lines: int = 0  #: lines the server logged (one per refused request)
+    internal_errors: int = 0  #: requests that met a fault of the server (should be 0)
 
     def to_dict(self) -> dict[str, Any]:
         return {"server": self.server, "requests": self.requests, "answered": self.answered,
@@ -105,9 +107,10 @@ class FuzzReport:
                 "kinds": dict(sorted(self.kinds.items())), "seconds": round(self.seconds, 2),
                 "rss_start_mb": round(self.rss_start_mb, 2),
                 "rss_end_mb": round(self.rss_end_mb, 2),
+                "rss_series_mb": [round(value, 1) for value in self.rss_series_mb],
                 "rss_growth_mb": round(self.rss_end_mb - self.rss_start_mb, 2),
                 "alive": self.alive, "valid_answer": self.valid_answer,
-                "log_lines": self.log_lines}
+                "log_lines": self.log_lines, "internal_errors": self.internal_errors}
 
 
 # ------------------------------------------------------------ the generator
@@ -126,7 +129,7 @@ class _Junk:
         """A string no server should take as it is."""
         rng, kind = self.rng, int(self.rng.integers(7))
         if kind == 0:
-            return self.pick(["", " ", "\t\n  ", "\u00a0", "\x00"])
+            return str(self.pick(["", " ", "\t\n  ", "\u00a0", "\x00"]))
         if kind == 1:  # over-long (up to 64 kB)
             return "x" * int(rng.integers(1001, 65_536))
         if kind == 2:  # control characters mixed with words
@@ -144,7 +147,7 @@ class _Junk:
     def nested(self) -> str:
         depth = int(self.rng.integers(100, 20_000))
         opener, closer = self.pick([("[", "]"), ('{"a":', "}")])
-        return opener * depth + "1" + (closer * depth if self.rng.random() < 0.5 else "")
+        return str(opener) * depth + "1" + (closer * depth if self.rng.random() < 0.5 else "")
 
     def value(self) -> Any:
         """A JSON value of a random type, sometimes absurd."""
@@ -174,7 +177,7 @@ class _Junk:
         elif kind == 6:
             return json.dumps(data)[:-1] + ', "pad": "' + "x" * 20_000 + '"}'  # oversized
         elif kind == 7:
-            return '{"' + key + '": ' + self.nested() + "}"
+            return f'{{"{key}": {self.nested()}}}'
         else:  # well-formed, names the world lacks: the robot itself must say no
             data = {name: ("no_such_" + name if isinstance(item, str) else item)
                     for name, item in data.items()}
@@ -235,8 +238,8 @@ class _SimTarget:
 
     def request(self, junk: _Junk, timeout: float) -> tuple[str, bool]:
         """Send one malformed request; its kind and whether it was answered."""
-        from homebot.transport.messages import pose_stamped
         from homebot.geometry import Pose
+        from homebot.transport.messages import pose_stamped
 
         kind = int(junk.rng.integers(10))
         if kind < 6:
@@ -338,10 +341,13 @@ def _oversized(target: Any, size: int) -> None:
 
 
 def fuzz_server(server_name: str, *, requests: int, seed: int, domain_id: int,
-                warm_up: int = 500, oversized: int = 1, time_limit: float = 900.0,
-                progress: Callable[[int], None] | None = None) -> FuzzReport:
+                warm_up: int = 2000, oversized: int = 1, time_limit: float = 900.0,
+                progress: Callable[[int], None] | None = None,
+                first: Callable[[Any], None] | None = None) -> FuzzReport:
     """Start ``server_name`` ("sim serve" or "ros serve"), send it ``requests`` malformed
-    requests (``warm_up`` of them before the first memory reading), then a valid one."""
+    requests (``warm_up`` of them before the first memory reading), then a valid one.
+    ``first(node)``, when given, runs once the server answers, before the malformed
+    requests, with this side's node (a test's own cases, on the same server)."""
     require_ros()
     from homebot.transport.node import MAX_SAMPLE, Node, TransportSettings, loopback
 
@@ -358,6 +364,8 @@ def fuzz_server(server_name: str, *, requests: int, seed: int, domain_id: int,
             if not target.wait(120.0) or not target.valid(60.0):
                 raise BenchmarkError(f"{server_name} did not start (log: "
                                      f"{server.log.read_text(errors='replace')[-500:]})")
+            if first is not None:
+                first(node)
             deadline = time.monotonic() + time_limit
             began = time.perf_counter()
             for index in range(requests):
@@ -375,8 +383,10 @@ def fuzz_server(server_name: str, *, requests: int, seed: int, domain_id: int,
                 report.kinds[kind] += 1
                 report.answered += answered
                 report.unanswered += not answered
-                if progress is not None and index % 1000 == 999:
-                    progress(index + 1)
+                if index % 1000 == 999:
+                    report.rss_series_mb.append(server.resident_mb())
+                    if progress is not None:
+                        progress(index + 1)
             report.seconds = time.perf_counter() - began
             report.alive = server.process.poll() is None
             report.valid_answer = report.alive and target.valid(30.0)
@@ -384,7 +394,9 @@ def fuzz_server(server_name: str, *, requests: int, seed: int, domain_id: int,
         finally:
             server.process.kill()
             server.process.wait(10)
-        report.log_lines = len(server.log.read_bytes().splitlines())
+        log = server.log.read_bytes()
+        report.log_lines = len(log.splitlines())
+        report.internal_errors = log.count(b": internal error on a request")
     return report
 
 
@@ -399,7 +411,8 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
                                    domain_id=_DOMAIN - offset, warm_up=args.warm_up,
                                    oversized=args.oversized, time_limit=args.time_limit,
                                    progress=progress))
-    figures = {"servers": [report.to_dict() for report in reports], "seed": args.seed}
+    figures = {"benchmark": "serve_fuzz", "servers": [report.to_dict() for report in reports],
+               "seed": args.seed}
     if console is not None:
         table = Table(title=f"malformed requests (seed {args.seed})")
         for column in ("server", "requests", "answered", "dropped by DDS", "unanswered",

@@ -235,7 +235,7 @@ def serve(robot: Robot, method: str, arguments: str) -> str:
     """Run ``method`` on ``robot`` with JSON ``arguments``; the JSON result."""
     call = CALLS.get(method)
     if call is None:
-        raise CallError(f"RobotCall: no method {method[:MAX_NAME]!a}; "
+        raise CallError(f"RobotCall: no method {method[:60]!a}; "
                         f"methods: {', '.join(CALLS)}")
     return json.dumps(encode(call.run(robot, parse_arguments(method, arguments,
                                                              call.arguments))))

@@ -182,6 +182,8 @@ class Subscription(Generic[T]):
         taken with it; the samples after it are read on the next take."""
         try:
             samples = self.reader.take(N=limit)
+        except DDSException:
+            raise  # DDS itself failed (a deleted reader): no sample's fault
         except Exception as error:  # any decoding error of a foreign sample
             log.warning("%s: dropped unreadable samples (%s: %s)", self.name,
                         type(error).__name__, shown(error))

@@ -13,7 +13,8 @@ run logs it).
 Every call is checked against its method's schema (``homebot.transport.calls``) before it
 reaches the robot; a call that fails (a bad method, malformed arguments, or an error in the
 robot) is answered with ``{"error": reason}`` as its result and logged, and the server goes
-on. A navigation goal whose pose is not finite, or not in the map frame, ends ABORTED.
+on. A navigation goal whose pose is not finite, outside the map, or not in the map frame
+ends ABORTED.
 """
 
 from __future__ import annotations
@@ -64,7 +65,11 @@ class SimServer:
         self._escort: str | None = None
         self._last_move: MoveReport | None = None
         self.calls_served = 0  #: robot calls answered so far
-        self.map.publish(self._map_message())
+        grid = OccupancyGrid.from_world(world)
+        (x0, y0), (rows, cols) = grid.origin, grid.shape
+        #: where a goal may lie: the map's extent (x from, x to, y from, y to)
+        self.bounds = (x0, x0 + cols * grid.resolution, y0, y0 + rows * grid.resolution)
+        self.map.publish(self._map_message(grid))
         self.publish_state()
 
     def spin_once(self, timeout: float = 0.1) -> int:
@@ -115,6 +120,11 @@ class SimServer:
         target = Pose(pose.position.x, pose.position.y, yaw_of(pose.orientation))
         if not all(math.isfinite(value) for value in (target.x, target.y, target.theta)):
             raise CallError(f"{NAVIGATE_ACTION}: a goal pose that is not finite ({target})")
+        x_from, x_to, y_from, y_to = self.bounds
+        if not (x_from <= target.x <= x_to and y_from <= target.y <= y_to):
+            raise CallError(f"{NAVIGATE_ACTION}: the goal ({target.x:g}, {target.y:g}) is "
+                            f"outside the map (x {x_from:g} to {x_to:g}, y {y_from:g} to "
+                            f"{y_to:g})")
         report = self.robot.move_to(target, self._avoid, self._escort)
         self._avoid, self._escort, self._last_move = frozenset(), None, report
         self.publish_state()
@@ -149,9 +159,8 @@ class SimServer:
             transforms.append(transform)
         self.tf.publish(types.new("tf2_msgs/msg/TFMessage", transforms=transforms))
 
-    def _map_message(self) -> Any:
+    def _map_message(self, grid: OccupancyGrid) -> Any:
         types = self.node.types
-        grid = OccupancyGrid.from_world(self.world)
         rows, cols = grid.shape
         data = np.where(np.asarray(grid.occupied).reshape(rows, cols), 100, 0).astype(np.int8)
         info = types.new("nav_msgs/msg/MapMetaData", resolution=grid.resolution,

@@ -1,0 +1,69 @@
+"""Every server survives every message: the cases issue 33 found, then a seeded fuzz.
+
+``homebot ros serve`` and ``homebot sim serve`` run as their own processes on loopback, as a
+team's stack would reach them. Each bad request must get an error answer (and a log line,
+never a traceback), and the server must go on answering, its memory flat.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+import pytest
+
+pytest.importorskip("cyclonedds")
+pytest.importorskip("rosbags")
+
+from homebot.bench.serve_fuzz import FuzzReport, fuzz_server
+from homebot.transport.actions import ActionClient, GoalStatus
+
+
+def _ros_serve_cases(node: Any) -> None:
+    """Issue 33: an empty or over-long parse request, an empty command goal."""
+    parse = node.client("/homebot/parse", "homebot_msgs/srv/Parse")
+    command = ActionClient(node, "/homebot/command", "homebot_msgs/action/Command")
+    assert parse.wait_for_server(30.0) and command.wait_for_server(30.0)
+    empty = parse.call(30.0, command="")
+    assert not empty.understood and "the command is empty" in empty.error
+    overlong = parse.call(30.0, command="bring " * 400)
+    assert not overlong.understood
+    assert "has 2400 characters; keep it under 1000" in overlong.error
+    goal_id = command.send(30.0, command="")
+    assert goal_id is not None
+    status, result = command.result(goal_id, 30.0)
+    assert status is GoalStatus.ABORTED and not result.success
+    assert "/homebot/command: the command is empty" in result.reason
+    assert parse.call(30.0, command="bring me a cola").understood
+
+
+def _sim_serve_cases(node: Any) -> None:
+    """Issue 33: ``move_options`` with ``[1]``, 6 kB of nested JSON; and an unknown method."""
+    calls = node.client("/homebot/robot", "homebot_msgs/srv/RobotCall")
+    assert calls.wait_for_server(30.0)
+
+    def error_of(method: str, arguments: str) -> str:
+        result = json.loads(calls.call(30.0, method=method, arguments=arguments).result)
+        assert isinstance(result, dict) and set(result) == {"error"}, result
+        return str(result["error"])
+
+    assert "move_options: malformed arguments: (arguments): Input should be an object" in \
+        error_of("move_options", "[1]")
+    assert "recursion limit exceeded" in error_of("say", '{"text": ' + "[" * 6000)
+    assert "no method 'fly'" in error_of("fly", "{}")
+    assert "now: Extra inputs are not permitted" in error_of("final_state", '{"now": 1}')
+    pose = json.loads(calls.call(30.0, method="pose", arguments="{}").result)
+    assert set(pose) == {"x", "y", "theta"}
+
+
+@pytest.mark.parametrize(("name", "cases"), [("ros serve", _ros_serve_cases),
+                                             ("sim serve", _sim_serve_cases)])
+def test_a_server_answers_every_malformed_request_and_goes_on(
+        name: str, cases: Any, domain_id: int) -> None:
+    report: FuzzReport = fuzz_server(name, requests=400, seed=7, domain_id=domain_id,
+                                     warm_up=100, oversized=5, time_limit=120, first=cases)
+    assert report.requests == 400 and report.unanswered == 0
+    assert report.answered + report.dropped_by_dds == 400 and report.dropped_by_dds > 0
+    assert report.alive and report.valid_answer and report.internal_errors == 0
+    assert report.log_lines >= report.answered // 2  # refused requests are logged
+    assert report.rss_end_mb - report.rss_start_mb < 5.0
