@@ -67,3 +67,33 @@ def test_a_server_answers_every_malformed_request_and_goes_on(
     assert report.alive and report.valid_answer and report.internal_errors == 0
     assert report.log_lines >= report.answered // 2  # refused requests are logged
     assert report.rss_end_mb - report.rss_start_mb < 5.0
+
+
+class _UnreadableReader:
+    """A reader whose samples cannot be decoded (what a raw RTPS writer could send: bytes
+    that are not the type's CDR); typed DDS writers cannot, XTypes refuses to match them."""
+
+    def __init__(self, error: Exception) -> None:
+        self.error = error
+
+    def take(self, N: int) -> list[Any]:  # N: cyclonedds' own argument name
+        raise self.error
+
+
+def test_an_unreadable_sample_is_dropped_and_logged_but_a_dds_failure_is_not_hidden(
+        domain_id: int, caplog: pytest.LogCaptureFixture) -> None:
+    from cyclonedds.core import DDSException
+
+    from homebot.transport.node import Node, loopback
+
+    subscription = Node(loopback(domain_id)).subscription("/probe", "std_msgs/msg/String")
+    reader = subscription.reader
+    subscription.reader = _UnreadableReader(  # type: ignore[assignment]
+        UnicodeDecodeError("utf-8", b"\xff", 0, 1, "invalid start byte"))
+    assert subscription.take() == []
+    assert "rt/probe: dropped unreadable samples (UnicodeDecodeError" in caplog.text
+    subscription.reader = _UnreadableReader(DDSException(-3))  # type: ignore[assignment]
+    with pytest.raises(DDSException):
+        subscription.take()
+    subscription.reader = reader
+    assert subscription.take() == []
