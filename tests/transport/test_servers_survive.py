@@ -8,6 +8,7 @@ never a traceback), and the server must go on answering, its memory flat.
 from __future__ import annotations
 
 import json
+import math
 from typing import Any
 
 import pytest
@@ -16,7 +17,9 @@ pytest.importorskip("cyclonedds")
 pytest.importorskip("rosbags")
 
 from homebot.bench.serve_fuzz import FuzzReport, fuzz_server
+from homebot.geometry import Pose
 from homebot.transport.actions import ActionClient, GoalStatus
+from homebot.transport.messages import pose_stamped
 
 
 def _ros_serve_cases(node: Any) -> None:
@@ -38,7 +41,8 @@ def _ros_serve_cases(node: Any) -> None:
 
 
 def _sim_serve_cases(node: Any) -> None:
-    """Issue 33: ``move_options`` with ``[1]``, 6 kB of nested JSON; and an unknown method."""
+    """Issue 33: ``move_options`` with ``[1]``, 6 kB of nested JSON; an unknown method, and
+    navigation goals that are not finite, outside the map or in another frame."""
     calls = node.client("/homebot/robot", "homebot_msgs/srv/RobotCall")
     assert calls.wait_for_server(30.0)
 
@@ -54,6 +58,14 @@ def _sim_serve_cases(node: Any) -> None:
     assert "now: Extra inputs are not permitted" in error_of("final_state", '{"now": 1}')
     pose = json.loads(calls.call(30.0, method="pose", arguments="{}").result)
     assert set(pose) == {"x", "y", "theta"}
+    navigate = ActionClient(node, "/navigate_to_pose", "nav2_msgs/action/NavigateToPose")
+    assert navigate.wait_for_server(30.0)
+    for x, frame in ((math.nan, "map"), (1e308, "map"), (pose["x"], "odom")):
+        goal = pose_stamped(node.types, Pose(x, pose["y"], 0.0), 0.0, frame)
+        goal_id = navigate.send(30.0, pose=goal)
+        assert goal_id is not None and navigate.result(goal_id, 30.0)[0] is GoalStatus.ABORTED
+    goal_id = navigate.send(30.0, pose=pose_stamped(node.types, Pose(**pose), 0.0))
+    assert goal_id is not None and navigate.result(goal_id, 30.0)[0] is GoalStatus.SUCCEEDED
 
 
 @pytest.mark.parametrize(("name", "cases"), [("ros serve", _ros_serve_cases),

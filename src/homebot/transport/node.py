@@ -71,8 +71,9 @@ T = TypeVar("T")
 
 log = logging.getLogger("homebot.transport")
 
-#: Bytes of a serialised sample, in or out: far above any message homebot sends (a 40 x 40 m
-#: map at 5 cm is 640 kB), far below what would strain the robot's memory.
+#: Bytes of a serialised sample, in or out: above any message homebot sends or takes (a
+#: 40 x 40 m map at 5 cm is 640 kB, a 320 x 240 point cloud 1.2 MB), far below what would
+#: strain the robot's memory. Larger samples are dropped by DDS unread (MaxSampleSize).
 MAX_SAMPLE = 4 * 1024 * 1024
 
 
