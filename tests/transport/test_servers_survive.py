@@ -109,3 +109,36 @@ def test_an_unreadable_sample_is_dropped_and_logged_but_a_dds_failure_is_not_hid
         subscription.take()
     subscription.reader = reader
     assert subscription.take() == []
+
+
+def test_a_client_that_reads_no_replies_is_waited_for_once_and_slows_no_one(
+        domain_id: int, caplog: pytest.LogCaptureFixture) -> None:
+    import time
+
+    from homebot.transport.naming import SERVICE_QOS, request_topic
+    from homebot.transport.node import Node, Publisher, loopback
+
+    node = Node(loopback(domain_id))
+    server = node.service("/homebot/parse", "homebot_msgs/srv/Parse",
+                          lambda request: {"understood": True, "steps": request.command},
+                          lambda reason: {"error": reason})
+    server.route.timeout = 1.0
+    deaf_node = Node(loopback(domain_id), node.types)  # a request writer, no reply reader
+    deaf = Publisher(deaf_node, request_topic("/homebot/parse"),
+                     node.types.request_struct("homebot_msgs/srv/Parse"), SERVICE_QOS)
+    assert deaf.wait_for_subscribers(1, 10.0)
+    for sequence in (1, 2, 3):
+        deaf.publish(deaf.writer.topic.data_type(client_guid=7, sequence=sequence,
+                                                 command="hello"))
+    began = time.monotonic()
+    answered = 0
+    while answered < 3 and time.monotonic() - began < 10.0:
+        answered += server.poll(0.5)
+    assert answered == 3 and time.monotonic() - began < 2.5  # one wait of 1 s, not three
+    assert caplog.text.count("reads no replies") == 1
+    client = Node(loopback(domain_id), node.types).client("/homebot/parse",
+                                                          "homebot_msgs/srv/Parse")
+    assert client.wait_for_server(10.0)
+    sequence = client.send(command="bring me a cola")
+    assert server.poll(5.0) == 1
+    assert client.receive(sequence, 5.0).steps == "bring me a cola"

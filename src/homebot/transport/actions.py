@@ -36,11 +36,11 @@ from homebot.transport.naming import (
 from homebot.transport.node import (
     Node,
     Publisher,
+    ReplyRoute,
     ServiceClient,
     Subscription,
     TransportError,
     refusal,
-    reply_ready,
 )
 
 __all__ = ["KEPT_RESULTS", "ActionClient", "ActionServer", "GoalContext", "GoalStatus"]
@@ -100,14 +100,16 @@ class ActionServer:
         self.refused = 0  #: goals ended ABORTED because ``execute`` raised
         types = node.types
         self._channels: dict[str, tuple[Subscription[Any], Publisher[Any], type[Any]]] = {}
+        self._routes: dict[str, ReplyRoute] = {}
         for part in ("send_goal", "get_result", "cancel_goal"):
             service = self._service_type(part)
             reply = types.reply_struct(service)
-            self._channels[part] = (
-                Subscription(node, request_topic(action_service(name, part)),
-                             types.request_struct(service), SERVICE_QOS),
-                Publisher(node, reply_topic(action_service(name, part)), reply, SERVICE_QOS),
-                reply)
+            requests = Subscription(node, request_topic(action_service(name, part)),
+                                    types.request_struct(service), SERVICE_QOS)
+            replies = Publisher(node, reply_topic(action_service(name, part)), reply,
+                                SERVICE_QOS)
+            self._channels[part] = (requests, replies, reply)
+            self._routes[part] = ReplyRoute(requests, replies)
         self.feedback = node.publisher(action_topic(name, "feedback"),
                                        f"{action}_FeedbackMessage", DEFAULT_QOS)
         self.status = node.publisher(action_topic(name, "status"),
@@ -124,8 +126,8 @@ class ActionServer:
         return f"{self.action}_{'SendGoal' if part == 'send_goal' else 'GetResult'}"
 
     def _reply(self, part: str, request: Any, **fields: Any) -> None:
-        requests, replies, struct = self._channels[part]
-        reply_ready(requests, replies)
+        _requests, replies, struct = self._channels[part]
+        self._routes[part].ready(request)
         replies.publish(struct(client_guid=request.client_guid, sequence=request.sequence,
                                **fields))
 

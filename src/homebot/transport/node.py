@@ -10,7 +10,8 @@ names its network interface and leaves multicast discovery on.
 
 A server survives every request: a sample DDS cannot read is dropped (``Subscription.take``),
 a handler's error becomes the reply its ``refuse`` function builds, and both are logged
-(``homebot.transport`` logger, one line each). ``TransportSettings.max_sample`` caps the
+(``homebot.transport`` logger, one line each); a client that reads no replies is waited for
+once, not at every request (``ReplyRoute``). ``TransportSettings.max_sample`` caps the
 serialised size of any sample in either direction, so a huge request is dropped by DDS before
 it is read.
 """
@@ -56,6 +57,7 @@ __all__ = [
     "Arrivals",
     "Node",
     "Publisher",
+    "ReplyRoute",
     "ServiceClient",
     "ServiceServer",
     "Subscription",
@@ -63,7 +65,6 @@ __all__ = [
     "TransportSettings",
     "loopback",
     "refusal",
-    "reply_ready",
     "shown",
 ]
 
@@ -260,6 +261,7 @@ class ServiceServer:
         self.requests = Subscription(node, request_topic(name),
                                      node.types.request_struct(service), SERVICE_QOS)
         self.replies = Publisher(node, reply_topic(name), self._reply_struct, SERVICE_QOS)
+        self.route = ReplyRoute(self.requests, self.replies)
 
     def poll(self, timeout: float = 0.0) -> int:
         """Answer the requests that arrived (waiting up to ``timeout`` s); how many."""
@@ -270,7 +272,7 @@ class ServiceServer:
             except Exception as error:  # no request may stop the server
                 self.refused += 1
                 fields = self.refuse(refusal(self.name, error))
-            reply_ready(self.requests, self.replies)
+            self.route.ready(request)
             self.replies.publish(self._reply_struct(
                 client_guid=request.client_guid, sequence=request.sequence,
                 **fields))
@@ -287,12 +289,62 @@ def refusal(name: str, error: Exception) -> str:
     return f"internal error of the server ({type(error).__name__}); see its log"
 
 
-def reply_ready(requests: Subscription[Any], replies: Publisher[Any],
-                timeout: float = 5.0) -> bool:
-    """Wait (at most ``timeout`` s) until every client that sends requests is heard by the
-    reply writer too: discovery runs each way on its own, and a reply written before the
-    client's reply reader is matched would be lost (rmw_cyclonedds waits the same way)."""
-    return replies.wait_for_subscribers(requests.publishers(), timeout)
+class ReplyRoute:
+    """Whether a request's sender hears replies yet, waiting for it if need be.
+
+    Discovery runs each way on its own, and a reply written before the client's reply
+    reader is matched would be lost, so the server waits (at most ``timeout`` s) until the
+    reply writer has matched a reader of the participant that sent the request, as
+    rmw_cyclonedds does. A participant that sends requests but never reads replies (a broken
+    or hostile client) is waited for once; after that its requests are answered without
+    waiting, so it cannot slow the server down for anyone (at most ``MAX_DEAF`` are kept)."""
+
+    MAX_DEAF = 1000
+
+    def __init__(self, requests: Subscription[Any], replies: Publisher[Any],
+                 timeout: float = 5.0) -> None:
+        self.requests, self.replies, self.timeout = requests, replies, timeout
+        self._deaf: dict[Any, None] = {}  # participants that never read replies, oldest first
+
+    def ready(self, request: Any) -> bool:
+        """Wait until the sender of ``request`` hears replies; whether it does."""
+        sender = self._sender(request)
+        if sender is None:  # the sender is gone already: nothing to wait for
+            return False
+        if self._hears(sender):
+            self._deaf.pop(sender, None)
+            return True
+        if sender in self._deaf:
+            return False
+        if _wait_matched(self.replies.writer, DDSStatus.PublicationMatched,
+                         lambda: self._hears(sender), self.timeout):
+            return True
+        self._deaf[sender] = None
+        while len(self._deaf) > self.MAX_DEAF:
+            del self._deaf[next(iter(self._deaf))]
+        log.warning("%s: a participant sends requests but reads no replies; its replies go "
+                    "unheard", self.requests.name)
+        return False
+
+    def _sender(self, request: Any) -> Any:
+        """The participant that wrote ``request`` (None when no longer known)."""
+        try:
+            handle = request.sample_info.publication_handle
+            writer = self.requests.reader.get_matched_publication_data(handle)
+        except (AttributeError, DDSException):
+            return None
+        return None if writer is None else writer.participant_key
+
+    def _hears(self, participant: Any) -> bool:
+        writer = self.replies.writer
+        for handle in writer.get_matched_subscriptions():
+            try:
+                reader = writer.get_matched_subscription_data(handle)
+            except DDSException:  # matched a moment ago, gone now
+                continue
+            if reader is not None and reader.participant_key == participant:
+                return True
+        return False
 
 
 class ServiceClient:
