@@ -305,6 +305,9 @@ class ReplyRoute:
                  timeout: float = 5.0) -> None:
         self.requests, self.replies, self.timeout = requests, replies, timeout
         self._deaf: dict[Any, None] = {}  # participants that never read replies, oldest first
+        self._senders: dict[int, Any] = {}  # request writer handle -> its participant
+        self._readers: tuple[int, ...] = ()  # the reply readers matched when last looked
+        self._hearing: set[Any] = set()  # and their participants
 
     def ready(self, request: Any) -> bool:
         """Wait until the sender of ``request`` hears replies; whether it does."""
@@ -330,21 +333,30 @@ class ReplyRoute:
         """The participant that wrote ``request`` (None when no longer known)."""
         try:
             handle = request.sample_info.publication_handle
-            writer = self.requests.reader.get_matched_publication_data(handle)
+            if handle not in self._senders:
+                writer = self.requests.reader.get_matched_publication_data(handle)
+                if writer is None:
+                    return None
+                if len(self._senders) >= self.MAX_DEAF:
+                    self._senders.clear()  # looked up again as needed
+                self._senders[handle] = writer.participant_key
         except (AttributeError, DDSException):
             return None
-        return None if writer is None else writer.participant_key
+        return self._senders[handle]
 
     def _hears(self, participant: Any) -> bool:
         writer = self.replies.writer
-        for handle in writer.get_matched_subscriptions():
-            try:
-                reader = writer.get_matched_subscription_data(handle)
-            except DDSException:  # matched a moment ago, gone now
-                continue
-            if reader is not None and reader.participant_key == participant:
-                return True
-        return False
+        readers = tuple(writer.get_matched_subscriptions())
+        if readers != self._readers:  # looked up again only when the matched readers change
+            self._readers, self._hearing = readers, set()
+            for handle in readers:
+                try:
+                    reader = writer.get_matched_subscription_data(handle)
+                except DDSException:  # matched a moment ago, gone now
+                    continue
+                if reader is not None:
+                    self._hearing.add(reader.participant_key)
+        return participant in self._hearing
 
 
 class ServiceClient:
