@@ -13,13 +13,13 @@ from homebot.errors import WorldError
 from homebot.language import Vocabulary, parse_command
 from homebot.sim import PERSON_PREFIX
 from homebot.world import DoorState, World
-from homebot.world.pyrobosim import world_from_pyrobosim
+from homebot.world.pyrobosim import import_pyrobosim
 
 FLAT = Path(__file__).resolve().parent / "data" / "pyrobosim_flat.yaml"
 
 
 def test_rooms_hallways_locations_and_objects_are_imported() -> None:
-    world = World.from_dict(world_from_pyrobosim(FLAT))
+    world = World.from_dict(import_pyrobosim(FLAT).data)
     assert world.name == "pyrobosim flat"
     assert {"living room", "kitchen", "bedroom"} <= set(world.rooms)
     # The box footprint (dims 3 x 3.5 at offset 7.5, 1.75) is the kitchen's polygon.
@@ -67,7 +67,7 @@ def test_a_fetch_task_succeeds_in_the_imported_world(
 @pytest.mark.parametrize(("text", "message"), [
     ("rooms: []\n", "not a pyrobosim world"),
     ("- a list\n", "not a pyrobosim world"),
-    ("rooms:\n  - name: a\n    footprint: {type: circle, radius: 1}\n", "circle"),
+    ("rooms:\n  - name: a\n    footprint: {type: mesh, model_path: m}\n", "mesh footprint"),
     ("rooms:\n  - name: a\n    footprint: {type: box, dims: [2, 2]}\nhallways:\n"
      "  - {room_start: a, room_end: b}\n", "unknown room 'b'"),
     ("rooms:\n  - name: a\n    footprint: {type: box, dims: [2, 2]}\nlocations:\n"
@@ -81,4 +81,4 @@ def test_what_cannot_be_imported_is_a_world_error(tmp_path: Path, text: str,
     path = tmp_path / "world.yaml"
     path.write_text(text, encoding="utf-8")
     with pytest.raises(WorldError, match=message):
-        world_from_pyrobosim(path)
+        import_pyrobosim(path)

@@ -3,11 +3,12 @@
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 from typing import Any
 
 from homebot.world import World
-from homebot.world.pyrobosim import world_from_pyrobosim
+from homebot.world.pyrobosim import import_pyrobosim
 from homebot.world.writing import write_world_yaml
 
 __all__ = ["register_pyrobosim"]
@@ -27,7 +28,10 @@ def register_pyrobosim(world_subparsers: Any) -> None:
 
 
 def _from_pyrobosim(args: argparse.Namespace) -> int:
-    data = world_from_pyrobosim(args.file, operator=args.operator)
+    imported = import_pyrobosim(args.file, operator=args.operator)
+    for warning in imported.warnings:
+        print(f"warning: {warning}", file=sys.stderr)
+    data = imported.data
     world = World.from_dict(data, source=str(args.file))
     header = (f"Imported by `homebot world from-pyrobosim {args.file}`: hallways are rooms of\n"
               f"their own with a door at each end; {args.operator} is the operator.")

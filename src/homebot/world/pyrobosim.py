@@ -1,61 +1,110 @@
 """A homebot world from a pyrobosim world YAML: rooms, hallways, locations, objects, robot.
 
-The mapping (documented in the README, "Bringing a pyrobosim world"):
+``docs/worlds.md`` ("Bringing a pyrobosim world") lists what is imported as it is, what
+is approximated (each with a warning naming the file, line and entry) and what is
+refused (a ``WorldError`` naming them). In short:
 
-- ``params.name`` is the world's name; names lose their underscores ("my_desk" is
-  "my desk"), as people say them.
-- A room's ``footprint`` (``polygon`` with ``coords``, or ``box`` with ``dims``, each
-  with an optional ``offset``) is the room's polygon.
-- A hallway is a room of its own (the corridor ``width`` wide along the straight line
-  between the rooms' centroids for ``conn_method: auto``, or along ``conn_points``),
-  with a door where it meets each room; ``is_open: false`` makes the doors closed and
-  ``is_locked: true`` locked. ``conn_method: angle`` is not imported.
-- A location is furniture in its ``parent`` room, centred at its ``pose`` (a list
-  ``[x, y, z, yaw]`` or a ``position``/``rotation_eul`` mapping, ``relative_to`` a room);
-  its footprint comes from a small table of pyrobosim's example categories (a yaw near
-  90° swaps width and depth, since homebot's furniture is axis-aligned).
-- An object lies on its ``parent`` location (the first, or most probable, of a list
-  or ``choices``); pyrobosim's object ``category`` ("apple") is homebot's category,
-  and an unnamed object is called by its category ("apple", then "apple 2").
-- The first robot's ``pose`` (or its ``location`` room's centroid) is the robot's
-  start; pyrobosim has no people, so one person, the operator, stands beside it.
-
-Metadata files (``$DATA/...``) are pyrobosim's own and are not read.
+- Rooms are their ``footprint`` (polygon, box or circle, with its ``offset``) placed by
+  their ``pose`` (``relative_to`` an entity above it, or absolute).
+- A hallway is pyrobosim's own corridor (``auto``, ``angle`` or ``points``, with its
+  ``offset`` and ``width``) less the rooms it crosses: each piece is a room of its own,
+  with a door wherever it meets a room.
+- A location is furniture: its category's footprint from the metadata files beside the
+  world, placed by its pose, as the axis-aligned box around it (homebot's furniture is
+  axis-aligned), shrunk if that box would reach into a wall or other furniture.
+- An object lies on its ``parent``: a location, an object spawn (``counter0_left``) or
+  a location category; the first of a list, or the most probable of ``choices``.
+- The first robot starts at its ``pose`` or its ``location``; one person, the operator,
+  stands beside it (pyrobosim has no people).
 """
 
 from __future__ import annotations
 
 import math
-import re
+from collections import defaultdict
 from collections.abc import Mapping
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from shapely.geometry import LineString, Point, Polygon
+from shapely.geometry import Point, Polygon
 from shapely.geometry.base import BaseGeometry
 from shapely.ops import unary_union
 
 from homebot.errors import WorldError
+from homebot.world.pyrobosim_geometry import (
+    TOUCHING,
+    PlanarPose,
+    PoseFormatError,
+    aligned_box,
+    corridor,
+    free_point,
+    is_number,
+    parse_pose,
+    place_footprint,
+    shared_edge,
+    simple_footprint,
+)
+from homebot.world.pyrobosim_metadata import LocationCategory, read_location_metadata
 from homebot.yamlfile import LocatedDocument, load_yaml_document
 
-__all__ = ["world_from_pyrobosim"]
+__all__ = ["PyrobosimImport", "import_pyrobosim"]
 
-# Footprints (width along x, depth along y, in metres) of pyrobosim's example location
-# categories; other categories get _DEFAULT_SIZE.
-_SIZES: Mapping[str, tuple[float, float]] = {
-    "table": (0.9, 1.2), "desk": (0.6, 0.6), "counter": (1.2, 0.6), "trash_can": (0.4, 0.4),
-    "charger": (0.5, 0.5), "shelf": (1.0, 0.4), "bed": (1.6, 2.0), "sofa": (2.0, 0.9),
-}
-_DEFAULT_SIZE = (0.6, 0.6)
+_WALL = 0.1  # homebot's wall_thickness (the default, kept in the world written)
+_DOOR_MIN = 0.45  # homebot's narrowest door (its DoorModel wants more than 0.4 m)
+_DOOR_MAX = 3.0
+_SLIVER = 0.01  # m²: a piece of corridor smaller than this is no floor to stand on
+_DEFAULT_CATEGORY = LocationCategory(Polygon([(-0.3, -0.3), (0.3, -0.3), (0.3, 0.3),
+                                              (-0.3, 0.3)]))
 # homebot's kind of furniture for pyrobosim's location categories.
-_FURNITURE = {"table": "table", "desk": "table", "counter": "table", "trash_can": "bin",
-              "shelf": "storage", "bed": "seating", "sofa": "seating", "charger": "fixture"}
+_FURNITURE = {"table": "table", "desk": "desk", "counter": "counter", "trash_can": "bin",
+              "trashcan_small": "bin", "trashcan_large": "bin", "shelf": "shelf",
+              "storage": "storage", "bed": "seating", "sofa": "seating",
+              "charger": "fixture"}
+
+_LOOK = "homebot draws the world in its own colours"
+_SIMULATOR = "pyrobosim's own simulator settings; homebot's robot and grid have their own"
+#: the fields of each section that are read; the others are reported with a reason
+_READ: Mapping[str, frozenset[str]] = {
+    "": frozenset({"params", "metadata", "robots", "rooms", "hallways", "locations",
+                   "objects"}),
+    "params": frozenset({"name"}),
+    "metadata": frozenset({"locations"}),
+    "rooms": frozenset({"name", "footprint", "pose"}),
+    "hallways": frozenset({"room_start", "room_end", "width", "conn_method", "conn_angle",
+                           "offset", "conn_points", "is_open", "is_locked"}),
+    "locations": frozenset({"name", "category", "parent", "pose", "is_open", "is_locked"}),
+    "objects": frozenset({"name", "category", "parent", "pose"}),
+    "robots": frozenset({"name", "radius", "pose", "location"}),
+}
+_WHY_NOT_READ: Mapping[str, Mapping[str, str]] = {
+    "params": {"inflation_radius": _SIMULATOR, "object_radius": _SIMULATOR,
+               "wall_height": "homebot's walls have no height"},
+    "metadata": {"objects": "homebot's catalogue gives objects their shape, size and mass"},
+    "rooms": {"color": _LOOK, "height": "homebot's rooms have no height",
+              "wall_width": f"homebot's walls are {_WALL:g} m thick, centred on the outline",
+              "nav_poses": "homebot works out where to stand by itself (the first nav pose "
+                           "of the robot's start room is its start)"},
+    "hallways": {"color": _LOOK, "wall_width": f"homebot's walls are {_WALL:g} m thick"},
+    "locations": {"color": _LOOK, "is_charger": "homebot's robot does not charge",
+                  "nav_poses": "homebot works out where to stand by itself"},
+    "objects": {"color": _LOOK},
+}
 
 
-def world_from_pyrobosim(path: str | Path, *, operator: str = "Alex") -> dict[str, Any]:
-    """Plain world data (for ``World.from_dict``) from a pyrobosim world file.
+@dataclass
+class PyrobosimImport:
+    """A world read from a pyrobosim file, and what was approximated on the way."""
 
-    Raises ``WorldError`` naming the file and the entry that cannot be imported.
+    data: dict[str, Any]  #: plain world data, for ``World.from_dict``
+    #: one line per approximation: file, line, entry and what homebot made of it
+    warnings: list[str] = field(default_factory=list)
+
+
+def import_pyrobosim(path: str | Path, *, operator: str = "Alex") -> PyrobosimImport:
+    """A homebot world (plain data, for ``World.from_dict``) from a pyrobosim world file.
+
+    Raises ``WorldError`` naming the file, line and entry that cannot be imported.
     """
     source = Path(path)
     document = load_yaml_document(source, WorldError)
@@ -64,7 +113,8 @@ def world_from_pyrobosim(path: str | Path, *, operator: str = "Alex") -> dict[st
             "rooms"]:
         raise WorldError(f"{source}: not a pyrobosim world; it needs a list of rooms with "
                          "footprints (pyrobosim docs: yaml/world_schema.rst)")
-    return _Importer(source, document, operator).world()
+    importer = _Importer(source, document, operator)
+    return PyrobosimImport(importer.world(), importer.warnings)
 
 
 class _Importer:
@@ -73,214 +123,509 @@ class _Importer:
         self.document = document
         self.data: Mapping[str, Any] = document.data
         self.operator = operator
+        self.warnings: list[str] = []
         self.rooms: dict[str, Polygon] = {}
+        self.corridors: dict[str, Polygon] = {}
+        self.doors: list[dict[str, Any]] = []
         self.placements: dict[str, dict[str, Any]] = {}
+        self.boxes: dict[str, Polygon] = {}  # placement name -> its axis-aligned footprint
+        self.spawns: dict[str, str] = {}  # object spawn ("counter0 left") -> placement
+        self.by_category: dict[str, list[str]] = defaultdict(list)
+        self.dropped: set[str] = set()  # locations pyrobosim itself would not add
+        self.poses: dict[str, PlanarPose] = {}  # entity name -> pose, for relative_to
+        self.start_poses: dict[str, PlanarPose] = {}  # room -> its first nav pose
+        self.labels: dict[tuple[str, int], str] = {}
+        self.object_names: set[str] = set()
+        self.unread: dict[tuple[str, str], tuple[tuple[str | int, ...], list[str]]] = {}
 
-    def fail(self, where: str, message: str) -> WorldError:
-        """An error at ``where`` (``rooms[2] (kitchen).footprint``), with its line."""
-        location: list[str | int] = []
-        for step in re.sub(r" \([^)]*\)", "", where).split("."):
-            name, _, index = step.partition("[")
-            location.append(name)
-            if index:
-                location.append(int(index.rstrip("]")))
-        line = self.document.line_of(location)
-        return WorldError(f"{self.source}: line {line}: {where}: {message}")
+    # ------------------------------------------------------------ messages
+
+    def _where(self, location: tuple[str | int, ...]) -> str:
+        text = ""
+        for position, step in enumerate(location):
+            if isinstance(step, int):
+                text += f"[{step}]"
+                label = self.labels.get((str(location[position - 1]), step))
+                text += f" ({label})" if label else ""
+            else:
+                text += f".{step}" if text else step
+        line = self.document.line_of(list(location))
+        return f"{self.source}: line {line}: {text or '(document)'}"
+
+    def fail(self, location: tuple[str | int, ...], message: str) -> WorldError:
+        return WorldError(f"{self._where(location)}: {message}")
+
+    def warn(self, location: tuple[str | int, ...], message: str) -> None:
+        self.warnings.append(f"{self._where(location)}: {message}")
+
+    def _note_unread(self, location: tuple[str | int, ...], section: str,
+                     entry: Mapping[str, Any]) -> None:
+        """Remember the fields of ``entry`` that are not read, grouped by reason."""
+        for key in entry:
+            if key in _READ[section]:
+                continue
+            reason = _WHY_NOT_READ.get(section, {}).get(str(key)) or (
+                _SIMULATOR if section == "robots" else
+                "not in pyrobosim's world schema (a typo?)")
+            _first, keys = self.unread.setdefault((section, reason), ((*location, key), []))
+            if key not in keys:
+                keys.append(str(key))
+
+    def _report_unread(self) -> None:
+        for (section, reason), (location, keys) in self.unread.items():
+            where = f"{section}[*]." if section and section not in ("params", "metadata") \
+                else f"{section}." if section else ""
+            names = ", ".join(f"{where}{key}" for key in keys)
+            self.warnings.append(f"{self._where(location).rsplit(': ', 1)[0]}: {names}: "
+                                 f"not imported: {reason}")
+
+    # ------------------------------------------------------------ the world
 
     def world(self) -> dict[str, Any]:
-        for index, room in enumerate(self.data["rooms"]):
-            self._room(index, room)
-        hallways, doors = self._hallways()
-        placements = [self._location(index, entry)
-                      for index, entry in enumerate(self.data.get("locations") or [])]
-        objects = self._objects()
-        categories = sorted({obj["category"] for obj in objects})
-        robot = self._robot()
-        person = {"name": self.operator, "room": _room_of(self.rooms, robot[:2]),
-                  "position": _beside(self.rooms, robot)}
+        self._note_unread((), "", self.data)
         params = self.data.get("params") or {}
+        if isinstance(params, Mapping):
+            self._note_unread(("params",), "params", params)
+        metadata = self.data.get("metadata") or {}
+        if isinstance(metadata, Mapping):
+            self._note_unread(("metadata",), "metadata", metadata)
+        self.categories = read_location_metadata(
+            metadata.get("locations") if isinstance(metadata, Mapping) else None,
+            self.source, lambda message: self.warn(("metadata",), message))
+        for index, entry in enumerate(self.data["rooms"]):
+            self._room(index, entry)
+        for index, entry in enumerate(self._entries("hallways")):
+            self._hallway(index, entry)
+        for index, entry in enumerate(self._entries("locations")):
+            self._location(index, entry)
+        objects = [obj for index, entry in enumerate(self._entries("objects"))
+                   if (obj := self._object(index, entry)) is not None]
+        radius, robot = self._robot()
+        person = self._operator_place(robot, radius)
+        self._report_unread()
         return {
-            "name": _name(str(params.get("name") or self.source.stem)),
+            "name": _name(str(params.get("name") if isinstance(params, Mapping) and params.get(
+                "name") else self.source.stem)),
             "description": f"Imported from the pyrobosim world {self.source.name}.",
             "rooms": [{"name": name, "polygon": _corners(polygon)}
-                      for name, polygon in {**self.rooms, **hallways}.items()],
-            "doors": doors,
-            "categories": [{"name": name, "plural": _plural(name)} for name in categories],
-            "placements": placements,
+                      for name, polygon in {**self.rooms, **self.corridors}.items()],
+            "doors": self.doors,
+            "categories": [{"name": name, "plural": _plural(name)}
+                           for name in sorted({obj["category"] for obj in objects})],
+            "placements": list(self.placements.values()),
             "objects": objects,
             "people": [person],
             "operator": self.operator,
-            "robot": {"pose": [round(value, 3) for value in robot]},
+            "robot": {"pose": [round(robot.x, 3), round(robot.y, 3), round(robot.yaw, 4)],
+                      "radius": radius},
         }
+
+    def _entries(self, section: str) -> list[Any]:
+        entries = self.data.get(section) or []
+        if not isinstance(entries, list):
+            raise self.fail((section,), f"{section} is a list of entries")
+        return entries
+
+    def _mapping(self, location: tuple[str, int], entry: Any, what: str) -> Mapping[str, Any]:
+        if not isinstance(entry, Mapping):
+            raise self.fail(location, f"each of {location[0]} is a mapping ({what})")
+        self._note_unread(location, location[0], entry)
+        return entry
+
+    def _pose(self, value: Any, location: tuple[str | int, ...]) -> PlanarPose:
+        try:
+            pose = parse_pose(value)
+        except PoseFormatError as error:
+            raise self.fail(location, str(error)) from None
+        if pose.tilted:
+            self.warn(location, "its roll and pitch are dropped; homebot's plan turns things "
+                                "about the vertical only")
+        if pose.relative_to is None:
+            return pose
+        anchor = self.poses.get(_name(pose.relative_to))
+        if anchor is None:
+            raise self.fail((*location, "relative_to"),
+                            f"'{pose.relative_to}' is no room, location or object given "
+                            f"above it; known: {', '.join(self.poses) or 'none'}")
+        return pose.after(anchor)
 
     # ------------------------------------------------------------ rooms and hallways
 
     def _room(self, index: int, entry: Any) -> None:
-        where = f"rooms[{index}]"
-        if not isinstance(entry, Mapping):
-            raise self.fail(where, "a room is a mapping with a name and a footprint")
-        name = _name(str(entry.get("name") or f"room {index}"))
-        polygon = self._footprint(entry.get("footprint"), f"{where} ({name}).footprint")
+        at: tuple[str | int, ...] = ("rooms", index)
+        entry = self._mapping(("rooms", index), entry, "a name and a footprint")
+        name = _unique(_name(str(entry.get("name") or f"room{index}")), self.rooms)
+        self.labels[("rooms", index)] = name
+        footprint = entry.get("footprint")
+        if isinstance(footprint, Mapping) and footprint.get("type") == "mesh":
+            raise self.fail((*at, "footprint"), "a mesh footprint is not read; give the room "
+                                                 "a polygon footprint (its outline)")
+        try:
+            polygon, _height = simple_footprint(footprint)
+        except PoseFormatError as error:
+            raise self.fail((*at, "footprint"), str(error)) from None
+        pose = self._pose(entry["pose"], (*at, "pose")) if entry.get("pose") else None
+        if pose is not None:
+            polygon = place_footprint(polygon, pose)
+        for other, shape in self.rooms.items():
+            if polygon.buffer(-0.001).intersection(shape).area <= TOUCHING:
+                continue  # touching, or overlapping by less than a millimetre
+            trimmed = polygon.difference(shape)
+            if not isinstance(trimmed, Polygon) or trimmed.area <= 0:
+                raise self.fail(at, f"overlaps room '{other}' so that it falls apart; "
+                                    "homebot's rooms do not overlap: move or shrink one")
+            self.warn(at, f"overlaps room '{other}' by {polygon.area - trimmed.area:.2f} m²; "
+                          f"the overlap is left to '{other}' (homebot's rooms do not overlap)")
+            polygon = trimmed
         self.rooms[name] = polygon
+        centre = polygon.centroid
+        self.poses[name] = pose or PlanarPose(centre.x, centre.y)
+        nav_poses = entry.get("nav_poses")
+        if isinstance(nav_poses, list) and nav_poses:
+            self.start_poses[name] = self._pose(nav_poses[0], (*at, "nav_poses", 0))
 
-    def _footprint(self, footprint: Any, where: str) -> Polygon:
-        if not isinstance(footprint, Mapping):
-            raise self.fail(where, "needs a footprint: {type: polygon, coords: [[x, y], ...]} "
-                                   "or {type: box, dims: [w, h]}")
-        kind = footprint.get("type")
-        offset = _pair(footprint.get("offset", (0.0, 0.0)))
-        if kind == "polygon":
-            coords = footprint.get("coords")
-            pairs = [_pair(point) for point in coords] if isinstance(coords, list) else []
-            points = [pair for pair in pairs if pair is not None]
-            if len(points) < 3 or len(points) < len(pairs):
-                raise self.fail(where, "a polygon footprint needs three or more [x, y] coords")
-            dx, dy = offset or (0.0, 0.0)
-            polygon = Polygon([(x + dx, y + dy) for x, y in points])
-        elif kind == "box":
-            dims = _pair(footprint.get("dims"))
-            if dims is None or dims[0] <= 0 or dims[1] <= 0:
-                raise self.fail(where, "a box footprint needs dims: [width, height] above 0")
-            half_w, half_h = dims[0] / 2, dims[1] / 2
-            ox, oy = offset or (0.0, 0.0)
-            polygon = Polygon([(ox - half_w, oy - half_h), (ox + half_w, oy - half_h),
-                               (ox + half_w, oy + half_h), (ox - half_w, oy + half_h)])
-        else:
-            raise self.fail(where, f"footprint type '{kind}' is not imported; use polygon or box")
-        if not polygon.is_valid or polygon.area <= 0:
-            raise self.fail(where, "the footprint is not a simple area")
-        return polygon
-
-    def _hallways(self) -> tuple[dict[str, Polygon], list[dict[str, Any]]]:
-        hallways: dict[str, Polygon] = {}
+    def _hallway(self, index: int, entry: Any) -> None:
+        at: tuple[str | int, ...] = ("hallways", index)
+        entry = self._mapping(("hallways", index), entry, "room_start, room_end and width")
+        start, end = (_name(str(entry.get(key, ""))) for key in ("room_start", "room_end"))
+        self.labels[("hallways", index)] = f"{start} to {end}"
+        for key, room in (("room_start", start), ("room_end", end)):
+            if room not in self.rooms:
+                raise self.fail((*at, key), f"unknown room '{room}'; rooms: "
+                                             f"{', '.join(self.rooms)}")
+        width = entry.get("width")
+        if not is_number(width) or width <= 0:
+            raise self.fail((*at, "width"), "a hallway needs a width above 0, in metres")
+        floor = corridor(self._centre_line(entry, start, end, at), float(width))
+        if floor.is_empty or not floor.is_valid:
+            raise self.fail(at, "the hallway's corridor is no simple area (its points double "
+                                "back?); list conn_points along the way")
+        state = "locked" if entry.get("is_locked") and entry.get("is_open") is False else (
+            "closed" if entry.get("is_open") is False else "open")
+        if float(width) < _DOOR_MIN:
+            self.warn((*at, "width"), f"{width:g} m wide; homebot's doors are at least "
+                                       f"{_DOOR_MIN:g} m, so its doors are drawn that wide")
+        neighbours = {**self.rooms, **self.corridors}
+        taken = unary_union(list(neighbours.values()))
+        base = f"{start} {end} hallway"
+        pieces = [piece for piece in _polygons(floor.difference(taken)) if piece.area > _SLIVER]
         doors: list[dict[str, Any]] = []
-        for index, entry in enumerate(self.data.get("hallways") or []):
-            where = f"hallways[{index}]"
-            if not isinstance(entry, Mapping):
-                raise self.fail(where, "a hallway is a mapping with room_start and room_end")
-            start, end = (_name(str(entry.get(key, ""))) for key in ("room_start", "room_end"))
-            for room in (start, end):
-                if room not in self.rooms:
-                    raise self.fail(where, f"unknown room '{room}'; rooms: "
-                                           f"{', '.join(self.rooms)}")
-            width = float(entry.get("width", 1.0))
-            line = self._centreline(entry, start, end, where)
-            others = unary_union(list(self.rooms.values()))
-            corridor = _largest(line.buffer(width / 2, cap_style="flat").difference(others))
-            if corridor is None:
-                raise self.fail(where, "the hallway lies inside its rooms; move the rooms apart")
-            name = f"{start} {end} hallway"
-            hallways[name] = corridor
-            state = "locked" if entry.get("is_locked") and entry.get("is_open") is False else (
-                "closed" if entry.get("is_open") is False else "open")
-            for room in (start, end):
-                crossing = line.intersection(self.rooms[room].exterior)
-                point = _nearest_point(crossing, corridor)
-                if point is None:
-                    raise self.fail(where, f"the hallway does not reach room '{room}'")
-                doors.append({"name": f"{room} {end if room == start else start} door",
-                              "rooms": [room, name], "position": [round(point.x, 3),
-                                                                  round(point.y, 3)],
-                              "width": round(min(3.0, max(0.45, width * 0.9)), 3),
-                              "state": state})
-        return hallways, doors
+        if not pieces:  # the rooms meet inside the corridor: one door between them
+            doors += self._doors_between(start, self.rooms[start], end, floor, state,
+                                         f"{start} {end} door", float(width))
+        for piece in sorted(pieces, key=lambda shape: -shape.area):
+            name = _unique(base, {**self.rooms, **self.corridors})
+            piece_doors: list[dict[str, Any]] = []
+            for other, shape in neighbours.items():
+                door_name = (f"{other} {end if other == start else start} door"
+                             if other in (start, end) else f"{other} {base} door")
+                piece_doors += self._doors_between(name, piece, other, shape, state,
+                                                   door_name, float(width))
+            if piece_doors:  # floor no door leads to is no floor to drive on
+                self.corridors[name] = piece
+                doors += piece_doors
+        reached = {room for door in doors for room in door["rooms"]}
+        for key, room in (("room_start", start), ("room_end", end)):
+            if room not in reached:
+                raise self.fail((*at, key), self._unreached(room, floor))
+        self.doors += doors
 
-    def _centreline(self, entry: Mapping[str, Any], start: str, end: str,
-                    where: str) -> LineString:
+    def _doors_between(self, first: str, first_shape: Polygon, second: str,
+                       second_shape: Polygon, state: str, name: str,
+                       width: float) -> list[dict[str, Any]]:
+        edge = shared_edge(first_shape, second_shape)
+        if edge is None or edge.length < min(_DOOR_MIN, 0.9 * width):
+            return []
+        middle = edge.interpolate(0.5, normalized=True)
+        return [{"name": _unique(name, {door["name"] for door in self.doors}),
+                 "rooms": [second, first], "position": [round(middle.x, 3),
+                                                        round(middle.y, 3)],
+                 "width": round(min(_DOOR_MAX, max(_DOOR_MIN, min(edge.length, width))), 3),
+                 "state": state}]
+
+    def _unreached(self, room: str, floor: Polygon) -> str:
+        shape = self.rooms[room]
+        gap = floor.distance(shape)
+        if gap > TOUCHING:
+            return (f"the hallway's corridor ends {gap:.2f} m short of room '{room}'; move "
+                    "its conn_points (or its offset and conn_angle) so that it reaches the "
+                    "room")
+        edges = [shared_edge(piece, shape) for piece in _polygons(floor.difference(shape))]
+        length = max((edge.length for edge in edges if edge is not None), default=0.0)
+        return (f"the hallway's corridor meets room '{room}' over only {length:.2f} m, too "
+                f"little for a door ({_DOOR_MIN:g} m); widen it or lead it into the room")
+
+    def _centre_line(self, entry: Mapping[str, Any], start: str, end: str,
+                     at: tuple[str | int, ...]) -> list[tuple[float, float]]:
         method = entry.get("conn_method", "auto")
-        if method == "auto":
-            first, last = self.rooms[start].centroid, self.rooms[end].centroid
-            return LineString([(first.x, first.y), (last.x, last.y)])
         if method == "points":
-            pairs = [_pair(point) for point in entry.get("conn_points") or []]
-            points = [pair for pair in pairs if pair is not None]
-            if len(points) < 2 or len(points) < len(pairs):
-                raise self.fail(where, "conn_points needs two or more [x, y] points")
-            return LineString(points)
-        raise self.fail(where, f"conn_method '{method}' is not imported; use auto or points")
+            points = entry.get("conn_points")
+            if not isinstance(points, list) or len(points) < 2 or not all(
+                    isinstance(point, list) and len(point) >= 2 and all(
+                        is_number(item) for item in point[:2]) for point in points):
+                raise self.fail((*at, "conn_points"), "conn_points needs two or more "
+                                                       "[x, y] points")
+            return [(float(point[0]), float(point[1])) for point in points]
+        if method not in ("auto", "angle"):
+            raise self.fail((*at, "conn_method"), f"conn_method '{method}' is not one of "
+                                                   "auto, angle, points")
+        offset, angle = entry.get("offset", 0.0), entry.get("conn_angle", 0.0)
+        if not is_number(offset) or not is_number(angle):
+            raise self.fail(at, "offset and conn_angle are numbers (metres, radians)")
+        # pyrobosim core/hallway.py: from the start room's centroid, shifted sideways by
+        # the offset; an angle keeps the length of the centroids' line projected on it.
+        first, last = self.rooms[start].centroid, self.rooms[end].centroid
+        theta = math.atan2(last.y - first.y, last.x - first.x)
+        length = math.hypot(last.x - first.x, last.y - first.y)
+        if method == "angle":
+            length, theta = length * math.cos(theta - float(angle)), float(angle)
+        cos, sin = math.cos(theta), math.sin(theta)
+        x, y = first.x - float(offset) * sin, first.y + float(offset) * cos
+        return [(x, y), (x + length * cos, y + length * sin)]
 
     # ------------------------------------------------------------ locations and objects
 
-    def _location(self, index: int, entry: Any) -> dict[str, Any]:
-        where = f"locations[{index}]"
-        if not isinstance(entry, Mapping):
-            raise self.fail(where, "a location is a mapping with a category and a parent")
-        category = str(entry.get("category") or "furniture")
-        name = _name(str(entry.get("name") or f"{category} {index}"))
+    def _location(self, index: int, entry: Any) -> None:
+        at: tuple[str | int, ...] = ("locations", index)
+        entry = self._mapping(("locations", index), entry, "a category and a parent room")
+        category = str(entry.get("category") or "location")
+        count = len(self.by_category[category])  # pyrobosim counts the ones it added
+        written = str(entry.get("name") or f"{category}{count}")
+        name = _name(written)
+        self.labels[("locations", index)] = name
         room = _name(str(entry.get("parent", "")))
         if room not in self.rooms:
-            raise self.fail(where, f"parent room '{room}' is not a room; rooms: "
-                                   f"{', '.join(self.rooms)}")
-        x, y, yaw = self._pose(entry.get("pose"), where, self.rooms[room].centroid)
-        width, depth = _SIZES.get(category, _DEFAULT_SIZE)
-        if abs(math.sin(yaw)) > math.sin(math.radians(45)):
-            width, depth = depth, width
-        placement = {"name": name, "category": _FURNITURE.get(category, "furniture"),
-                     "room": room, "center": [round(x, 3), round(y, 3)],
-                     "size": [width, depth]}
+            raise self.fail((*at, "parent"), f"parent room '{room}' is not a room; rooms: "
+                                              f"{', '.join(self.rooms)}")
+        kind = self.categories.get(category)
+        if kind is None:
+            self.warn((*at, "category"), f"'{category}' is in no location metadata read; "
+                                          "it is taken as a 0.6 m square")
+            kind = _DEFAULT_CATEGORY
+        elif kind.approximated:
+            self.warn((*at, "category"), f"'{category}': {kind.approximated}")
+        pose = self._location_pose(entry, at, room, kind)
+        footprint = place_footprint(kind.footprint, pose)
+        if not footprint.buffer(-0.001).within(self.rooms[room]):
+            self.dropped.add(name)
+            self.warn(at, f"does not lie inside room '{room}' at ({pose.x:g}, {pose.y:g}); "
+                          "pyrobosim does not add it either, so it is left out")
+            return
+        self._furniture(at, entry, name, room, category, kind, pose)
+        if name in self.rooms or name in self.corridors:
+            renamed = _unique(f"{name} {category.replace('_', ' ')}", self.placements)
+            self.warn((*at, "name"), f"'{name}' is also a room; the furniture is called "
+                                      f"'{renamed}'")
+            self.placements[renamed] = {**self.placements.pop(name), "name": renamed}
+            self.boxes[renamed] = self.boxes.pop(name)
+            name = renamed
+        self.poses[_name(written)] = pose
+        self.by_category[category].append(name)
+        for spawn in kind.spawns:
+            self.spawns[_name(f"{written}_{spawn}")] = name
+            self.poses.setdefault(_name(f"{written}_{spawn}"), pose)
+
+    def _location_pose(self, entry: Mapping[str, Any], at: tuple[str | int, ...], room: str,
+                       kind: LocationCategory) -> PlanarPose:
+        if entry.get("pose") is not None:
+            return self._pose(entry["pose"], (*at, "pose"))
+        # pyrobosim samples a free pose; homebot takes the free one nearest the centre,
+        # a robot's width and more away from other furniture.
+        min_x, min_y, max_x, max_y = kind.footprint.bounds
+        reach = math.hypot(max_x - min_x, max_y - min_y) / 2
+        area: BaseGeometry = self.rooms[room].buffer(-(_WALL / 2 + reach))
+        others = list(self.boxes.values())
+        if others:
+            area = area.difference(unary_union(others).buffer(reach + 0.5))
+        centre = self.rooms[room].centroid
+        point = free_point(area, (centre.x, centre.y))
+        if point is None:
+            raise self.fail(at, f"has no pose and room '{room}' has no free place for it; "
+                                "give it a pose")
+        middle = kind.footprint.centroid
+        pose = PlanarPose(point[0] - middle.x, point[1] - middle.y)
+        self.warn(at, f"has no pose (pyrobosim picks one at random); homebot puts it at "
+                      f"({pose.x:.2f}, {pose.y:.2f})")
+        return pose
+
+    def _furniture(self, at: tuple[str | int, ...], entry: Mapping[str, Any], name: str,
+                   room: str, category: str, kind: LocationCategory,
+                   pose: PlanarPose) -> None:
+        inside = self.rooms[room].buffer(-_WALL / 2, join_style="mitre")
+        shape, scale = aligned_box(kind.footprint, pose, inside, list(self.boxes.values()))
+        min_x, min_y, max_x, max_y = shape.bounds
+        width, depth = round(max_x - min_x, 3), round(max_y - min_y, 3)
+        if width < 0.05 or depth < 0.05:
+            raise self.fail(at, f"there is no room for it in '{room}' once homebot's walls "
+                                f"({_WALL:g} m) and the furniture before it are drawn; move it")
+        quarter_turns = pose.yaw / (math.pi / 2)
+        turned = abs(quarter_turns - round(quarter_turns)) > 0.02 and not _is_round(
+            kind.footprint)
+        if turned or scale < 0.99:
+            why = [f"turned {math.degrees(pose.yaw):.0f}° (homebot's furniture is "
+                   "axis-aligned, so it is the box around it or turned square)"] if turned \
+                else []
+            if scale < 0.99:
+                why.append(f"shrunk to {scale:.0%} to keep out of the walls and other "
+                           "furniture")
+            self.warn(at, f"its footprint is the {width:g} × {depth:g} m box around it, "
+                          f"{' and '.join(why)}")
+        if entry.get("is_open") is False:
+            self.warn((*at, "is_open"), "closed: homebot's furniture has no doors, so it is "
+                                         "imported open (what lies in it in plain view)")
+        placement: dict[str, Any] = {
+            "name": name, "category": _FURNITURE.get(category, "furniture"), "room": room,
+            "center": [round((min_x + max_x) / 2, 3), round((min_y + max_y) / 2, 3)],
+            "size": [width, depth]}
+        if kind.height is not None and 0 < kind.height <= 2.5:
+            placement["height"] = kind.height
+        if name in self.placements:
+            raise self.fail((*at, "name"), f"'{name}' is used by an earlier location; "
+                                            "rename one")
         self.placements[name] = placement
-        return placement
+        self.boxes[name] = shape
 
-    def _pose(self, pose: Any, where: str, centre: Point) -> tuple[float, float, float]:
-        if pose is None:
-            return centre.x, centre.y, 0.0
-        if isinstance(pose, list) and len(pose) >= 2 and all(
-                isinstance(value, (int, float)) for value in pose):
-            yaw = float(pose[3]) if len(pose) >= 4 else 0.0
-            return float(pose[0]), float(pose[1]), yaw
-        if isinstance(pose, Mapping) and isinstance(pose.get("position"), Mapping):
-            position = pose["position"]
-            x, y = float(position.get("x", 0.0)), float(position.get("y", 0.0))
-            rotation = pose.get("rotation_eul") or {}
-            yaw = float(rotation.get("yaw", 0.0)) if isinstance(rotation, Mapping) else 0.0
-            if isinstance(rotation, Mapping) and rotation.get("angle_units") == "degrees":
-                yaw = math.radians(yaw)
-            relative = pose.get("relative_to")
-            if relative is not None:
-                anchor = _name(str(relative))
-                if anchor not in self.rooms:
-                    raise self.fail(where, f"relative_to '{relative}' is not a room")
-                origin = self.rooms[anchor].centroid
-                x, y = x + origin.x, y + origin.y
-            return x, y, yaw
-        raise self.fail(where, "a pose is [x, y, z, yaw] or {position: {x, y}, rotation_eul: "
-                               "{yaw}}")
+    def _object(self, index: int, entry: Any) -> dict[str, Any] | None:
+        at: tuple[str | int, ...] = ("objects", index)
+        entry = self._mapping(("objects", index), entry, "a category and a parent")
+        if not entry.get("category"):
+            raise self.fail(at, "an object is a mapping with a category and a parent")
+        category = _name(str(entry["category"]))
+        written = _first_choice(entry.get("parent"))
+        if written is None:
+            written = next(iter(self.placements), None)
+            if written is None:
+                raise self.fail(at, "has no parent and the world has no location to put it on")
+            self.warn(at, f"has no parent (pyrobosim picks one at random); it lies on "
+                          f"'{written}'")
+        elif not isinstance(entry.get("parent"), str):
+            self.warn((*at, "parent"), f"pyrobosim picks its parent at random; homebot puts "
+                                        f"it on '{written}' (the first, or most probable)")
+        if _name(str(written)) in self.dropped:
+            self.warn(at, f"its parent '{written}' was left out, so it is too")
+            return None
+        placement = self._resolve_parent(str(written), at)
+        name = _unique(_name(str(entry.get("name") or category)),
+                       {*self.placements, *self.rooms, *self.corridors, *self.object_names})
+        self.object_names.add(name)
+        self.labels[("objects", index)] = name
+        obj: dict[str, Any] = {"name": name, "category": category, "placement": placement}
+        if entry.get("pose") is not None:
+            pose = self._pose(entry["pose"], (*at, "pose"))
+            self.poses[name] = pose
+            if self.boxes[placement].covers(Point(pose.x, pose.y)):
+                obj["position"] = [round(pose.x, 3), round(pose.y, 3)]
+        return obj
 
-    def _objects(self) -> list[dict[str, Any]]:
-        objects: list[dict[str, Any]] = []
-        taken: set[str] = set()
-        for index, entry in enumerate(self.data.get("objects") or []):
-            where = f"objects[{index}]"
-            if not isinstance(entry, Mapping) or not entry.get("category"):
-                raise self.fail(where, "an object is a mapping with a category and a parent")
-            category = _name(str(entry["category"]))
-            parent = _name(str(_first_choice(entry.get("parent"))))
-            if parent not in self.placements:
-                raise self.fail(where, f"parent '{parent}' is not a location; locations: "
-                                       f"{', '.join(self.placements)}")
-            name = _name(str(entry.get("name") or category))
-            unique, number = name, 2
-            while unique in taken:
-                unique, number = f"{name} {number}", number + 1
-            taken.add(unique)
-            objects.append({"name": unique, "category": category, "placement": parent})
-        return objects
+    def _resolve_parent(self, written: str, at: tuple[str | int, ...]) -> str:
+        """A location by name, an object spawn (``counter0_left``), a location category, or
+        a room and category (``kitchen table``), as pyrobosim's ``query_to_entity``."""
+        name = _name(written)
+        if name in self.placements:
+            return name
+        if name in self.spawns:
+            return self.spawns[name]
+        words = written.split()
+        category = words[-1]
+        rooms = [_name(word) for word in words[:-1]]
+        candidates = [placement for placement in self.by_category.get(category, [])
+                      if all(self.placements[placement]["room"] == room for room in rooms)]
+        if candidates:
+            if len(self.by_category[category]) > 1:
+                self.warn((*at, "parent"), f"'{written}' is a category; pyrobosim picks one "
+                                            f"at random, homebot the first ('{candidates[0]}')")
+            return candidates[0]
+        raise self.fail((*at, "parent"), f"parent '{written}' is not a location; locations: "
+                                          f"{', '.join(self.placements) or 'none'}")
 
-    def _robot(self) -> tuple[float, float, float]:
-        robots = self.data.get("robots") or []
-        first = robots[0] if isinstance(robots, list) and robots else {}
-        if not isinstance(first, Mapping):
-            raise self.fail("robots[0]", "a robot is a mapping with a pose or a location")
-        room = _name(str(_first_choice(first.get("location")) or ""))
-        centre = self.rooms[room].centroid if room in self.rooms else next(
-            iter(self.rooms.values())).centroid
-        if first.get("pose") is None:
-            return centre.x, centre.y, 0.0
-        return self._pose(first["pose"], "robots[0].pose", centre)
+    # ------------------------------------------------------------ the robot and operator
+
+    def _robot(self) -> tuple[float, PlanarPose]:
+        robots = self._entries("robots")
+        for index, entry in enumerate(robots):
+            self._mapping(("robots", index), entry, "a name, a radius and a pose or location")
+        if len(robots) > 1:
+            self.warn(("robots", 1), f"only the first of {len(robots)} robots is imported; "
+                                     "homebot runs one robot")
+        first: Mapping[str, Any] = robots[0] if robots else {}
+        at: tuple[str | int, ...] = ("robots", 0)
+        radius = first.get("radius", 0.25)
+        if not is_number(radius) or not 0.05 < radius <= 1.0:
+            self.warn((*at, "radius"), f"radius {radius!r} is outside homebot's 0.05-1 m; "
+                                        "0.25 m is used")
+            radius = 0.25
+        target, room = self._robot_target(first, at)
+        area = self._free_area(room, float(radius), float(radius) + 0.05)
+        point = free_point(area, (target.x, target.y))
+        if point is None:
+            raise self.fail(at, f"there is no free place for the robot in room '{room}'")
+        if math.dist(point, (target.x, target.y)) > 0.01:
+            self.warn(at, f"({target.x:.2f}, {target.y:.2f}) is too near a wall or furniture "
+                          f"for homebot's robot; it starts at ({point[0]:.2f}, {point[1]:.2f})")
+        return float(radius), PlanarPose(point[0], point[1], target.yaw)
+
+    def _robot_target(self, first: Mapping[str, Any],
+                      at: tuple[str | int, ...]) -> tuple[PlanarPose, str]:
+        """Where the robot should start, and the room that is in."""
+        if first.get("pose") is not None:
+            pose = self._pose(first["pose"], (*at, "pose"))
+            return pose, self._room_at(pose.x, pose.y, at)
+        location = _first_choice(first.get("location"))
+        if location is not None and not isinstance(first.get("location"), str):
+            self.warn((*at, "location"), f"pyrobosim picks the robot's location at random; "
+                                          f"homebot starts it at '{location}'")
+        if location is None:
+            room = next(iter(self.rooms))
+            self.warn(at, f"has neither pose nor location; it starts in room '{room}'")
+            return self.start_poses.get(room, self.poses[room]), room
+        name = _name(str(location))
+        if name in self.rooms:
+            return self.start_poses.get(name, self.poses[name]), name
+        placement = self._resolve_parent(str(location), (*at, "location"))
+        cx, cy = self.placements[placement]["center"]
+        return PlanarPose(cx, cy), self.placements[placement]["room"]
+
+    def _room_at(self, x: float, y: float, at: tuple[str | int, ...]) -> str:
+        for name, shape in {**self.rooms, **self.corridors}.items():
+            if shape.covers(Point(x, y)):
+                return name
+        raise self.fail((*at, "pose"), f"({x:g}, {y:g}) lies in no room or hallway")
+
+    def _free_area(self, room: str, radius: float, clearance: float) -> BaseGeometry:
+        shape = {**self.rooms, **self.corridors}[room]
+        area: BaseGeometry = shape.buffer(-(_WALL / 2 + radius + 0.03))
+        furniture = [box for name, box in self.boxes.items()
+                     if self.placements[name]["room"] == room]
+        if furniture:
+            area = area.difference(unary_union(furniture).buffer(clearance))
+        return area
+
+    def _operator_place(self, robot: PlanarPose, radius: float) -> dict[str, Any]:
+        """The operator, 0.9 m to the robot's left (else anywhere free nearest that)."""
+        room = self._room_at(robot.x, robot.y, ("robots", 0))
+        wanted = (robot.x + 0.9 * math.cos(robot.yaw + math.pi / 2),
+                  robot.y + 0.9 * math.sin(robot.yaw + math.pi / 2))
+        for name in [room, *sorted({**self.rooms, **self.corridors}, key=lambda other: (
+                {**self.rooms, **self.corridors}[other].distance(Point(robot.x, robot.y))))]:
+            area = self._free_area(name, 0.3, 0.35).difference(
+                Point(robot.x, robot.y).buffer(radius + 0.45))
+            point = free_point(area, wanted)
+            if point is not None:
+                return {"name": self.operator, "room": name,
+                        "position": [round(point[0], 3), round(point[1], 3)]}
+        raise WorldError(f"{self.source}: there is no free place for the operator beside the "
+                         "robot; make its room larger")
 
 
 def _name(text: str) -> str:
     return " ".join(text.replace("_", " ").split())
+
+
+def _unique(name: str, taken: Any) -> str:
+    unique, number = name, 2
+    while unique in taken:
+        unique, number = f"{name} {number}", number + 1
+    return unique
 
 
 def _plural(category: str) -> str:
@@ -291,11 +636,9 @@ def _plural(category: str) -> str:
     return f"{category}s"
 
 
-def _pair(value: Any) -> tuple[float, float] | None:
-    if isinstance(value, (list, tuple)) and len(value) >= 2 and all(
-            isinstance(item, (int, float)) for item in value[:2]):
-        return float(value[0]), float(value[1])
-    return None
+def _is_round(polygon: Polygon) -> bool:
+    """A circle's footprint: turning it changes nothing."""
+    return len(polygon.exterior.coords) > 16
 
 
 def _first_choice(value: Any) -> Any:
@@ -311,35 +654,11 @@ def _first_choice(value: Any) -> Any:
     return value
 
 
-def _largest(shape: BaseGeometry) -> Polygon | None:
-    polygons = [shape] if isinstance(shape, Polygon) else list(getattr(shape, "geoms", []))
-    polygons = [polygon for polygon in polygons if isinstance(polygon, Polygon)
-                and polygon.area > 1e-6]
-    return max(polygons, key=lambda polygon: polygon.area) if polygons else None
-
-
-def _nearest_point(crossing: BaseGeometry, corridor: Polygon) -> Point | None:
-    points = [crossing] if isinstance(crossing, Point) else [
-        geometry for geometry in getattr(crossing, "geoms", []) if isinstance(geometry, Point)]
-    points = [point for point in points if corridor.exterior.distance(point) < 1e-6]
-    return min(points, key=corridor.centroid.distance) if points else None
+def _polygons(shape: BaseGeometry) -> list[Polygon]:
+    return [shape] if isinstance(shape, Polygon) else [
+        part for part in getattr(shape, "geoms", []) if isinstance(part, Polygon)]
 
 
 def _corners(polygon: Polygon) -> list[list[float]]:
     return [[round(x, 3), round(y, 3)] for x, y in list(polygon.exterior.coords)[:-1]]
 
-
-def _room_of(rooms: Mapping[str, Polygon], point: tuple[float, float]) -> str:
-    return next((name for name, polygon in rooms.items() if polygon.covers(Point(point))),
-                next(iter(rooms)))
-
-
-def _beside(rooms: Mapping[str, Polygon], robot: tuple[float, float, float]) -> list[float]:
-    """A place 0.9 m to the robot's left, else right, else ahead, inside its room."""
-    room = rooms[_room_of(rooms, robot[:2])]
-    x, y, yaw = robot
-    for angle in (math.pi / 2, -math.pi / 2, 0.0, math.pi):
-        spot = Point(x + 0.9 * math.cos(yaw + angle), y + 0.9 * math.sin(yaw + angle))
-        if room.buffer(-0.3).covers(spot):
-            return [round(spot.x, 3), round(spot.y, 3)]
-    return [round(x, 3), round(y, 3)]

@@ -38,6 +38,9 @@ _APPROACH_CLEARANCE = 0.12
 # The largest occupancy grid a world may ask for (a 150 m square at 5 cm; a few hundred MB).
 _MAX_GRID_CELLS = 9e6
 _LEAF_THICKNESS = 0.04  #: metres, a door's leaf
+#: metres two rooms may reach into each other and still count as touching (coordinates
+#: rounded to the millimetre, as importers write them, cross a shared wall by a hair)
+_ROOM_OVERLAP_TOLERANCE = 0.001
 #: the compass names a door's hinge is given by, as unit vectors on the map
 _COMPASS = {"east": (1.0, 0.0), "west": (-1.0, 0.0), "north": (0.0, 1.0), "south": (0.0, -1.0)}
 
@@ -296,12 +299,16 @@ class World:
         if self._problems:  # geometry on broken polygons fails; every later check would too
             raise WorldError(problem_listing(self._problems))
         names = list(self.room_polygons)
+        cores = {name: polygon.buffer(-_ROOM_OVERLAP_TOLERANCE, join_style="mitre")
+                 for name, polygon in self.room_polygons.items()}
         for i, first in enumerate(names):
             for second in names[i + 1:]:
-                overlap = self.room_polygons[first].intersection(self.room_polygons[second]).area
+                overlap = cores[first].intersection(self.room_polygons[second]).area
                 if overlap > 1e-6:
+                    amount = (f"{overlap:.2f} m²" if overlap >= 0.01
+                              else f"{overlap * 1e4:.0f} cm²")
                     self._problem(["rooms", i, "polygon"],
-                                  f"room '{first}' overlaps room '{second}' by {overlap:.2f} m²")
+                                  f"room '{first}' overlaps room '{second}' by {amount}")
         min_x, min_y, max_x, max_y = self.bounds()
         resolution = self.model.grid_resolution
         cells = (max_x - min_x) / resolution * ((max_y - min_y) / resolution)
