@@ -138,3 +138,24 @@ def test_a_persons_height_is_drawn_as_declared_and_must_be_a_persons(tmp_path: P
     with pytest.raises(WorldError,
                        match=r"line 14: people\.0\.height: must be greater than or equal to 0\.5"):
         World.load(path)
+
+
+def test_rooms_touching_along_a_rounded_diagonal_are_not_overlapping(tmp_path: Path) -> None:
+    # A wall from (0, 0) to (3, 1.7), its corners rounded to the millimetre on one side
+    # (as importers write them): the rooms cross by a hair, which is no overlap.
+    text = MINIMAL.replace(
+        "  - {name: hall, polygon: [[0, 0], [4, 0], [4, 4], [0, 4]]}\n"
+        "  - {name: study, polygon: [[4, 0], [8, 0], [8, 4], [4, 4]]}\n",
+        "  - {name: hall, polygon: [[0, 0], [3, 1.7], [3, 4], [0, 4]]}\n"
+        "  - {name: study, polygon: [[0, 0], [8, 0], [8, 4], [3, 4], [3.0004, 1.7003]]}\n")
+    text = text.replace("position: [4, 2]", "position: [1.5, 0.85]").replace(
+        "center: [6, 2]", "center: [6, 1]")
+    world = World.load(_write(tmp_path, text))
+    assert set(world.rooms) == {"hall", "study"}
+
+
+def test_rooms_overlapping_by_a_few_centimetres_are_refused_in_cm2(tmp_path: Path) -> None:
+    path = _write(tmp_path, MINIMAL.replace("[[4, 0], [8, 0], [8, 4], [4, 4]]",
+                                            "[[3.998, 0], [8, 0], [8, 4], [3.998, 4]]"))
+    with pytest.raises(WorldError, match=r"room 'hall' overlaps room 'study' by 80 cm²"):
+        World.load(path)

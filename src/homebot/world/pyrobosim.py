@@ -436,7 +436,7 @@ class _Importer:
         area: BaseGeometry = self.rooms[room].buffer(-(_WALL / 2 + reach))
         others = list(self.boxes.values())
         if others:
-            area = area.difference(unary_union(others).buffer(reach + 0.5))
+            area = area.difference(unary_union(others).buffer(reach + 0.4))
         centre = self.rooms[room].centroid
         point = free_point(area, (centre.x, centre.y))
         if point is None:
@@ -598,7 +598,10 @@ class _Importer:
                      if self.placements[name]["room"] == room]
         if furniture:
             area = area.difference(unary_union(furniture).buffer(clearance))
-        return area
+        # someone standing in a doorway shuts it, as the occupancy grid sees it
+        doorways = [Point(door["position"]).buffer(door["width"] / 2 + radius + 0.1)
+                    for door in self.doors if room in door["rooms"]]
+        return area.difference(unary_union(doorways)) if doorways else area
 
     def _operator_place(self, robot: PlanarPose, radius: float) -> dict[str, Any]:
         """The operator, 0.9 m to the robot's left (else anywhere free nearest that)."""

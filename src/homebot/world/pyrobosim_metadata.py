@@ -58,7 +58,7 @@ def metadata_paths(entry: Any, world_file: Path) -> list[tuple[str, Path]]:
     """The files a ``metadata: locations:`` entry names (one or a list), tokens replaced;
     ``$DATA`` is looked for beside the world file, where pyrobosim's own worlds keep it."""
     texts = entry if isinstance(entry, list) else [entry]
-    folder = world_file.parent
+    folder = world_file.resolve().parent
     paths: list[tuple[str, Path]] = []
     for text in texts:
         written = str(text)

@@ -303,8 +303,9 @@ class World:
                  for name, polygon in self.room_polygons.items()}
         for i, first in enumerate(names):
             for second in names[i + 1:]:
-                overlap = cores[first].intersection(self.room_polygons[second]).area
-                if overlap > 1e-6:
+                if cores[first].intersection(self.room_polygons[second]).area > 1e-6:
+                    overlap = self.room_polygons[first].intersection(
+                        self.room_polygons[second]).area
                     amount = (f"{overlap:.2f} m²" if overlap >= 0.01
                               else f"{overlap * 1e4:.0f} cm²")
                     self._problem(["rooms", i, "polygon"],
