@@ -127,7 +127,8 @@ def test_each_approximation_is_warned_with_its_line() -> None:
          "'writing_desk' is in no location metadata read; it is taken as a 0.6 m square"),
         (_line_of(text, "    category: lamp"), "its mesh footprint is not read"),
         (_line_of(text, "  - name: bench"), "has no pose (pyrobosim picks one at random)"),
-        (_line_of(text, "    is_open: false", after="  - name: cupboard"), "closed: homebot's furniture has no doors"),
+        (_line_of(text, "    is_open: false", after="  - name: cupboard"),
+         "closed: homebot's furniture has no doors"),
         (_line_of(text, "    parent: [bookshelf, desk]"), "homebot puts it on 'bookshelf'"),
         (_line_of(text, "  - name: second"), "only the first of 2 robots is imported"),
         (_line_of(text, "    colour: red"), "rooms[*].colour: not imported: not in "
