@@ -167,6 +167,28 @@ def test_warnings_go_to_stderr_and_the_world_passes_check(
     assert main(["world", "check", str(output)]) == 0
 
 
+def test_a_location_named_as_a_room_is_renamed_and_one_outside_its_room_left_out(
+        tmp_path: Path) -> None:
+    path = tmp_path / "world.yaml"
+    path.write_text(
+        "rooms:\n  - {name: trash, footprint: {type: box, dims: [4, 4]}}\n"
+        "locations:\n  - {name: trash, category: table, parent: trash, pose: [1, 1]}\n"
+        "  - {name: shelf, category: desk, parent: trash, pose: [5, 5]}\n"
+        "objects:\n  - {category: apple, parent: trash}\n  - {category: pear, parent: shelf}\n"
+        "robots:\n  - {radius: 0.2, pose: [-1, -1]}\n", encoding="utf-8")
+    imported = import_pyrobosim(path)
+    world = World.from_dict(imported.data)
+    assert world.objects["apple"].placement == "trash table"
+    assert set(world.placements) == {"trash table"} and set(world.objects) == {"apple"}
+    assert any("line 4: locations[0] (trash).name: 'trash' is also a room; the furniture "
+               "is called 'trash table'" in warning for warning in imported.warnings)
+    assert any("line 5: locations[1] (shelf): does not lie inside room 'trash'" in warning
+               for warning in imported.warnings)
+    assert any("line 8: objects[1]: its parent 'shelf' was left out, so it is too" in warning
+               for warning in imported.warnings)
+    assert any("no location metadata is named" in warning for warning in imported.warnings)
+
+
 _ROOMS = ("rooms:\n  - name: a\n    footprint: {type: box, dims: [2, 2]}\n"
           "  - name: b\n    footprint: {type: box, dims: [2, 2]}\n"
           "    pose: {position: {x: 4.0, y: 0.0}}\n")

@@ -44,8 +44,10 @@ from homebot.world.pyrobosim_geometry import (
     place_footprint,
     shared_edge,
     simple_footprint,
+    straight_hallway,
 )
 from homebot.world.pyrobosim_metadata import LocationCategory, read_location_metadata
+from homebot.world.pyrobosim_schema import UnreadFields
 from homebot.yamlfile import LocatedDocument, load_yaml_document
 
 __all__ = ["PyrobosimImport", "import_pyrobosim"]
@@ -61,36 +63,6 @@ _FURNITURE = {"table": "table", "desk": "desk", "counter": "counter", "trash_can
               "trashcan_small": "bin", "trashcan_large": "bin", "shelf": "shelf",
               "storage": "storage", "bed": "seating", "sofa": "seating",
               "charger": "fixture"}
-
-_LOOK = "homebot draws the world in its own colours"
-_SIMULATOR = "pyrobosim's own simulator settings; homebot's robot and grid have their own"
-#: the fields of each section that are read; the others are reported with a reason
-_READ: Mapping[str, frozenset[str]] = {
-    "": frozenset({"params", "metadata", "robots", "rooms", "hallways", "locations",
-                   "objects"}),
-    "params": frozenset({"name"}),
-    "metadata": frozenset({"locations"}),
-    "rooms": frozenset({"name", "footprint", "pose"}),
-    "hallways": frozenset({"room_start", "room_end", "width", "conn_method", "conn_angle",
-                           "offset", "conn_points", "is_open", "is_locked"}),
-    "locations": frozenset({"name", "category", "parent", "pose", "is_open", "is_locked"}),
-    "objects": frozenset({"name", "category", "parent", "pose"}),
-    "robots": frozenset({"name", "radius", "pose", "location"}),
-}
-_WHY_NOT_READ: Mapping[str, Mapping[str, str]] = {
-    "params": {"inflation_radius": _SIMULATOR, "object_radius": _SIMULATOR,
-               "wall_height": "homebot's walls have no height"},
-    "metadata": {"objects": "homebot's catalogue gives objects their shape, size and mass"},
-    "rooms": {"color": _LOOK, "height": "homebot's rooms have no height",
-              "wall_width": f"homebot's walls are {_WALL:g} m thick, centred on the outline",
-              "nav_poses": "homebot works out where to stand by itself (the first nav pose "
-                           "of the robot's start room is its start)"},
-    "hallways": {"color": _LOOK, "wall_width": f"homebot's walls are {_WALL:g} m thick"},
-    "locations": {"color": _LOOK, "is_charger": "homebot's robot does not charge",
-                  "nav_poses": "homebot works out where to stand by itself"},
-    "objects": {"color": _LOOK},
-}
-
 
 @dataclass
 class PyrobosimImport:
@@ -129,6 +101,7 @@ class _Importer:
         self.doors: list[dict[str, Any]] = []
         self.placements: dict[str, dict[str, Any]] = {}
         self.boxes: dict[str, Polygon] = {}  # placement name -> its axis-aligned footprint
+        self.located: dict[str, str] = {}  # location as written ("trash") -> placement
         self.spawns: dict[str, str] = {}  # object spawn ("counter0 left") -> placement
         self.by_category: dict[str, list[str]] = defaultdict(list)
         self.dropped: set[str] = set()  # locations pyrobosim itself would not add
@@ -136,11 +109,16 @@ class _Importer:
         self.start_poses: dict[str, PlanarPose] = {}  # room -> its first nav pose
         self.labels: dict[tuple[str, int], str] = {}
         self.object_names: set[str] = set()
-        self.unread: dict[tuple[str, str], tuple[tuple[str | int, ...], list[str]]] = {}
+        self.unread = UnreadFields()
 
     # ------------------------------------------------------------ messages
 
+    def _at(self, location: tuple[str | int, ...]) -> str:
+        """``file: line N`` of the node at ``location``."""
+        return f"{self.source}: line {self.document.line_of(list(location))}"
+
     def _where(self, location: tuple[str | int, ...]) -> str:
+        """``file: line N: rooms[2] (kitchen).footprint``."""
         text = ""
         for position, step in enumerate(location):
             if isinstance(step, int):
@@ -149,8 +127,7 @@ class _Importer:
                 text += f" ({label})" if label else ""
             else:
                 text += f".{step}" if text else step
-        line = self.document.line_of(list(location))
-        return f"{self.source}: line {line}: {text or '(document)'}"
+        return f"{self._at(location)}: {text or '(document)'}"
 
     def fail(self, location: tuple[str | int, ...], message: str) -> WorldError:
         return WorldError(f"{self._where(location)}: {message}")
@@ -158,37 +135,16 @@ class _Importer:
     def warn(self, location: tuple[str | int, ...], message: str) -> None:
         self.warnings.append(f"{self._where(location)}: {message}")
 
-    def _note_unread(self, location: tuple[str | int, ...], section: str,
-                     entry: Mapping[str, Any]) -> None:
-        """Remember the fields of ``entry`` that are not read, grouped by reason."""
-        for key in entry:
-            if key in _READ[section]:
-                continue
-            reason = _WHY_NOT_READ.get(section, {}).get(str(key)) or (
-                _SIMULATOR if section == "robots" else
-                "not in pyrobosim's world schema (a typo?)")
-            _first, keys = self.unread.setdefault((section, reason), ((*location, key), []))
-            if key not in keys:
-                keys.append(str(key))
-
-    def _report_unread(self) -> None:
-        for (section, reason), (location, keys) in self.unread.items():
-            where = f"{section}[*]." if section and section not in ("params", "metadata") \
-                else f"{section}." if section else ""
-            names = ", ".join(f"{where}{key}" for key in keys)
-            self.warnings.append(f"{self._where(location).rsplit(': ', 1)[0]}: {names}: "
-                                 f"not imported: {reason}")
-
     # ------------------------------------------------------------ the world
 
     def world(self) -> dict[str, Any]:
-        self._note_unread((), "", self.data)
+        self.unread.note((), "", self.data)
         params = self.data.get("params") or {}
         if isinstance(params, Mapping):
-            self._note_unread(("params",), "params", params)
+            self.unread.note(("params",), "params", params)
         metadata = self.data.get("metadata") or {}
         if isinstance(metadata, Mapping):
-            self._note_unread(("metadata",), "metadata", metadata)
+            self.unread.note(("metadata",), "metadata", metadata)
         self.categories = read_location_metadata(
             metadata.get("locations") if isinstance(metadata, Mapping) else None,
             self.source, lambda message: self.warn(("metadata",), message))
@@ -202,7 +158,8 @@ class _Importer:
                    if (obj := self._object(index, entry)) is not None]
         radius, robot = self._robot()
         person = self._operator_place(robot, radius)
-        self._report_unread()
+        self.warnings += [f"{self._at(location)}: {message}"
+                          for location, message in self.unread.report()]
         return {
             "name": _name(str(params.get("name") if isinstance(params, Mapping) and params.get(
                 "name") else self.source.stem)),
@@ -229,7 +186,7 @@ class _Importer:
     def _mapping(self, location: tuple[str, int], entry: Any, what: str) -> Mapping[str, Any]:
         if not isinstance(entry, Mapping):
             raise self.fail(location, f"each of {location[0]} is a mapping ({what})")
-        self._note_unread(location, location[0], entry)
+        self.unread.note(location, location[0], entry)
         return entry
 
     def _pose(self, value: Any, location: tuple[str | int, ...]) -> PlanarPose:
@@ -372,16 +329,9 @@ class _Importer:
         offset, angle = entry.get("offset", 0.0), entry.get("conn_angle", 0.0)
         if not is_number(offset) or not is_number(angle):
             raise self.fail(at, "offset and conn_angle are numbers (metres, radians)")
-        # pyrobosim core/hallway.py: from the start room's centroid, shifted sideways by
-        # the offset; an angle keeps the length of the centroids' line projected on it.
         first, last = self.rooms[start].centroid, self.rooms[end].centroid
-        theta = math.atan2(last.y - first.y, last.x - first.x)
-        length = math.hypot(last.x - first.x, last.y - first.y)
-        if method == "angle":
-            length, theta = length * math.cos(theta - float(angle)), float(angle)
-        cos, sin = math.cos(theta), math.sin(theta)
-        x, y = first.x - float(offset) * sin, first.y + float(offset) * cos
-        return [(x, y), (x + length * cos, y + length * sin)]
+        return straight_hallway((first.x, first.y), (last.x, last.y), float(offset),
+                                float(angle) if method == "angle" else None)
 
     # ------------------------------------------------------------ locations and objects
 
@@ -411,14 +361,13 @@ class _Importer:
             self.warn(at, f"does not lie inside room '{room}' at ({pose.x:g}, {pose.y:g}); "
                           "pyrobosim does not add it either, so it is left out")
             return
-        self._furniture(at, entry, name, room, category, kind, pose)
-        if name in self.rooms or name in self.corridors:
-            renamed = _unique(f"{name} {category.replace('_', ' ')}", self.placements)
+        if name in self.rooms or name in self.corridors:  # homebot's names are one space
+            renamed = _unique(f"{name} {_name(category)}", self.placements)
             self.warn((*at, "name"), f"'{name}' is also a room; the furniture is called "
                                       f"'{renamed}'")
-            self.placements[renamed] = {**self.placements.pop(name), "name": renamed}
-            self.boxes[renamed] = self.boxes.pop(name)
             name = renamed
+        self._furniture(at, entry, name, room, category, kind, pose)
+        self.located[_name(written)] = name
         self.poses[_name(written)] = pose
         self.by_category[category].append(name)
         for spawn in kind.spawns:
@@ -521,8 +470,8 @@ class _Importer:
         """A location by name, an object spawn (``counter0_left``), a location category, or
         a room and category (``kitchen table``), as pyrobosim's ``query_to_entity``."""
         name = _name(written)
-        if name in self.placements:
-            return name
+        if name in self.located:
+            return self.located[name]
         if name in self.spawns:
             return self.spawns[name]
         words = written.split()

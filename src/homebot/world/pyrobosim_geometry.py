@@ -21,7 +21,8 @@ from shapely.geometry.base import BaseGeometry
 from shapely.ops import linemerge, nearest_points, unary_union
 
 __all__ = ["PlanarPose", "PoseFormatError", "aligned_box", "corridor", "free_point",
-           "is_number", "parse_pose", "place_footprint", "shared_edge", "simple_footprint"]
+           "is_number", "parse_pose", "place_footprint", "shared_edge", "simple_footprint",
+           "straight_hallway"]
 
 #: how far apart two outlines may lie and still count as touching (rounding, noding)
 TOUCHING = 1e-6
@@ -145,6 +146,21 @@ def corridor(points: Sequence[tuple[float, float]], width: float) -> Polygon:
     """A hallway's floor as pyrobosim draws it: the line buffered, flat ends, mitred bends."""
     shape = LineString(points).buffer(width / 2, cap_style="flat", join_style="mitre")
     return shape if isinstance(shape, Polygon) else Polygon()
+
+
+def straight_hallway(start: tuple[float, float], end: tuple[float, float], offset: float,
+                     angle: float | None) -> list[tuple[float, float]]:
+    """The centre line of an ``auto`` hallway (``angle`` None) or an ``angle`` one, from the
+    start room's centroid ``start`` towards the end room's ``end``, shifted ``offset``
+    sideways; an angle keeps the length of the centroids' line projected on it
+    (pyrobosim ``core/hallway.py``)."""
+    theta = math.atan2(end[1] - start[1], end[0] - start[0])
+    length = math.hypot(end[0] - start[0], end[1] - start[1])
+    if angle is not None:
+        length, theta = length * math.cos(theta - angle), angle
+    cos, sin = math.cos(theta), math.sin(theta)
+    x, y = start[0] - offset * sin, start[1] + offset * cos
+    return [(x, y), (x + length * cos, y + length * sin)]
 
 
 def shared_edge(first: Polygon, second: Polygon) -> LineString | None:

@@ -78,7 +78,7 @@ def read_location_metadata(entry: Any, world_file: Path,
     """
     categories: dict[str, LocationCategory] = {}
     missing: list[str] = []
-    for written, path in metadata_paths(entry, world_file):
+    for written, path in metadata_paths(entry, world_file) if entry is not None else []:
         if not path.is_file():
             missing.append(written)
             continue
@@ -86,10 +86,11 @@ def read_location_metadata(entry: Any, world_file: Path,
     if missing or entry is None:
         for name, category in EXAMPLE_CATEGORIES.items():
             categories.setdefault(name, category)
-        named = ", ".join(missing) if missing else "none named"
-        warn(f"location metadata ({named}) not found beside the world file; furniture "
-             "sizes come from pyrobosim's example categories (table, desk, counter, "
-             "trash_can, charger); copy the metadata files beside the world to use yours")
+        what = (f"{', '.join(missing)} is not beside the world file" if missing
+                else "no location metadata is named")
+        warn(f"{what}; furniture sizes come from pyrobosim's example categories (table, "
+             "desk, counter, trash_can, charger); put the metadata files beside the world "
+             "to use yours")
     return categories
 
 
