@@ -189,6 +189,19 @@ def test_a_location_named_as_a_room_is_renamed_and_one_outside_its_room_left_out
     assert any("no location metadata is named" in warning for warning in imported.warnings)
 
 
+def test_rooms_meeting_inside_a_hallway_get_one_door_between_them(tmp_path: Path) -> None:
+    path = tmp_path / "world.yaml"
+    path.write_text(
+        "rooms:\n  - {name: a, footprint: {type: box, dims: [2, 2]}}\n"
+        "  - {name: b, footprint: {type: box, dims: [2, 2]}, pose: [2, 0]}\n"
+        "hallways:\n  - {room_start: a, room_end: b, width: 0.8}\n", encoding="utf-8")
+    world = World.from_dict(import_pyrobosim(path).data)
+    assert set(world.rooms) == {"a", "b"}
+    (door,) = world.doors.values()
+    assert set(door.rooms) == {"a", "b"}
+    assert door.position == pytest.approx((1.0, 0.0)) and door.width == pytest.approx(0.8)
+
+
 _ROOMS = ("rooms:\n  - name: a\n    footprint: {type: box, dims: [2, 2]}\n"
           "  - name: b\n    footprint: {type: box, dims: [2, 2]}\n"
           "    pose: {position: {x: 4.0, y: 0.0}}\n")

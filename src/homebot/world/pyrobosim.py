@@ -268,7 +268,8 @@ class _Importer:
         pieces = [piece for piece in _polygons(floor.difference(taken)) if piece.area > _SLIVER]
         doors: list[dict[str, Any]] = []
         if not pieces:  # the rooms meet inside the corridor: one door between them
-            doors += self._doors_between(start, self.rooms[start], end, floor, state,
+            doors += self._doors_between(end, self.rooms[end], start,
+                                         self.rooms[start].intersection(floor), state,
                                          f"{start} {end} door", float(width))
         for piece in sorted(pieces, key=lambda shape: -shape.area):
             name = _unique(base, {**self.rooms, **self.corridors})
@@ -278,9 +279,12 @@ class _Importer:
                              if other in (start, end) else f"{other} {base} door")
                 piece_doors += self._doors_between(name, piece, other, shape, state,
                                                    door_name, float(width))
-            if piece_doors:  # floor no door leads to is no floor to drive on
+            if piece_doors:
                 self.corridors[name] = piece
                 doors += piece_doors
+            else:
+                self.warn(at, f"a piece of its corridor ({piece.area:.2f} m²) meets no room "
+                              "over enough for a door; it is left out")
         reached = {room for door in doors for room in door["rooms"]}
         for key, room in (("room_start", start), ("room_end", end)):
             if room not in reached:
@@ -288,7 +292,7 @@ class _Importer:
         self.doors += doors
 
     def _doors_between(self, first: str, first_shape: Polygon, second: str,
-                       second_shape: Polygon, state: str, name: str,
+                       second_shape: BaseGeometry, state: str, name: str,
                        width: float) -> list[dict[str, Any]]:
         edge = shared_edge(first_shape, second_shape)
         if edge is None or edge.length < min(_DOOR_MIN, 0.9 * width):

@@ -163,7 +163,7 @@ def straight_hallway(start: tuple[float, float], end: tuple[float, float], offse
     return [(x, y), (x + length * cos, y + length * sin)]
 
 
-def shared_edge(first: Polygon, second: Polygon) -> LineString | None:
+def shared_edge(first: Polygon, second: BaseGeometry) -> LineString | None:
     """The longest stretch of ``first``'s outline lying on ``second``'s, or None."""
     along = first.exterior.intersection(second.buffer(TOUCHING, join_style="mitre"))
     parts = [along] if isinstance(along, LineString) else [
