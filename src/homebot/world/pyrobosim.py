@@ -457,7 +457,7 @@ class _Importer:
         if _name(str(written)) in self.dropped:
             self.warn(at, f"its parent '{written}' was left out, so it is too")
             return None
-        placement = self._resolve_parent(str(written), at)
+        placement = self._resolve_parent(str(written), (*at, "parent"))
         name = _unique(_name(str(entry.get("name") or category)),
                        {*self.placements, *self.rooms, *self.corridors, *self.object_names})
         self.object_names.add(name)
@@ -471,8 +471,9 @@ class _Importer:
         return obj
 
     def _resolve_parent(self, written: str, at: tuple[str | int, ...]) -> str:
-        """A location by name, an object spawn (``counter0_left``), a location category, or
-        a room and category (``kitchen table``), as pyrobosim's ``query_to_entity``."""
+        """The placement ``written`` (the field at ``at``) names: a location by name, an
+        object spawn (``counter0_left``), a location category, or a room and category
+        (``kitchen table``), as pyrobosim's ``query_to_entity`` reads them."""
         name = _name(written)
         if name in self.located:
             return self.located[name]
@@ -485,11 +486,11 @@ class _Importer:
                       if all(self.placements[placement]["room"] == room for room in rooms)]
         if candidates:
             if len(self.by_category[category]) > 1:
-                self.warn((*at, "parent"), f"'{written}' is a category; pyrobosim picks one "
-                                            f"at random, homebot the first ('{candidates[0]}')")
+                self.warn(at, f"'{written}' is a category; pyrobosim picks one at random, "
+                              f"homebot the first ('{candidates[0]}')")
             return candidates[0]
-        raise self.fail((*at, "parent"), f"parent '{written}' is not a location; locations: "
-                                          f"{', '.join(self.placements) or 'none'}")
+        raise self.fail(at, f"parent '{written}' is not a location; locations: "
+                            f"{', '.join(self.placements) or 'none'}")
 
     # ------------------------------------------------------------ the robot and operator
 
