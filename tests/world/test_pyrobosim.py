@@ -103,6 +103,7 @@ def test_every_construct_of_the_schema_is_imported() -> None:
     assert objects["cup"].placement == "bookshelf"  # the first of a list
     assert objects["book"].placement == "bookshelf"  # the most probable choice
     assert objects["milk"].placement == "cupboard"
+    assert objects["milk"].position == pytest.approx((7.5, 7.3))  # a quaternion pose
     assert objects["sponge"].placement == "counter0"  # "hall counter": room and category
     # The first robot starts at its room's first nav pose, with its own radius.
     pose = world.robot.pose
