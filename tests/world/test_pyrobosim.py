@@ -226,6 +226,14 @@ _ROOMS = ("rooms:\n  - name: a\n    footprint: {type: box, dims: [2, 2]}\n"
     (_ROOMS.replace("y: 0.0", "y: 1.3") + "hallways:\n  - {room_start: a, room_end: b, "
      "width: 0.8, conn_method: points, conn_points: [[0, 0], [3.2, 0]]}\n",
      "meets room 'b' over only 0.30 m, too little for a door"),
+    (_ROOMS + "hallways:\n  - {room_start: a, room_end: b, width: 0.6, conn_method: angle, "
+              "conn_angle: 1.57}\n",  # leaves a northwards: b, east, is never reached
+     r"hallways\[0\] \(a to b\).room_end: the hallway's corridor ends 2.\d\d m short of room "
+     "'b'"),
+    (_ROOMS + "hallways:\n  - {room_start: b, room_end: b, width: 1}\n",
+     "a hallway joins two different rooms; it starts and ends in 'b'"),
+    (_ROOMS + "locations:\n  - {name: 9t, category: table, parent: a}\n",
+     r"line 8: locations\[0\].name: '9t' is no name homebot can say"),
     (_ROOMS + "hallways:\n  - {room_start: a, room_end: b, conn_method: auto}\n",
      r"hallways\[0\] \(a to b\).width: a hallway needs a width above 0"),
     (_ROOMS + "hallways:\n  - {room_start: a, room_end: b, width: 1, conn_method: curve}\n",

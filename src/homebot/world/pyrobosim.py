@@ -21,6 +21,7 @@ refused (a ``WorldError`` naming them). In short:
 from __future__ import annotations
 
 import math
+import re
 from collections import defaultdict
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -55,6 +56,8 @@ __all__ = ["PyrobosimImport", "import_pyrobosim"]
 _WALL = 0.1  # homebot's wall_thickness (the default, kept in the world written)
 _DOOR_MIN = 0.45  # homebot's narrowest door (its DoorModel wants more than 0.4 m)
 _DOOR_MAX = 3.0
+# homebot's names (its world model's Name): a letter, then letters, digits, space ' -
+_SAYABLE = re.compile(r"[^\W\d_][\w '\-]*")
 _SLIVER = 0.01  # m²: a piece of corridor smaller than this is no floor to stand on
 _DEFAULT_CATEGORY = LocationCategory(Polygon([(-0.3, -0.3), (0.3, -0.3), (0.3, 0.3),
                                               (-0.3, 0.3)]))
@@ -160,9 +163,11 @@ class _Importer:
         person = self._operator_place(robot, radius)
         self.warnings += [f"{self._at(location)}: {message}"
                           for location, message in self.unread.report()]
+        named = isinstance(params, Mapping) and params.get("name")
         return {
-            "name": _name(str(params.get("name") if isinstance(params, Mapping) and params.get(
-                "name") else self.source.stem)),
+            "name": self._sayable(params["name"], ("params", "name")) if named else (
+                _name(self.source.stem) if _SAYABLE.fullmatch(_name(self.source.stem))
+                else "pyrobosim world"),
             "description": f"Imported from the pyrobosim world {self.source.name}.",
             "rooms": [{"name": name, "polygon": _corners(polygon)}
                       for name, polygon in {**self.rooms, **self.corridors}.items()],
@@ -189,6 +194,15 @@ class _Importer:
         self.unread.note(location, location[0], entry)
         return entry
 
+    def _sayable(self, written: Any, location: tuple[str | int, ...]) -> str:
+        """``written`` as homebot names it (``my_desk``: "my desk"), refused when it does
+        not begin with a letter or holds other signs than letters, digits, ' and -."""
+        name = _name(str(written))
+        if not _SAYABLE.fullmatch(name):
+            raise self.fail(location, f"'{written}' is no name homebot can say; begin it "
+                                      "with a letter and use letters, digits, _, ' and -")
+        return name
+
     def _pose(self, value: Any, location: tuple[str | int, ...]) -> PlanarPose:
         try:
             pose = parse_pose(value)
@@ -211,7 +225,8 @@ class _Importer:
     def _room(self, index: int, entry: Any) -> None:
         at: tuple[str | int, ...] = ("rooms", index)
         entry = self._mapping(("rooms", index), entry, "a name and a footprint")
-        name = _unique(_name(str(entry.get("name") or f"room{index}")), self.rooms)
+        name = _unique(self._sayable(entry.get("name") or f"room{index}", (*at, "name")),
+                       self.rooms)
         self.labels[("rooms", index)] = name
         footprint = entry.get("footprint")
         if isinstance(footprint, Mapping) and footprint.get("type") == "mesh":
@@ -250,13 +265,16 @@ class _Importer:
             if room not in self.rooms:
                 raise self.fail((*at, key), f"unknown room '{room}'; rooms: "
                                              f"{', '.join(self.rooms)}")
+        if start == end:
+            raise self.fail((*at, "room_end"), f"a hallway joins two different rooms; it "
+                                               f"starts and ends in '{start}'")
         width = entry.get("width")
         if not is_number(width) or width <= 0:
             raise self.fail((*at, "width"), "a hallway needs a width above 0, in metres")
         floor = corridor(self._centre_line(entry, start, end, at), float(width))
         if floor.is_empty or not floor.is_valid:
-            raise self.fail(at, "the hallway's corridor is no simple area (its points double "
-                                "back?); list conn_points along the way")
+            raise self.fail(at, "the hallway's corridor is no simple area (its points "
+                                "coincide or double back?); list conn_points along the way")
         state = "locked" if entry.get("is_locked") and entry.get("is_open") is False else (
             "closed" if entry.get("is_open") is False else "open")
         if float(width) < _DOOR_MIN:
@@ -286,9 +304,12 @@ class _Importer:
                 self.warn(at, f"a piece of its corridor ({piece.area:.2f} m²) meets no room "
                               "over enough for a door; it is left out")
         reached = {room for door in doors for room in door["rooms"]}
-        for key, room in (("room_start", start), ("room_end", end)):
-            if room not in reached:
-                raise self.fail((*at, key), self._unreached(room, floor))
+        unreached = [(key, room) for key, room in (("room_start", start), ("room_end", end))
+                     if room not in reached]
+        # a room the corridor stops short of is the trouble, not one it starts inside
+        for key, room in sorted(unreached, key=lambda pair: -floor.distance(
+                self.rooms[pair[1]])):
+            raise self.fail((*at, key), self._unreached(room, floor))
         self.doors += doors
 
     def _doors_between(self, first: str, first_shape: Polygon, second: str,
@@ -345,7 +366,7 @@ class _Importer:
         category = str(entry.get("category") or "location")
         count = len(self.by_category[category])  # pyrobosim counts the ones it added
         written = str(entry.get("name") or f"{category}{count}")
-        name = _name(written)
+        name = self._sayable(written, (*at, "name"))
         self.labels[("locations", index)] = name
         room = _name(str(entry.get("parent", "")))
         if room not in self.rooms:
@@ -443,7 +464,7 @@ class _Importer:
         entry = self._mapping(("objects", index), entry, "a category and a parent")
         if not entry.get("category"):
             raise self.fail(at, "an object is a mapping with a category and a parent")
-        category = _name(str(entry["category"]))
+        category = self._sayable(entry["category"], (*at, "category"))
         written = _first_choice(entry.get("parent"))
         if written is None:
             written = next(iter(self.placements), None)
@@ -458,7 +479,7 @@ class _Importer:
             self.warn(at, f"its parent '{written}' was left out, so it is too")
             return None
         placement = self._resolve_parent(str(written), (*at, "parent"))
-        name = _unique(_name(str(entry.get("name") or category)),
+        name = _unique(self._sayable(entry.get("name") or category, (*at, "name")),
                        {*self.placements, *self.rooms, *self.corridors, *self.object_names})
         self.object_names.add(name)
         self.labels[("objects", index)] = name
