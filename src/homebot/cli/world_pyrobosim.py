@@ -34,7 +34,7 @@ def _from_pyrobosim(args: argparse.Namespace) -> int:
     data = imported.data
     world = World.from_dict(data, source=str(args.file))
     header = (f"Imported by `homebot world from-pyrobosim {args.file}`: hallways are rooms of\n"
-              f"their own with a door at each end; {args.operator} is the operator.")
+              f"their own with a door where they meet a room; {args.operator} is the operator.")
     write_world_yaml(args.output, data, header)
     print(f"{args.output}: {len(world.rooms)} rooms (with hallways), {len(world.doors)} doors, "
           f"{len(world.placements)} placements, {len(world.objects)} objects")
