@@ -76,7 +76,8 @@ def test_a_world_with_a_thousand_problems_lists_the_first_and_counts_the_rest(
     assert main(["world", "check", str(path)]) == 2
     err = capsys.readouterr().err
     lines = err.strip().splitlines()
-    assert len(lines) == MOST_LISTED + 1 and len(err) < 3_000
+    assert len(lines) == MOST_LISTED + 1  # each line names the file: its length varies
+    assert len(err.replace(str(path), "")) < 3_000
     assert "'coke' is used twice in objects" in lines[0]
     assert lines[-1] == f"... and {1_000 - MOST_LISTED:,} more"
 
