@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from homebot import progress
 from homebot.app.fidelity import require_embodied
 from homebot.errors import SpeechError
 from homebot.events import EventLog
@@ -47,11 +48,11 @@ def embodied_robot_in(simulation: Simulation, navigator: Navigator, *, walkers: 
     require_embodied()
     from homebot.sim.body import SimBody
 
-    body = SimBody(simulation, walkers=walkers, face_half_angle=_FACE_HALF_ANGLE,
-                   voice=_people_voice())
-    robot = embodied_robot(body, simulation.world, navigator, seed=simulation.seed,
-                           events=simulation.events, known_start=known_start)
-    return robot
+    with progress.task("building the embodied robot and its simulated body"):
+        body = SimBody(simulation, walkers=walkers, face_half_angle=_FACE_HALF_ANGLE,
+                       voice=_people_voice())
+        return embodied_robot(body, simulation.world, navigator, seed=simulation.seed,
+                              events=simulation.events, known_start=known_start)
 
 
 def _people_voice() -> PersonVoice | None:

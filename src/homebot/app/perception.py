@@ -22,6 +22,7 @@ import numpy as np
 
 import homebot.perception.faces as faces_module
 import homebot.sim.faces as sim_faces_module
+from homebot import progress
 from homebot.app.cache import cache_directory, cache_key
 from homebot.perception.faces import FaceDetector, FaceMemory, Window
 from homebot.perception.recognition import (
@@ -62,9 +63,12 @@ def _trained(items: tuple[tuple[str, CatalogueEntry], ...], seed: int) -> Recogn
     rng = np.random.default_rng([seed, 1515])
     mean_objects = sum(_OBJECTS_PER_SCENE) / 2 - 0.5
     scenes = math.ceil(_VIEWS_PER_OBJECT * len(catalogue) / mean_objects)
-    features, labels = training_examples(labelled_frames(catalogue, scenes, rng), rng)
+    frames = progress.track(labelled_frames(catalogue, scenes, rng),
+                            "learning the objects from rendered table tops", total=scenes)
+    features, labels = training_examples(frames, rng)
     recogniser = Recogniser(catalogue, seed=seed)
-    return recogniser.fit(features, labels) if labels else recogniser
+    with progress.task("learning the objects: growing the forest"):
+        return recogniser.fit(features, labels) if labels else recogniser
 
 
 def perception_for(world: World, seed: int = 0) -> TabletopPerception:
@@ -83,7 +87,7 @@ def stranger_faces(seed: int = 0, strangers: int = 30, views: int = 300
     rng = np.random.default_rng([seed, 1517])
     people = [face_identity(f"stranger{i}", seed + 1) for i in range(strangers)]
     return tuple((*face_view(people[i % strangers], rng), people[i % strangers].name)
-                 for i in range(views))
+                 for i in progress.track(range(views), "rendering strangers' faces"))
 
 
 @functools.lru_cache(maxsize=4)
@@ -94,8 +98,9 @@ def trained_face_detector(seed: int = 0, strangers: int = 30, views: int = 300,
     rendered = stranger_faces(seed, strangers, views)
     rng = np.random.default_rng([seed, 1519])
     detector = FaceDetector(seed=seed)
-    detector.train([image for image, _, _ in rendered], [window for _, window, _ in rendered],
-                   [background_patch(rng) for _ in range(faceless)])
+    with progress.task("training the face detector"):
+        detector.train([image for image, _, _ in rendered], [window for _, window, _ in rendered],
+                       [background_patch(rng) for _ in range(faceless)])
     return detector
 
 
@@ -104,7 +109,9 @@ def face_memory(seed: int = 0) -> FaceMemory:
     knows the detector's training faces as strangers' (``FaceMemory.enrol_strangers``)."""
     memory = FaceMemory(trained_face_detector(seed), seed=seed)
     rendered = stranger_faces(seed)
-    memory.enrol_strangers([image for image, _, _ in rendered], [name for _, _, name in rendered])
+    with progress.task("learning strangers' faces"):
+        memory.enrol_strangers([image for image, _, _ in rendered],
+                               [name for _, _, name in rendered])
     return memory
 
 
@@ -132,10 +139,14 @@ def _taught(names: tuple[str, ...]) -> FaceMemory:
             return loaded
     except (OSError, pickle.UnpicklingError, EOFError, AttributeError):
         pass
-    memory = face_memory()
-    rng = np.random.default_rng([0, 1518])
-    memory.enrol_people({name: [face_view(face_identity(name, 0), rng)[0]
-                                for _ in range(_ENROLMENT_VIEWS)] for name in names})
+    with progress.task(f"teaching the robot its household's faces (the first run only: "
+                       f"kept in {cache_directory()} after)"):
+        memory = face_memory()
+        rng = np.random.default_rng([0, 1518])
+        views = {name: [face_view(face_identity(name, 0), rng)[0]
+                        for _ in range(_ENROLMENT_VIEWS)] for name in names}
+        with progress.task(f"enrolling {len(names)} people"):
+            memory.enrol_people(views)
     try:
         cached.parent.mkdir(parents=True, exist_ok=True)
         # written whole, then renamed: another process may be reading it meanwhile

@@ -29,6 +29,7 @@ from rich.console import Console as Terminal
 
 from homebot.app import Fidelity
 from homebot.bench.arguments import count
+from homebot.progress import track
 from homebot.web import Console, ConsoleSettings
 from homebot.world import World
 
@@ -102,7 +103,7 @@ def estop_trials(world: World, kind: str, trials: int, seed: int) -> list[StopTr
     home.start()
     try:
         home.take_control(_OPERATOR)
-        for trial in range(trials):
+        for trial in track(range(trials), f"e-stop trials, {kind}"):
             for _ in range(_ATTEMPTS):
                 if kind == "follow":
                     _person_beside_the_robot(home, "Alex")

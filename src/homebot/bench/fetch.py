@@ -18,6 +18,7 @@ from rich.console import Console
 from homebot.app import RunSettings, build_run
 from homebot.bench.arguments import add_fidelity_option, count, seed
 from homebot.navigation import Navigator
+from homebot.progress import track
 from homebot.sim import PlanCache
 from homebot.trials.fetch import delivered, fetch_tasks
 from homebot.world import World
@@ -44,7 +45,8 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
         plans = PlanCache(navigator)
         world.forget_cached()
         navigator._cache.clear()
-        for index, fetch in enumerate(fetch_tasks(world, args.tasks, args.seed)):
+        for index, fetch in enumerate(track(fetch_tasks(world, args.tasks, args.seed),
+                                            f"fetch tasks, {label.split()[0]}")):
             if not shared:
                 navigator._cache.clear()
                 world.forget_cached()

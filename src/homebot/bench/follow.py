@@ -20,6 +20,7 @@ from rich.table import Table
 from homebot.app.embodied import follow_me_episode
 from homebot.bench.arguments import count, seed
 from homebot.navigation import Navigator
+from homebot.progress import track
 from homebot.world import World
 
 __all__ = ["add_arguments", "run"]
@@ -37,7 +38,7 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
     worlds = [World.load(name) for name in args.worlds]
     navigators = [Navigator(world) for world in worlds]
     episodes = []
-    for index in range(args.runs):
+    for index in track(range(args.runs), "Follow Me episodes"):
         which = index % len(worlds)
         episode = follow_me_episode(worlds[which], args.seed + index, navigators[which])
         episodes.append(episode.to_dict())

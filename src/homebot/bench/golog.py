@@ -17,6 +17,7 @@ from homebot.golog.planner import Planner
 from homebot.golog.program import Call, Program, Solve
 from homebot.golog.semantics import unfold
 from homebot.golog.theory import Theory
+from homebot.progress import track
 
 __all__ = ["add_arguments", "run"]
 
@@ -68,7 +69,7 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
             theory, solve, cups_horizon, theory.initial, memo, repeats)
     starts = [cups_theory(dict(zip(CUPS, places, strict=True)))
               for places in itertools.permutations(POSITIONS, len(CUPS))]
-    for memo in (False, True):
+    for memo in track((False, True), "order cups, all 24 starts, memo off and on"):
         began, nodes = time.perf_counter(), 0
         for start in starts:
             planner = Planner(start, solve.reward, memo=memo)

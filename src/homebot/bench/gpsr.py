@@ -16,6 +16,7 @@ from homebot.bench.arguments import count, disturbance_level, seed
 from homebot.language import Vocabulary, parse_command
 from homebot.language.generator import generate_commands
 from homebot.navigation import Navigator
+from homebot.progress import track
 from homebot.trials.gpsr import feasible, judge
 from homebot.world import World
 
@@ -42,7 +43,7 @@ def execute_commands(world: World, count: int, seed: int, level: float = 0.0) ->
     result = ExecutionResult()
     candidates = generate_commands(world, count * 20, seed)
     chosen = [(text, steps) for text, steps in candidates if feasible(world, steps)][:count]
-    for index, (text, expected) in enumerate(chosen):
+    for index, (text, expected) in enumerate(track(chosen, "GPSR commands")):
         parsed = parse_command(text, vocabulary)
         result.commands += 1
         result.parsed_as_expected += [s.to_dict() for s in parsed.steps] == [

@@ -20,6 +20,7 @@ from rich.table import Table
 from homebot.app.guiding import guide_episode
 from homebot.bench.arguments import count, seed
 from homebot.navigation import Navigator
+from homebot.progress import track
 from homebot.world import World
 
 __all__ = ["add_arguments", "run"]
@@ -38,7 +39,7 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
     worlds = [World.load(name) for name in args.world]
     navigators = [Navigator(world) for world in worlds]
     episodes = []
-    for index in range(args.runs):
+    for index in track(range(args.runs), "guiding episodes"):
         which = index % len(worlds)
         episode = guide_episode(worlds[which], args.seed + index, navigators[which]).to_dict()
         episodes.append(episode)

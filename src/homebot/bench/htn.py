@@ -36,6 +36,7 @@ from homebot.htn import (
     state_from_beliefs,
 )
 from homebot.navigation import Navigator
+from homebot.progress import track
 from homebot.trials.fetch import delivered, fetch_tasks
 from homebot.world import World
 
@@ -356,7 +357,8 @@ def _execution(world: World, runs: int, seed: int, level: float) -> list[dict[st
     for mode in ("executive (GPSR steps + recovery)", "htn (plan + monitor + replan)"):
         delivered_count = verified = told = 0
         sim_times: list[float] = []
-        for index, fetch in enumerate(fetch_tasks(world, runs, seed)):
+        for index, fetch in enumerate(track(fetch_tasks(world, runs, seed),
+                                            f"bring tasks, {mode.split()[0]}")):
             simulation_run = build_run(RunSettings(
                 world=world, seed=seed * 100_003 + index, disturbances=disturbed(level),
                 navigator=navigator))
@@ -427,7 +429,7 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
                 (s.operator[1:], *s.args) for s in ours.plan.steps])
     figures["bring_object_first_plan"] = comparison
     tidy: list[dict[str, Any]] = []
-    for size in args.sizes:
+    for size in track(args.sizes, "tidy-up plans, by size"):
         messy = _tidy_world(world, size)
         messy_state, messy_names = state_from_beliefs(messy, Beliefs.from_world(messy),
                                                       messy.robot.pose.xy())

@@ -16,6 +16,7 @@ from homebot.app import RunSettings, build_run, disturbed
 from homebot.bench.arguments import count, seed
 from homebot.inference import Inventory
 from homebot.navigation import Navigator
+from homebot.progress import track
 from homebot.trials.supermarket import RunParts, SupermarketTrial, run_world
 from homebot.world import World
 
@@ -57,7 +58,7 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
                              missing=args.missing, r_max=args.r_max, noise=args.noise)
     build = _run_parts(world, Navigator(world))
     results = [run_world(world, args.seed + index, trial, kb_text, build)
-               for index in range(args.worlds)]
+               for index in track(range(args.worlds), "supermarkets")]
     wall = time.perf_counter() - began
     requests = sum(r.requests for r in results)
     visits = [v for r in results for v in r.visits]

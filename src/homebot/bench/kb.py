@@ -25,6 +25,7 @@ from homebot.knowledge import (
     read_kb,
     read_kb_text,
 )
+from homebot.progress import track
 
 __all__ = ["add_arguments", "chain_kb_text", "run"]
 
@@ -80,7 +81,7 @@ def chain_kb_text(length: int) -> str:
 def _chains(args: argparse.Namespace) -> dict[str, Any]:
     lengths = [int(part) for part in str(args.chains).split(",") if part.strip()]
     figures: dict[str, Any] = {}
-    for length in lengths:
+    for length in track(lengths, "chained defaults, by length"):
         kb = KnowledgeBase(read_kb_text(chain_kb_text(length)))
 
         def cold_query(kb: KnowledgeBase = kb, length: int = length) -> None:

@@ -35,6 +35,7 @@ from homebot.bench.arguments import count
 from homebot.geometry import Pose
 from homebot.navigation import Navigator
 from homebot.navigation.localisation import MclParameters, MonteCarloLocalisation
+from homebot.progress import track
 from homebot.robot import Twist
 from homebot.trials.localisation import (
     CONVERGED,
@@ -92,7 +93,7 @@ def _tracking(setting: LocalisationSetting, runs: int, seconds: int,
     errors: list[float] = []
     worst: list[float] = []
     distance = 0.0
-    for seed in range(runs):
+    for seed in track(range(runs), f"tracking runs, {spurious:.0%} spurious"):
         run_errors, driven = tracking_run(setting, seed, seconds, spurious)
         errors.extend(run_errors)
         worst.append(max(run_errors))
@@ -108,7 +109,7 @@ def _global_and_kidnapped(setting: LocalisationSetting, runs: int,
                           seconds: float) -> dict[str, Any]:
     found: list[float] = []
     recovered: list[float] = []
-    for seed in range(runs):
+    for seed in track(range(runs), "global localisation and kidnapping runs"):
         localised, relocalised = lost_and_kidnapped(setting, seed, seconds)
         found.append(localised)
         recovered.append(relocalised)
@@ -124,7 +125,7 @@ def _global_and_kidnapped(setting: LocalisationSetting, runs: int,
 def _timing(setting: LocalisationSetting) -> dict[str, Any]:
     simulation, body = simulated_body(setting, 0, 0.0)
     figures: dict[str, Any] = {}
-    for particles in (1000, 5000):
+    for particles in track((1000, 5000), "update timing, 1000 and 5000 particles"):
         parameters = MclParameters(min_particles=particles, max_particles=particles)
         mcl = MonteCarloLocalisation(setting.grid, np.random.default_rng(0), parameters)
         mcl.initialise(Pose(*simulation.robot_pose), 0.1, 0.1)

@@ -29,6 +29,7 @@ from homebot.errors import GologError
 from homebot.golog.allen import DISJOINT, WITHIN, Constraint, mask_of
 from homebot.golog.maintenance import MODULE_STATES, Component, Maintenance
 from homebot.golog.program import Call, Nil, Seq
+from homebot.progress import track
 from homebot.scenarios.maintained import run_maintained, shipped_maintenance
 
 __all__ = ["add_arguments", "run", "synthetic_maintenance"]
@@ -123,7 +124,7 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
     failures: Counter[str] = Counter()
     examples: list[str] = []
     sim_time = []
-    for index in range(runs):
+    for index in track(range(runs), "maintained runs"):
         result = run_maintained(seed=first + index, mean_time_to_failure=mttf)
         verdict = result.detail.verdict
         completed += result.success

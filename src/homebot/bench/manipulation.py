@@ -36,6 +36,7 @@ from rich.table import Table
 
 from homebot.bench.arguments import count, seed
 from homebot.errors import HomebotError
+from homebot.progress import track
 from homebot.trials.interaction import (
     DOOR_OPEN,
     DOOR_SHUT,
@@ -66,7 +67,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def _grasping(scenes: int, first: int, objects: str = "perceived") -> dict[str, Any]:
     runs = []
-    for index in range(scenes):
+    for index in track(range(scenes), "grasping scenes"):
         rng = np.random.default_rng(first + index)
         runs.append(run_pick(generate_scene(rng), rng, perceived=objects == "perceived",
                              seed=first + index))
@@ -120,7 +121,7 @@ def handover_figures(seed: int, trials: int = 100) -> dict[str, Any]:
     """Handover over ``trials`` seeded people: released within 0.5 s of a pull above the
     threshold, and never without one (a fifth of the people never pull; most bump)."""
     began, cpu = time.perf_counter(), time.process_time()
-    results = [handover_episode(seed, k) for k in range(trials)]
+    results = [handover_episode(seed, k) for k in track(range(trials), "handovers")]
     wall, cpu = time.perf_counter() - began, time.process_time() - cpu
     pulled = [r for r in results if r.pull_above is not None]
     unpulled = [r for r in results if r.pull_above is None]
@@ -150,7 +151,7 @@ def guided_figures(seed: int, routes: int = 20) -> dict[str, Any]:
     """Guided walks over ``routes`` seeded routes: median deviation of the base from the
     person's path (target ≤ 10 cm) and collisions of its footprint (target none)."""
     began, cpu = time.perf_counter(), time.process_time()
-    results = [guided_episode(seed, k) for k in range(routes)]
+    results = [guided_episode(seed, k) for k in track(range(routes), "guided by the hand")]
     wall, cpu = time.perf_counter() - began, time.process_time() - cpu
     medians = [r.median_deviation for r in results]
     every = [d for r in results for d in r.deviations]
@@ -175,7 +176,8 @@ def carry_table_figures(seed: int, trials: int = 20) -> dict[str, Any]:
     tilt while off the floor (target ≤ 3°), lifted and lowered with the person; and the
     worst gap between the pitch the robot perceived and the true pitch."""
     began, cpu = time.perf_counter(), time.process_time()
-    results = [carry_table_episode(seed, k) for k in range(trials)]
+    results = [carry_table_episode(seed, k)
+               for k in track(range(trials), "carrying a table together")]
     wall, cpu = time.perf_counter() - began, time.process_time() - cpu
     return {
         "trials": trials,
@@ -201,7 +203,7 @@ def door_figures(seed: int, trials: int = 20) -> dict[str, Any]:
     the robot's hinge estimate off by centimetres): opened at least 60°, closed within 2°,
     the handle never lost; judged by the hinge's true angle."""
     began, cpu = time.perf_counter(), time.process_time()
-    results = [door_episode(seed, k) for k in range(trials)]
+    results = [door_episode(seed, k) for k in track(range(trials), "doors")]
     wall, cpu = time.perf_counter() - began, time.process_time() - cpu
     return {
         "trials": trials,

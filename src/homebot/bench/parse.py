@@ -15,6 +15,7 @@ from homebot.bench.arguments import count, readable_file, seed
 from homebot.errors import BenchmarkError
 from homebot.language import Vocabulary, parse_command
 from homebot.language.generator import generate_commands
+from homebot.progress import track
 from homebot.world import World
 from homebot.world.robocup import world_from_robocup
 
@@ -94,7 +95,8 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
     timings: list[float] = []
     understood = 0
     exact = 0
-    for repeat in range(max(1, args.repeat)):
+    for repeat in track(range(max(1, args.repeat)),
+                        f"parsing {len(texts)} commands, each repeat"):
         for index, text in enumerate(texts):
             begin = time.perf_counter()
             result = parse_command(text, vocabulary)

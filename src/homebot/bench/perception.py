@@ -35,6 +35,7 @@ from rich.console import Console
 
 from homebot.app.perception import trained_recogniser
 from homebot.bench.arguments import count, seed
+from homebot.progress import task
 from homebot.trials.people import (
     face_figures,
     lateration_figures,
@@ -80,7 +81,8 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
     }
     for name, part in parts.items():
         if args.only in ("all", name):
-            figures[name] = part()
+            with task(f"perception: {name}"):
+                figures[name] = part()
             if console is not None:
                 console.print(f"[bold]{name}[/bold]: {figures[name]}")
     return {"benchmark": "perception", "figures": figures}

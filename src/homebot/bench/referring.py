@@ -45,6 +45,7 @@ from rich.table import Table
 
 from homebot.bench.arguments import count, seed
 from homebot.errors import BenchmarkError
+from homebot.progress import track
 from homebot.space.frames import Frame
 from homebot.space.referring import AT_LEAST, MARGIN, Scene, degrees, resolve, split_spatial
 from homebot.space.relations import scene_relations
@@ -193,7 +194,7 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
     fitting: Counter[str] = Counter()  #: the cases whose referent fits the words (not weak)
     by_kind: dict[str, Counter[str]] = {}
     agree = total_crisp = 0
-    for _ in range(args.scenes):
+    for _ in track(range(args.scenes), "referring expressions"):
         case = generate_case(rng)
         _, modifiers = split_spatial(case.text)
         seen = {name: (x + rng.gauss(0, args.noise), y + rng.gauss(0, args.noise))

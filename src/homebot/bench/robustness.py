@@ -22,6 +22,7 @@ from homebot.bench.arguments import add_fidelity_option, count, disturbance_leve
 from homebot.events import Event
 from homebot.executive import RunReport
 from homebot.navigation import Navigator
+from homebot.progress import track
 from homebot.trials.errands import Errand, ErrandKind, errands
 from homebot.trials.fetch import fetch_tasks
 from homebot.world import World
@@ -146,7 +147,8 @@ def compare_modes(world: World, tasks: int, seed: int, level: float = 1.0,
     results = []
     for mode, monitoring in (("monitored + recovery", True), ("plain sequence", False)):
         result = ModeResult(mode)
-        for index, errand in enumerate(errand_set(world, tasks, seed, mix)):
+        for index, errand in enumerate(track(errand_set(world, tasks, seed, mix),
+                                             f"errands, {mode}")):
             result.add(run_errand(world, errand, seed * 100_003 + index, level=level,
                                   monitoring=monitoring, navigator=navigator,
                                   fidelity=fidelity),

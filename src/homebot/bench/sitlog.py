@@ -20,6 +20,7 @@ from typing import Any
 from rich.console import Console
 
 from homebot.bench.arguments import count
+from homebot.progress import track
 from homebot.sitlog import (
     Interpreter,
     ScriptedPerception,
@@ -66,7 +67,7 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
     result = Interpreter(program, ScriptedPerception(inputs)).run()
     cold_ms = (time.perf_counter() - began) * 1000
     samples = []
-    for _ in range(args.repeat):
+    for _ in track(range(args.repeat), "running Appendix A"):
         began = time.perf_counter()
         Interpreter(program, ScriptedPerception(inputs)).run()
         samples.append((time.perf_counter() - began) * 1000)

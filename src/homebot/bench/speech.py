@@ -43,6 +43,7 @@ from rich.table import Table
 
 from homebot.bench.arguments import count, seed
 from homebot.errors import BenchmarkError, SpeechError
+from homebot.progress import track
 
 __all__ = ["add_arguments", "run"]
 
@@ -133,7 +134,7 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
     cpu, audio_seconds, three_second = 0.0, 0.0, []
     recognizers = {label: Recognizer.for_world(world, sentences=_TRAINING, seed=0)
                    for label, world in worlds}
-    for label, world in worlds:
+    for label, world in track(worlds, "spoken commands, by world"):
         figures, timing = _commands(recognizers[label], world, args)
         results[label] = figures
         cpu += timing["cpu"]
@@ -306,7 +307,7 @@ def _rejection(recognizer: Any, world: Any, args: argparse.Namespace) -> dict[st
     kinds = ("white noise", "pink noise", "babble", "tones", "off-topic", "off-topic")
     counts: dict[str, list[int]] = {kind: [0, 0] for kind in kinds}
     accepted_texts = []
-    for index in range(args.rejection):
+    for index in track(range(args.rejection), "rejection clips"):
         kind = kinds[index % len(kinds)]
         seconds = float(rng.uniform(2.0, 5.0))
         length = int(seconds * 16_000)

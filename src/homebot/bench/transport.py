@@ -28,6 +28,7 @@ from rich.console import Console
 from rich.table import Table
 
 from homebot.bench.arguments import count
+from homebot.progress import track
 from homebot.transport import require_ros
 
 __all__ = ["add_arguments", "publish", "run"]
@@ -175,7 +176,7 @@ def _fetch(seeds: int) -> dict[str, Any]:
     with tempfile.TemporaryDirectory() as folder:
         task = Path(folder) / "task.yaml"
         task.write_text(_TASK, encoding="utf-8")
-        for seed in range(seeds):
+        for seed in track(range(seeds), "fetch over ROS 2"):
             domain_id = _DOMAIN - 1 - seed % 20
             here, there = Path(folder) / f"in{seed}.jsonl", Path(folder) / f"ros{seed}.jsonl"
             options = ["--seed", str(seed), "--disturb", "1"]
@@ -219,7 +220,7 @@ def _lost(trials: int = 3) -> dict[str, Any]:
     with tempfile.TemporaryDirectory() as folder:
         task = Path(folder) / "task.yaml"
         task.write_text(_TASK, encoding="utf-8")
-        for trial in range(trials):
+        for trial in track(range(trials), "a lost robot"):
             domain_id = _DOMAIN - 25 - trial
             server = subprocess.Popen(
                 _python("import sys; from homebot.cli import main; sys.exit(main())", "sim",

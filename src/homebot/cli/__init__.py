@@ -85,7 +85,11 @@ def main(argv: Sequence[str] | None = None) -> int:
         if handler is None:
             parser.print_help()
             return 2
-        return int(handler(args))
+        from homebot.progress import progress_console, showing_progress
+
+        # progress on stderr, when it is a terminal; none beside --json's output
+        with showing_progress(progress_console(quiet=bool(getattr(args, "json", False)))):
+            return int(handler(args))
     except HomebotError as error:
         from rich.console import Console
         from rich.markup import escape

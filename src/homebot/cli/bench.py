@@ -17,6 +17,7 @@ from typing import Any
 from homebot.bench import BENCHMARKS, Benchmark, benchmark_names, missing_extras
 from homebot.cli.modules import LazySubcommands, lazy_subparsers
 from homebot.errors import BenchmarkError, HomebotError
+from homebot.progress import task, track
 
 __all__ = ["register"]
 
@@ -58,8 +59,16 @@ def _register_one(entry: Benchmark) -> Callable[[LazySubcommands], None]:
             return
         module = importlib.import_module(entry.module)
         module.add_arguments(sub)
-        sub.set_defaults(handler=lambda args: _print(module.run(args, _console(args)), args))
+        sub.set_defaults(
+            handler=lambda args: _print(_run(entry, module, args, _console(args)), args))
     return register
+
+
+def _run(entry: Benchmark, module: Any, args: argparse.Namespace, console: Any
+         ) -> dict[str, Any]:
+    with task(f"bench {entry.name}"):  # its loops show their own bars beneath
+        figures: dict[str, Any] = module.run(args, console)
+    return figures
 
 
 def _refuse(message: str) -> int:
@@ -83,7 +92,7 @@ def _run_all(args: argparse.Namespace) -> int:
     console = _console(args)
     everything: list[dict[str, Any]] = []
     failed = False
-    for entry in BENCHMARKS:
+    for entry in track(BENCHMARKS, "bench all"):
         if console is not None:
             console.rule(entry.name)
         began = time.perf_counter()
@@ -96,7 +105,7 @@ def _run_all(args: argparse.Namespace) -> int:
             parser = argparse.ArgumentParser(prog=f"homebot bench {entry.name}")
             module.add_arguments(parser)
             try:
-                figures = module.run(parser.parse_args([]), console)
+                figures = _run(entry, module, parser.parse_args([]), console)
             except HomebotError as error:  # reported with the others' figures, and carried on
                 failed = True
                 figures = {"benchmark": entry.name, "error": str(error)}

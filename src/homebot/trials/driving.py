@@ -36,6 +36,7 @@ from homebot.navigation.localisation import MclParameters, MonteCarloLocalisatio
 from homebot.navigation.localmap import LocalController
 from homebot.navigation.navigate import OdometryPose
 from homebot.navigation.recovery import RecoveringNavigation, RecoveryPolicy
+from homebot.progress import track
 from homebot.robot import DriveKind, LaserScan, Twist, VelocityLimits
 from homebot.sim.body import SimBody
 from homebot.sim.simulation import Simulation
@@ -179,7 +180,7 @@ def drive(name: str, world: World, navigator: Navigator, targets: list[Pose],
     outcome, unmeasured = DriveOutcome(), DriveOutcome()
     trace = _Trace(trial.trace, name) if trial.trace is not None else None
     velocities: list[tuple[float, Twist]] = []
-    for index in range(situation.goal, last):
+    for index in track(range(situation.goal, last), f"driving to goals, {name}"):
         target = targets[index]
         if trial.snapshots is not None:
             _save_situation(trial, name, world, navigator,

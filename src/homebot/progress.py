@@ -1,0 +1,159 @@
+"""Progress on work that takes seconds: a bar on the terminal, nothing anywhere else.
+
+Code at any layer says what it is doing with ``task`` or ``track``. Whether anyone sees it
+is decided once, by the command line, with ``showing_progress``: a ``rich.progress`` display
+on stderr when stderr is a terminal and the output is not ``--json``; silence in a pipe, in
+tests and in scripts. The display is held in a context variable for the ``with`` block
+that shows it, rather than passed down: progress is for the eyes only (it never changes
+what runs), and a reporter argument on every function between the command line and a
+training loop would widen every layer's interface for it.
+
+The display is live only while some task is under way, so the text a command prints
+between tasks (narration, figures, a prompt) is left as it is, and a finished task's bar
+disappears.
+"""
+
+from __future__ import annotations
+
+import sys
+import threading
+from collections.abc import Iterable, Iterator, Sized
+from contextlib import contextmanager
+from contextvars import ContextVar
+from typing import TypeVar
+
+from rich.console import Console
+from rich.progress import (
+    BarColumn,
+    MofNCompleteColumn,
+    Progress,
+    SpinnerColumn,
+    TaskID,
+    TextColumn,
+    TimeElapsedColumn,
+)
+from rich.progress import Task as RichTask
+from rich.text import Text
+
+__all__ = ["Task", "progress_console", "showing_progress", "start", "task", "track"]
+
+_T = TypeVar("_T")
+
+
+class _Count(MofNCompleteColumn):
+    """"3/10"; nothing for a task whose size is unknown (rather than "3/?")."""
+
+    def render(self, task: RichTask) -> Text:
+        return super().render(task) if task.total is not None else Text("")
+
+
+class _Display:
+    """A ``rich`` progress display that is live while at least one task is under way."""
+
+    def __init__(self, console: Console) -> None:
+        # stdout's lines are drawn above the bars only when stdout is that terminal too:
+        # otherwise they would leave a redirected stdout for the terminal
+        self.progress = Progress(
+            SpinnerColumn(), TextColumn("{task.description}"), BarColumn(),
+            _Count(), TimeElapsedColumn(), console=console, transient=True,
+            redirect_stdout=sys.stdout.isatty(), redirect_stderr=False)
+        self._under_way = 0
+        self._lock = threading.Lock()
+
+    # A task is drawn when it is added and when it ends, however short: the display
+    # starts (and stops) with it drawn, or is redrawn.
+    def add(self, description: str, total: float | None) -> TaskID:
+        with self._lock:
+            task_id = self.progress.add_task(description, total=total)
+            self._under_way += 1
+            if self._under_way == 1:
+                self.progress.start()
+            else:
+                self.progress.refresh()
+            return task_id
+
+    def remove(self, task_id: TaskID) -> None:
+        with self._lock:
+            self._under_way -= 1
+            if self._under_way:
+                self.progress.refresh()
+            else:
+                self.progress.stop()
+            self.progress.remove_task(task_id)
+
+
+_display: ContextVar[_Display | None] = ContextVar("homebot_progress_display", default=None)
+
+
+class Task:
+    """One piece of work on the display (or on none, when progress is not shown)."""
+
+    def __init__(self, display: _Display | None, task_id: TaskID | None) -> None:
+        self._display = display
+        self._task_id = task_id
+
+    def advance(self, amount: float = 1.0) -> None:
+        """``amount`` more of the task's total is done."""
+        if self._display is not None and self._task_id is not None:
+            self._display.progress.advance(self._task_id, amount)
+
+    def describe(self, description: str) -> None:
+        """Say what the task is doing now."""
+        if self._display is not None and self._task_id is not None:
+            self._display.progress.update(self._task_id, description=description)
+
+    def end(self) -> None:
+        """The task is over: its bar disappears (again: nothing)."""
+        if self._display is not None and self._task_id is not None:
+            self._display.remove(self._task_id)
+            self._task_id = None
+
+
+def start(description: str, total: float | None = None) -> Task:
+    """Begin a task of ``total`` steps (None: unknown, a pulsing bar); ``end`` it after."""
+    display = _display.get()
+    if display is None:
+        return Task(None, None)
+    return Task(display, display.add(description, total))
+
+
+@contextmanager
+def task(description: str, total: float | None = None) -> Iterator[Task]:
+    """A task for the ``with`` block: ``advance`` it as its steps are done."""
+    began = start(description, total)
+    try:
+        yield began
+    finally:
+        began.end()
+
+
+def track(items: Iterable[_T], description: str, total: float | None = None) -> Iterator[_T]:
+    """``items`` one by one, advancing a task as each is done (``total``: their number,
+    when ``items`` has no length)."""
+    if total is None and isinstance(items, Sized):
+        total = len(items)
+    with task(description, total) as under_way:
+        for item in items:
+            yield item
+            under_way.advance()
+
+
+def progress_console(*, quiet: bool = False) -> Console | None:
+    """Where progress is shown: stderr, when it is a terminal and not ``quiet`` (``--json``)."""
+    if quiet:
+        return None
+    console = Console(stderr=True)
+    return console if console.is_terminal else None
+
+
+@contextmanager
+def showing_progress(console: Console | None) -> Iterator[None]:
+    """Show the tasks begun in the ``with`` block on ``console`` (None: show nothing)."""
+    token = _display.set(_Display(console) if console is not None else None)
+    try:
+        yield
+    finally:
+        display = _display.get()
+        _display.reset(token)
+        if display is not None:
+            display.progress.stop()  # a task left open (an exception) takes no bar with it
