@@ -1,4 +1,5 @@
-"""Argument types for benchmarks: sizes, seeds, files, disturbance levels and the fidelity.
+"""Argument types for benchmarks: sizes, seeds, files, disturbance levels, the fidelity and
+``--plot``.
 
 They raise ``BenchmarkError`` (a ``HomebotError``), which the command line prints as one
 line with exit status 2, so ``--count 0`` never reaches ``statistics.median([])`` and
@@ -14,8 +15,8 @@ from pathlib import Path
 
 from homebot.errors import BenchmarkError
 
-__all__ = ["MAX_SEED", "add_fidelity_option", "count", "disturbance_level", "readable_file",
-           "seed"]
+__all__ = ["MAX_SEED", "add_fidelity_option", "add_plot_option", "count", "disturbance_level",
+           "plot_file", "readable_file", "seed"]
 
 MAX_SEED = 2**32 - 1
 
@@ -79,3 +80,27 @@ def add_fidelity_option(parser: argparse.ArgumentParser) -> None:
                         default=Fidelity.SYMBOLIC,
                         help="symbolic (fast, the default) or embodied (the robot localises "
                              "from its laser and drives with the reactive planner)")
+
+
+def plot_file(text: str) -> Path:
+    """An argument type for ``--plot``: a new or old ``.png`` file in a folder that exists,
+    refused before the benchmark runs when matplotlib (the ``plots`` extra) is missing."""
+    path = Path(text)
+    if path.suffix.lower() != ".png":
+        raise BenchmarkError(f"--plot {text}: give a file name ending in .png")
+    if not path.parent.is_dir():
+        raise BenchmarkError(f"--plot {text}: the folder {path.parent} does not exist; "
+                             "create it or choose another")
+    if path.is_dir():
+        raise BenchmarkError(f"--plot {text}: is a folder; give a file")
+    from homebot.bench.plots import require
+
+    require()
+    return path
+
+
+def add_plot_option(parser: argparse.ArgumentParser, what: str) -> None:
+    """``--plot FILE.png``: draw ``what`` into a picture (matplotlib, the ``plots`` extra)."""
+    parser.add_argument("--plot", type=plot_file, default=None, metavar="FILE.png",
+                        help=f"also draw {what} into FILE.png (needs the plots extra: "
+                             "pip install 'homebot[plots]')")

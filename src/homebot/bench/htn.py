@@ -25,7 +25,7 @@ from rich.console import Console
 
 from homebot.app import RunSettings, build_run, disturbed
 from homebot.beliefs import Beliefs
-from homebot.bench.arguments import count, disturbance_level, seed
+from homebot.bench.arguments import add_plot_option, count, disturbance_level, seed
 from homebot.htn import (
     Goal,
     Names,
@@ -392,6 +392,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="seeded bring tasks run under disturbances per mode (0: none)")
     parser.add_argument("--level", type=disturbance_level, default=1.0, help="disturbance level")
     parser.add_argument("--seed", type=seed, default=1, help="seed of tasks and disturbances")
+    add_plot_option(parser, "tidy-up planning time by the number of misplaced objects")
 
 
 def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, Any]:
@@ -467,4 +468,8 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
             console.print(f"tidy-up: {row}")
         for row in figures["execution"]:
             console.print(f"bring under disturbances x{args.level}: {row}")
+    if args.plot is not None:
+        from homebot.bench.plots import htn_figure, save
+
+        save(htn_figure(tidy), args.plot)
     return {"benchmark": "htn", "figures": figures}

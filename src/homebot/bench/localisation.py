@@ -31,7 +31,8 @@ import numpy as np
 from rich.console import Console
 from rich.table import Table
 
-from homebot.bench.arguments import count
+from homebot.bench.arguments import add_plot_option, count
+from homebot.errors import BenchmarkError
 from homebot.geometry import Pose
 from homebot.navigation import Navigator
 from homebot.navigation.localisation import MclParameters, MonteCarloLocalisation
@@ -50,6 +51,9 @@ from homebot.world import World
 
 __all__ = ["add_arguments", "run"]
 
+_TICK_PERIOD = 0.05  #: seconds per tick of the tracking runs' body (SimBody's 20 Hz default)
+
+
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--runs", type=count("--runs", 1, 10_000), default=50,
                         help="seeded runs per experiment")
@@ -59,19 +63,26 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="simulated seconds per global / kidnapping phase (at least 30)")
     parser.add_argument("--only", choices=["all", "tracking", "global", "timing"], default="all",
                         help="run one experiment only")
+    add_plot_option(parser, "the tracking runs' error over time")
 
 
 def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, Any]:
     """Run the three experiments and the timing; print a table unless ``console`` is None."""
+    if args.plot is not None and args.only not in ("all", "tracking"):
+        raise BenchmarkError(f"--plot draws the tracking runs, which --only {args.only} leaves "
+                             "out: use --only tracking (or all)")
     world = World.load("apartment")
     navigator = Navigator(world)
     setting = LocalisationSetting(world, navigator.grid, navigator)
     began = time.perf_counter()
     figures: dict[str, Any] = {}
+    errors: dict[str, list[list[float]]] = {}  #: each tracking run's error at every tick
     if args.only in ("all", "tracking"):
-        figures["tracking"] = _tracking(setting, args.runs, args.seconds, spurious=0.0)
-        figures["tracking, 50 % spurious"] = _tracking(setting, args.runs, args.seconds,
-                                                       spurious=0.5)
+        figures["tracking"] = _tracking(setting, args.runs, args.seconds, spurious=0.0,
+                                        errors_by_run=errors.setdefault("tracking", []))
+        figures["tracking, 50 % spurious"] = _tracking(
+            setting, args.runs, args.seconds, spurious=0.5,
+            errors_by_run=errors.setdefault("tracking, 50 % spurious", []))
     if args.only in ("all", "global"):
         figures.update(_global_and_kidnapped(setting, args.runs, args.phase))
     if args.only in ("all", "timing"):
@@ -79,6 +90,10 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
     figures["wall seconds"] = round(time.perf_counter() - began, 1)
     if console is not None:
         _print(console, figures, args)
+    if args.plot is not None:
+        from homebot.bench.plots import localisation_figure, save
+
+        save(localisation_figure(errors, _TICK_PERIOD), args.plot)
     return {"benchmark": "localisation", "runs": args.runs, "figures": figures,
             "parameters": {k: str(v) for k, v in setting.parameters.describe().items()}}
 
@@ -89,12 +104,13 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
 
 
 def _tracking(setting: LocalisationSetting, runs: int, seconds: int,
-              spurious: float) -> dict[str, Any]:
+              spurious: float, errors_by_run: list[list[float]]) -> dict[str, Any]:
     errors: list[float] = []
     worst: list[float] = []
     distance = 0.0
     for seed in track(range(runs), f"tracking runs, {spurious:.0%} spurious"):
         run_errors, driven = tracking_run(setting, seed, seconds, spurious)
+        errors_by_run.append(run_errors)
         errors.extend(run_errors)
         worst.append(max(run_errors))
         distance += driven

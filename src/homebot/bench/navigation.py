@@ -49,11 +49,13 @@ from typing import Any
 import numpy as np
 from rich.console import Console
 
-from homebot.bench.arguments import count, seed
+from homebot.bench.arguments import add_plot_option, count, seed
+from homebot.errors import BenchmarkError
+from homebot.geometry import Pose
 from homebot.navigation import Navigator, astar
 from homebot.navigation.astar import cached_jump_tables, forget_jump_tables, libtcod_astar
 from homebot.navigation.jump_points import jump_tables
-from homebot.trials.driving import DrivingTrial, drive, drive_goals
+from homebot.trials.driving import DriveOutcome, DrivingTrial, drive, drive_goals
 from homebot.world import World
 
 __all__ = ["add_arguments", "run"]
@@ -86,6 +88,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--trace", type=Path, default=None,
                         help="write what happened in each measured goal (JSON lines: the "
                              "robot's true pose, people, stops, replans) to this file")
+    add_plot_option(parser, "the true paths driven and each controller's smoothness (with "
+                            "--goals)")
 
 
 def _median_ms(samples: list[float]) -> float:
@@ -94,6 +98,8 @@ def _median_ms(samples: list[float]) -> float:
 
 def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, Any]:
     """A* timing, then (with ``--goals``) the driving comparison."""
+    if args.plot is not None and not args.goals:
+        raise BenchmarkError("--plot draws the drives: give --goals N as well")
     figures = _astar_timing(args.repeat)
     if args.goals:
         figures["driving"] = _driving(args)
@@ -209,6 +215,8 @@ def _driving(args: argparse.Namespace) -> dict[str, Any]:
     targets = drive_goals(world, navigator, args.goals, random.Random(f"goals:{args.seed}"))
     names = ["stage2", "dwa"] if args.planner == "both" else [args.planner]
     outcomes = {name: drive(name, world, navigator, targets, trial) for name in names}
+    if args.plot is not None:
+        _plot(args.plot, navigator, targets, outcomes)
     figures: dict[str, Any] = {
         name: outcome.summary() for name, outcome in outcomes.items()}
     figures["pose source"] = args.pose
@@ -227,3 +235,19 @@ def _driving(args: argparse.Namespace) -> dict[str, Any]:
                     stage2.summary()["mean |angular acceleration|, rad/s2"] /
                     max(dwa.summary()["mean |angular acceleration|, rad/s2"], 1e-9), 3)}
     return figures
+
+
+def _plot(path: Path, navigator: Navigator, targets: list[Pose],
+          outcomes: dict[str, DriveOutcome]) -> None:
+    from homebot.bench.plots import navigation_figure, save
+
+    grid = navigator.grid
+    rows, columns = grid.shape
+    extent = (grid.origin[0], grid.origin[1], grid.origin[0] + columns * grid.resolution,
+              grid.origin[1] + rows * grid.resolution)
+    first = min(outcome.first_goal for outcome in outcomes.values())
+    measured = targets[first:first + max(len(o.paths) for o in outcomes.values())]
+    save(navigation_figure(grid.occupied, extent, [goal.xy() for goal in measured],
+                           {name: outcome.paths for name, outcome in outcomes.items()},
+                           {name: outcome.angular for name, outcome in outcomes.items()}),
+         path)

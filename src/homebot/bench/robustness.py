@@ -18,7 +18,13 @@ from rich.console import Console
 from rich.table import Table
 
 from homebot.app import Fidelity, RunSettings, build_run, disturbed
-from homebot.bench.arguments import add_fidelity_option, count, disturbance_level, seed
+from homebot.bench.arguments import (
+    add_fidelity_option,
+    add_plot_option,
+    count,
+    disturbance_level,
+    seed,
+)
 from homebot.events import Event
 from homebot.executive import RunReport
 from homebot.navigation import Navigator
@@ -47,6 +53,8 @@ class ModeResult:
     by_kind: dict[str, list[int]] = field(default_factory=dict)
     #: the hands in the loop, from the simulator's log: [tried, done by the truth]
     hands: dict[str, list[int]] = field(default_factory=dict)
+    #: per disturbance that struck a task (the simulator's log; "none"): [tasks, verified]
+    by_disturbance: dict[str, list[int]] = field(default_factory=dict)
 
     def to_dict(self) -> dict[str, Any]:
         return {
@@ -60,6 +68,8 @@ class ModeResult:
                         for kind, (tasks, verified) in sorted(self.by_kind.items())},
             "hands": {what: {"tried": tried, "done": done}
                       for what, (tried, done) in sorted(self.hands.items())},
+            "by_disturbance": {what: {"tasks": tasks, "verified": verified}
+                               for what, (tasks, verified) in sorted(self.by_disturbance.items())},
         }
 
     def add(self, errand_run: ErrandRun, *, hands: bool = False) -> None:
@@ -75,6 +85,12 @@ class ModeResult:
         counts = self.by_kind.setdefault(str(errand_run.errand.kind), [0, 0])
         counts[0] += 1
         counts[1] += errand_run.verified
+        struck = {str(event.data.get("what")) for event in errand_run.events
+                  if event.kind == "sim.disturbance"}
+        for what in struck or {"none"}:
+            tally = self.by_disturbance.setdefault(what, [0, 0])
+            tally[0] += 1
+            tally[1] += errand_run.verified
         if not report.success:
             self.failed += 1
             self.told_why += any(text.startswith("I am sorry") for text in report.speech)
@@ -168,6 +184,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="everyday: fetch, take from a person, ask and tell (the default); "
                              "fetch: fetch-and-deliver only")
     add_fidelity_option(parser)
+    add_plot_option(parser, "each mode's verified deliveries by the disturbance that struck")
 
 
 def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, Any]:
@@ -193,6 +210,10 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
                 console.print(f"{result['mode']}: hands in the loop, by the truth: " + ", ".join(
                     f"{what} {counts['done']}/{counts['tried']}"
                     for what, counts in result["hands"].items()))
+    if args.plot is not None:
+        from homebot.bench.plots import robustness_figure, save
+
+        save(robustness_figure(results, args.level), args.plot)
     return {"benchmark": "robustness", "errands": args.errands, "tasks": args.tasks,
             "seed": args.seed,
             "fidelity": str(args.fidelity), "modes": results}

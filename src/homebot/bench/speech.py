@@ -41,7 +41,7 @@ import numpy as np
 from rich.console import Console
 from rich.table import Table
 
-from homebot.bench.arguments import count, seed
+from homebot.bench.arguments import add_plot_option, count, seed
 from homebot.errors import BenchmarkError, SpeechError
 from homebot.progress import track
 
@@ -99,6 +99,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="the four voices the recogniser was developed with (default), "
                              "or two held-out voices no setting was tuned on")
     parser.add_argument("--seed", type=seed, default=0)
+    add_plot_option(parser, "command accuracy by voice, clean and noisy")
 
 
 def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, Any]:
@@ -134,7 +135,7 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
     cpu, audio_seconds, three_second = 0.0, 0.0, []
     recognizers = {label: Recognizer.for_world(world, sentences=_TRAINING, seed=0)
                    for label, world in worlds}
-    for label, world in track(worlds, "spoken commands, by world"):
+    for label, world in worlds:
         figures, timing = _commands(recognizers[label], world, args)
         results[label] = figures
         cpu += timing["cpu"]
@@ -170,6 +171,10 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
     }
     if console is not None:
         _print(console, figures)
+    if args.plot is not None:
+        from homebot.bench.plots import save, speech_figure
+
+        save(speech_figure(results, _conditions(args)), args.plot)
     return figures
 
 
@@ -241,13 +246,15 @@ def _commands(recognizer: Any, world: Any, args: argparse.Namespace
     for condition in _conditions(args):
         tally = {"clips": 0, "correct": 0, "rejected": 0, "wrong_accepts": 0,
                  "grammar_only_correct": 0, "ngram_only_correct": 0}
+        by_voice: dict[str, dict[str, int]] = {}
         references: list[str] = []
         heard: list[str] = []
         grammar_heard: list[str] = []
         ngram_heard: list[str] = []
         reasons: dict[str, int] = {}
-        for index, (text, _) in enumerate(commands):
-            speech = espeak().synthesise(text, voices[index % len(voices)])
+        for index, (text, _) in enumerate(track(commands, f"spoken commands, {condition}")):
+            voice = voices[index % len(voices)]
+            speech = espeak().synthesise(text, voice)
             clip = _padded(speech)
             if condition == "noisy":
                 noise = (rng.standard_normal(clip.size) if args.noise == "white"
@@ -263,6 +270,9 @@ def _commands(recognizer: Any, world: Any, args: argparse.Namespace
             expected = steps_of(text)
             got = steps_of(hearing.text)
             tally["clips"] += 1
+            spoken = by_voice.setdefault(voice.label(), {"clips": 0, "correct": 0})
+            spoken["clips"] += 1
+            spoken["correct"] += hearing.text is not None and got == expected
             reasons[hearing.reason] = reasons.get(hearing.reason, 0) + 1
             if hearing.text is None:
                 tally["rejected"] += 1
@@ -286,6 +296,7 @@ def _commands(recognizer: Any, world: Any, args: argparse.Namespace
             "grammar_only_wer": round(float(jiwer.wer(references, grammar_heard)), 4),
             "ngram_only_wer": round(float(jiwer.wer(references, ngram_heard)), 4),
             "reasons": dict(sorted(reasons.items())),
+            "by_voice": by_voice,
         }
     overlap = sum(words_of(text) in training for text, _ in commands)
     timing = {"cpu": cpu, "audio": audio, "three_second": three_second}

@@ -127,6 +127,8 @@ class DriveOutcome:
     waits: int = 0
     pose_errors: list[float] = field(default_factory=list)
     first_goal: int = 0  #: the index of the first measured goal
+    #: each goal's true path: (x, y) at every control period (for ``--plot``)
+    paths: list[list[tuple[float, float]]] = field(default_factory=list)
 
     def summary(self) -> dict[str, Any]:
         goals = len(self.reached)
@@ -194,16 +196,20 @@ def drive(name: str, world: World, navigator: Navigator, targets: list[Pose],
             body.teleport(previous)
         truth = Pose(*sim.robot_pose)
         velocities.clear()
+        path = [truth.xy()]
+        measured.paths.append(path)
         source = _pose_source(trial.pose, sim, body, navigator, truth, trial.seed, index)
         recording = trace is not None and index >= first
         if recording:
             assert trace is not None
             trace.begin(index, target, sim, body)
 
-        def localise(source: Callable[[], Pose] = source, recording: bool = recording) -> Pose:
+        def localise(source: Callable[[], Pose] = source, recording: bool = recording,
+                     path: list[tuple[float, float]] = path) -> Pose:
             # Once per control period: the navigation may ask again within one.
             if not velocities or velocities[-1][0] < body.now():
                 velocities.append((body.now(), body.odometry().twist))
+                path.append((sim.robot_pose[0], sim.robot_pose[1]))
                 if recording:
                     assert trace is not None
                     trace.tick(sim, body)
