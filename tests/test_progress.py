@@ -51,7 +51,7 @@ def test_nested_tasks_are_drawn_together() -> None:
 
 
 def test_nothing_is_drawn_without_a_display() -> None:
-    console, written = _terminal()
+    _, written = _terminal()
     with showing_progress(None):
         assert list(track(range(3), "quiet")) == [0, 1, 2]
         quiet = start("quiet too", total=1)
