@@ -136,7 +136,8 @@ def test_navigation_paths_and_smoothness(capsys: pytest.CaptureFixture[str],
     paths, smoothness = figure.axes
     assert len(paths.lines) == 3 and len(paths.images) == 1  # one line per drive that moved
     assert [text.get_text() for text in paths.get_legend().get_texts()] == [
-        "stage2", "dwa", "goals"]
+        "stage2", "dwa", "goals (numbered as the figures list them)"]
+    assert [text.get_text() for text in paths.texts] == ["0", "1"]
     assert len(smoothness.lines) == 2 and smoothness.get_xlabel().endswith("(rad/s²)")
 
 

@@ -249,5 +249,5 @@ def _plot(path: Path, navigator: Navigator, targets: list[Pose],
     measured = targets[first:first + max(len(o.paths) for o in outcomes.values())]
     save(navigation_figure(grid.occupied, extent, [goal.xy() for goal in measured],
                            {name: outcome.paths for name, outcome in outcomes.items()},
-                           {name: outcome.angular for name, outcome in outcomes.items()}),
-         path)
+                           {name: outcome.angular for name, outcome in outcomes.items()},
+                           first), path)

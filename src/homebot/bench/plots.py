@@ -57,7 +57,7 @@ def save(figure: Figure, path: Path) -> None:
 def navigation_figure(obstacles: np.ndarray, extent: tuple[float, float, float, float],
                       goals: Sequence[tuple[float, float]],
                       paths: Mapping[str, Sequence[Sequence[tuple[float, float]]]],
-                      angular: Mapping[str, Sequence[float]]) -> Figure:
+                      angular: Mapping[str, Sequence[float]], first: int = 0) -> Figure:
     """The true paths each local controller drove over the map, and how smoothly: for
     each angular acceleration, the share of control periods at or above it.
 
@@ -67,6 +67,7 @@ def navigation_figure(obstacles: np.ndarray, extent: tuple[float, float, float, 
         goals: the goals driven to, in order.
         paths: per controller, the true (x, y) at each control period of each goal.
         angular: per controller, |angular acceleration| at each control period, rad/s².
+        first: the number of the first goal (``--from``).
     """
     figure, (where, smooth) = _figure(2, width=6.5, height=5.5)
     min_x, min_y, max_x, max_y = extent
@@ -81,7 +82,11 @@ def navigation_figure(obstacles: np.ndarray, extent: tuple[float, float, float, 
                            label=name if index == 0 else None)
     if goals:
         xs, ys = zip(*goals, strict=True)
-        where.scatter(xs, ys, marker="x", color="crimson", s=30, zorder=3, label="goals")
+        where.scatter(xs, ys, marker="x", color="crimson", s=30, zorder=3,
+                      label="goals (numbered as the figures list them)")
+        for index, goal in enumerate(goals, start=first):
+            where.annotate(str(index), goal, textcoords="offset points", xytext=(4, 4),
+                           fontsize="x-small", color="crimson")
     where.set(title="True paths driven to the goals", xlabel="x (m)", ylabel="y (m)",
               aspect="equal")
     where.legend(loc="upper right", fontsize="small")

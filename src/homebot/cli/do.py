@@ -12,7 +12,13 @@ from rich.markup import escape
 from homebot.app import told
 from homebot.cli.chat import add_question_cost_option
 from homebot.cli.options import GPSR_TIME_LIMIT, load_world
-from homebot.cli.simulated import add_run_options, finish_run, keep_events, simulated_run
+from homebot.cli.simulated import (
+    add_run_options,
+    finish_run,
+    keep_events,
+    showing_steps,
+    simulated_run,
+)
 from homebot.cli.voice import add_voice_options, speak_to_file, spoken_or_typed
 from homebot.language import Vocabulary, parse_command
 
@@ -60,10 +66,12 @@ def do(args: argparse.Namespace) -> int:
     if args.planner == "htn":
         from homebot.cli.plan import carry_out_with_htn
 
-        status = carry_out_with_htn(args, world, run, parsed.steps)
+        with showing_steps(run):
+            status = carry_out_with_htn(args, world, run, parsed.steps)
         if status is not None:
             keep_events(args, run)
             return status
-    report = run.run(parsed.to_task())
+    with showing_steps(run):
+        report = run.run(parsed.to_task())
     speak_to_file(report.speech, args.reply)
     return finish_run(args, run, report)

@@ -8,7 +8,7 @@ from typing import Any
 
 from homebot.cli.options import load_world
 from homebot.cli.ros_run import add_ros_robot_options, run_over_ros
-from homebot.cli.simulated import add_run_options, finish_run, simulated_run
+from homebot.cli.simulated import add_run_options, finish_run, showing_steps, simulated_run
 from homebot.executive.taskfile import load_task
 
 __all__ = ["register"]
@@ -30,4 +30,6 @@ def run_task(args: argparse.Namespace) -> int:
     if args.robot == "ros":
         return run_over_ros(args, world, task, monitoring=not args.no_monitoring)
     run = simulated_run(args, world, monitoring=not args.no_monitoring)
-    return finish_run(args, run, run.run(task))
+    with showing_steps(run):
+        report = run.run(task)
+    return finish_run(args, run, report)

@@ -1,9 +1,12 @@
-"""What ``run-task`` and ``do`` share: options for a simulated run, and how a run ends."""
+"""What ``run-task`` and ``do`` share: options for a simulated run, the skill under way
+(``showing_steps``), and how a run ends."""
 
 from __future__ import annotations
 
 import argparse
 import json
+from collections.abc import Iterator
+from contextlib import contextmanager
 from datetime import datetime
 from pathlib import Path
 
@@ -21,8 +24,9 @@ from homebot.cli.options import (
 from homebot.cli.world import remember_last_run
 from homebot.clock import DEFAULT_START, start_time
 from homebot.errors import TaskError
-from homebot.events import EventLog
+from homebot.events import Event, EventLog
 from homebot.executive import RunReport, print_report
+from homebot.progress import task
 from homebot.world import World
 
 __all__ = [
@@ -30,6 +34,7 @@ __all__ = [
     "finish_run",
     "keep_events",
     "run_settings",
+    "showing_steps",
     "simulated_run",
     "write_events",
 ]
@@ -85,6 +90,24 @@ def run_settings(args: argparse.Namespace, world: World, *,
 def simulated_run(args: argparse.Namespace, world: World, *, monitoring: bool = True) -> Run:
     """The simulated home the options of ``add_run_options`` ask for."""
     return build_run(run_settings(args, world, monitoring=monitoring))
+
+
+@contextmanager
+def showing_steps(run: Run) -> Iterator[None]:
+    """While the ``with`` block runs a task in ``run``, progress names the skill under way
+    (an embodied step takes tens of seconds; the report comes at the end)."""
+    with task("carrying out the task") as under_way:
+        def show(event: Event) -> None:
+            if event.kind == "skill.start":
+                arguments = ", ".join(f"{name}={value}"
+                                      for name, value in event.data["args"].items())
+                under_way.describe(f"carrying out the task: {event.data['skill']}({arguments})")
+
+        run.events.listeners.append(show)
+        try:
+            yield
+        finally:
+            run.events.listeners.remove(show)
 
 
 def keep_events(args: argparse.Namespace, run: Run) -> None:
