@@ -129,7 +129,8 @@ def localisation_figure(errors: Mapping[str, Sequence[Sequence[float]]],
             axes.fill_between(seconds, np.percentile(stack, 5, axis=0),
                               np.percentile(stack, 95, axis=0), color=colour, alpha=0.2,
                               label=f"{name}: 5-95 % of runs")
-    axes.axhline(20, color="grey", linestyle="--", linewidth=1, label="20 cm")
+    axes.axhline(20, color="grey", linestyle="--", linewidth=1,
+                 label="20 cm: the bound the figures count runs over")
     axes.set(title="Localisation error while driving (by the truth)",
              xlabel="simulated time (s)", ylabel="position error (cm)")
     axes.set_ylim(bottom=0)
