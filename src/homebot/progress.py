@@ -139,11 +139,20 @@ def track(items: Iterable[_T], description: str, total: float | None = None) -> 
 
 
 def progress_console(*, quiet: bool = False) -> Console | None:
-    """Where progress is shown: stderr, when it is a terminal and not ``quiet`` (``--json``)."""
+    """Where progress is shown: stderr, when it is a terminal and not ``quiet`` (``--json``).
+
+    A terminal is a real one (``isatty``): ``FORCE_COLOR`` in a CI log or a test's captured
+    stderr draws no bars. ``TTY_COMPATIBLE=0`` and ``TERM=dumb`` turn them off too.
+    """
     if quiet:
         return None
+    try:
+        terminal = sys.stderr.isatty()
+    except (AttributeError, ValueError):  # no stream, or a closed one
+        terminal = False
     console = Console(stderr=True)
-    return console if console.is_terminal else None
+    return console if terminal and console.is_terminal and not console.is_dumb_terminal \
+        else None
 
 
 @contextmanager

@@ -75,11 +75,11 @@ def navigation_figure(obstacles: np.ndarray, extent: tuple[float, float, float, 
                  cmap="Greys", vmin=0, vmax=1.6, interpolation="nearest")
     for (name, drives), colour in zip(paths.items(), ("tab:blue", "tab:orange", "tab:green"),
                                       strict=False):
-        for index, path in enumerate(drives):
-            if len(path) > 1:
-                xs, ys = zip(*path, strict=True)
-                where.plot(xs, ys, color=colour, linewidth=1.0, alpha=0.8,
-                           label=name if index == 0 else None)
+        moved = [path for path in drives if len(path) > 1]
+        for index, path in enumerate(moved):
+            xs, ys = zip(*path, strict=True)
+            where.plot(xs, ys, color=colour, linewidth=1.0, alpha=0.8,
+                       label=name if index == 0 else None)
     if goals:
         xs, ys = zip(*goals, strict=True)
         where.scatter(xs, ys, marker="x", color="crimson", s=30, zorder=3,
