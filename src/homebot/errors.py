@@ -15,6 +15,7 @@ Hierarchy::
     ├── LanguageError            a command cannot be understood
     ├── DialogueError            a SitLog dialogue model is malformed or cannot go on
     ├── BenchmarkError           a benchmark's argument (a size, a seed, a file) is unusable
+    ├── OptionError              a command-line option's value is unusable (a negative seed)
     ├── SpeechError              an audio file is unusable (empty, not WAV, too long) or the
     │                            speech extra is missing
     ├── BodyError                a robot body set up wrongly (a limit not positive, a part
@@ -53,6 +54,7 @@ __all__ = [
     "LocalPlannerError",
     "MapError",
     "NavigationError",
+    "OptionError",
     "PartMissing",
     "PlanningError",
     "RobotLost",
@@ -110,6 +112,10 @@ class PlanningError(HomebotError):
 
 class BenchmarkError(HomebotError):
     """A benchmark's argument is unusable: a size of 0 or absurd, a bad seed, a missing file."""
+
+
+class OptionError(HomebotError):
+    """A command-line option's value is unusable (a negative ``--seed``)."""
 
 
 class SpeechError(HomebotError):

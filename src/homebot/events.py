@@ -3,8 +3,8 @@
 Events carry the simulated time at which they happened, never the wall clock,
 so the same seed gives the same log. The log is written as JSON lines.
 
-A long-running simulation keeps its memory flat with ``keep`` (only about the last
-``keep`` events stay in memory) and ``stream`` (every event is written to a file as it
+A long-running simulation keeps its memory flat with ``keep`` (at most the last ``keep``
+events stay in memory) and ``stream`` (every event is written to a file as it
 happens, so nothing is lost). ``count`` and ``since`` number events from the first ever
 recorded, whether or not it is still in memory.
 """
@@ -36,8 +36,9 @@ class Event:
 class EventLog:
     """An append-only list of events, timed by ``clock``; listeners see each event.
 
-    ``keep``: keep at least the last ``keep`` events in memory and at most twice as many
-    (None: every event). ``stream``: also write each event, as a JSON line, when it
+    ``keep``: keep at most the last ``keep`` events in memory (None: every event); the
+    oldest are let go a tenth of ``keep`` at a time, so that recording stays cheap, and once
+    that many were recorded at least nine tenths of ``keep`` stay. ``stream``: also write each event, as a JSON line, when it
     happens. ``dropped``: how many events are no longer in memory.
     """
 
@@ -55,8 +56,8 @@ class EventLog:
         events.append(event)
         if self.stream is not None:
             self.stream.write(_line(event))
-        if self.keep is not None and len(events) > 2 * self.keep:
-            cut = len(events) - self.keep
+        if self.keep is not None and len(events) > self.keep:
+            cut = len(events) - self.keep + self.keep // 10
             del events[:cut]
             self.dropped += cut
         for listener in self.listeners:

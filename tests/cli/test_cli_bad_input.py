@@ -176,3 +176,83 @@ def test_an_approach_pose_outside_the_room_exits_2(tmp_path: Path,
         "holds: [drink]", "approach: [50, 50, 0], holds: [drink]")
     status = main(["world", "check", str(_file(tmp_path, "w.yaml", text))])
     _fails_cleanly(capsys, status, "placements.1.approach: [50.0, 50.0] lies outside room")
+
+
+@pytest.mark.parametrize("argv", [
+    ["do", "go to the kitchen"], ["run-task", "task.yaml"], ["scenario", "fetch"],
+    ["serve"], ["sim", "serve"], ["sitlog", "run", "model.yaml"], ["bench", "fetch"],
+])
+def test_a_negative_seed_is_refused_everywhere(argv: list[str],
+                                               capsys: pytest.CaptureFixture[str]) -> None:
+    # random.Random(-1) plays as Random(1): -1 must not silently repeat seed 1
+    _fails_cleanly(capsys, main([*argv, "--seed", "-1"]), "--seed '-1': give a whole number")
+
+
+def _usage_error(capsys: pytest.CaptureFixture[str], argv: list[str]) -> str:
+    with pytest.raises(SystemExit) as exit_:
+        main(argv)
+    assert exit_.value.code == 2
+    return capsys.readouterr().err.strip().splitlines()[-1]
+
+
+@pytest.mark.parametrize(("argv", "expected"), [
+    (["run-task", "t.yaml", "--robot", "ros", "--connect-timeout", "-1"],
+     "argument --connect-timeout: a time to wait"),
+    (["run-task", "t.yaml", "--robot", "ros", "--connect-timeout", "nan"],
+     "argument --connect-timeout: a time to wait"),
+    (["run-task", "t.yaml", "--robot", "ros", "--connect-timeout", "0"],
+     "more than 0 seconds"),
+    (["serve", "--host", "999.1.1.1"], "argument --host: '999.1.1.1' is no IP address; give"),
+    (["serve", "--host", "192.0.2.1"], "argument --host: '192.0.2.1' is not an address of "
+                                       "this machine"),
+    (["serve", "--walkers", "-1"], "argument --walkers"),
+    (["sim", "serve", "--crash-after", "-3"], "argument --crash-after"),
+])
+def test_out_of_range_options_are_usage_errors(argv: list[str], expected: str,
+                                               capsys: pytest.CaptureFixture[str]) -> None:
+    assert expected in _usage_error(capsys, argv)
+
+
+def test_a_host_of_this_machine_is_taken() -> None:
+    from homebot.cli import command_line_argument_parser
+
+    args = command_line_argument_parser().parse_args(["serve", "--host", "127.0.0.1"])
+    assert args.host == "127.0.0.1"
+
+
+@pytest.mark.parametrize(("log", "expected"), [
+    ('{"kind": "robot.path", "world": "apartment", "points": [[NaN, 1]]}\n',
+     "line 1: not a homebot event log (NaN is no number)"),
+    ('{"kind": "sim.speech"}\n{"kind": "robot.path", "world": "apartment", '
+     '"points": [[1e300, 1]]}\n', "line 2: robot.path point [1e+300, 1] lies 1e+300 m outside"),
+    ('{"kind": "robot.path", "world": "apartment", "points": [[1, 1e999]]}\n',
+     "1e999 is too large a number"),
+    ('{"kind": "sim.final", "world": "apartment", "robot": [2, 3, 0], '
+     '"people": {"Alex": [-40, 2]}}\n', "sim.final point [-40, 2] lies 40 m outside"),
+    ('{"kind": "robot.path", "world": "apartment", "points": [["a", 1]]}\n',
+     "not a point [x, y]"),
+])
+def test_world_show_refuses_event_logs_with_points_off_the_map(
+        tmp_path: Path, log: str, expected: str, capsys: pytest.CaptureFixture[str]) -> None:
+    events = _file(tmp_path, "events.jsonl", log)
+    status = main(["world", "show", "--png", str(tmp_path / "m.png"), "--events", str(events)])
+    _fails_cleanly(capsys, status, expected)
+    assert not (tmp_path / "m.png").exists()
+
+
+def test_world_show_events_needs_a_file_and_a_map(tmp_path: Path,
+                                                 capsys: pytest.CaptureFixture[str]) -> None:
+    missing = str(tmp_path / "missing.jsonl")
+    _fails_cleanly(capsys, main(["world", "show", "--png", str(tmp_path / "m.png"),
+                                 "--events", missing]), "missing.jsonl: no such file")
+    _fails_cleanly(capsys, main(["world", "show", "--events", missing]),
+                   "the run is drawn on the map; give --png")
+
+
+def test_world_show_draws_a_run_of_this_world(tmp_path: Path,
+                                              capsys: pytest.CaptureFixture[str]) -> None:
+    events = _file(tmp_path, "events.jsonl",
+                   '{"kind": "robot.path", "world": "apartment", "points": [[2, 2], [3, 2]]}\n'
+                   '{"kind": "robot.path", "world": "elsewhere", "points": [[1e300, 2]]}\n')
+    status = main(["world", "show", "--png", str(tmp_path / "m.png"), "--events", str(events)])
+    assert status == 0 and (tmp_path / "m.png").stat().st_size > 0

@@ -14,11 +14,11 @@ from collections.abc import Callable
 from pathlib import Path
 
 from homebot.errors import BenchmarkError
+from homebot.seeds import MAX_SEED, seed  # the one ``--seed`` type every command shares
 
 __all__ = ["MAX_SEED", "add_fidelity_option", "add_plot_option", "count", "disturbance_level",
            "plot_file", "readable_file", "seed"]
 
-MAX_SEED = 2**32 - 1
 
 
 def count(option: str, low: int = 1, high: int = 100_000) -> Callable[[str], int]:
@@ -32,14 +32,6 @@ def count(option: str, low: int = 1, high: int = 100_000) -> Callable[[str], int
         return number
     whole.__name__ = option.lstrip("-")  # argparse names the type in its own messages
     return whole
-
-
-def seed(text: str) -> int:
-    """An argument type for ``--seed``: a whole number from 0 to 2**32 - 1."""
-    stripped = text.strip()
-    if not stripped.isdigit() or int(stripped) > MAX_SEED:
-        raise BenchmarkError(f"--seed {text!r}: give a whole number from 0 to {MAX_SEED}")
-    return int(stripped)
 
 
 def readable_file(option: str) -> Callable[[str], Path]:

@@ -28,7 +28,7 @@ from typing import Any
 from rich.console import Console as Terminal
 
 from homebot.app import Fidelity
-from homebot.bench.arguments import count
+from homebot.bench.arguments import count, seed
 from homebot.progress import track
 from homebot.web import Console, ConsoleSettings
 from homebot.world import World
@@ -64,7 +64,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="how long the load test watches, wall seconds")
     parser.add_argument("--rate", type=count("--rate", 1, 100), default=10,
                         help="updates a second the server sends each watcher")
-    parser.add_argument("--seed", type=int, default=0, help="seed of the press ticks")
+    parser.add_argument("--seed", type=seed, default=0, help="seed of the press ticks")
 
 
 def run(args: argparse.Namespace, console: Terminal | None = None) -> dict[str, Any]:

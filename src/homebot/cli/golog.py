@@ -8,6 +8,7 @@ from typing import Any
 
 from rich.console import Console
 
+from homebot import seeds
 from homebot.errors import GologError
 from homebot.executive import print_report
 from homebot.golog import Interpreter, SimulatedExecutor, parse_program, policy_text
@@ -38,7 +39,7 @@ def register(subparsers: Any) -> None:
         sub.add_argument("program", help="a program, e.g. 'sort_cups(red, green, blue, 4)'")
         sub.add_argument("--domain", required=True, choices=domain_names())
         sub.add_argument("--file", help="a .golog file whose procedures to add to the domain")
-        sub.add_argument("--seed", type=int, default=0, help="seed for every random choice")
+        sub.add_argument("--seed", type=seeds.seed, default=0, help="seed for every random choice")
         sub.add_argument("--json", action="store_true", help="print the result as JSON")
         sub.set_defaults(handler=_plan if name == "plan" else _run)
     from homebot.cli.golog_maintain import add_parser

@@ -8,6 +8,7 @@ from typing import Any
 
 from rich.console import Console
 
+from homebot import seeds
 from homebot.errors import GologError
 from homebot.executive import print_report
 from homebot.golog.domains import domain_names, domain_theory
@@ -37,7 +38,7 @@ def add_parser(commands: Any) -> None:
     sub.add_argument("--show", action="store_true",
                      help="project the run (no crashes) and print δ′ before every task action, "
                           "its markers and the todo list")
-    sub.add_argument("--seed", type=int, default=0, help="seed for the crashes")
+    sub.add_argument("--seed", type=seeds.seed, default=0, help="seed for the crashes")
     sub.add_argument("--json", action="store_true", help="print the result as JSON")
     sub.set_defaults(handler=_maintain)
 

@@ -4,17 +4,35 @@ the time limit, disturbances and probabilities."""
 from __future__ import annotations
 
 import argparse
+import ipaddress
 import math
 import re
+import socket
+from collections.abc import Callable
 
+from homebot import seeds
 from homebot.app import Fidelity
 from homebot.errors import HomebotError, TaskError
 from homebot.skills import SKILLS
 from homebot.world import World
 
-__all__ = ["GPSR_TIME_LIMIT", "add_fidelity_option", "add_retry_option", "add_time_limit_option",
-           "add_world_options", "disturbance_level", "fidelity_of", "load_world", "probability",
-           "retry_budgets", "time_limit"]
+__all__ = [
+    "GPSR_TIME_LIMIT",
+    "add_fidelity_option",
+    "add_retry_option",
+    "add_time_limit_option",
+    "add_world_options",
+    "disturbance_level",
+    "fidelity_of",
+    "listening_address",
+    "load_world",
+    "probability",
+    "retry_budgets",
+    "time_limit",
+    "wait_seconds",
+    "walker_count",
+    "whole_number",
+]
 
 GPSR_TIME_LIMIT = 300.0  #: seconds: the competition's 5 minutes for a GPSR command
 
@@ -23,7 +41,7 @@ def add_world_options(parser: argparse.ArgumentParser) -> None:
     """``--world W`` and ``--seed N``, wherever a world is used."""
     parser.add_argument("--world", default="apartment",
                         help="world file, or a shipped world name (default: apartment)")
-    parser.add_argument("--seed", type=int, default=0, help="seed for every random choice")
+    parser.add_argument("--seed", type=seeds.seed, default=0, help="seed for every random choice")
 
 
 def load_world(args: argparse.Namespace) -> World:
@@ -108,6 +126,68 @@ def disturbance_level(text: str) -> float:
 def probability(text: str) -> float:
     """An argparse type: a probability, 0 to 1."""
     return _number_between(text, 0.0, 1.0, "a probability")
+
+
+def wait_seconds(text: str) -> float:
+    """An argparse type: wall-clock seconds to wait for something, above 0 and at most an
+    hour (``--connect-timeout``)."""
+    value = _number_between(text, 0.0, 3600.0, "a time to wait, in seconds,")
+    if value == 0.0:
+        raise argparse.ArgumentTypeError(f"a time to wait is more than 0 seconds (up to "
+                                         f"3600), not '{text}'")
+    return value
+
+
+def walker_count(text: str) -> int:
+    """An argparse type for ``--walkers``: how many people walk about, 0 to 50."""
+    if not text.isdigit() or int(text) > 50:
+        raise argparse.ArgumentTypeError(f"a count of people from 0 to 50, not '{text}'")
+    return int(text)
+
+
+def whole_number(low: int, high: int) -> Callable[[str], int]:
+    """An argparse type: a whole number from ``low`` to ``high`` (``--crash-after``)."""
+    def whole(text: str) -> int:
+        stripped = text.strip()
+        if not stripped.lstrip("-").isdigit() or not low <= int(stripped) <= high:
+            raise argparse.ArgumentTypeError(f"a whole number from {low} to {high}, "
+                                             f"not '{text}'")
+        return int(stripped)
+    whole.__name__ = "whole number"  # argparse names the type in its own messages
+    return whole
+
+
+_DOTTED_NUMBERS = re.compile(r"[\d.]+")
+
+
+def listening_address(text: str) -> str:
+    """An argparse type for ``--host``: an address of this machine a server can listen on.
+
+    An IP address (``127.0.0.1``, ``0.0.0.0``, ``::1``) or a host name that resolves to
+    one; the address is bound once, on a free port, so one that belongs to another
+    machine (or none, as ``999.1.1.1``) is refused here, naming the option, and not by
+    the server later.
+    """
+    fix = ("give 127.0.0.1 (this machine only), 0.0.0.0 (every network interface) or an "
+           "address of this machine")
+    try:
+        address = str(ipaddress.ip_address(text.strip()))
+    except ValueError:
+        if _DOTTED_NUMBERS.fullmatch(text.strip()) or not text.strip():
+            raise argparse.ArgumentTypeError(f"'{text}' is no IP address; {fix}") from None
+        try:
+            address = str(socket.getaddrinfo(text.strip(), None, type=socket.SOCK_STREAM)[0][4][0])
+        except (OSError, UnicodeError) as error:
+            raise argparse.ArgumentTypeError(f"'{text}' is no host name this machine can "
+                                             f"resolve ({error}); {fix}") from None
+    family = socket.AF_INET6 if ":" in address else socket.AF_INET
+    try:
+        with socket.socket(family, socket.SOCK_STREAM) as probe:
+            probe.bind((address, 0))
+    except OSError as error:
+        raise argparse.ArgumentTypeError(f"'{text}' is not an address of this machine "
+                                         f"({error.strerror or error}); {fix}") from None
+    return text.strip()
 
 
 def _number_between(text: str, low: float, high: float, what: str) -> float:

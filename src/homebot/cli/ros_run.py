@@ -9,7 +9,7 @@ from pathlib import Path
 from rich.console import Console
 from rich.markup import escape
 
-from homebot.cli.options import retry_budgets
+from homebot.cli.options import retry_budgets, wait_seconds
 from homebot.cli.ros_options import add_transport_options, transport_node
 from homebot.cli.simulated import write_events
 from homebot.errors import RobotLost
@@ -27,7 +27,7 @@ def add_ros_robot_options(parser: argparse.ArgumentParser) -> None:
                              "on ROS 2 (homebot sim serve, or a real one named by --mapping)")
     parser.add_argument("--mapping", type=Path,
                         help="--robot ros: the mapping file of ROS 2 names (default: homebot's)")
-    parser.add_argument("--connect-timeout", type=float, default=20.0, metavar="S",
+    parser.add_argument("--connect-timeout", type=wait_seconds, default=20.0, metavar="S",
                         help="--robot ros: seconds (wall clock) to wait for the robot")
     add_transport_options(parser)
 

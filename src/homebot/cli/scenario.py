@@ -13,6 +13,7 @@ from types import ModuleType
 from typing import TYPE_CHECKING, Any
 
 import homebot.scenarios.library
+from homebot import seeds
 from homebot.app import Fidelity, Run, RunSettings, build_run, disturbed
 from homebot.cli.modules import add_module_commands, lazy_subparsers, module_names
 from homebot.cli.options import add_fidelity_option, disturbance_level, fidelity_of, probability
@@ -58,7 +59,7 @@ def register(subparsers: Any) -> None:
 
 
 def _add_arguments(module: ModuleType, parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("--seed", type=int, default=0, help="seed for every random choice")
+    parser.add_argument("--seed", type=seeds.seed, default=0, help="seed for every random choice")
     parser.add_argument("--json", action="store_true", help="print the summary as JSON")
     shared: tuple[SharedOption, ...] = getattr(module, "SHARED_OPTIONS", ())
     for option in shared:

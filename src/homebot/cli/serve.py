@@ -8,7 +8,13 @@ import secrets
 from typing import Any
 
 from homebot.app import Fidelity, require_embodied
-from homebot.cli.options import add_fidelity_option, add_world_options, load_world
+from homebot.cli.options import (
+    add_fidelity_option,
+    add_world_options,
+    listening_address,
+    load_world,
+    walker_count,
+)
 from homebot.errors import HomebotError
 
 __all__ = ["register", "serve"]
@@ -18,7 +24,7 @@ def register(subparsers: Any) -> None:
     parser = subparsers.add_parser("serve", help="watch and command the robot in a browser")
     add_world_options(parser)
     add_fidelity_option(parser)
-    parser.add_argument("--host", default="127.0.0.1",
+    parser.add_argument("--host", type=listening_address, default="127.0.0.1",
                         help="address to listen on (default 127.0.0.1: this machine only)")
     parser.add_argument("--port", type=_port, default=8765, help="port (default 8765)")
     parser.add_argument("--speed", type=_speed, default=1.0, metavar="X",
@@ -26,7 +32,7 @@ def register(subparsers: Any) -> None:
                              "or 0 for as fast as possible (default 1)")
     parser.add_argument("--token", default=None,
                         help="the access token (default: a new random one, printed)")
-    parser.add_argument("--walkers", type=int, default=0, metavar="N",
+    parser.add_argument("--walkers", type=walker_count, default=0, metavar="N",
                         help="embodied: how many people walk about on their own")
     parser.set_defaults(handler=serve)
 

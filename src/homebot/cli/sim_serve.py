@@ -14,6 +14,8 @@ from homebot.cli.options import (
     add_world_options,
     disturbance_level,
     load_world,
+    walker_count,
+    whole_number,
 )
 from homebot.cli.ros_options import (
     SERVER_KEEP,
@@ -39,13 +41,13 @@ def register(subparsers: Any) -> None:
     add_fidelity_option(serve)
     serve.add_argument("--disturb", type=disturbance_level, default=0.0, metavar="LEVEL",
                        help="switch disturbances on (1 = the benchmark's level)")
-    serve.add_argument("--crash-after", type=int, default=0, metavar="N",
+    serve.add_argument("--crash-after", type=whole_number(0, 1_000_000), default=0, metavar="N",
                        help="fault injection: end the process abruptly (as a crash or kill "
                             "would) after answering N robot calls (default 0: never)")
     serve.add_argument("--body", action="store_true",
                        help="serve the robot's body instead (/cmd_vel in; /scan, /odom, /tf "
                             "out; one tick per /cmd_vel) for RosBody")
-    serve.add_argument("--walkers", type=int, default=0, metavar="N",
+    serve.add_argument("--walkers", type=walker_count, default=0, metavar="N",
                        help="--body: how many people walk about on their own (default 0)")
     serve.set_defaults(handler=_serve)
     parser.set_defaults(handler=lambda args: parser.print_help() or 2)

@@ -20,6 +20,7 @@ from homebot.cli.options import (
     add_world_options,
     disturbance_level,
     retry_budgets,
+    walker_count,
 )
 from homebot.cli.world import remember_last_run
 from homebot.clock import DEFAULT_START, start_time
@@ -56,7 +57,7 @@ def add_run_options(parser: argparse.ArgumentParser, *,
     parser.add_argument("--events", type=Path, help="write the event log here (JSON lines)")
     parser.add_argument("--json", action="store_true", help="print the report as JSON")
     add_fidelity_option(parser)
-    parser.add_argument("--walkers", type=_walker_count, default=0, metavar="N",
+    parser.add_argument("--walkers", type=walker_count, default=0, metavar="N",
                         help="embodied: how many people walk about on their own (default 0)")
     parser.add_argument("--start", type=_start, default=DEFAULT_START, metavar="WHEN",
                         help="the date and time the run starts at, as YYYY-MM-DD HH:MM "
@@ -68,12 +69,6 @@ def _start(text: str) -> datetime:
         return start_time(text)
     except ValueError as error:
         raise argparse.ArgumentTypeError(str(error)) from None
-
-
-def _walker_count(text: str) -> int:
-    if not text.isdigit() or int(text) > 50:
-        raise argparse.ArgumentTypeError(f"a count of people from 0 to 50, not '{text}'")
-    return int(text)
 
 
 def run_settings(args: argparse.Namespace, world: World, *,

@@ -18,6 +18,7 @@ from typing import Any
 
 from rich.console import Console
 
+from homebot import seeds
 from homebot.errors import DialogueError
 from homebot.executive import print_report
 from homebot.files import read_text_file
@@ -55,7 +56,7 @@ def register(subparsers: Any) -> None:
     run.add_argument("--input-file", type=Path, help="inputs, one per line")
     run.add_argument("--call", help="the dialogue model to run, e.g. \"find(cola, [fridge], W)\"")
     run.add_argument("--world", help="run skills on a simulated robot in this world")
-    run.add_argument("--seed", type=int, default=0, help="seed for the simulated world")
+    run.add_argument("--seed", type=seeds.seed, default=0, help="seed for the simulated world")
     run.add_argument("--person", help="with --world: speech situations ask this person, who "
                      "answers as the world file scripts")
     run.add_argument("--trace", action="store_true", help="print each transition as it is taken")

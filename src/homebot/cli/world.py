@@ -5,10 +5,11 @@ from __future__ import annotations
 import argparse
 import importlib.util
 import json
+import math
 import os
 from dataclasses import astuple
 from pathlib import Path
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from rich.console import Console
 from rich.table import Table
@@ -18,9 +19,7 @@ from homebot.errors import WorldError
 from homebot.events import EventLog
 from homebot.files import read_text_file
 from homebot.world import World
-
-if TYPE_CHECKING:
-    from homebot.viz import EmbodiedRun, FinalState
+from homebot.yamlfile import short_repr
 
 __all__ = ["last_run_path", "register", "remember_last_run", "world_summary"]
 
@@ -113,18 +112,26 @@ def world_summary(world: World) -> dict[str, Any]:
 
 def _show(args: argparse.Namespace) -> int:
     world = load_world(args)
+    if args.events is not None and not args.png:
+        raise WorldError(f"--events {args.events}: the run is drawn on the map; give --png "
+                         "FILE.png too")
     if args.png:
-        from homebot.viz import render_map
+        from homebot.viz import embodied_run, final_state, render_map
 
         if args.png.suffix.lower() != ".png":
             raise WorldError(f"{args.png}: the map is a PNG image; give a name ending in .png")
-        events = args.events or last_run_path()
         if args.events is not None and not args.events.is_file():
             raise WorldError(f"--events {args.events}: no such file; give the file written "
                              "by run-task or do --events")
-        image = render_map(world, _path_from_events(events, world),
-                           _embodied_from_events(events, world),
-                           _final_from_events(events, world))
+        path = args.events or last_run_path()
+        events = _read_event_log(path, world) if path.is_file() else []
+        try:
+            embodied = embodied_run(events, world.name)
+            final = final_state(events, world.name)
+        except (ValueError, TypeError, KeyError, AttributeError) as error:
+            raise WorldError(f"{path}: not a homebot event log of a run ({error}); give the "
+                             "file written by run-task --events") from None
+        image = render_map(world, _path_from_events(events, world), embodied, final)
         try:
             image.save(args.png)
         except OSError as error:
@@ -138,48 +145,81 @@ def _show(args: argparse.Namespace) -> int:
     return 0
 
 
-def _path_from_events(events: Path, world: World) -> list[tuple[float, float]]:
-    if not events.exists():
-        return []
+#: metres a drawn point may lie beyond the rooms' bounds (a robot's path hugs the walls)
+_DRAWN_MARGIN = 5.0
+
+
+def _read_event_log(path: Path, world: World) -> list[dict[str, Any]]:
+    """The events of a JSON-lines log, each point to draw checked to lie on the map.
+
+    Raises ``WorldError`` naming the file and line of anything that is not an event, of a
+    number that is not finite (``NaN``), and of a point far outside the world.
+    """
+    lines = read_text_file(path, WorldError, "events", "event log").splitlines()
+    events = []
+    for number, line in enumerate(lines, start=1):
+        if not line.strip():
+            continue
+        try:
+            event = json.loads(line, parse_constant=_no_constant, parse_float=_finite)
+        except (ValueError, RecursionError) as error:
+            raise WorldError(f"{path}: line {number}: not a homebot event log ({error}); give "
+                             "the file written by run-task --events") from None
+        if not isinstance(event, dict):
+            raise WorldError(f"{path}: line {number}: not a homebot event log (each line "
+                             "is a JSON object); give the file written by run-task --events")
+        if event.get("world", world.name) == world.name:
+            _check_drawn_points(event, world, f"{path}: line {number}")
+        events.append(event)
+    return events
+
+
+def _no_constant(name: str) -> float:
+    raise ValueError(f"{name} is no number")
+
+
+def _finite(text: str) -> float:
+    value = float(text)
+    if not math.isfinite(value):
+        raise ValueError(f"{text} is too large a number")
+    return value
+
+
+def _check_drawn_points(event: dict[str, Any], world: World, where: str) -> None:
+    """Every point of the event that is drawn lies within the world's bounds, give or take
+    ``_DRAWN_MARGIN`` metres."""
+    kind = event.get("kind")
+    points: list[Any] = []
+    if kind in ("robot.path", "robot.trajectory") and isinstance(event.get("points"), list):
+        points = event["points"]
+    elif kind == "sim.final":
+        points = [event["robot"]] if event.get("robot") is not None else []
+        if isinstance(event.get("people"), dict):
+            points += list(event["people"].values())
+    min_x, min_y, max_x, max_y = world.bounds()
+    for point in points:
+        if not isinstance(point, list) or len(point) < 2 or not all(
+                isinstance(value, int | float) and not isinstance(value, bool)
+                for value in point[:2]):
+            raise WorldError(f"{where}: {kind} holds {short_repr(point)}, not a point "
+                             "[x, y]; give the file written by run-task --events")
+        x, y = float(point[0]), float(point[1])
+        beyond = max(min_x - x, x - max_x, min_y - y, y - max_y)
+        if beyond > _DRAWN_MARGIN:
+            raise WorldError(f"{where}: {kind} point {short_repr(point)} lies {beyond:.3g} m "
+                             f"outside the world '{world.name}' (x {min_x:g} to {max_x:g}, "
+                             f"y {min_y:g} to {max_y:g} m); give the event log of a run in "
+                             "this world")
+
+
+def _path_from_events(events: list[dict[str, Any]], world: World) -> list[tuple[float, float]]:
+    """The symbolic robot's path (``robot.path`` events of ``world``), from its start."""
     start = world.robot.pose.xy()
     path: list[tuple[float, float]] = [start]
-    try:
-        for line in read_text_file(events, WorldError, "events", "event log").splitlines():
-            event = json.loads(line)
-            if event.get("kind") == "robot.path" and event.get("world") == world.name:
-                path.extend((float(x), float(y)) for x, y in event["points"])
-    except (OSError, ValueError, TypeError, KeyError, AttributeError):
-        raise WorldError(f"{events}: not a homebot event log (JSON lines); give the file "
-                         "written by run-task --events") from None
+    for event in events:
+        if event.get("kind") == "robot.path" and event.get("world") == world.name:
+            path.extend((float(x), float(y)) for x, y, *_ in event["points"])
     return path if len(path) > 1 else []
-
-
-def _embodied_from_events(events: Path, world: World) -> EmbodiedRun | None:
-    """The trajectory, particles and laser of an embodied run logged in ``events``."""
-    from homebot.viz import embodied_run
-
-    if not events.exists():
-        return None
-    try:
-        lines = read_text_file(events, WorldError, "events", "event log").splitlines()
-        return embodied_run((json.loads(line) for line in lines if line.strip()), world.name)
-    except (OSError, ValueError, TypeError, KeyError, AttributeError) as error:
-        raise WorldError(f"{events}: not a homebot event log of an embodied run ({error}); "
-                         "give the file written by run-task --events") from None
-
-
-def _final_from_events(events: Path, world: World) -> FinalState | None:
-    """Where the run logged in ``events`` left objects, people, doors and the robot."""
-    from homebot.viz import final_state
-
-    if not events.exists():
-        return None
-    try:
-        lines = read_text_file(events, WorldError, "events", "event log").splitlines()
-        return final_state((json.loads(line) for line in lines if line.strip()), world.name)
-    except (OSError, ValueError, TypeError, KeyError, AttributeError) as error:
-        raise WorldError(f"{events}: its final state cannot be read ({error}); give the file "
-                         "written by run-task --events") from None
 
 
 def _print_tables(world: World) -> None:
