@@ -38,8 +38,9 @@ class EventLog:
 
     ``keep``: keep at most the last ``keep`` events in memory (None: every event); the
     oldest are let go a tenth of ``keep`` at a time, so that recording stays cheap, and once
-    that many were recorded at least nine tenths of ``keep`` stay. ``stream``: also write each event, as a JSON line, when it
-    happens. ``dropped``: how many events are no longer in memory.
+    that many were recorded at least nine tenths of ``keep`` stay. ``stream``: also write
+    each event, as a JSON line, when it happens. ``dropped``: how many events are no longer
+    in memory.
     """
 
     clock: Callable[[], float]

@@ -114,6 +114,8 @@ class Shape(StrEnum):
 SHAPE_DIMENSIONS = {Shape.BOX: 3, Shape.CYLINDER: 2, Shape.SPHERE: 1}
 
 Dimension = Annotated[float, Field(gt=0.0, le=2.0)]
+#: metres: the widest placement any home holds; beyond it a size is a typo (1e308)
+_LARGEST_PLACEMENT = 100.0
 
 
 class _Strict(BaseModel):
@@ -225,7 +227,9 @@ class PlacementModel(_Strict):
     room: Name
     kind: PlacementKind = PlacementKind.FURNITURE
     center: Point
-    size: tuple[float, float] = (0.6, 0.6)
+    size: tuple[float, float] = Field(default=(0.6, 0.6), description=(
+        "its width (along x) and depth (along y) in metres, each above 0; the footprint "
+        "must stand in its room"))
     approach: PoseField | None = None
     holds: list[Name] = Field(default_factory=list)
     front: Literal["north", "south", "east", "west"] | None = None
@@ -237,6 +241,9 @@ class PlacementModel(_Strict):
     def _positive_size(cls, size: tuple[float, float]) -> tuple[float, float]:
         if size[0] <= 0 or size[1] <= 0:
             raise ValueError("width and depth must both be greater than 0")
+        if max(size) > _LARGEST_PLACEMENT:
+            raise ValueError(f"width and depth are metres, at most {_LARGEST_PLACEMENT:g} "
+                             "(furniture, not a house)")
         return size
 
 

@@ -17,7 +17,7 @@ from shapely.prepared import prep
 
 from homebot.errors import WorldError
 from homebot.geometry import Pose
-from homebot.text import closest_names, fold, folded_index, problem_listing
+from homebot.text import closest_names, fold, problem_listing
 from homebot.world.loading import validate_document
 from homebot.world.model import (
     DisturbanceModel,
@@ -25,9 +25,17 @@ from homebot.world.model import (
     PersonModel,
     PlacementKind,
     PlacementModel,
+    Posture,
     RobotModel,
     RoomModel,
     WorldModel,
+)
+from homebot.world.physical import (
+    TOLERANCE,
+    depth_inside,
+    length_text,
+    overlapping_pairs,
+    reach_beyond,
 )
 from homebot.yamlfile import LocatedDocument, field_error, load_yaml_document, parse_yaml_text
 
@@ -82,6 +90,14 @@ def shipped_world_path(name: str) -> Path:
     return Path(str(resources.files("homebot.data") / "worlds" / f"{name}.yaml"))
 
 
+#: the lists of entities a command names, with what one entry is called, in file order
+_NAMED_KINDS = (("rooms", "room"), ("placements", "placement"), ("doors", "door"),
+                ("people", "person"), ("objects", "object"), ("categories", "object category"))
+_KIND_OF = dict(_NAMED_KINDS)
+#: lists whose entries may share a name: an object named after its category ("apple", an
+#: apple) means the same thing either way
+_MAY_SHARE_A_NAME = {frozenset(("objects", "categories"))}
+
 #: points whose room ``World.room_at`` remembers (then it starts again)
 _ROOM_AT_CACHE = 65_536
 
@@ -112,6 +128,7 @@ class World:
         self._check_rooms()
         self._check_doors()
         self.placements = self._build_placements()
+        self._check_overlaps()
         self._check_objects()
         self._check_people()
         self._check_robot()
@@ -281,14 +298,23 @@ class World:
                     self._problem([field, index, "name"],
                                   f"'{entry.name}' and '{earlier}' in {field} differ only in "
                                   "accents or case, and people say them alike; rename one")
-        rooms = folded_index(self.rooms)
-        for index, placement in enumerate(self.model.placements):
-            room = rooms.get(fold(placement.name))
-            if room is not None:
-                same = "" if room == placement.name else f" ('{room}', but for accents or case)"
-                self._problem(["placements", index, "name"],
-                              f"'{placement.name}' is also a room name{same}; rename the "
-                              "placement")
+        self._check_shared_names()
+
+    def _check_shared_names(self) -> None:
+        """A name used by two kinds of entity ("go to the hall": the room or the person?)."""
+        first: dict[str, tuple[str, int, str]] = {}  # folded -> (field, index, as written)
+        for field, kind in _NAMED_KINDS:
+            for index, entry in enumerate(getattr(self.model, field)):
+                earlier = first.setdefault(fold(entry.name), (field, index, entry.name))
+                if earlier[0] == field or frozenset((field, earlier[0])) in _MAY_SHARE_A_NAME:
+                    continue  # names used twice in one list are _check_names's
+                other_field, other_index, other_name = earlier
+                same = "" if other_name == entry.name else \
+                    f" ('{other_name}', but for accents or case)"
+                self._problem([field, index, "name"],
+                              f"'{entry.name}' is also a {_KIND_OF[other_field]} name{same} "
+                              f"({self._where(other_field, other_index)}), so a command "
+                              f"naming it could mean either; rename the {kind}")
 
     def _check_rooms(self) -> None:
         for index, room in enumerate(self.model.rooms):
@@ -403,7 +429,19 @@ class World:
                 continue
             if not self.room_polygons[model.room].covers(Point(model.center)):
                 self._problem(["placements", index, "center"],
-                              f"{list(model.center)} lies outside room '{model.room}'")
+                              f"{list(model.center)} lies "
+                              f"{_outside_by(self.room_polygons[model.room], model.center)} "
+                              f"outside room '{model.room}'; move it into the room")
+                continue
+            beyond = reach_beyond(footprints[model.name], self.room_polygons[model.room])
+            if beyond > TOLERANCE:
+                width, depth = model.size
+                self._problem(["placements", index, "size"],
+                              f"the {model.name} ({width:.3g} × {depth:.3g} m around "
+                              f"{list(model.center)}) reaches {length_text(beyond)} beyond the "
+                              "walls "
+                              f"of room '{model.room}'; give its true size, or move its "
+                              "center so that it stands in the room")
                 continue
             if self.categories:
                 for position, category in enumerate(model.holds):
@@ -423,6 +461,23 @@ class World:
                 continue
             placements[model.name] = Placement(model, footprints[model.name], approach)
         return placements
+
+    def _check_overlaps(self) -> None:
+        """Furniture stands apart: no piece in another (a table in the counter)."""
+        indexed = [(index, self.placements[model.name]) for index, model
+                   in enumerate(self.model.placements) if model.name in self.placements
+                   and model.kind is PlacementKind.FURNITURE]
+        for first, second, depth in overlapping_pairs([p.footprint for _, p in indexed]):
+            (earlier, one), (index, other) = indexed[first], indexed[second]
+            self._problem(["placements", index, "center"],
+                          f"the {other.name} overlaps the {one.name} "
+                          f"({self._where('placements', earlier)}) by {length_text(depth)}; "
+                          "move one of them, or give their true sizes")
+
+    def _where(self, field: str, index: int) -> str:
+        """``placements.3, line 14``: where an entry another message names is written."""
+        line = self._document.line_of([field, index, "name"]) if self._document else None
+        return f"{field}.{index}" + (f", line {line}" if line is not None else "")
 
     def _derive_approach(self, model: PlacementModel, footprint: Polygon,
                          furniture: list[Polygon]) -> Pose | None:
@@ -447,8 +502,12 @@ class World:
         return None
 
     def _check_objects(self) -> None:
+        # a placement written but refused has its own message; its objects add none
+        refused = {model.name for model in self.model.placements} - set(self.placements)
         for index, obj in enumerate(self.model.objects):
-            if obj.placement not in self.placements:
+            if obj.placement in refused:
+                pass
+            elif obj.placement not in self.placements:
                 self._problem(["objects", index, "placement"],
                               _unknown("placement", obj.placement, self.placements))
             elif obj.position is not None and not (
@@ -467,9 +526,26 @@ class World:
                 self._problem(["people", index, "room"], _unknown("room", person.room, self.rooms))
             elif not self.room_polygons[person.room].covers(Point(person.position)):
                 self._problem(["people", index, "position"],
-                              f"{list(person.position)} lies outside room '{person.room}'")
+                              f"{list(person.position)} lies "
+                              f"{_outside_by(self.room_polygons[person.room], person.position)} "
+                              f"outside room '{person.room}'; move them into the room")
+            elif person.posture is Posture.STANDING:
+                self._check_standing_room(index, person)
         if self.model.operator is not None and self.model.operator not in self.people:
             self._problem(["operator"], _unknown("person", self.model.operator, self.people))
+
+    def _check_standing_room(self, index: int, person: PersonModel) -> None:
+        """A standing person is not inside furniture (sitting or lying, they may be on it)."""
+        for placement in self.placements.values():
+            if placement.model.kind is not PlacementKind.FURNITURE:
+                continue
+            depth = depth_inside(placement.footprint, person.position)
+            if depth > TOLERANCE:
+                self._problem(["people", index, "position"],
+                              f"{person.name} stands {length_text(depth)} inside the "
+                              f"{placement.name}; move them beside it (or give a posture, "
+                              "sitting or lying, to have them on it)")
+                return
 
     def footprint_problem(self, x: float, y: float, radius: float | None = None) -> str | None:
         """Why the robot's disc centred at (x, y) does not fit on the floor; None when it fits.
@@ -482,7 +558,10 @@ class World:
         """
         radius = self.model.robot.radius if radius is None else radius
         if self.room_at(x, y) is None:
-            return "is outside every room"
+            nearest = min(self.room_polygons,
+                          key=lambda name: self.room_polygons[name].distance(Point(x, y)))
+            return (f"is outside every room ({_outside_by(self.room_polygons[nearest], (x, y))} "
+                    f"from the nearest, '{nearest}')")
         point = Point(x, y)
         for placement in self.placements.values():
             if placement.model.kind is not PlacementKind.FURNITURE:
@@ -541,6 +620,11 @@ def _wall_direction(room: Polygon, point: tuple[float, float]) -> tuple[float, f
     tx, ty = after.x - before.x, after.y - before.y
     norm = math.hypot(tx, ty) or 1.0
     return (tx / norm, ty / norm)
+
+
+def _outside_by(room: Polygon, point: tuple[float, float]) -> str:
+    """How far ``point`` lies from ``room``, for a message: ``"2.5 m"``, ``"30 cm"``."""
+    return length_text(room.distance(Point(point)))
 
 
 def _unknown(kind: str, name: str, known: Iterable[str]) -> str:
