@@ -205,3 +205,35 @@ def test_bring_me_a_coke_from_the_kitchen_table_succeeds_in_the_imported_world(
     run.run(parse_command("bring me a coke from the kitchen table",
                           Vocabulary.from_world(world)).to_task())
     assert run.simulation.object_location["coke"] == PERSON_PREFIX + "Adel"
+
+
+def test_an_unknown_category_is_a_warning_naming_the_input_line(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    directory = write_directory(tmp_path / "data", maps__location_names=LOCATIONS.replace(
+        "| fridge (p) | drinks |", "| fridge (p) | sodas |"))
+    assert main(["world", "from-robocup", str(directory), "-o", str(tmp_path / "w.yaml")]) == 0
+    err = capsys.readouterr().err
+    assert (f"warning: {directory / 'maps' / 'location_names.md'}: line 6: location 'fridge' "
+            "names the object category 'sodas', which objects/objects.md does not list "
+            "(known: dishes, drinks, toys)") in err
+    assert World.load(tmp_path / "w.yaml").placements["fridge"].holds == []
+
+
+@pytest.mark.parametrize(("override", "expected"), [
+    ({"names__names": NAMES.replace("| Bo |", "| Kitchen |")},
+     "names/names.md: line 5: people.1.name: 'Kitchen' is also a room name ('kitchen', but for "
+     "accents or case) (rooms.0, {root}/maps/room_names.md: line 4)"),
+    ({"maps__location_names": LOCATIONS.replace("| lamp |", "| 4lamp |")},
+     "maps/location_names.md: line 7: placements.3.name: String should match pattern"),
+    ({"objects__objects": OBJECTS.replace("| dice |", "| Ada |")},
+     "objects/objects.md: line 15: objects.3.name: 'Ada' is also a person name (people.0, "
+     "{root}/names/names.md: line 4)"),
+])
+def test_errors_in_an_imported_world_name_the_input_file_and_line(
+        tmp_path: Path, override: dict[str, str], expected: str,
+        capsys: pytest.CaptureFixture[str]) -> None:
+    directory = write_directory(tmp_path, **override)
+    assert main(["world", "from-robocup", str(directory), "-o", str(tmp_path / "w.yaml")]) == 2
+    err = capsys.readouterr().err
+    assert expected.format(root=directory) in err.replace("\n", "")
+    assert not (tmp_path / "w.yaml").exists()

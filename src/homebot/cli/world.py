@@ -127,10 +127,14 @@ def _show(args: argparse.Namespace) -> int:
         events = _read_event_log(path, world) if path.is_file() else []
         try:
             embodied = embodied_run(events, world.name)
+        except (ValueError, TypeError, KeyError, AttributeError) as error:
+            raise WorldError(f"{path}: not a homebot event log of an embodied run ({error}); "
+                             "give the file written by run-task --events") from None
+        try:
             final = final_state(events, world.name)
         except (ValueError, TypeError, KeyError, AttributeError) as error:
-            raise WorldError(f"{path}: not a homebot event log of a run ({error}); give the "
-                             "file written by run-task --events") from None
+            raise WorldError(f"{path}: its final state cannot be read ({error}); give the file "
+                             "written by run-task --events") from None
         image = render_map(world, _path_from_events(events, world), embodied, final)
         try:
             image.save(args.png)

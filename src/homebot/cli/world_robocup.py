@@ -33,7 +33,7 @@ def _from_robocup(args: argparse.Namespace) -> int:
     for warning in imported.warnings:
         print(f"warning: {warning}", file=sys.stderr)
     data = imported.data
-    world = World.from_dict(data, source=str(args.directory))
+    world = World.from_dict(data, source=str(args.directory), origin=imported.origin)
     header = (f"Built by `homebot world from-robocup {args.directory}`.\n"
               f"The robot starts at the entrance; {data['operator']} is the operator.")
     write_world_yaml(args.output, data, header)

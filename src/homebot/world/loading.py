@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import difflib
 import re
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any, TypeVar
 
 from pydantic import BaseModel, ValidationError
@@ -13,12 +13,29 @@ from pydantic import BaseModel, ValidationError
 from homebot.errors import WorldError
 from homebot.yamlfile import LocatedDocument, field_error, short_repr
 
-__all__ = ["validate_document"]
+__all__ = ["Origin", "locate", "validate_document"]
 
 ModelT = TypeVar("ModelT", bound=BaseModel)
 
-def validate_document(document: LocatedDocument, model: type[ModelT]) -> ModelT:
-    """Validate a document against a pydantic model, translating every error."""
+#: where a field of a generated world came from (``"maps/location_names.md: line 7"``), for
+#: a world an importer wrote from other files; None where no input line says it
+Origin = Callable[[Sequence[str | int]], str | None]
+
+
+def locate(document: LocatedDocument, location: Sequence[str | int], message: str,
+           origin: Origin | None = None) -> str:
+    """``message`` about the field at ``location``, with file and line: the input file's
+    line by ``origin`` when the world was generated from one, else the document's own."""
+    if origin is None:
+        return field_error(document, location, message)
+    field = ".".join(str(step) for step in location) or "(document)"
+    return f"{origin(location) or document.source}: {field}: {message}"
+
+
+def validate_document(document: LocatedDocument, model: type[ModelT],
+                      origin: Origin | None = None) -> ModelT:
+    """Validate a document against a pydantic model, translating every error (located by
+    ``origin`` for a generated world)."""
     if not isinstance(document.data, dict):
         raise WorldError(
             f"{document.source}: line 1: the file must be a YAML mapping of fields "
@@ -27,14 +44,16 @@ def validate_document(document: LocatedDocument, model: type[ModelT]) -> ModelT:
     try:
         return model.model_validate(document.data)
     except ValidationError as error:
-        messages = [_describe(document, model, detail) for detail in error.errors()[:5]]
+        messages = [_describe(document, model, detail, origin)
+                    for detail in error.errors()[:5]]
         more = len(error.errors()) - len(messages)
         if more > 0:
             messages.append(f"... and {more} more")
         raise WorldError("\n".join(messages)) from None
 
 
-def _describe(document: LocatedDocument, model: type[BaseModel], detail: Any) -> str:
+def _describe(document: LocatedDocument, model: type[BaseModel], detail: Any,
+              origin: Origin | None) -> str:
     location = [step for step in detail["loc"] if not _is_union_tag(step)]
     kind = detail["type"]
     if kind == "extra_forbidden":
@@ -51,7 +70,7 @@ def _describe(document: LocatedDocument, model: type[BaseModel], detail: Any) ->
         meaning = _description_at(model, location)
         if meaning:
             message += f"; {location[-1]} is {meaning}"
-    return field_error(document, location, message)
+    return locate(document, location, message, origin)
 
 
 def _description_at(model: type[BaseModel], location: Sequence[str | int]) -> str | None:

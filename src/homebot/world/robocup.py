@@ -6,7 +6,7 @@ import math
 import re
 import unicodedata
 import zlib
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from importlib import resources
 from pathlib import Path
@@ -39,6 +39,18 @@ class RobocupImport:
 
     data: dict[str, Any]  #: plain world data, for ``World.from_dict``
     warnings: list[str] = field(default_factory=list)  #: one line per skipped row
+    #: (list, index) of the world data -> the input file and line it was built from
+    origins: dict[tuple[str, int], str] = field(default_factory=dict)
+
+    def origin(self, location: Sequence[str | int]) -> str | None:
+        """The input file and line an entry of ``data`` came from (``World.from_dict``'s
+        ``origin``): ``"…/maps/location_names.md: line 7"``; None for what the importer
+        made up (doors, the robot without an entrance)."""
+        if len(location) > 1 and isinstance(location[1], int):
+            return self.origins.get((str(location[0]), location[1]))
+        if location and location[0] in ("robot", "operator"):
+            return self.origins.get((str(location[0]), 0))
+        return None
 
 
 def read_robocup_data(directory: str | Path,
@@ -46,7 +58,9 @@ def read_robocup_data(directory: str | Path,
     """The names, rooms, locations (with placeability and category) and object classes.
 
     Placeholder rows (``| 4 | - |``, as competition repositories hold for locations
-    still to be named) are skipped, each with a line in ``warnings``. Raises
+    still to be named) are skipped, each with a line in ``warnings``. ``lines`` holds,
+    for each list, the input file and line of every entry (``"…/names/names.md: line 4"``;
+    for object classes, that of the class's heading and of each object). Raises
     ``WorldError`` naming the missing file or the table it could not read.
     """
     root = Path(directory)
@@ -54,19 +68,22 @@ def read_robocup_data(directory: str | Path,
         raise WorldError(f"{root}: not a directory; give a RoboCup@Home data directory "
                          "(with names/, maps/ and objects/)")
     skipped = warnings if warnings is not None else []
-    names = _first_column(_read(root / "names" / "names.md"), root / "names" / "names.md",
-                          skipped)
-    rooms = _first_column(_read(root / "maps" / "room_names.md"),
-                          root / "maps" / "room_names.md", skipped)
-    locations = _locations(_read(root / "maps" / "location_names.md"), root, skipped)
-    classes = _object_classes(_read(root / "objects" / "objects.md"), root)
+    names_file, room_names = root / "names" / "names.md", root / "maps" / "room_names.md"
+    names, name_lines = _first_column(_read(names_file), names_file, skipped)
+    rooms, room_lines = _first_column(_read(room_names), room_names, skipped)
+    locations, location_lines = _locations(_read(root / "maps" / "location_names.md"), root,
+                                           skipped)
+    classes, class_lines = _object_classes(_read(root / "objects" / "objects.md"), root)
     for label, entries, path in (("names", names, "names/names.md"),
                                  ("rooms", rooms, "maps/room_names.md"),
                                  ("locations", locations, "maps/location_names.md"),
                                  ("object classes", classes, "objects/objects.md")):
         if not entries:
             raise WorldError(f"{root / path}: no {label} found; expected a markdown table")
-    return {"names": names, "rooms": rooms, "locations": locations, "classes": classes}
+    lines = {"names": name_lines, "rooms": room_lines, "locations": location_lines,
+             "classes": class_lines}
+    return {"names": names, "rooms": rooms, "locations": locations, "classes": classes,
+            "lines": lines}
 
 
 def world_from_robocup(directory: str | Path, name: str | None = None,
@@ -133,6 +150,14 @@ def import_robocup(directory: str | Path, *, name: str | None = None,
                for index, room in enumerate(rooms)}
     category_names = {entry["plural"]: entry["name"] for entry in classes}
     category_names.update({entry["name"]: entry["name"] for entry in classes})
+    lines = data["lines"]
+    for location, line in zip(locations, lines["locations"], strict=True):
+        if location["category"] and location["category"] not in category_names:
+            warnings.append(
+                f"{line}: location '{location['name']}' names the object category "
+                f"'{location['category']}', which objects/objects.md does not list (known: "
+                f"{', '.join(sorted(entry['plural'] for entry in classes))}); it holds no "
+                "category in the world")
     placements = _placements(locations, in_room, origins, columns_inside, category_names)
     objects = _objects(classes, placements)
     people = _people(data["names"], rooms, origins, width)
@@ -153,7 +178,28 @@ def import_robocup(directory: str | Path, *, name: str | None = None,
         "operator": operator["name"],
         "robot": {"pose": [start[0], start[1], 1.5708]},
     }
-    return RobocupImport(world, warnings)
+    return RobocupImport(world, warnings, _origins(lines, classes, placements))
+
+
+def _origins(lines: Mapping[str, Any], classes: list[dict[str, Any]],
+             placements: list[dict[str, Any]]) -> dict[tuple[str, int], str]:
+    """Where each entry of the generated world was read: rooms, placements (one per
+    location), categories and objects (in class order), people and the operator (the first
+    name), and the robot (at the entrance's row)."""
+    origins: dict[tuple[str, int], str] = {}
+    for kind, found in (("rooms", lines["rooms"]), ("placements", lines["locations"]),
+                        ("people", lines["names"]),
+                        ("categories", [entry["class"] for entry in lines["classes"]]),
+                        ("objects", [line for entry in lines["classes"]
+                                     for line in entry["objects"]])):
+        origins.update(((kind, index), line) for index, line in enumerate(found))
+    if lines["names"]:
+        origins[("operator", 0)] = lines["names"][0]
+    entrance = next((index for index, placement in enumerate(placements)
+                     if placement["name"].lower() == "entrance"), None)
+    if entrance is not None:
+        origins[("robot", 0)] = lines["locations"][entrance]
+    return origins
 
 
 def _start(placements: list[dict[str, Any]], origins: dict[str, tuple[float, float]],
@@ -196,19 +242,27 @@ def _skip(warnings: list[str], path: Path, number: int, line: str) -> None:
     warnings.append(f"{path}:{number}: skipped the placeholder row '{line}'")
 
 
-def _first_column(text: str, path: Path, warnings: list[str]) -> list[str]:
-    names = []
+def _first_column(text: str, path: Path,
+                  warnings: list[str]) -> tuple[list[str], list[str]]:
+    """The first column's names, and the file and line of each."""
+    names, lines = [], []
     for number, line, row in _rows(text):
         if row and row[0] and _placeholder(row[0]):
             _skip(warnings, path, number, line)
         elif row and row[0]:
             names.append(row[0])
-    return names
+            lines.append(_at(path, number))
+    return names, lines
 
 
-def _locations(text: str, root: Path, warnings: list[str]) -> list[dict[str, Any]]:
+def _at(path: Path, number: int) -> str:
+    return f"{path}: line {number}"
+
+
+def _locations(text: str, root: Path,
+               warnings: list[str]) -> tuple[list[dict[str, Any]], list[str]]:
     path = root / "maps" / "location_names.md"
-    locations = []
+    locations, lines = [], []
     for number, line, row in _rows(text):
         if len(row) < 2 or _placeholder(row[1]):
             _skip(warnings, path, number, line)
@@ -222,26 +276,33 @@ def _locations(text: str, root: Path, warnings: list[str]) -> list[dict[str, Any
             raise WorldError(f"{path}:{number}: the row '{line}' has no location name "
                              "a person could say; write one, or '-' to leave the row out")
         locations.append({"name": location, "placeable": placeable, "category": category})
-    return locations
+        lines.append(_at(path, number))
+    return locations, lines
 
 
-def _object_classes(text: str, root: Path) -> list[dict[str, Any]]:
+def _object_classes(text: str, root: Path) -> tuple[list[dict[str, Any]], list[dict[str, Any]]]:
+    """The classes (plural, name, objects), and for each the file and line of its heading
+    (``"class"``) and of its objects (``"objects"``)."""
+    path = root / "objects" / "objects.md"
     classes: list[dict[str, Any]] = []
+    lines: list[dict[str, Any]] = []
     header = re.compile(r"^#+\s*Class\s+(\S+)\s*\((\S+)\)", re.IGNORECASE)
-    for line in text.splitlines():
+    for number, line in enumerate(text.splitlines(), start=1):
         match = header.match(line.strip())
         if match:
             classes.append({"plural": _clean(match.group(1)), "name": _clean(match.group(2)),
                             "objects": []})
+            lines.append({"class": _at(path, number), "objects": []})
             continue
         cells = [cell.strip() for cell in line.strip().strip("|").split("|")]
         if classes and "|" in line and cells and cells[0] and not re.fullmatch(
                 r"[:\- ]*", cells[0]) and cells[0].lower() != "objectname":
             classes[-1]["objects"].append(_clean(cells[0]))
+            lines[-1]["objects"].append(_at(path, number))
     if any(not entry["objects"] for entry in classes):
         empty = next(entry["plural"] for entry in classes if not entry["objects"])
         raise WorldError(f"{root / 'objects/objects.md'}: class '{empty}' lists no objects")
-    return classes
+    return classes, lines
 
 
 def _clean(text: str) -> str:

@@ -18,7 +18,7 @@ from shapely.prepared import prep
 from homebot.errors import WorldError
 from homebot.geometry import Pose
 from homebot.text import closest_names, fold, problem_listing
-from homebot.world.loading import validate_document
+from homebot.world.loading import Origin, locate, validate_document
 from homebot.world.model import (
     DisturbanceModel,
     DoorModel,
@@ -37,7 +37,7 @@ from homebot.world.physical import (
     overlapping_pairs,
     reach_beyond,
 )
-from homebot.yamlfile import LocatedDocument, field_error, load_yaml_document, parse_yaml_text
+from homebot.yamlfile import LocatedDocument, load_yaml_document, parse_yaml_text
 
 __all__ = ["Placement", "World", "shipped_world_names", "shipped_world_path"]
 
@@ -109,10 +109,12 @@ class World:
     changes (object locations, door states, people) into its own state.
     """
 
-    def __init__(self, model: WorldModel, document: LocatedDocument | None = None) -> None:
+    def __init__(self, model: WorldModel, document: LocatedDocument | None = None,
+                 origin: Origin | None = None) -> None:
         self.model = model
         self.source = document.source if document else f"<world {model.name}>"
         self._document = document
+        self._origin = origin  # an imported world's errors name the lines of its input
         self._problems: list[str] = []
         self._wall_lines: BaseGeometry | None = None
         self.rooms = {room.name: room for room in model.rooms}
@@ -158,9 +160,16 @@ class World:
         return cls(validate_document(document, WorldModel), document)
 
     @classmethod
-    def from_dict(cls, data: Mapping[str, Any], source: str = "<dict>") -> World:
-        """Build a world from plain data (as written by ``to_dict``)."""
-        return cls.from_yaml_text(yaml.safe_dump(dict(data), sort_keys=False), source)
+    def from_dict(cls, data: Mapping[str, Any], source: str = "<dict>", *,
+                  origin: Origin | None = None) -> World:
+        """Build a world from plain data (as written by ``to_dict``).
+
+        ``origin`` tells, for data an importer generated, which input file and line each
+        entry came from; errors then name those lines, not the generated YAML's.
+        """
+        document = parse_yaml_text(yaml.safe_dump(dict(data), sort_keys=False), source,
+                                   WorldError)
+        return cls(validate_document(document, WorldModel, origin), document, origin)
 
     def to_dict(self) -> dict[str, Any]:
         """Plain data that ``from_dict`` reads back to an equal world."""
@@ -274,7 +283,7 @@ class World:
 
     def _problem(self, location: list[str | int], message: str) -> None:
         if self._document is not None:
-            self._problems.append(field_error(self._document, location, message))
+            self._problems.append(locate(self._document, location, message, self._origin))
         else:
             where = ".".join(str(step) for step in location)
             self._problems.append(f"{self.source}: {where}: {message}")
@@ -476,6 +485,9 @@ class World:
 
     def _where(self, field: str, index: int) -> str:
         """``placements.3, line 14``: where an entry another message names is written."""
+        if self._origin is not None:
+            found = self._origin([field, index, "name"])
+            return f"{field}.{index}" + (f", {found}" if found else "")
         line = self._document.line_of([field, index, "name"]) if self._document else None
         return f"{field}.{index}" + (f", line {line}" if line is not None else "")
 
