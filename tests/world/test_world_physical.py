@@ -70,6 +70,8 @@ def test_the_sane_home_loads_and_a_fetch_is_possible(tmp_path: Path) -> None:
     ({"fridge_center": "[2.5, 4]"}, "reaches 35 cm beyond the walls of room 'kitchen'"),
     ({"person_position": "[12, 1.5]"},
      "line 16: people.0.position: [12.0, 1.5] lies 3 m outside room 'hall'; move them"),
+    ({"person_position": "[1.0e+308, 1.5]"},
+     "line 16: people.0.position.0: must be less than or equal to 100000 (got 1e+308)"),
     ({"robot_pose": "[2.5, -2, 0]"},
      "line 18: robot.pose: the robot at (2.5, -2) is outside every room (2 m from the "
      "nearest, 'kitchen')"),

@@ -43,7 +43,11 @@ __all__ = [
     "WorldModel",
 ]
 
-Point = tuple[float, float]
+#: metres from the map's origin a home may reach: far beyond any house (the occupancy grid
+#: allows about 1.5 km), near enough that distances stay finite (1e308 is a typo, not a place)
+MAP_EXTENT = 100_000.0
+Coordinate = Annotated[float, Field(ge=-MAP_EXTENT, le=MAP_EXTENT)]
+Point = tuple[Coordinate, Coordinate]
 Probability = Annotated[float, Field(ge=0.0, le=1.0)]
 # A letter of any script first, then letters (with their accents), digits, space, _ ' -.
 # The pattern runs in pydantic-core's regex engine, which knows Unicode classes.
@@ -58,7 +62,7 @@ def _pose_schema(_source: Any, handler: GetCoreSchemaHandler) -> core_schema.Cor
     return core_schema.no_info_before_validator_function(
         lambda value: (value.x, value.y, value.theta) if isinstance(value, Pose) else value,
         core_schema.no_info_after_validator_function(
-            lambda xyt: Pose(*xyt), handler(tuple[float, float, float])),
+            lambda xyt: Pose(*xyt), handler(tuple[Coordinate, Coordinate, float])),
         serialization=core_schema.plain_serializer_function_ser_schema(
             lambda pose: [pose.x, pose.y, pose.theta]))
 

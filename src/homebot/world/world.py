@@ -353,6 +353,7 @@ class World:
                           f"the rooms span {max_x - min_x:g} × {max_y - min_y:g} m, "
                           f"{cells:.3g} grid cells at {resolution:g} m (at most "
                           f"{_MAX_GRID_CELLS:.0e}); use a coarser grid_resolution or smaller rooms")
+            raise WorldError("\n".join(self._problems))  # no geometry on rooms of that size
 
     def _check_doors(self) -> None:
         tolerance = self.model.wall_thickness + 0.05
