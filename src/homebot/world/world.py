@@ -449,8 +449,7 @@ class World:
                 self._problem(["placements", index, "size"],
                               f"the {model.name} ({width:.3g} × {depth:.3g} m around "
                               f"{list(model.center)}) reaches {length_text(beyond)} beyond the "
-                              "walls "
-                              f"of room '{model.room}'; give its true size, or move its "
+                              f"walls of room '{model.room}'; give its true size, or move its "
                               "center so that it stands in the room")
                 continue
             if self.categories:
@@ -518,11 +517,10 @@ class World:
         # a placement written but refused has its own message; its objects add none
         refused = {model.name for model in self.model.placements} - set(self.placements)
         for index, obj in enumerate(self.model.objects):
-            if obj.placement in refused:
-                pass
-            elif obj.placement not in self.placements:
-                self._problem(["objects", index, "placement"],
-                              _unknown("placement", obj.placement, self.placements))
+            if obj.placement not in self.placements:
+                if obj.placement not in refused:
+                    self._problem(["objects", index, "placement"],
+                                  _unknown("placement", obj.placement, self.placements))
             elif obj.position is not None and not (
                     self.placements[obj.placement].footprint.covers(Point(obj.position))):
                 self._problem(["objects", index, "position"],
