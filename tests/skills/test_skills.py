@@ -275,3 +275,13 @@ def test_clothes_described_by_colour_fit_what_the_camera_sees(
 
     seen = PersonPercept(None, "standing", "none", worn, (0.0, 0.0), "kitchen")
     assert matches_person(seen, {"clothes": wanted}) is fits
+
+
+def test_searches_in_task_after_task_remember_each_place_once(run: Run) -> None:
+    # the bindings outlive a task: a long run of failed searches must not grow them
+    run.simulation.object_location["cola"] = None  # gone: every search fails
+    searches = [_do(run, "find_object", object="cola") for _ in range(4)]
+    assert not any(searches)
+    looked = run.context.bindings["searched:cola"]
+    assert len(looked) == len(set(looked)) > 1
+    assert "I did not find the cola anywhere I looked" in searches[-1].message

@@ -170,8 +170,10 @@ class FindObject(Skill):
                 # so a retry searches them all again rather than nothing.
                 context.beliefs.not_at.pop(wanted, None)
                 candidates = candidate_placements(context, wanted, args.get("room"))
-        # Every placement looked at for ``wanted`` in this task, in order, for the
-        # message that says where the robot looked when it gives up.
+        # Every placement looked at for ``wanted``, in order, for the message that says
+        # where the robot looked when it gives up. The bindings outlive a task, so each
+        # placement is listed once: a home searched 50 000 times holds 19 names, not a
+        # million.
         looked: list[str] = context.bindings.setdefault(f"searched:{wanted}", [])
         for placement in candidates:
             if context.cancel.cancelled:
@@ -184,7 +186,8 @@ class FindObject(Skill):
             outcome, detections = go_and_look(context, placement)
             if outcome.status is not Status.FINISHED:
                 return outcome
-            looked.append(placement)
+            if placement not in looked:
+                looked.append(placement)
             found = [d for d in detections if matches_object(context, wanted, d)]
             if found and args.get("spatial"):  # "the left cup": the one the words fit best
                 return _referent(context, wanted, placement, found, detections, args["spatial"])
