@@ -178,10 +178,10 @@ def import_robocup(directory: str | Path, *, name: str | None = None,
         "operator": operator["name"],
         "robot": {"pose": [start[0], start[1], 1.5708]},
     }
-    return RobocupImport(world, warnings, _origins(lines, classes, placements))
+    return RobocupImport(world, warnings, _origins(lines, placements))
 
 
-def _origins(lines: Mapping[str, Any], classes: list[dict[str, Any]],
+def _origins(lines: Mapping[str, Any],
              placements: list[dict[str, Any]]) -> dict[tuple[str, int], str]:
     """Where each entry of the generated world was read: rooms, placements (one per
     location), categories and objects (in class order), people and the operator (the first
