@@ -197,7 +197,8 @@ def _usage_error(capsys: pytest.CaptureFixture[str], argv: list[str]) -> str:
 
 @pytest.mark.parametrize(("argv", "expected"), [
     (["run-task", "t.yaml", "--robot", "ros", "--connect-timeout", "-1"],
-     "argument --connect-timeout: a time to wait"),
+     "argument --connect-timeout: a time to wait is more than 0 seconds and at most 3600, "
+     "not '-1'"),
     (["run-task", "t.yaml", "--robot", "ros", "--connect-timeout", "nan"],
      "argument --connect-timeout: a time to wait"),
     (["run-task", "t.yaml", "--robot", "ros", "--connect-timeout", "0"],

@@ -131,10 +131,13 @@ def probability(text: str) -> float:
 def wait_seconds(text: str) -> float:
     """An argparse type: wall-clock seconds to wait for something, above 0 and at most an
     hour (``--connect-timeout``)."""
-    value = _number_between(text, 0.0, 3600.0, "a time to wait, in seconds,")
-    if value == 0.0:
-        raise argparse.ArgumentTypeError(f"a time to wait is more than 0 seconds (up to "
-                                         f"3600), not '{text}'")
+    try:
+        value = float(text)
+    except ValueError:
+        value = math.nan
+    if not 0.0 < value <= 3600.0:  # also false for nan
+        raise argparse.ArgumentTypeError(f"a time to wait is more than 0 seconds and at most "
+                                         f"3600, not '{text}'")
     return value
 
 
