@@ -167,3 +167,14 @@ def test_the_geometry_measures_what_it_says() -> None:
     assert overlapping_pairs([box(0, 0, 1, 1), box(1, 0, 2, 1)]) == []  # touching is fine
     assert (length_text(0.35), length_text(47.5), length_text(5e307)) == \
         ("35 cm", "47.5 m", "5e+307 m")
+
+
+def test_people_inside_furniture_are_found_among_many() -> None:
+    from shapely.geometry import box
+
+    from homebot.world.physical import points_inside
+
+    tables = [box(x, 0, x + 1, 1) for x in range(0, 2000, 2)]
+    people = [(x + 0.5, 0.5) if x % 500 == 0 else (x + 1.5, 0.5) for x in range(0, 2000, 2)]
+    assert points_inside(tables, people) == [(0, 0, 0.5), (250, 250, 0.5), (500, 500, 0.5),
+                                             (750, 750, 0.5)]

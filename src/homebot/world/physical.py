@@ -13,7 +13,8 @@ from shapely import STRtree
 from shapely.geometry import Point, Polygon
 from shapely.geometry.base import BaseGeometry
 
-__all__ = ["TOLERANCE", "depth_inside", "length_text", "overlapping_pairs", "reach_beyond"]
+__all__ = ["TOLERANCE", "depth_inside", "length_text", "overlapping_pairs", "points_inside",
+           "reach_beyond"]
 
 #: metres of overlap or overreach nobody could see (rounding in a file): not a problem
 TOLERANCE = 0.01
@@ -57,6 +58,22 @@ def overlapping_pairs(footprints: Sequence[Polygon]) -> list[tuple[int, int, flo
         if overlap.area > 0 and depth > TOLERANCE:
             pairs.append((first, second, depth))
     return pairs
+
+
+def points_inside(footprints: Sequence[Polygon], points: Sequence[tuple[float, float]],
+                  ) -> list[tuple[int, int, float]]:
+    """Triples ``(point, footprint, depth)``: each point that lies more than ``TOLERANCE``
+    inside a footprint, the first such footprint, and how deep (an R-tree again)."""
+    if not footprints or not points:
+        return []
+    tree = STRtree(footprints)
+    hits = tree.query([Point(point) for point in points], predicate="intersects")
+    inside: dict[int, tuple[int, float]] = {}
+    for point, footprint in sorted((int(a), int(b)) for a, b in hits.T):
+        depth = depth_inside(footprints[footprint], points[point])
+        if depth > TOLERANCE and point not in inside:
+            inside[point] = (footprint, depth)
+    return [(point, footprint, depth) for point, (footprint, depth) in sorted(inside.items())]
 
 
 def depth_inside(footprint: Polygon, point: tuple[float, float]) -> float:

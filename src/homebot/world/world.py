@@ -32,9 +32,9 @@ from homebot.world.model import (
 )
 from homebot.world.physical import (
     TOLERANCE,
-    depth_inside,
     length_text,
     overlapping_pairs,
+    points_inside,
     reach_beyond,
 )
 from homebot.yamlfile import LocatedDocument, load_yaml_document, parse_yaml_text
@@ -540,23 +540,25 @@ class World:
                               f"{list(person.position)} lies "
                               f"{_outside_by(self.room_polygons[person.room], person.position)} "
                               f"outside room '{person.room}'; move them into the room")
-            elif person.posture is Posture.STANDING:
-                self._check_standing_room(index, person)
+        self._check_standing_room()
         if self.model.operator is not None and self.model.operator not in self.people:
             self._problem(["operator"], _unknown("person", self.model.operator, self.people))
 
-    def _check_standing_room(self, index: int, person: PersonModel) -> None:
+    def _check_standing_room(self) -> None:
         """A standing person is not inside furniture (sitting or lying, they may be on it)."""
-        for placement in self.placements.values():
-            if placement.model.kind is not PlacementKind.FURNITURE:
-                continue
-            depth = depth_inside(placement.footprint, person.position)
-            if depth > TOLERANCE:
-                self._problem(["people", index, "position"],
-                              f"{person.name} stands {length_text(depth)} inside the "
-                              f"{placement.name}; move them beside it (or give a posture, "
-                              "sitting or lying, to have them on it)")
-                return
+        furniture = [placement for placement in self.placements.values()
+                     if placement.model.kind is PlacementKind.FURNITURE]
+        standing = [(index, person) for index, person in enumerate(self.model.people)
+                    if person.posture is Posture.STANDING and person.room in self.rooms
+                    and self.room_polygons[person.room].covers(Point(person.position))]
+        for point, footprint, depth in points_inside(
+                [placement.footprint for placement in furniture],
+                [person.position for _, person in standing]):
+            index, person = standing[point]
+            self._problem(["people", index, "position"],
+                          f"{person.name} stands {length_text(depth)} inside the "
+                          f"{furniture[footprint].name}; move them beside it (or give a "
+                          "posture, sitting or lying, to have them on it)")
 
     def footprint_problem(self, x: float, y: float, radius: float | None = None) -> str | None:
         """Why the robot's disc centred at (x, y) does not fit on the floor; None when it fits.
