@@ -138,12 +138,14 @@ def test_shipped_and_benchmark_worlds_are_physically_sane(path: Path) -> None:
 
 
 def test_imported_worlds_are_physically_sane() -> None:
-    from homebot.world.pyrobosim import world_from_pyrobosim
+    from homebot.world.pyrobosim import import_pyrobosim
     from homebot.world.robocup import import_robocup
 
-    flat = World.from_dict(world_from_pyrobosim(ROOT / "tests/world/data/pyrobosim_flat.yaml"))
+    for name in ("pyrobosim_flat.yaml", "pyrobosim_studio.yaml"):
+        imported = import_pyrobosim(ROOT / "tests/world/data" / name)
+        assert World.from_dict(imported.data).placements
     placeholders = import_robocup(ROOT / "tests/world/data/robocup_placeholders")
-    assert flat.placements and World.from_dict(placeholders.data).placements
+    assert World.from_dict(placeholders.data).placements
 
 
 @pytest.mark.acceptance
