@@ -3,8 +3,6 @@
 from __future__ import annotations
 
 import math
-import re
-import unicodedata
 import zlib
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
@@ -13,7 +11,7 @@ from pathlib import Path
 from typing import Any
 
 from homebot.errors import WorldError
-from homebot.files import read_text_file
+from homebot.world.robocup_tables import clean_name, read_robocup_data
 from homebot.yamlfile import LocatedDocument, field_error, load_yaml_document, parse_yaml_text
 
 __all__ = ["RobocupImport", "import_robocup", "read_robocup_data", "room_table",
@@ -24,8 +22,6 @@ _STRIP = 2.5  # free strip along the bottom of every room (doors, people, robot)
 _MARGIN = 1.5  # free band along the left wall (doors to the room above)
 _FOOTPRINT = (0.8, 0.6)
 _SPOTS = frozenset({"entrance", "exit"})
-# A cell that stands for no name: "| 4 | - |" in a competition's location table.
-_PLACEHOLDER = re.compile(r"[-\u2013\u2014_.?*\s]*|n/?a|tbd|none|todo", re.IGNORECASE)
 _GESTURES = ("waving", "none", "raising_left_arm", "pointing_right", "raising_right_arm",
              "pointing_left", "none")
 _POSTURES = ("standing", "sitting", "standing", "lying", "standing")
@@ -51,39 +47,6 @@ class RobocupImport:
         if location and location[0] in ("robot", "operator"):
             return self.origins.get((str(location[0]), 0))
         return None
-
-
-def read_robocup_data(directory: str | Path,
-                      warnings: list[str] | None = None) -> dict[str, Any]:
-    """The names, rooms, locations (with placeability and category) and object classes.
-
-    Placeholder rows (``| 4 | - |``, as competition repositories hold for locations
-    still to be named) are skipped, each with a line in ``warnings``. ``lines`` holds,
-    for each list, the input file and line of every entry (``"…/names/names.md: line 4"``;
-    for object classes, that of the class's heading and of each object). Raises
-    ``WorldError`` naming the missing file or the table it could not read.
-    """
-    root = Path(directory)
-    if not root.is_dir():
-        raise WorldError(f"{root}: not a directory; give a RoboCup@Home data directory "
-                         "(with names/, maps/ and objects/)")
-    skipped = warnings if warnings is not None else []
-    names_file, room_names = root / "names" / "names.md", root / "maps" / "room_names.md"
-    names, name_lines = _first_column(_read(names_file), names_file, skipped)
-    rooms, room_lines = _first_column(_read(room_names), room_names, skipped)
-    locations, location_lines = _locations(_read(root / "maps" / "location_names.md"), root,
-                                           skipped)
-    classes, class_lines = _object_classes(_read(root / "objects" / "objects.md"), root)
-    for label, entries, path in (("names", names, "names/names.md"),
-                                 ("rooms", rooms, "maps/room_names.md"),
-                                 ("locations", locations, "maps/location_names.md"),
-                                 ("object classes", classes, "objects/objects.md")):
-        if not entries:
-            raise WorldError(f"{root / path}: no {label} found; expected a markdown table")
-    lines = {"names": name_lines, "rooms": room_lines, "locations": location_lines,
-             "classes": class_lines}
-    return {"names": names, "rooms": rooms, "locations": locations, "classes": classes,
-            "lines": lines}
 
 
 def world_from_robocup(directory: str | Path, name: str | None = None,
@@ -118,7 +81,7 @@ def _room_entries(document: LocatedDocument) -> dict[str, list[str]]:
                 isinstance(room, str) for room in rooms):
             raise WorldError(field_error(document, [str(key)], "needs a room or a list of "
                                          f"rooms, e.g. '{key}: kitchen'"))
-        table[_clean(key).lower()] = [_clean(room).lower() for room in rooms]
+        table[clean_name(key).lower()] = [clean_name(room).lower() for room in rooms]
     return table
 
 
@@ -134,7 +97,7 @@ def import_robocup(directory: str | Path, *, name: str | None = None,
     """
     warnings: list[str] = []
     data = read_robocup_data(directory, warnings)
-    rooms: list[str] = [_clean(room) for room in data["rooms"]]
+    rooms: list[str] = [clean_name(room) for room in data["rooms"]]
     locations: list[dict[str, Any]] = data["locations"]
     classes: list[dict[str, Any]] = data["classes"]
     _check_clashes(rooms, locations)
@@ -166,7 +129,7 @@ def import_robocup(directory: str | Path, *, name: str | None = None,
     operator.update(room=start_room, position=[start[0], round(start[1] - 0.9, 2)],
                     posture="standing", gesture="none")
     world = {
-        "name": name or _clean(Path(directory).name) or "robocup",
+        "name": name or clean_name(Path(directory).name) or "robocup",
         "description": f"Built from the RoboCup@Home data in {Path(directory).name}.",
         "rooms": [{"name": room, "polygon": _rectangle(origins[room], width, height)}
                   for room in rooms],
@@ -210,106 +173,6 @@ def _start(placements: list[dict[str, Any]], origins: dict[str, tuple[float, flo
         return (float(entrance["center"][0]), float(entrance["center"][1])), entrance["room"]
     x0, y0 = origins[rooms[0]]
     return (round(x0 + width - 1.0, 2), round(y0 + 1.9, 2)), rooms[0]
-
-
-# ---------------------------------------------------------------- reading
-
-
-def _read(path: Path) -> str:
-    if not path.exists():
-        raise WorldError(f"{path}: no such file; a RoboCup@Home data directory has "
-                         "names/names.md, maps/room_names.md, maps/location_names.md "
-                         "and objects/objects.md")
-    return read_text_file(path, WorldError, "text", "RoboCup@Home data file")
-
-
-def _rows(text: str) -> list[tuple[int, str, list[str]]]:
-    """The table's rows after its header: (line number, the line, its cells)."""
-    rows = []
-    for number, line in enumerate(text.splitlines(), start=1):
-        if "|" not in line or re.fullmatch(r"[\s|:\-]*", line):
-            continue
-        cells = [cell.strip() for cell in line.strip().strip("|").split("|")]
-        rows.append((number, line.strip(), cells))
-    return rows[1:]  # the first row is the header
-
-
-def _placeholder(cell: str) -> bool:
-    return bool(_PLACEHOLDER.fullmatch(cell.replace("(p)", "").strip()))
-
-
-def _skip(warnings: list[str], path: Path, number: int, line: str) -> None:
-    warnings.append(f"{path}:{number}: skipped the placeholder row '{line}'")
-
-
-def _first_column(text: str, path: Path,
-                  warnings: list[str]) -> tuple[list[str], list[str]]:
-    """The first column's names, and the file and line of each."""
-    names, lines = [], []
-    for number, line, row in _rows(text):
-        if row and row[0] and _placeholder(row[0]):
-            _skip(warnings, path, number, line)
-        elif row and row[0]:
-            names.append(row[0])
-            lines.append(_at(path, number))
-    return names, lines
-
-
-def _at(path: Path, number: int) -> str:
-    return f"{path}: line {number}"
-
-
-def _locations(text: str, root: Path,
-               warnings: list[str]) -> tuple[list[dict[str, Any]], list[str]]:
-    path = root / "maps" / "location_names.md"
-    locations, lines = [], []
-    for number, line, row in _rows(text):
-        if len(row) < 2 or _placeholder(row[1]):
-            _skip(warnings, path, number, line)
-            continue
-        label = row[1]
-        placeable = "(p)" in label
-        location = _clean(label.replace("(p)", ""))
-        category = _clean(row[2]) if len(row) > 2 and row[2] and not _placeholder(row[2]) \
-            else None
-        if not location:
-            raise WorldError(f"{path}:{number}: the row '{line}' has no location name "
-                             "a person could say; write one, or '-' to leave the row out")
-        locations.append({"name": location, "placeable": placeable, "category": category})
-        lines.append(_at(path, number))
-    return locations, lines
-
-
-def _object_classes(text: str, root: Path) -> tuple[list[dict[str, Any]], list[dict[str, Any]]]:
-    """The classes (plural, name, objects), and for each the file and line of its heading
-    (``"class"``) and of its objects (``"objects"``)."""
-    path = root / "objects" / "objects.md"
-    classes: list[dict[str, Any]] = []
-    lines: list[dict[str, Any]] = []
-    header = re.compile(r"^#+\s*Class\s+(\S+)\s*\((\S+)\)", re.IGNORECASE)
-    for number, line in enumerate(text.splitlines(), start=1):
-        match = header.match(line.strip())
-        if match:
-            classes.append({"plural": _clean(match.group(1)), "name": _clean(match.group(2)),
-                            "objects": []})
-            lines.append({"class": _at(path, number), "objects": []})
-            continue
-        cells = [cell.strip() for cell in line.strip().strip("|").split("|")]
-        if classes and "|" in line and cells and cells[0] and not re.fullmatch(
-                r"[:\- ]*", cells[0]) and cells[0].lower() != "objectname":
-            classes[-1]["objects"].append(_clean(cells[0]))
-            lines[-1]["objects"].append(_at(path, number))
-    if any(not entry["objects"] for entry in classes):
-        empty = next(entry["plural"] for entry in classes if not entry["objects"])
-        raise WorldError(f"{root / 'objects/objects.md'}: class '{empty}' lists no objects")
-    return classes, lines
-
-
-def _clean(text: str) -> str:
-    """A name as people say it: underscores as spaces, single spaces, no markup; letters of
-    any script keep their accents ("Patrícia")."""
-    cleaned = re.sub(r"[^\w '\-]|_", " ", unicodedata.normalize("NFC", text))
-    return " ".join(cleaned.split()).strip()
 
 
 def _check_clashes(rooms: list[str], locations: list[dict[str, Any]]) -> None:
@@ -442,7 +305,7 @@ def _people(names: list[str], rooms: list[str], origins: dict[str, tuple[float, 
         x0, y0 = origins[room]
         slot = index // len(rooms)
         people.append({
-            "name": _clean(person), "room": room,
+            "name": clean_name(person), "room": room,
             "position": [round(x0 + _MARGIN + 0.6 + slot * 1.0, 2), round(y0 + 1.2, 2)],
             "posture": _POSTURES[index % len(_POSTURES)],
             "gesture": _GESTURES[index % len(_GESTURES)],
