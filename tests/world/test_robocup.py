@@ -13,7 +13,8 @@ from homebot.cli import main
 from homebot.errors import WorldError
 from homebot.language import Vocabulary, parse_command
 from homebot.sim import PERSON_PREFIX
-from homebot.world import World
+from homebot.world import CATEGORY_DEFAULTS, World, defaults_for
+from homebot.world.masses import known_mass
 from homebot.world.robocup import import_robocup, read_robocup_data, world_from_robocup
 
 SHARED = Path(__file__).resolve().parents[3] / "shared" / "data" / "robocup" / "CompetitionTemplate"
@@ -142,10 +143,10 @@ PLACEHOLDERS = Path(__file__).resolve().parent / "data" / "robocup_placeholders"
 
 def test_placeholder_rows_are_skipped_with_a_warning() -> None:
     imported = import_robocup(PLACEHOLDERS)
-    assert len(imported.warnings) == 3
-    assert all("location_names.md" in warning and "placeholder" in warning
-               for warning in imported.warnings)
-    assert any("'| 4 | - |'" in warning for warning in imported.warnings)
+    skipped = [warning for warning in imported.warnings if "location_names.md" in warning]
+    assert len(skipped) == 3
+    assert all("placeholder" in warning for warning in skipped)
+    assert any("'| 4 | - |'" in warning for warning in skipped)
     names = {placement["name"] for placement in imported.data["placements"]}
     assert "-" not in names and "" not in names and len(names) == 15
 
@@ -188,7 +189,7 @@ def test_bring_me_a_coke_from_the_kitchen_table_succeeds_in_the_imported_world(
     output = tmp_path / "world.yaml"
     assert main(["world", "from-robocup", str(PLACEHOLDERS), "-o", str(output)]) == 0
     captured = capsys.readouterr()
-    assert captured.err.count("warning:") == 3
+    assert captured.err.count("warning:") == 4  # three placeholder rows, no mass for noodles
     text = output.read_text(encoding="utf-8")
     assert "position: [" in text and "polygon: [[" in text  # flow-style coordinates
     assert "operator: Adel" in text
@@ -237,3 +238,61 @@ def test_errors_in_an_imported_world_name_the_input_file_and_line(
     err = capsys.readouterr().err
     assert expected.format(root=directory) in err.replace("\n", "")
     assert not (tmp_path / "w.yaml").exists()
+
+
+# ---------------------------------------------------------------- masses (issue 43)
+
+
+def test_objects_weigh_what_the_mass_catalogue_says(tmp_path: Path) -> None:
+    imported = import_robocup(write_directory(tmp_path))
+    weights = {entry["name"]: entry["weight"] for entry in imported.data["objects"]}
+    for name in ("orange juice", "cola", "cup", "dice"):
+        known = known_mass(name)
+        assert known is not None and weights[name] == known.mass
+    assert weights["dice"] == 0.0052 and weights["cup"] == 0.118  # YCB 062 dice, 025 mug
+    assert imported.warnings == []
+
+
+def test_an_object_without_a_known_mass_takes_its_category_default_with_a_warning(
+        tmp_path: Path) -> None:
+    objects = OBJECTS.replace("| dice |", "| kazoo |").replace("| cola |", "| elixir |")
+    imported = import_robocup(write_directory(tmp_path, objects__objects=objects))
+    weights = {entry["name"]: entry["weight"] for entry in imported.data["objects"]}
+    assert weights["kazoo"] == defaults_for("toy").mass == CATEGORY_DEFAULTS["toy"].mass
+    assert weights["elixir"] == CATEGORY_DEFAULTS["drink"].mass
+    path = tmp_path / "objects" / "objects.md"
+    assert imported.warnings == [
+        f"{path}: line 5: no typical mass known for the object 'elixir' "
+        "(src/homebot/data/robocup/masses.yaml); took the category default, 0.5 kg (drink)",
+        f"{path}: line 15: no typical mass known for the object 'kazoo' "
+        "(src/homebot/data/robocup/masses.yaml); took the category default, 0.2 kg (toy)"]
+
+
+FRUITS = OBJECTS + """
+# Class fruits (fruit)
+| Objectname | Image |
+|:---:|:---:|
+| apple | ![](a.png) |
+| strawberry | ![](s.png) |
+| banana | ![](b.png) |
+| plum | ![](p.png) |
+"""
+
+
+def test_the_lightest_fruit_is_the_lightest_by_the_catalogue(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    directory = write_directory(tmp_path / "data", objects__objects=FRUITS,
+                               maps__location_names=LOCATIONS + "| 6 | desk (p) | fruits |\n")
+    output = tmp_path / "world.yaml"
+    assert main(["world", "from-robocup", str(directory), "-o", str(output)]) == 0
+    world = World.load(output)
+    fruits = [o for o in world.model.objects if o.category == "fruit"]
+    masses = {o.name: known_mass(o.name).mass for o in fruits}  # type: ignore[union-attr]
+    assert {o.name: o.weight for o in fruits} == masses
+    lightest = min(masses, key=masses.__getitem__)
+    assert lightest == "strawberry"  # YCB 012, 18 g; the plum is 25 g
+    capsys.readouterr()
+    assert main(["do", "Which is the lightest fruit on the desk? Tell me.", "--world",
+                 str(output), "--json"]) == 0
+    report = json.loads(capsys.readouterr().out)
+    assert "The lightest fruit on the desk is the strawberry." in json.dumps(report)

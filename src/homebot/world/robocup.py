@@ -11,6 +11,8 @@ from pathlib import Path
 from typing import Any
 
 from homebot.errors import WorldError
+from homebot.world.catalogue import CATEGORY_DEFAULTS, defaults_for
+from homebot.world.masses import known_mass
 from homebot.world.robocup_tables import clean_name, read_robocup_data
 from homebot.yamlfile import LocatedDocument, field_error, load_yaml_document, parse_yaml_text
 
@@ -122,7 +124,7 @@ def import_robocup(directory: str | Path, *, name: str | None = None,
                 f"{', '.join(sorted(entry['plural'] for entry in classes))}); it holds no "
                 "category in the world")
     placements = _placements(locations, in_room, origins, columns_inside, category_names)
-    objects = _objects(classes, placements)
+    objects = _objects(classes, placements, lines["classes"], warnings)
     people = _people(data["names"], rooms, origins, width)
     start, start_room = _start(placements, origins, rooms, width)
     operator = people[0]
@@ -275,15 +277,17 @@ def _furniture(location: dict[str, Any]) -> str:
     return "spot" if name in _SPOTS else ("furniture" if location["placeable"] else "fixture")
 
 
-def _objects(classes: list[dict[str, Any]],
-             placements: list[dict[str, Any]]) -> list[dict[str, Any]]:
-    """Every object on its category's placement, else spread over the placeable ones."""
+def _objects(classes: list[dict[str, Any]], placements: list[dict[str, Any]],
+             lines: list[dict[str, Any]], warnings: list[str]) -> list[dict[str, Any]]:
+    """Every object on its category's placement, else spread over the placeable ones,
+    with its typical mass from ``data/robocup/masses.yaml``, else its category's default
+    (with a warning naming it)."""
     placeable = [p["name"] for p in placements if p.get("kind") != "spot"]
     objects = []
     spread = 0
-    for entry in classes:
+    for entry, where in zip(classes, lines, strict=True):
         homes = [p["name"] for p in placements if entry["name"] in p.get("holds", [])]
-        for object_name in entry["objects"]:
+        for object_name, line in zip(entry["objects"], where["objects"], strict=True):
             if homes:
                 placement = homes[0]
             else:
@@ -293,8 +297,20 @@ def _objects(classes: list[dict[str, Any]],
             objects.append({"name": object_name, "category": entry["name"],
                             "placement": placement,
                             "size": round(0.05 + (checksum % 30) / 100, 2),
-                            "weight": round(0.1 + (checksum // 30 % 20) / 10, 2)})
+                            "weight": _mass(object_name, entry["name"], line, warnings)})
     return objects
+
+
+def _mass(name: str, category: str, line: str, warnings: list[str]) -> float:
+    known = known_mass(name)
+    if known is not None:
+        return known.mass
+    default = defaults_for(category).mass
+    described = category if category in CATEGORY_DEFAULTS else "an undescribed category"
+    warnings.append(f"{line}: no typical mass known for the object '{name}' "
+                    "(src/homebot/data/robocup/masses.yaml); took the category default, "
+                    f"{default:g} kg ({described})")
+    return default
 
 
 def _people(names: list[str], rooms: list[str], origins: dict[str, tuple[float, float]],
