@@ -152,3 +152,15 @@ def test_a_class_heading_without_its_singular_takes_one_with_a_warning(tmp_path:
     data, warnings = read(tmp_path, objects=objects)
     assert data["classes"][2]["name"] == "cleaning supply"
     assert len(warnings) == 1 and "gives no singular" in warnings[0]
+
+
+def test_a_table_without_a_number_column_reads_names_from_the_first(tmp_path: Path) -> None:
+    write(tmp_path)
+    (tmp_path / "maps" / "location_names.md").write_text(
+        "| Name | Object Category |\n|---|---|\n| bed (p) |\n| fridge (p) | drinks |\n",
+        encoding="utf-8")
+    warnings: list[str] = []
+    data = read_robocup_data(tmp_path, warnings)
+    assert [(entry["name"], entry["category"]) for entry in data["locations"]] == [
+        ("bed", None), ("fridge", "drinks")]
+    assert warnings == []

@@ -27,7 +27,6 @@ __all__ = ["clean_name", "read_robocup_data"]
 # A cell that stands for no name: "| 4 | - |" in a competition's location table.
 _PLACEHOLDER = re.compile(r"[-\u2013\u2014_.?*\s]*|n/?a|tbd|none|todo", re.IGNORECASE)
 _PLACEABLE = re.compile(r"\(\s*p\s*\)", re.IGNORECASE)
-_NUMBER_HEADERS = frozenset({"number", "no", "nr", "#", "id", "num"})
 # "# Class cleaning supplies (cleaning supply)"; the singular may be missing
 _CLASS_HEADING = re.compile(r"^#+\s*class\s+(?P<plural>[^(]+?)\s*(?:\((?P<name>[^)]*)\)\s*)?$",
                             re.IGNORECASE)
@@ -180,7 +179,10 @@ def _first_column(text: str, notes: _Notes) -> tuple[list[str], list[str]]:
 def _locations(text: str, notes: _Notes) -> tuple[list[dict[str, Any]], list[str]]:
     """The locations (name, placeable, category), and the file and line of each."""
     header, rows = _table(text)
-    numbered = bool(header) and header[0].strip(". ").lower() in _NUMBER_HEADERS
+    # The competition's tables number their rows; a table whose first column is headed
+    # as the name ("| Name | Object Category |") does not.
+    numbered = not header or not re.search(r"name|location|furniture|place", header[0],
+                                           re.IGNORECASE)
     locations, lines = [], []
     for row in rows:
         location = _location(row, header, numbered, notes)
