@@ -255,7 +255,8 @@ def test_objects_weigh_what_the_mass_catalogue_says(tmp_path: Path) -> None:
 
 def test_an_object_without_a_known_mass_takes_its_category_default_with_a_warning(
         tmp_path: Path) -> None:
-    objects = OBJECTS.replace("| dice |", "| kazoo |").replace("| cola |", "| elixir |")
+    objects = OBJECTS.replace("| dice |", "| kazoo |").replace("| cola |", "| elixir |") + (
+        "\n# Class gizmos (gizmo)\n| Objectname | Image |\n|---|---|\n| widget | x |\n")
     imported = import_robocup(write_directory(tmp_path, objects__objects=objects))
     weights = {entry["name"]: entry["weight"] for entry in imported.data["objects"]}
     assert weights["kazoo"] == defaults_for("toy").mass == CATEGORY_DEFAULTS["toy"].mass
@@ -265,7 +266,10 @@ def test_an_object_without_a_known_mass_takes_its_category_default_with_a_warnin
         f"{path}: line 5: no typical mass known for the object 'elixir' "
         "(src/homebot/data/robocup/masses.yaml); took the category default, 0.5 kg (drink)",
         f"{path}: line 15: no typical mass known for the object 'kazoo' "
-        "(src/homebot/data/robocup/masses.yaml); took the category default, 0.2 kg (toy)"]
+        "(src/homebot/data/robocup/masses.yaml); took the category default, 0.2 kg (toy)",
+        f"{path}: line 20: no typical mass known for the object 'widget' "
+        "(src/homebot/data/robocup/masses.yaml); took the category default, 0.3 kg (an "
+        "undescribed category)"]
 
 
 FRUITS = OBJECTS + """

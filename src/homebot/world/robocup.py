@@ -232,8 +232,10 @@ def _mass(name: str, category: str, line: str, warnings: list[str]) -> float:
     known = known_mass(name)
     if known is not None:
         return known.mass
-    default = defaults_for(category).mass
-    described = category if category in CATEGORY_DEFAULTS else "an undescribed category"
+    defaults = defaults_for(category)
+    default = defaults.mass
+    described = category if any(defaults is found for found in CATEGORY_DEFAULTS.values()) \
+        else "an undescribed category"
     warnings.append(f"{line}: no typical mass known for the object '{name}' "
                     "(src/homebot/data/robocup/masses.yaml); took the category default, "
                     f"{default:g} kg ({described})")
