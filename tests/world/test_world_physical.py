@@ -180,3 +180,24 @@ def test_people_inside_furniture_are_found_among_many() -> None:
     people = [(x + 0.5, 0.5) if x % 500 == 0 else (x + 1.5, 0.5) for x in range(0, 2000, 2)]
     assert points_inside(tables, people) == [(0, 0, 0.5), (250, 250, 0.5), (500, 500, 0.5),
                                              (750, 750, 0.5)]
+
+
+def test_an_object_on_a_placement_not_meant_for_it_is_a_warning_with_its_line(
+        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    # a towel in the fridge: allowed (a home has things to tidy away), but said
+    text = HOME.format(**SANE).replace(
+        "size: [0.7, 0.7]}", "size: [0.7, 0.7], holds: [drink]}").replace(
+        "  - {name: drink, plural: drinks}\n",
+        "  - {name: drink, plural: drinks}\n  - {name: towel, plural: towels}\n").replace(
+        "  - {name: cola, category: drink, placement: fridge}\n",
+        "  - {name: cola, category: drink, placement: fridge}\n"
+        "  - {name: bath towel, category: towel, placement: fridge}\n")
+    path = tmp_path / "towel.yaml"
+    path.write_text(text, encoding="utf-8")
+    assert World.load(path).warnings == [
+        f"{path}: line 16: objects.1.placement: the bath towel (towel) is on the fridge, which "
+        "holds drink: a tidy-up would move it; if it belongs there, add towel to the "
+        "fridge's holds"]  # not the cola
+    assert main(["world", "check", str(path)]) == 0
+    err = capsys.readouterr().err
+    assert err.startswith(f"warning: {path}: line 16:") and len(err.splitlines()) == 1

@@ -7,6 +7,7 @@ import importlib.util
 import json
 import math
 import os
+import sys
 from dataclasses import astuple
 from pathlib import Path
 from typing import Any
@@ -18,6 +19,7 @@ from homebot.cli.options import load_world
 from homebot.errors import WorldError
 from homebot.events import EventLog
 from homebot.files import read_text_file
+from homebot.text import problem_listing, terminal_safe
 from homebot.world import World
 from homebot.yamlfile import short_repr
 
@@ -83,6 +85,9 @@ def _no_command() -> int:
 
 def _check(args: argparse.Namespace) -> int:
     world = World.load(args.file)
+    if world.warnings:
+        print(terminal_safe(problem_listing([f"warning: {warning}" for warning in
+                                             world.warnings]), lines=True), file=sys.stderr)
     print(f"{world.source}: ok — {len(world.rooms)} rooms, {len(world.doors)} doors, "
           f"{len(world.placements)} placements, {len(world.objects)} objects, "
           f"{len(world.people)} people")

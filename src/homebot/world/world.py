@@ -116,6 +116,9 @@ class World:
         self._document = document
         self._origin = origin  # an imported world's errors name the lines of its input
         self._problems: list[str] = []
+        #: what is odd but allowed (an object on a placement not meant for its category),
+        #: located like errors; ``world check`` prints them
+        self.warnings: list[str] = []
         self._wall_lines: BaseGeometry | None = None
         self.rooms = {room.name: room for room in model.rooms}
         self.room_polygons = {room.name: Polygon(room.polygon) for room in model.rooms}
@@ -136,6 +139,7 @@ class World:
         self._check_robot()
         if self._problems:
             raise WorldError(problem_listing(self._problems))
+        self._check_holdings()
 
     # ------------------------------------------------------------------ loading
 
@@ -530,6 +534,22 @@ class World:
             if self.categories and obj.category not in self.categories:
                 self._problem(["objects", index, "category"],
                               _unknown("object category", obj.category, self.categories))
+
+    def _check_holdings(self) -> None:
+        """Warn of an object on a placement whose ``holds`` leaves its category out (a towel
+        in the fridge): allowed, since a home has things out of place to tidy, but often a
+        slip in the file."""
+        for index, obj in enumerate(self.model.objects):
+            holds = self.placements[obj.placement].holds
+            if holds and fold(obj.category) not in {fold(held) for held in holds}:
+                message = (f"the {obj.name} ({obj.category}) is on the {obj.placement}, which "
+                           f"holds {', '.join(holds)}: a tidy-up would move it; if it belongs "
+                           f"there, add {obj.category} to the {obj.placement}'s holds")
+                if self._document is not None:
+                    self.warnings.append(locate(self._document, ["objects", index, "placement"],
+                                                message, self._origin))
+                else:
+                    self.warnings.append(f"{self.source}: objects.{index}.placement: {message}")
 
     def _check_people(self) -> None:
         for index, person in enumerate(self.model.people):
