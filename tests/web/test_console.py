@@ -22,7 +22,12 @@ def apartment() -> World:
 
 def _embodied(world: World) -> Console:
     return Console(ConsoleSettings(world=world, token="test-token", fidelity=Fidelity.EMBODIED,
-                                   speed=0.0))
+                                   speed=0.0), lease_clock=_FROZEN)
+
+
+def _FROZEN() -> float:
+    """The control lease's clock in these tests: it never moves, so control never lapses."""
+    return 0.0
 
 
 def test_a_keyboard_drive_into_the_kitchen_slows_before_what_is_ahead(
@@ -81,7 +86,8 @@ def test_the_emergency_stop_stands_the_base_within_one_tick(apartment: World, ki
 
 def test_a_skill_level_grasp_of_a_clicked_object(apartment: World) -> None:
     # symbolic (fast); the browser test clicks the object in the page
-    home = Console(ConsoleSettings(world=apartment, token="test-token", speed=0.0))
+    home = Console(ConsoleSettings(world=apartment, token="test-token", speed=0.0),
+                   lease_clock=_FROZEN)
     home.start()
     try:
         home.take_control("ann")
@@ -97,7 +103,8 @@ def test_a_skill_level_grasp_of_a_clicked_object(apartment: World) -> None:
 
 def test_the_stop_cancels_a_symbolic_drive_at_the_next_step_of_the_clock(
         apartment: World) -> None:
-    home = Console(ConsoleSettings(world=apartment, token="test-token", speed=0.0))
+    home = Console(ConsoleSettings(world=apartment, token="test-token", speed=0.0),
+                   lease_clock=_FROZEN)
     assert "advance" not in vars(home.sim.clock)  # the console observes the clock
     pressed: list[float] = []
 
@@ -119,7 +126,7 @@ def test_the_stop_cancels_a_symbolic_drive_at_the_next_step_of_the_clock(
         with home.lock:
             assert len(pressed) == 2
             assert home.sim.robot_pose == start  # the symbolic robot stood where it was
-            assert home.steps.steps[0]["status"] == "failed"
+            assert home.steps.steps[0]["status"] == "stopped" and home.steps.outcome == "stopped"
             assert home.steps.ended is False and home.steps.reason == "emergency stop"
             assert list(home.speech)[-1] == "All right, I stopped."
             preempted = list(home.sim.events.of_kind("console.preempted"))

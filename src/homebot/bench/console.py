@@ -36,6 +36,7 @@ from homebot.world import World
 __all__ = ["StopTrial", "add_arguments", "estop_trials", "load_test", "run"]
 
 _OPERATOR = "bench"
+_FOREVER = math.inf  #: the benchmark is an operator whose page never goes away: no lapse
 _TRIAL_TIMEOUT = 60.0  #: wall seconds a trial may take before it counts as failed
 
 
@@ -97,7 +98,7 @@ _ATTEMPTS = 3  #: tries per press, when the robot did not get to move before the
 def estop_trials(world: World, kind: str, trials: int, seed: int) -> list[StopTrial]:
     """Press the e-stop ``trials`` times while the robot navigates (or follows someone)."""
     home = Console(ConsoleSettings(world=world, token="bench-token", seed=seed,
-                                   fidelity=Fidelity.EMBODIED, speed=0.0))
+                                   fidelity=Fidelity.EMBODIED, speed=0.0, lease=_FOREVER))
     rng = random.Random(f"{seed}:{kind}")
     results: list[StopTrial] = []
     home.start()
@@ -178,7 +179,7 @@ def load_test(world: World, clients: int, rate: int, seconds: float) -> dict[str
     from homebot.web.app import create_app
 
     token = secrets.token_urlsafe(12)
-    settings = ConsoleSettings(world=world, token=token, speed=1.0)
+    settings = ConsoleSettings(world=world, token=token, speed=1.0, lease=_FOREVER)
     app = create_app(settings, rate=float(rate))
     with socket.socket() as probe:
         probe.bind(("127.0.0.1", 0))

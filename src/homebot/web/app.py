@@ -1,10 +1,13 @@
 """``create_app``: the console's FastAPI app: the page, a JSON API and a live websocket.
 
 Access: every HTTP request and websocket carries the token (``?token=`` or the header
-``X-Homebot-Token``); without it the request is refused (401; the websocket is closed with
-1008 before it is accepted). Commands also name the operator (``X-Homebot-Operator``); only
-the operator holding control can command the robot, everyone with the token can watch and
-press the emergency stop.
+``X-Homebot-Token``). ``RequestGuard`` checks it before anything reads the body, and caps
+bodies (``homebot.web.guard``); every body is then one of the ``homebot.web.messages``
+models. An operator is a session the server issued (``POST /api/session``), sent back as
+``X-Homebot-Session``; control is a lease bound to it that the page renews with a heartbeat
+and gives back when it goes away (``homebot.web.sessions``). Only the operator holding
+control can command the robot; everyone with the token can watch and press the emergency
+stop. A bad request is answered with a one-line error (401, 403, 409, 413, 422) and logged.
 
 Back-pressure (the websocket): the server samples the home ``rate`` times a (wall) second.
 Each watcher has a slot for the latest state and a bounded queue of events: a state not yet
@@ -18,46 +21,34 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import json
-import secrets
+import logging
 import time
 from collections import deque
-from collections.abc import AsyncIterator
+from collections.abc import AsyncIterator, Callable
 from dataclasses import dataclass, field
 from importlib import resources
 from typing import Any
 
 from fastapi import Depends, FastAPI, Header, Query, Request, WebSocket, WebSocketDisconnect
+from fastapi.exceptions import RequestValidationError
 from fastapi.responses import HTMLResponse, JSONResponse
-from pydantic import BaseModel, Field
 
 from homebot.errors import ConsoleError, HomebotError
 from homebot.web.console import Console, ConsoleSettings, static_map
+from homebot.web.guard import RequestGuard
+from homebot.web.messages import (
+    CommandRequest,
+    ControlRequest,
+    DriveRequest,
+    StepsRequest,
+    first_problem,
+)
+from homebot.web.sessions import Sessions
 
 __all__ = ["EVENT_QUEUE", "Watcher", "create_app"]
 
 EVENT_QUEUE = 500
-
-
-class ControlRequest(BaseModel):
-    type: str = "control"
-    action: str = Field(pattern="^(take|release)$")
-
-
-class DriveRequest(BaseModel):
-    type: str = "drive"
-    vx: float = 0.0
-    wz: float = 0.0
-
-
-class CommandRequest(BaseModel):
-    type: str = "command"
-    text: str = Field(max_length=500)
-
-
-class StepsRequest(BaseModel):
-    type: str = "steps"
-    steps: list[dict[str, Any]] = Field(max_length=30)
-    description: str = ""
+_log = logging.getLogger("homebot.web")
 
 
 @dataclass(eq=False)
@@ -82,11 +73,12 @@ class Watcher:
 
 
 def create_app(settings: ConsoleSettings, *, rate: float = 10.0,
-               console: Console | None = None) -> FastAPI:
-    """The console app over a new home (or ``console``), sampled ``rate`` times a second."""
-    home = console or Console(settings)
+               console: Console | None = None,
+               clock: Callable[[], float] = time.monotonic) -> FastAPI:
+    """The console app over a new home (or ``console``), sampled ``rate`` times a second;
+    sessions and the control lease read ``clock`` (wall seconds)."""
+    home = console or Console(settings, lease_clock=clock)
     watchers: set[Watcher] = set()
-    token = settings.token
 
     async def broadcast() -> None:
         seq, seen = 0, home.event_count
@@ -122,94 +114,118 @@ def create_app(settings: ConsoleSettings, *, rate: float = 10.0,
     app.state.console = home
     app.state.watchers = watchers
     app.state.stats = {"superseded": 0, "lost_events": 0, "watchers": 0}
+    app.state.refused = refused = {}  # the guard's refusals and the rejected bodies, by kind
+    app.state.sessions = sessions = Sessions(clock=clock)
+    # outermost: nothing below it (FastAPI's body parsing included) runs for a refused request
+    app.add_middleware(RequestGuard, token=settings.token, counts=refused)
 
-    def authorised(query: str | None = Query(None, alias="token"),
-                   header: str | None = Header(None, alias="X-Homebot-Token")) -> None:
-        given = query or header or ""
-        if not secrets.compare_digest(given.encode(), token.encode()):
-            raise _Refused
-
-    def operator(name: str | None = Header(None, alias="X-Homebot-Operator")) -> str:
-        if not name:
-            raise ConsoleError("name the operator (header X-Homebot-Operator)")
+    def operator(header: str | None = Header(None, alias="X-Homebot-Session"),
+                 query: str | None = Query(None, alias="session", max_length=64)) -> str:
+        name = sessions.name(header or query)
+        if name is None:
+            raise _NoSession
         return name
 
-    @app.exception_handler(_Refused)
-    async def refused(request: Request, error: _Refused) -> JSONResponse:
-        return JSONResponse({"error": "a valid token is required (?token=...)"}, status_code=401)
+    def _bad(kind: str, request: Request, error: str, status: int) -> JSONResponse:
+        refused[kind] = refused.get(kind, 0) + 1
+        _log.warning("%s %s answered %d: %s", request.method, request.url.path[:80], status,
+                     error)
+        return JSONResponse({"error": error}, status_code=status)
+
+    @app.exception_handler(_NoSession)
+    async def no_session(request: Request, error: _NoSession) -> JSONResponse:
+        return _bad("no_session", request, "no such session: start one with POST /api/session "
+                    "(the page does when it loads), then send its id as X-Homebot-Session", 403)
+
+    @app.exception_handler(RequestValidationError)
+    async def invalid(request: Request, error: RequestValidationError) -> JSONResponse:
+        return _bad("invalid", request, first_problem(error.errors()), 422)
 
     @app.exception_handler(ConsoleError)
     async def conflict(request: Request, error: ConsoleError) -> JSONResponse:
-        return JSONResponse({"error": str(error)}, status_code=409)
+        return _bad("conflict", request, str(error), 409)
 
     @app.exception_handler(HomebotError)
     async def bad(request: Request, error: HomebotError) -> JSONResponse:
-        return JSONResponse({"error": str(error)}, status_code=400)
+        return _bad("bad", request, str(error), 400)
 
-    guarded = [Depends(authorised)]
-
-    @app.get("/", response_class=HTMLResponse, dependencies=guarded)
+    @app.get("/", response_class=HTMLResponse)
     def page() -> str:
         folder = resources.files("homebot.web") / "static"
         html = (folder / "index.html").read_text(encoding="utf-8")
         script = (folder / "console.js").read_text(encoding="utf-8")
         return html.replace("/*CONSOLE_JS*/", script)
 
-    @app.get("/api/map", dependencies=guarded)
+    @app.get("/api/map")
     def map_() -> dict[str, Any]:
         return static_map(home.world)
 
-    @app.get("/api/state", dependencies=guarded)
+    @app.get("/api/state")
     def state() -> dict[str, Any]:
         return home.snapshot()
 
-    @app.get("/api/events", dependencies=guarded)
-    def events(since: int = 0) -> list[dict[str, Any]]:
+    @app.get("/api/events")
+    def events(since: int = Query(0, ge=0, le=2**62)) -> list[dict[str, Any]]:
         return home.events_since(since)
 
-    @app.post("/api/control", dependencies=guarded)
+    @app.post("/api/session")
+    def session() -> dict[str, Any]:
+        secret, name = sessions.open()
+        return {"session": secret, "operator": name, "lease": home.lease.seconds}
+
+    @app.post("/api/session/heartbeat")
+    def heartbeat(who: str = Depends(operator)) -> dict[str, Any]:
+        home.renew_control(who)
+        return {"operator": who, "controller": home.controller, "lease_left": home.lease.left()}
+
+    @app.post("/api/session/end")
+    def end(who: str = Depends(operator),
+            header: str | None = Header(None, alias="X-Homebot-Session"),
+            query: str | None = Query(None, alias="session", max_length=64)) -> dict[str, Any]:
+        home.release_control(who)
+        sessions.close(header or query)
+        return {"ended": who, "controller": home.controller}
+
+    @app.post("/api/control")
     def control(body: ControlRequest, who: str = Depends(operator)) -> dict[str, Any]:
         if body.action == "take":
             home.take_control(who)
         else:
+            home.require_control(who)
             home.release_control(who)
-        return {"controller": home.controller}
+        return {"controller": home.controller, "lease": home.lease.seconds}
 
-    @app.post("/api/estop", dependencies=guarded)
+    @app.post("/api/estop")
     def estop() -> dict[str, Any]:
         home.emergency_stop()
         return {"estop": True}
 
-    @app.post("/api/estop/release", dependencies=guarded)
+    @app.post("/api/estop/release")
     def release(who: str = Depends(operator)) -> dict[str, Any]:
         home.release_stop(who)
         return {"estop": False}
 
-    @app.post("/api/drive", dependencies=guarded)
+    @app.post("/api/drive")
     def drive(body: DriveRequest, who: str = Depends(operator)) -> dict[str, Any]:
         twist = home.drive(who, body.vx, body.wz)
         return {"vx": twist.vx, "wz": twist.wz}
 
-    @app.post("/api/command", dependencies=guarded)
+    @app.post("/api/command")
     def command(body: CommandRequest, who: str = Depends(operator)) -> dict[str, Any]:
         home.command(who, body.text)
         return {"queued": body.text}
 
-    @app.post("/api/steps", dependencies=guarded)
+    @app.post("/api/steps")
     def steps(body: StepsRequest, who: str = Depends(operator)) -> dict[str, Any]:
-        task = home.run_steps(who, body.steps, body.description)
+        task = home.run_steps(who, [dict(step) for step in body.steps], body.description)
         return {"queued": task.to_dicts()}
 
-    @app.post("/api/resume", dependencies=guarded)
+    @app.post("/api/resume")
     def resume(who: str = Depends(operator)) -> dict[str, Any]:
         return {"queued": home.resume(who).to_dicts()}
 
     @app.websocket("/ws")
-    async def live(socket: WebSocket) -> None:
-        given = socket.query_params.get("token") or socket.headers.get("x-homebot-token") or ""
-        if not secrets.compare_digest(given.encode(), token.encode()):
-            await socket.close(code=1008)
-            return
+    async def live(socket: WebSocket) -> None:  # the guard has checked the token
         await socket.accept()
         watcher = Watcher()
         watchers.add(watcher)
@@ -241,5 +257,5 @@ def create_app(settings: ConsoleSettings, *, rate: float = 10.0,
     return app
 
 
-class _Refused(Exception):
-    """No valid token: answered with 401."""
+class _NoSession(Exception):
+    """No live session named: answered with 403."""

@@ -21,6 +21,7 @@ drive, at the next step of the clock) and the task stops there, the robot saying
 
 from __future__ import annotations
 
+import logging
 import math
 import threading
 import time
@@ -42,6 +43,7 @@ from homebot.robot import Body, Twist
 from homebot.skills.catalogue import check_step, spelled_as_world
 from homebot.skills.places import resolve_target
 from homebot.task import Step, Task
+from homebot.web.sessions import ControlLease
 from homebot.world import World
 
 __all__ = ["Console", "ConsoleSettings", "static_map"]
@@ -52,6 +54,8 @@ _TERMINAL = frozenset({"verified", "failed", "aborted"})
 _AHEAD = math.radians(35.0)  #: half-width of the cone "ahead" for obstacle slowing
 _SCAN_POINTS_SHOWN = 120
 _SLICE = 0.05  #: simulated seconds: the longest single advance (one body tick at 20 Hz)
+_UNDER_WAY = frozenset({"running", "finished", "retrying"})
+_log = logging.getLogger("homebot.web")
 
 
 @dataclass
@@ -67,6 +71,7 @@ class ConsoleSettings:
     max_linear: float = 0.4  #: m/s, the body-level cap (below the base's own limit)
     max_angular: float = 1.0  #: rad/s
     time_limit: float | None = 900.0
+    lease: float = 10.0  #: wall seconds control lasts without the page's heartbeat
 
 
 @dataclass
@@ -79,6 +84,7 @@ class _Steps:
     current: int = -1
     ended: bool | None = None
     reason: str = ""
+    outcome: str = ""  #: once ended: done, failed, or stopped (the stop preempted it)
 
 
 def static_map(world: World) -> dict[str, Any]:
@@ -104,7 +110,10 @@ class Console:
     """One simulated home, a worker thread that runs it, and the operator's controls."""
 
     def __init__(self, settings: ConsoleSettings, *,
-                 wall: Callable[[], float] = time.monotonic) -> None:
+                 wall: Callable[[], float] = time.monotonic,
+                 lease_clock: Callable[[], float] | None = None) -> None:
+        """``wall`` paces the home; the control lease reads ``lease_clock`` (default
+        ``wall``), which tests step."""
         if not (settings.speed == 0 or (math.isfinite(settings.speed) and settings.speed > 0)):
             raise ConsoleError(f"--speed {settings.speed}: give a real-time factor above 0, "
                                "or 0 for as fast as possible")
@@ -127,8 +136,9 @@ class Console:
         self.sim.events.listeners.append(self._heard)
         self.speech: deque[str] = deque(maxlen=20)
         self.steps = _Steps()
+        self._task_open = False  #: a task.start was logged and its task.end not yet
         self.path: list[list[float]] = []
-        self.controller: str | None = None
+        self.lease = ControlLease(settings.lease, clock=lease_clock or wall)
         self.estop = False
         self.estop_ticks: list[int] = []  #: ticks from each stop press to a standing base
         self._pending_stop: int | None = None
@@ -178,7 +188,16 @@ class Console:
                     self._running, self._cancel = True, CancelToken()
                     try:
                         job()
+                    except Exception as error:  # a fault in one task never stops the worker
+                        _log.error("a console task failed: %s: %s", type(error).__name__,
+                                   error)
+                        self.sim.events.record("console.error",
+                                               error=f"{type(error).__name__}: {error}")
                     finally:
+                        if self._task_open:  # cut short before the task logged its end
+                            self.sim.events.record(
+                                "task.end", success=False,
+                                reason=self._cancel.reason or "the console's task failed")
                         if self._cancel.cancelled:
                             self.sim.events.record("console.preempted",
                                                    reason=self._cancel.reason)
@@ -257,6 +276,7 @@ class Console:
         if kind == "speech":
             self.speech.append(str(event.data.get("text", "")))
         elif kind == "task.start":
+            self._task_open = True
             self.steps = _Steps(str(event.data.get("description", "")),
                                 [{**step, "status": "pending"}
                                  for step in event.data.get("steps", [])])
@@ -265,11 +285,19 @@ class Console:
         elif kind == "skill.status":
             self._skill_status(event)
         elif kind == "task.end":
-            self.steps.ended = bool(event.data.get("success"))
-            self.steps.reason = str(event.data.get("reason", ""))
-        elif kind == "task.interrupted":
-            self.steps.ended = False
-            self.steps.reason = "stopped"
+            self._task_open = False
+            self._ended(bool(event.data.get("success")), str(event.data.get("reason", "")))
+
+    def _ended(self, success: bool, reason: str) -> None:
+        """The step view at the task's end: no step is left under way. A step the stop cut
+        short shows ``stopped``; the steps not reached stay ``pending``."""
+        view = self.steps
+        stopped = not success and self._cancel.cancelled
+        view.ended, view.reason, view.depth = success, reason, 0
+        view.outcome = "done" if success else "stopped" if stopped else "failed"
+        for step in view.steps:
+            if step["status"] in _UNDER_WAY or (stopped and step.get("error") == "cancelled"):
+                step["status"] = "stopped" if stopped else "failed"
 
     def _skill_started(self, event: Event) -> None:
         view = self.steps
@@ -309,22 +337,30 @@ class Console:
 
     # ------------------------------------------------------------ operator actions
 
+    @property
+    def controller(self) -> str | None:
+        """The operator holding control now (None: nobody, or their lease lapsed)."""
+        return self.lease.holder
+
     def take_control(self, operator: str) -> None:
+        """``operator`` takes control, as a lease their page renews (``renew_control``)."""
         with self.lock:
-            if self.controller not in (None, operator):
-                raise ConsoleError("another operator holds control; watch, or ask them to "
-                                   "release it")
-            self.controller = operator
+            self.lease.take(operator)
+
+    def renew_control(self, operator: str) -> bool:
+        """The heartbeat of ``operator``'s page: False when they hold no control (any more)."""
+        with self.lock:
+            return self.lease.renew(operator)
 
     def release_control(self, operator: str) -> None:
         with self.lock:
-            if self.controller == operator:
-                self.controller = None
+            self.lease.release(operator)
 
     def require_control(self, operator: str) -> None:
-        if self.controller != operator:
+        if self.lease.holder != operator:
             raise ConsoleError("take control first (only the operator in control can "
-                               "command the robot)")
+                               "command the robot; control lapses "
+                               f"{self.lease.seconds:g} s after their page goes away)")
 
     def emergency_stop(self) -> None:
         """Stop the base from the next tick on and preempt whatever runs."""
@@ -464,13 +500,18 @@ class Console:
         if not helping:
             self.last_task, self.failed_at, self.help_offer = task, None, None
         report = self.run.run(task, interrupt=interrupt, cancel=self._cancel)
-        if not report.success and report.steps and not helping:
-            index = len(report.steps) - 1
-            self.failed_at = index
-            self.help_offer = {
-                "step": index, "skill": report.steps[-1].skill, "reason": report.reason,
-                "levels": ["skill", "body"] if self.body is not None else ["skill"],
-            }
+        if not report.success and not helping:
+            # the step that failed or was stopped; a stop between two steps: the next one
+            index = len(report.steps)
+            if report.steps and report.steps[-1].status not in ("verified", "finished"):
+                index -= 1
+            if index < len(task.steps):
+                self.failed_at = index
+                self.help_offer = {
+                    "step": index, "skill": task.steps[index].skill, "reason": report.reason,
+                    "stopped": self._cancel.cancelled,
+                    "levels": ["skill", "body"] if self.body is not None else ["skill"],
+                }
         return report
 
     # ------------------------------------------------------------ the view
@@ -492,7 +533,8 @@ class Console:
                 "path": self.path if self.busy else [],
                 "speech": list(self.speech)[-5:],
                 "task": {"description": self.steps.description, "steps": self.steps.steps,
-                         "ended": self.steps.ended, "reason": self.steps.reason},
+                         "ended": self.steps.ended, "reason": self.steps.reason,
+                         "outcome": self.steps.outcome},
                 "help": self.help_offer, "turn": self.last_turn,
                 "busy": self.busy, "estop": self.estop, "controller": self.controller,
                 "fidelity": self.settings.fidelity.value, "speed": self.settings.speed,

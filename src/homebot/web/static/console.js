@@ -1,7 +1,10 @@
 // homebot console: live map, speech, event log and step view; three levels of control.
 "use strict";
 const TOKEN = new URLSearchParams(location.search).get("token") || "";
-const OPERATOR = (crypto.randomUUID ? crypto.randomUUID() : String(Math.random())).slice(0, 12);
+// who this page is: a session the server issues (POST /api/session); control is a lease on
+// it that the heartbeat renews and pagehide gives back, so a closed or reloaded page never
+// keeps the robot
+let SESSION = "", OPERATOR = "";
 const SVG = "http://www.w3.org/2000/svg";
 const svg = document.getElementById("map");
 let map = null, state = null, composed = [], scale = 40, layers = {};
@@ -19,12 +22,35 @@ async function api(path, body) {
   const response = await fetch(path, {
     method: body === undefined ? "GET" : "POST",
     headers: {"Content-Type": "application/json", "X-Homebot-Token": TOKEN,
-              "X-Homebot-Operator": OPERATOR},
+              "X-Homebot-Session": SESSION},
     body: body === undefined ? undefined : JSON.stringify(body)});
-  const data = await response.json();
+  let data = {};
+  try { data = await response.json(); } catch (err) { data = {error: String(response.status)}; }
   document.getElementById("error").textContent = response.ok ? "" : (data.error || response.status);
+  if (response.status === 403 && path !== "/api/session") startSession();  // session forgotten
   return data;
 }
+
+async function startSession() {
+  const data = await api("/api/session", {});
+  SESSION = data.session || ""; OPERATOR = data.operator || "";
+  document.getElementById("whoami").textContent = OPERATOR ? "you are " + OPERATOR : "";
+  return data;
+}
+
+let heartbeat = null;
+async function startHeartbeat() {
+  const data = await startSession();
+  const period = Math.max(1, (data.lease || 10) / 4) * 1000;
+  if (heartbeat) clearInterval(heartbeat);
+  heartbeat = setInterval(() => { if (SESSION) api("/api/session/heartbeat", {}); }, period);
+}
+window.addEventListener("pagehide", () => {
+  // closed, reloaded or navigated away: give control back now, not when the lease lapses
+  if (SESSION) navigator.sendBeacon(`/api/session/end?token=${encodeURIComponent(TOKEN)}` +
+                                    `&session=${encodeURIComponent(SESSION)}`);
+  SESSION = "";
+});
 
 function drawMap() {
   svg.innerHTML = "";
@@ -110,7 +136,9 @@ function drawPanels() {
   task.innerHTML = "";
   const head = document.createElement("div");
   head.textContent = s.task.description + (s.task.ended === null ? "" :
-    s.task.ended ? " — done" : " — ended: " + s.task.reason);
+    s.task.ended ? " — done" : ` — ${s.task.outcome || "ended"}: ` + s.task.reason);
+  head.dataset.outcome = s.task.outcome || "";
+  head.id = "task-head";
   task.appendChild(head);
   for (const step of s.task.steps) {
     const d = document.createElement("div");
@@ -126,11 +154,16 @@ function drawPanels() {
   if (s.help && !s.busy) {
     help.style.display = "block";
     help.innerHTML = "";
-    help.append(`Step ${s.help.step + 1} (${s.help.skill}) failed: ${s.help.reason}. ` +
-      `Help on the ${s.help.levels.join(" or ")} level below (map clicks, composer` +
-      (s.help.levels.includes("body") ? ", arrow keys" : "") + "), then ");
+    if (s.help.stopped)
+      help.append(`Stopped at step ${s.help.step + 1} (${s.help.skill}): ${s.help.reason}. ` +
+        (s.estop ? "Release the stop, then " : "You may help first, then "));
+    else
+      help.append(`Step ${s.help.step + 1} (${s.help.skill}) failed: ${s.help.reason}. ` +
+        `Help on the ${s.help.levels.join(" or ")} level below (map clicks, composer` +
+        (s.help.levels.includes("body") ? ", arrow keys" : "") + "), then ");
     const b = document.createElement("button");
-    b.textContent = "go on with the task"; b.onclick = () => api("/api/resume", {});
+    b.textContent = "go on with the task"; b.id = "resume";
+    b.onclick = () => api("/api/resume", {});
     help.appendChild(b);
   } else help.style.display = "none";
 }
@@ -215,4 +248,4 @@ document.getElementById("clear-composed").onclick = () => {
   composed = []; document.getElementById("composed").innerHTML = ""; };
 document.getElementById("run-composed").onclick = () => api("/api/steps", {steps: composed});
 window.addEventListener("resize", () => { if (map) { drawMap(); drawState(); } });
-connect();
+startHeartbeat().then(connect);
