@@ -52,6 +52,8 @@ TINY: dict[str, tuple[list[str], set[str], set[str]]] = {
     "speech": (["--count", "1", "--rejection", "0", "--babble-talkers", "0",
                 "--worlds", "apartment"], {"command_accuracy", "worlds", "speed"}, set()),
     "console": (["--trials", "1", "--clients", "0"], {"figures"}, {"estop_navigation"}),
+    "console_fuzz": (["--requests", "20", "--big-mb", "1"], {"figures"},
+                     {"fuzz", "unauthenticated_post"}),
     "transport": (["--seconds", "1", "--only", "throughput"], {"laser_scan"}, set()),
     "serve_fuzz": (["--requests", "20", "--warm-up", "5", "--only", "sim"], {"servers", "seed"},
                    set()),

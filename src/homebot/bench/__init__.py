@@ -87,6 +87,8 @@ BENCHMARKS: tuple[Benchmark, ...] = (
            "noisy; rejection", "speech"),
     _bench("console", "the web console: e-stop within one tick (navigation, follow) and 20 "
            "watchers at 10 updates/s", "web", "embodied"),
+    _bench("console_fuzz", "the web console under bad requests: 100 MB unauthenticated POSTs "
+           "and 10 000 malformed requests (answers, memory)", "web"),
     _bench("transport", "ROS 2 transport: throughput between two processes, fetch over ROS 2, "
            "a lost robot's detection", "ros", "embodied"),
     _bench("serve_fuzz", "malformed requests to homebot sim serve and ros serve over DDS: "

@@ -32,6 +32,7 @@ from typing import Any
 from fastapi import Depends, FastAPI, Header, Query, Request, WebSocket, WebSocketDisconnect
 from fastapi.exceptions import RequestValidationError
 from fastapi.responses import HTMLResponse, JSONResponse
+from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from homebot.errors import ConsoleError, HomebotError
 from homebot.web.console import Console, ConsoleSettings, static_map
@@ -136,6 +137,11 @@ def create_app(settings: ConsoleSettings, *, rate: float = 10.0,
     async def no_session(request: Request, error: _NoSession) -> JSONResponse:
         return _bad("no_session", request, "no such session: start one with POST /api/session "
                     "(the page does when it loads), then send its id as X-Homebot-Session", 403)
+
+    @app.exception_handler(StarletteHTTPException)
+    async def http_error(request: Request, error: StarletteHTTPException) -> JSONResponse:
+        return _bad("http", request, f"{error.detail}: {request.method} "
+                    f"{request.url.path[:80]}", error.status_code)
 
     @app.exception_handler(RequestValidationError)
     async def invalid(request: Request, error: RequestValidationError) -> JSONResponse:
