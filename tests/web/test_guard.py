@@ -17,8 +17,8 @@ import pytest
 pytest.importorskip("fastapi")
 pytest.importorskip("uvicorn")
 
-from homebot.bench.console_fuzz import big_post, served_console  # noqa: E402
-from homebot.web.guard import MAX_BODY, MAX_DEPTH, RequestGuard, nesting_depth  # noqa: E402
+from homebot.bench.console_fuzz import big_post, served_console
+from homebot.web.guard import MAX_BODY, MAX_DEPTH, RequestGuard, nesting_depth
 
 TOKEN = "guard-test-token"
 Message = MutableMapping[str, Any]

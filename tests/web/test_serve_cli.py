@@ -9,7 +9,9 @@ from homebot.cli import main
 
 @pytest.mark.parametrize("arguments", [["--port", "http"], ["--port", "70000"],
                                        ["--speed", "-1"], ["--speed", "fast"],
-                                       ["--token", "short"], ["--world", "no-such-home"]])
+                                       ["--token", "short"], ["--world", "no-such-home"],
+                                       ["--lease", "0"], ["--lease", "soon"],
+                                       ["--host", "999.1.1.1"], ["--host", "\x00"]])
 def test_serve_refuses_bad_options_in_one_line(arguments: list[str],
                                                 capsys: pytest.CaptureFixture[str]) -> None:
     try:
@@ -19,3 +21,9 @@ def test_serve_refuses_bad_options_in_one_line(arguments: list[str],
     assert status == 2
     error = capsys.readouterr().err
     assert "Traceback" not in error and error.strip()
+
+
+def test_a_host_that_cannot_be_listened_on_is_named(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["serve", "--host", "999.1.1.1", "--token", "long-enough-token"]) == 2
+    error = capsys.readouterr().err
+    assert "--host 999.1.1.1" in error and "Traceback" not in error

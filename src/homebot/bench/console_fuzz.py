@@ -136,7 +136,7 @@ def big_post(server: ServedConsole, size: int, *, chunked: bool,
     """POST ``size`` bytes to /api/command (with ``token``, or none) over a raw socket, as
     fast as the server takes them; the server's answer and its memory growth."""
     rss_before, peak_before = server.memory_mb()
-    head = [f"POST /api/command HTTP/1.1", f"Host: 127.0.0.1:{server.port}",
+    head = ["POST /api/command HTTP/1.1", f"Host: 127.0.0.1:{server.port}",
             "Content-Type: application/json"]
     if token is not None:
         head.append(f"X-Homebot-Token: {token}")

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import importlib.util
 import secrets
+import socket
 from typing import Any
 
 from homebot.app import Fidelity, require_embodied
@@ -34,6 +35,9 @@ def register(subparsers: Any) -> None:
                         help="the access token (default: a new random one, printed)")
     parser.add_argument("--walkers", type=walker_count, default=0, metavar="N",
                         help="embodied: how many people walk about on their own")
+    parser.add_argument("--lease", type=_lease, default=10.0, metavar="SECONDS",
+                        help="control lapses this many seconds after the operator's page "
+                             "stops renewing it (closed, reloaded, offline; default 10)")
     parser.set_defaults(handler=serve)
 
 
@@ -54,6 +58,31 @@ def _speed(text: str) -> float:
     return value
 
 
+def _lease(text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        value = -1.0
+    if not 1.0 <= value <= 3600.0:
+        raise argparse.ArgumentTypeError(f"seconds from 1 to 3600, not '{text}'")
+    return value
+
+
+def _check_address(host: str, port: int) -> None:
+    """Refuse an address this machine cannot listen on, naming the option, before the
+    home is built."""
+    try:
+        family = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM)[0]
+        with socket.socket(family[0], socket.SOCK_STREAM) as probe:
+            probe.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+            probe.bind(family[4])
+    except (OSError, UnicodeError) as error:
+        reason = getattr(error, "strerror", None) or str(error)
+        raise HomebotError(f"--host {host} --port {port}: cannot listen there ({reason}); "
+                           "give an address of this machine (127.0.0.1, 0.0.0.0) and a free "
+                           "port") from None
+
+
 def serve(args: argparse.Namespace) -> int:
     """Run the console until interrupted."""
     if importlib.util.find_spec("fastapi") is None or importlib.util.find_spec("uvicorn") is None:
@@ -63,6 +92,7 @@ def serve(args: argparse.Namespace) -> int:
     if args.token is not None and len(args.token) < 8:
         raise HomebotError("--token: give at least 8 characters (or leave it out for a "
                            "random one)")
+    _check_address(args.host, args.port)
     import uvicorn
 
     from homebot.web import ConsoleSettings
@@ -70,7 +100,8 @@ def serve(args: argparse.Namespace) -> int:
 
     token = args.token or secrets.token_urlsafe(16)
     settings = ConsoleSettings(world=load_world(args), token=token, seed=args.seed,
-                               fidelity=args.fidelity, speed=args.speed, walkers=args.walkers)
+                               fidelity=args.fidelity, speed=args.speed, walkers=args.walkers,
+                               lease=args.lease)
     app = create_app(settings)
     print(f"homebot console: http://{args.host}:{args.port}/?token={token}", flush=True)
     uvicorn.run(app, host=args.host, port=args.port, log_level="warning")

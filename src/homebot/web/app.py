@@ -115,7 +115,8 @@ def create_app(settings: ConsoleSettings, *, rate: float = 10.0,
     app.state.console = home
     app.state.watchers = watchers
     app.state.stats = {"superseded": 0, "lost_events": 0, "watchers": 0}
-    app.state.refused = refused = {}  # the guard's refusals and the rejected bodies, by kind
+    refused: dict[str, int] = {}  # the guard's refusals and the rejected bodies, by kind
+    app.state.refused = refused
     app.state.sessions = sessions = Sessions(clock=clock)
     # outermost: nothing below it (FastAPI's body parsing included) runs for a refused request
     app.add_middleware(RequestGuard, token=settings.token, counts=refused)
