@@ -1,4 +1,5 @@
-"""The console in a real headless Chromium: a fetch typed in the page, the map live, e-stop."""
+"""The console in a real headless Chromium: a fetch typed in the page, the map live, e-stop;
+control given back when its page is reloaded or closed."""
 
 from __future__ import annotations
 
@@ -118,9 +119,65 @@ def test_a_fetch_typed_in_the_page_runs_live_and_the_stop_button_stops(
     with home.lock:
         assert home.estop
         assert home.world.room_at(*home.sim.robot_pose[:2]) != "bedroom"
-    for name in ("moving.png", "done.png", "stopped.png"):
+    # the step view says what is true: stopped, nothing left running; then it goes on
+    page.wait_for_function("document.getElementById('task-head').dataset.outcome === 'stopped'")
+    assert page.locator(".step.running").count() == 0
+    assert page.locator(".step[data-status=stopped]").count() == 1
+    assert "Release the stop" in page.inner_text("#help")
+    page.click("#release-estop")
+    page.wait_for_function("document.getElementById('estop').className === ''")
+    page.click("#resume")
+    page.wait_for_function("document.getElementById('task-head').dataset.outcome === 'done'")
+    page.screenshot(path=str(tmp_path / "resumed.png"))
+    with home.lock:  # ground truth: it went on to the bedroom
+        assert home.world.room_at(*home.sim.robot_pose[:2]) == "bedroom"
+    for name in ("moving.png", "done.png", "stopped.png", "resumed.png"):
         assert (tmp_path / name).stat().st_size > 10_000  # a real picture of the page
     page.close()
+
+
+_CONTROL = "document.getElementById('control').textContent.includes('{}')"
+
+
+def test_control_goes_back_when_its_page_is_reloaded_or_closed(
+        served: tuple[str, Console], browser: object, tmp_path: Path) -> None:
+    url, home = served
+    first = browser.new_page(viewport={"width": 1280, "height": 800})  # type: ignore[attr-defined]
+    first.set_default_timeout(_TIMEOUT_MS)
+    first.goto(f"{url}/?token={TOKEN}")
+    first.wait_for_selector("#robot", state="attached")
+    first.click("#take")
+    first.wait_for_function(_CONTROL.format("you have control"))
+    held_by = home.controller
+    assert held_by is not None and held_by in first.inner_text("#whoami")
+    # a reload: the old page's beacon gives control back at once (well within the lease)
+    first.reload()
+    first.wait_for_selector("#robot", state="attached")
+    first.wait_for_function(_CONTROL.format("nobody has control"))
+    assert home.controller is None
+    assert held_by not in first.inner_text("#whoami")  # the reloaded page is a new session
+    first.click("#take")
+    first.wait_for_function(_CONTROL.format("you have control"))
+    # a second page cannot take it, and sees who has it
+    second = browser.new_page(viewport={"width": 1280, "height": 800})  # type: ignore[attr-defined]
+    second.set_default_timeout(_TIMEOUT_MS)
+    second.goto(f"{url}/?token={TOKEN}")
+    second.wait_for_selector("#robot", state="attached")
+    second.wait_for_function(_CONTROL.format("someone else has control"))
+    second.click("#take")
+    second.wait_for_function("document.getElementById('error').textContent"
+                             ".includes('another operator')")
+    second.screenshot(path=str(tmp_path / "refused.png"))
+    # closing the tab gives it back: the second page takes it without waiting out the lease
+    first.close(run_before_unload=True)
+    second.wait_for_function(_CONTROL.format("nobody has control"))
+    second.click("#take")
+    second.wait_for_function(_CONTROL.format("you have control"))
+    second.screenshot(path=str(tmp_path / "taken_over.png"))
+    assert home.controller is not None and home.controller != held_by
+    for name in ("refused.png", "taken_over.png"):
+        assert (tmp_path / name).stat().st_size > 10_000
+    second.close(run_before_unload=True)
 
 
 def test_arrow_keys_drive_the_embodied_base_capped_and_slowed(browser: object,

@@ -34,7 +34,7 @@ async function api(path, body) {
 async function startSession() {
   const data = await api("/api/session", {});
   SESSION = data.session || ""; OPERATOR = data.operator || "";
-  document.getElementById("whoami").textContent = OPERATOR ? "you are " + OPERATOR : "";
+  document.getElementById("whoami").textContent = OPERATOR ? `(you are ${OPERATOR})` : "";
   return data;
 }
 
