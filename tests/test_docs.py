@@ -25,7 +25,7 @@ NOT_CODE = {
     # the world file's fields (robot: {speed: ..., laser: ...})
     "robot.speed", "robot.angular_speed", "robot.drive", "robot.laser", "robot.arm",
     # event kinds in the event log
-    "robot.lost", "sim.speech", "sim.final",
+    "robot.lost", "sim.speech", "sim.final", "task.end",
     # file names
     "world.yaml", "task.yaml",
 }
