@@ -138,3 +138,37 @@ def test_the_stop_cancels_a_symbolic_drive_at_the_next_step_of_the_clock(
             assert stopped and stopped[0].time == pressed[1]  # at the step of the press
     finally:
         home.close()
+
+
+def test_a_fault_inside_a_task_ends_it_in_the_log_and_the_worker_goes_on(
+        apartment: World) -> None:
+    home = Console(ConsoleSettings(world=apartment, token="test-token", speed=0.0),
+                   lease_clock=_FROZEN)
+    faults: list[int] = []
+
+    def broken(tick: int) -> None:  # a bug in an observer, 20 steps into the first task
+        if not faults and home.steps.current >= 0 and tick > 20:
+            faults.append(tick)
+            raise ValueError("an observer's bug")
+
+    home.tick_hooks.append(broken)
+    home.start()
+    try:
+        home.take_control("ann")
+        home.run_steps("ann", [{"skill": "navigate", "to": "bedroom"}])
+        assert home.wait_idle(120.0)
+        with home.lock:
+            errors = [e.data["error"] for e in home.sim.events.of_kind("console.error")]
+            assert errors == ["ValueError: an observer's bug"]
+            ended = list(home.sim.events.of_kind("task.end"))
+            assert [e.data["success"] for e in ended] == [False]
+            assert home.steps.outcome == "failed"
+            assert all(step["status"] != "running" for step in home.steps.steps)
+        # the worker is alive: the next task runs to its end
+        home.run_steps("ann", [{"skill": "navigate", "to": "kitchen"}])
+        assert home.wait_idle(120.0)
+        with home.lock:
+            assert home.steps.outcome == "done"
+            assert apartment.room_at(*home.sim.robot_pose[:2]) == "kitchen"
+    finally:
+        home.close()

@@ -20,6 +20,8 @@ from homebot.errors import HomebotError
 
 __all__ = ["register", "serve"]
 
+_WS_MAX_MESSAGE = 4096  #: bytes of one message a client may send on the websocket
+
 
 def register(subparsers: Any) -> None:
     parser = subparsers.add_parser("serve", help="watch and command the robot in a browser")
@@ -104,5 +106,7 @@ def serve(args: argparse.Namespace) -> int:
                                lease=args.lease)
     app = create_app(settings)
     print(f"homebot console: http://{args.host}:{args.port}/?token={token}", flush=True)
-    uvicorn.run(app, host=args.host, port=args.port, log_level="warning")
+    # the page never sends on its websocket: a client that does gets little buffered
+    uvicorn.run(app, host=args.host, port=args.port, log_level="warning",
+                ws_max_size=_WS_MAX_MESSAGE, ws_max_queue=4)
     return 0
