@@ -50,6 +50,7 @@ __all__ = ["Console", "ConsoleSettings", "static_map"]
 
 _COMMAND_HOLD = 0.5  #: simulated seconds a body-level velocity command holds
 _EVENTS_KEPT = 2000  #: events the console keeps for late-joining watchers
+_TRAIL_KEPT = 2000  #: points of the robot's drawn path kept (the page shows the last 200)
 _TERMINAL = frozenset({"verified", "failed", "aborted"})
 _AHEAD = math.radians(35.0)  #: half-width of the cone "ahead" for obstacle slowing
 _SCAN_POINTS_SHOWN = 120
@@ -123,6 +124,9 @@ class Console:
             world=settings.world, seed=settings.seed, fidelity=settings.fidelity,
             walkers=settings.walkers, time_limit=settings.time_limit))
         self.sim = self.run.simulation
+        # a console serves for days: the log and the drawn path keep their latest part only
+        self.sim.events.keep = _EVENTS_KEPT
+        self.sim.trail_keep = _TRAIL_KEPT
         self.body: Body | None = self.run.body
         self.lock = threading.Condition(threading.RLock())
         self._wall = wall
