@@ -300,9 +300,12 @@ def fuzz(server: ServedConsole, requests: int, seed: int) -> dict[str, Any]:
     rss_warm = rss_end = 0.0
     began = time.perf_counter()
     stream = malformed_requests(rng, server.token, session)
+    samples: list[float] = []  # the server's resident memory at each tenth of the run
     for index in range(requests):
         if index == min(_WARM_UP, requests - 1):
             rss_warm = server.memory_mb()[0]
+        if index % max(1, requests // 10) == 0:
+            samples.append(round(server.memory_mb()[0], 1))
         request = next(stream)
         status = _send(connection, request)
         statuses[status] += 1
@@ -316,6 +319,7 @@ def fuzz(server: ServedConsole, requests: int, seed: int) -> dict[str, Any]:
             "server_errors": sum(n for status, n in statuses.items() if status >= 500),
             "faults": faults, "rss_after_warm_up_mb": round(rss_warm, 1),
             "rss_end_mb": round(rss_end, 1), "rss_growth_mb": round(rss_end - rss_warm, 2),
+            "rss_by_tenth_mb": samples,
             "still_answers": server.answers()}
 
 

@@ -77,7 +77,7 @@ def create_app(settings: ConsoleSettings, *, rate: float = 10.0,
                console: Console | None = None,
                clock: Callable[[], float] = time.monotonic) -> FastAPI:
     """The console app over a new home (or ``console``), sampled ``rate`` times a second;
-    sessions and the control lease read ``clock`` (wall seconds)."""
+    sessions (and a new home's control lease) read ``clock`` (wall seconds)."""
     home = console or Console(settings, lease_clock=clock)
     watchers: set[Watcher] = set()
 
@@ -118,7 +118,8 @@ def create_app(settings: ConsoleSettings, *, rate: float = 10.0,
     refused: dict[str, int] = {}  # the guard's refusals and the rejected bodies, by kind
     app.state.refused = refused
     app.state.sessions = sessions = Sessions(clock=clock)
-    # outermost: nothing below it (FastAPI's body parsing included) runs for a refused request
+    # below Starlette's error handler, above everything else: nothing below it (FastAPI's
+    # body parsing included) runs for a refused request
     app.add_middleware(RequestGuard, token=settings.token, counts=refused)
 
     def operator(header: str | None = Header(None, alias="X-Homebot-Session"),
@@ -130,8 +131,9 @@ def create_app(settings: ConsoleSettings, *, rate: float = 10.0,
 
     def _bad(kind: str, request: Request, error: str, status: int) -> JSONResponse:
         refused[kind] = refused.get(kind, 0) + 1
-        _log.warning("%s %s answered %d: %s", request.method, request.url.path[:80], status,
-                     error)
+        # repr: what a client typed reaches the log escaped, one line, bounded
+        _log.warning("%s %r answered %d: %r", request.method, request.url.path[:80], status,
+                     error[:300])
         return JSONResponse({"error": error}, status_code=status)
 
     @app.exception_handler(_NoSession)

@@ -119,7 +119,7 @@ class RequestGuard:
     def _count(self, kind: str, scope: Scope) -> None:
         self.counts[kind] = self.counts.get(kind, 0) + 1
         client = scope.get("client") or ("?", 0)
-        _log.warning("refused %s %s from %s: %s", scope.get("method", "WS"),
+        _log.warning("refused %s %r from %s: %s", scope.get("method", "WS"),
                      scope.get("path", "")[:80], client[0], kind)
 
 
