@@ -71,3 +71,13 @@ def test_the_lease_lapses_without_renewal_and_only_its_holder_renews_or_releases
 def test_a_lease_of_no_time_is_refused(seconds: float) -> None:
     with pytest.raises(ConsoleError, match="above 0"):
         ControlLease(seconds)
+
+
+def test_a_flood_of_new_sessions_never_forgets_the_one_named_to_keep() -> None:
+    clock = Stepped()
+    sessions = Sessions(limit=3, clock=clock)
+    holder, name = sessions.open()
+    for _ in range(50):
+        clock.now += 1
+        sessions.open(keep=name)
+    assert len(sessions) == 3 and sessions.name(holder) == name

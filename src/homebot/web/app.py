@@ -179,7 +179,7 @@ def create_app(settings: ConsoleSettings, *, rate: float = 10.0,
 
     @app.post("/api/session")
     def session() -> dict[str, Any]:
-        secret, name = sessions.open()
+        secret, name = sessions.open(keep=home.controller)  # a flood never evicts control
         return {"session": secret, "operator": name, "lease": home.lease.seconds}
 
     @app.post("/api/session/heartbeat")

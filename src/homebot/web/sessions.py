@@ -44,12 +44,15 @@ class Sessions:
         self._lock = threading.Lock()
         self._issued = 0
 
-    def open(self) -> tuple[str, str]:
-        """A new session: (its secret id, its public name)."""
+    def open(self, *, keep: str | None = None) -> tuple[str, str]:
+        """A new session: (its secret id, its public name). When ``limit`` are live, the
+        longest silent is forgotten, never the one named ``keep`` (who holds control)."""
         with self._lock:
             self._forget_idle()
-            while len(self._live) >= self.limit:
-                self._live.popitem(last=False)
+            while len(self._live) >= max(self.limit, 2):
+                oldest = next(secret for secret, session in self._live.items()
+                              if session.name != keep)
+                del self._live[oldest]
             self._issued += 1
             secret = secrets.token_urlsafe(24)
             name = f"operator-{self._issued}-{secrets.token_hex(2)}"
