@@ -51,6 +51,8 @@ window.addEventListener("pagehide", () => {
                                     `&session=${encodeURIComponent(SESSION)}`);
   SESSION = "";
 });
+// back from the browser's back-forward cache: the old session was ended, start a new one
+window.addEventListener("pageshow", (event) => { if (event.persisted) startSession(); });
 
 function drawMap() {
   svg.innerHTML = "";
