@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import socket
+
 import pytest
 
 from homebot.cli import main
@@ -23,7 +25,11 @@ def test_serve_refuses_bad_options_in_one_line(arguments: list[str],
     assert "Traceback" not in error and error.strip()
 
 
-def test_a_host_that_cannot_be_listened_on_is_named(capsys: pytest.CaptureFixture[str]) -> None:
-    assert main(["serve", "--host", "999.1.1.1", "--token", "long-enough-token"]) == 2
+def test_a_port_already_in_use_is_named(capsys: pytest.CaptureFixture[str]) -> None:
+    with socket.socket() as taken:
+        taken.bind(("127.0.0.1", 0))
+        taken.listen()
+        port = taken.getsockname()[1]
+        assert main(["serve", "--port", str(port), "--token", "long-enough-token"]) == 2
     error = capsys.readouterr().err
-    assert "--host 999.1.1.1" in error and "Traceback" not in error
+    assert f"--port {port}: cannot listen there" in error and "Traceback" not in error

@@ -70,9 +70,9 @@ def _lease(text: str) -> float:
     return value
 
 
-def _check_address(host: str, port: int) -> None:
-    """Refuse an address this machine cannot listen on, naming the option, before the
-    home is built."""
+def _check_port(host: str, port: int) -> None:
+    """Refuse a port this machine cannot listen on (one in use), naming the option, before
+    the home is built (``--host`` was checked as it was read)."""
     try:
         family = socket.getaddrinfo(host, port, type=socket.SOCK_STREAM)[0]
         with socket.socket(family[0], socket.SOCK_STREAM) as probe:
@@ -80,9 +80,8 @@ def _check_address(host: str, port: int) -> None:
             probe.bind(family[4])
     except (OSError, UnicodeError) as error:
         reason = getattr(error, "strerror", None) or str(error)
-        raise HomebotError(f"--host {host} --port {port}: cannot listen there ({reason}); "
-                           "give an address of this machine (127.0.0.1, 0.0.0.0) and a free "
-                           "port") from None
+        raise HomebotError(f"--port {port}: cannot listen there on {host} ({reason}); give "
+                           "a free port") from None
 
 
 def serve(args: argparse.Namespace) -> int:
@@ -94,7 +93,7 @@ def serve(args: argparse.Namespace) -> int:
     if args.token is not None and len(args.token) < 8:
         raise HomebotError("--token: give at least 8 characters (or leave it out for a "
                            "random one)")
-    _check_address(args.host, args.port)
+    _check_port(args.host, args.port)
     import uvicorn
 
     from homebot.web import ConsoleSettings
