@@ -232,7 +232,7 @@ def test_the_stop_preempts_a_running_task_and_the_operator_helps_it_on(
         assert set(home.sim.hands.values()) == {"cola", "water"}
     # and a stop pressed while the robot drives preempts it where it is
     go = [{"skill": "navigate", "to": "bedroom"}]
-    home.settings.speed = 1.0  # real time: the drive takes long enough to be stopped
+    home.settings.speed = 0.2  # slower than real time: the drive outlasts a loaded machine
     assert client.post("/api/steps", json={"steps": go}, headers=ANN).status_code == 200
     with home.lock:
         home.lock.wait_for(lambda: home.steps.current >= 0 and
