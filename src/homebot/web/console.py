@@ -43,6 +43,7 @@ from homebot.robot import Body, Twist
 from homebot.skills.catalogue import check_step, spelled_as_world
 from homebot.skills.places import resolve_target
 from homebot.task import Step, Task
+from homebot.web.narration import Narrator
 from homebot.web.sessions import ControlLease
 from homebot.world import World
 
@@ -89,7 +90,8 @@ class _Steps:
 
 
 def static_map(world: World) -> dict[str, Any]:
-    """The parts of the map that do not move: rooms, doors, furniture, bounds."""
+    """The parts of the map that do not move: rooms, doors, furniture, bounds, and an example
+    command for this home."""
     rooms = {name: [list(map(float, xy)) for xy in polygon.exterior.coords]
              for name, polygon in world.room_polygons.items()}
     xs = [x for poly in rooms.values() for x, _ in poly]
@@ -104,7 +106,21 @@ def static_map(world: World) -> dict[str, Any]:
                               "kind": p.model.kind.value}
                        for name, p in world.placements.items()},
         "radius": world.robot.radius,
+        "example": example_command(world),
     }
+
+
+def example_command(world: World) -> str:
+    """A command that fits this home, for the command box's placeholder: its first object
+    fetched from where it lies (or, with no objects, a trip to its first room)."""
+    def spoken(name: str) -> str:
+        return name.replace("_", " ")
+
+    if world.model.objects:
+        obj = world.model.objects[0]
+        return f"bring me the {spoken(obj.name)} from the {spoken(obj.placement)}"
+    rooms = list(world.room_polygons)
+    return f"go to the {spoken(rooms[0])}" if rooms else "say hello"
 
 
 class Console:
@@ -139,6 +155,7 @@ class Console:
         self.event_count = 0
         self.sim.events.listeners.append(self._heard)
         self.speech: deque[str] = deque(maxlen=20)
+        self._narrator = Narrator()  #: each event's line in the log, as ``do`` narrates
         self.steps = _Steps()
         self._task_open = False  #: a task.start was logged and its task.end not yet
         self.path: list[list[float]] = []
@@ -275,6 +292,7 @@ class Console:
         data = event.to_dict()
         self.event_count += 1
         kind = event.kind
+        data["line"] = self._narrator.line(kind, event.data)
         if kind not in ("robot.laser", "robot.particles", "robot.trajectory"):
             self.events.append((self.event_count, data))
         if kind == "speech":
@@ -491,8 +509,10 @@ class Console:
             for line in turn.said:
                 self.speech.append(line)
                 self.event_count += 1
-                self.events.append((self.event_count, {"time": self.sim.clock.now(),
-                                                       "kind": "console.reply", "text": line}))
+                reply = {"text": line}
+                self.events.append((self.event_count, {
+                    "time": self.sim.clock.now(), "kind": "console.reply", **reply,
+                    "line": self._narrator.line("console.reply", reply)}))
 
     def _run_task(self, task: Task, *, interrupt: Callable[[], bool] | None = None,
                   helping: bool = False) -> RunReport[Any]:

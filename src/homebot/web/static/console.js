@@ -8,6 +8,21 @@ let SESSION = "", OPERATOR = "";
 const SVG = "http://www.w3.org/2000/svg";
 const svg = document.getElementById("map");
 let map = null, state = null, composed = [], scale = 40, layers = {};
+let placementLabels = [];  // the boxes the furniture's names take, so others keep off them
+
+function spoken(name) { return name.replaceAll("_", " "); }
+// where a centred label of `text` near (x, y) overlaps none of `taken` (tried: on the spot,
+// then a line below, above, two lines below ...); the first spot when all are taken. The
+// chosen box is added to `taken`.
+function label(taken, text, x, y, size) {
+  const w = text.length * size * 0.55, h = size;
+  const free = (ty) => taken.every(b => x + w / 2 < b[0] || x - w / 2 > b[2] ||
+                                        ty < b[1] || ty - h > b[3]);
+  const tries = [0, 1, -1, 2, -2].map(k => y + k * (h + 1));
+  const ty = tries.find(free) ?? y;
+  taken.push([x - w / 2, ty - h, x + w / 2, ty]);
+  return [x, ty];
+}
 
 function el(name, attrs, parent) {
   const node = document.createElementNS(SVG, name);
@@ -70,12 +85,23 @@ function drawMap() {
                           "text-anchor": "middle"}, base);
     t.textContent = name;
   }
+  placementLabels = [];
   for (const [name, p] of Object.entries(map.placements)) {
     const [x0, y0] = px(p.box[0], p.box[3]), [x1, y1] = px(p.box[2], p.box[1]);
     el("rect", {x: x0, y: y0, width: x1 - x0, height: y1 - y0,
                 fill: p.kind === "furniture" ? "#dcb" : "#eef", stroke: "#765"}, base)
       .appendChild(document.createElementNS(SVG, "title")).textContent = name;
   }
+  // furniture names at their footprints' centres, nudged apart where they would collide
+  const names = el("g", {id: "layer-placement-labels"}, base);
+  for (const [name, p] of Object.entries(map.placements)) {
+    const [cx, cy] = px((p.box[0] + p.box[2]) / 2, (p.box[1] + p.box[3]) / 2);
+    const spot = label(placementLabels, spoken(name), cx, cy + 3, 10);
+    el("text", {x: spot[0], y: spot[1], "font-size": 10, fill: "#543", "text-anchor": "middle",
+                class: "placement-label", "data-placement": name}, names)
+      .textContent = spoken(name);
+  }
+  document.getElementById("command").placeholder = map.example || "";
   for (const name of ["doors", "trail", "scan", "particles", "objects", "people", "robot"])
     layers[name] = el("g", {id: "layer-" + name}, svg);
 }
@@ -100,11 +126,16 @@ function drawState() {
                                                    fill: "#e22"}, layers.scan);
   for (const p of state.particles || []) el("circle", {cx: px(...p)[0], cy: px(...p)[1], r: 1,
                                                         fill: "#a3a"}, layers.particles);
+  const taken = placementLabels.slice();
   for (const [name, o] of Object.entries(state.objects)) {
     const [cx, cy] = px(...o.xy);
-    const c = el("circle", {cx, cy, r: 4, fill: "#08a", "data-object": name, class: "object"},
+    const c = el("circle", {cx, cy, r: 3, fill: "#08a", "data-object": name, class: "object"},
                  layers.objects);
-    el("title", {}, c).textContent = name;
+    el("title", {}, c).textContent = `${name} (on ${o.at})`;
+    const spot = label(taken, spoken(name), cx, cy - 4, 9);
+    el("text", {x: spot[0], y: spot[1], "font-size": 9, fill: "#057", "text-anchor": "middle",
+                class: "object-label", "data-object": name}, layers.objects)
+      .textContent = spoken(name);
   }
   for (const [name, p] of Object.entries(state.people)) {
     const [cx, cy] = px(...p);
@@ -174,10 +205,16 @@ function logEvents(events, lost) {
   const log = document.getElementById("log");
   if (lost) { const d = document.createElement("div"); d.textContent = `(${lost} events skipped)`;
               log.appendChild(d); }
+  // one narrated line per event; its raw JSON one click away
   for (const e of events) {
-    const d = document.createElement("div");
-    const {n, time, kind, ...rest} = e;
-    d.textContent = `${time.toFixed(1)} ${kind} ${JSON.stringify(rest).slice(0, 140)}`;
+    const {line, ...raw} = e;
+    const d = document.createElement("details");
+    d.className = "event"; d.dataset.kind = e.kind;
+    const summary = document.createElement("summary");
+    summary.textContent = `${e.time.toFixed(1)} s  ${line || e.kind}`;
+    const json = document.createElement("pre");
+    json.textContent = JSON.stringify(raw, null, 1);
+    d.append(summary, json);
     log.appendChild(d);
   }
   while (log.childNodes.length > 300) log.removeChild(log.firstChild);

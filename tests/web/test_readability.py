@@ -1,0 +1,80 @@
+"""The console reads well: the map names its furniture, the command box's example fits the
+served home, and the event log reads as ``homebot do`` narrates (raw JSON kept)."""
+
+from __future__ import annotations
+
+import pytest
+
+pytest.importorskip("fastapi")
+pytest.importorskip("httpx")
+
+from fastapi.testclient import TestClient
+
+from homebot.web import ConsoleSettings
+from homebot.web.app import create_app
+from homebot.web.console import example_command
+from homebot.web.narration import Narrator
+from homebot.world import World
+
+TOKEN = "test-token-readable"
+_WAIT = 120.0
+
+
+@pytest.mark.parametrize("name", ["apartment", "family_home", "supermarket"])
+def test_the_example_command_names_an_object_and_placement_of_the_served_home(
+        name: str) -> None:
+    world = World.load(name)
+    settings = ConsoleSettings(world=world, token=TOKEN, speed=0.0)
+    with TestClient(create_app(settings)) as client:
+        served = client.get("/api/map", headers={"X-Homebot-Token": TOKEN}).json()
+    first = world.model.objects[0]
+    assert served["example"] == example_command(world)
+    assert first.name.replace("_", " ") in served["example"]
+    assert first.placement.replace("_", " ") in served["example"]
+    assert set(served["placements"]) == set(world.placements)  # each one drawn and named
+
+
+def test_the_examples_differ_between_homes_and_a_home_without_objects_gets_a_trip() -> None:
+    apartment, family = World.load("apartment"), World.load("family_home")
+    assert example_command(apartment) != example_command(family)
+    empty = World(apartment.model.model_copy(update={"objects": []}))
+    assert example_command(empty).startswith("go to the ")
+
+
+def test_each_event_reads_as_the_narration_do_prints() -> None:
+    narrator = Narrator()
+    assert narrator.line("skill.start", {"skill": "navigate", "args": {"to": "kitchen"}}) == \
+        "▶ navigate(to=kitchen)"
+    # a status event does not repeat the arguments: the narrator remembers them
+    assert narrator.line("skill.status", {"skill": "navigate", "status": "verified",
+                                          "error": None, "message": "I am in the kitchen"}) \
+        == "verified navigate(to=kitchen) — I am in the kitchen"
+    assert narrator.line("skill.status", {"skill": "navigate", "status": "failed",
+                                          "error": "blocked", "message": ""}) \
+        == "failed navigate(to=kitchen) (blocked)"
+    assert narrator.line("speech", {"text": "I have found the cola"}) == \
+        "robot: I have found the cola"
+    assert narrator.line("task.end", {"success": False, "reason": "no cola"}) == \
+        "task failed: no cola"
+    unknown = narrator.line("door.opened", {"door": "kitchen_door", "by": "x" * 400})
+    assert unknown.startswith("door.opened: door=kitchen_door, by=xxx") and len(unknown) <= 160
+
+
+def test_the_served_log_carries_a_narrated_line_beside_each_raw_event() -> None:
+    settings = ConsoleSettings(world=World.load("apartment"), token=TOKEN, speed=0.0)
+    with TestClient(create_app(settings)) as client:
+        headers = {"X-Homebot-Token": TOKEN}
+        session = client.post("/api/session", headers=headers).json()["session"]
+        page = {**headers, "X-Homebot-Session": session}
+        client.post("/api/control", json={"action": "take"}, headers=page)
+        client.post("/api/command", json={"text": "bring me the cola from the fridge"},
+                    headers=page)
+        assert client.app.state.console.wait_idle(_WAIT)  # type: ignore[attr-defined]
+        events = client.get("/api/events", headers=headers).json()
+    lines = [event["line"] for event in events]
+    assert "▶ navigate(to=fridge)" in lines
+    assert "verified pick(object=cola) — I have the cola" in lines
+    assert "robot: I have done what you asked." in lines
+    assert lines[-1] == "task done"
+    spoken = next(event for event in events if event["kind"] == "speech")
+    assert spoken["text"] and spoken["line"] == f"robot: {spoken['text']}"  # raw kept
