@@ -74,6 +74,7 @@ def _console(client: TestClient) -> Console:
 
 
 ROUTES = [("get", "/", None), ("get", "/api/map", None), ("get", "/api/state", None),
+          ("get", "/api/camera.jpg", None),
           ("get", "/api/events", None), ("post", "/api/session", {}),
           ("post", "/api/session/heartbeat", {}), ("post", "/api/session/end", {}),
           ("post", "/api/control", {"action": "take"}),

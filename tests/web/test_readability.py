@@ -3,6 +3,9 @@ served home, and the event log reads as ``homebot do`` narrates (raw JSON kept).
 
 from __future__ import annotations
 
+import io
+
+import numpy as np
 import pytest
 
 pytest.importorskip("fastapi")
@@ -10,6 +13,7 @@ pytest.importorskip("httpx")
 
 from fastapi.testclient import TestClient
 
+from homebot.app import Fidelity
 from homebot.web import ConsoleSettings
 from homebot.web.app import create_app
 from homebot.web.console import example_command
@@ -78,3 +82,44 @@ def test_the_served_log_carries_a_narrated_line_beside_each_raw_event() -> None:
     assert lines[-1] == "task done"
     spoken = next(event for event in events if event["kind"] == "speech")
     assert spoken["text"] and spoken["line"] == f"robot: {spoken['text']}"  # raw kept
+
+
+def test_the_symbolic_home_says_it_has_no_camera() -> None:
+    settings = ConsoleSettings(world=World.load("apartment"), token=TOKEN, speed=0.0)
+    with TestClient(create_app(settings)) as client:
+        answer = client.get("/api/camera.jpg", headers={"X-Homebot-Token": TOKEN})
+        state = client.get("/api/state", headers={"X-Homebot-Token": TOKEN}).json()
+    assert answer.status_code == 404
+    assert "no camera" in answer.json()["error"] and "--fidelity embodied" in \
+        answer.json()["error"]
+    assert "camera" not in state  # the page says so from the fidelity
+
+
+def test_the_embodied_home_serves_the_image_its_head_camera_last_took() -> None:
+    pytest.importorskip("cv2")
+    from PIL import Image
+
+    settings = ConsoleSettings(world=World.load("apartment"), token=TOKEN, speed=0.0,
+                               fidelity=Fidelity.EMBODIED)
+    with TestClient(create_app(settings)) as client:
+        headers = {"X-Homebot-Token": TOKEN}
+        home = client.app.state.console  # type: ignore[attr-defined]
+        before = client.get("/api/camera.jpg", headers=headers)
+        assert before.status_code == 404 and "no camera image yet" in before.json()["error"]
+        assert client.get("/api/state", headers=headers).json()["camera"] is None
+        session = client.post("/api/session", headers=headers).json()["session"]
+        page = {**headers, "X-Homebot-Session": session}
+        client.post("/api/control", json={"action": "take"}, headers=page)
+        looked = client.post("/api/steps", headers=page, json={"steps": [
+            {"skill": "find_object", "object": "cola", "placement": "fridge"}]})
+        assert looked.status_code == 200
+        assert home.wait_idle(_WAIT)
+        stamp = client.get("/api/state", headers=headers).json()["camera"]
+        answer = client.get(f"/api/camera.jpg?token={TOKEN}")
+        frame = home.body.last_camera()
+    assert stamp is not None and answer.status_code == 200
+    assert answer.headers["content-type"] == "image/jpeg"
+    assert float(answer.headers["X-Homebot-Stamp"]) == pytest.approx(stamp, abs=1e-3)
+    image = np.asarray(Image.open(io.BytesIO(answer.content)).convert("RGB"), dtype=float)
+    assert image.shape == frame.rgb.shape  # the robot's own image, encoded
+    assert np.abs(image - frame.rgb).mean() < 8.0  # JPEG keeps it close

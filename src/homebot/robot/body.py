@@ -302,6 +302,11 @@ class Body(ABC):
         """The head's RGB-D camera image, taken now with the head where it points."""
         raise PartMissing("RGB-D camera")
 
+    def last_camera(self) -> RgbdFrame | None:
+        """The latest image ``camera`` took (None: none yet), for a viewer: reading it takes
+        no new image, so watching changes nothing the robot senses or does."""
+        return None
+
     def face_crops(self, views: int) -> list[np.ndarray]:
         """The head camera's close-ups of the face of the person in front (grey images), so
         many ``views`` as a face tracker crops over a second or two; none when nobody

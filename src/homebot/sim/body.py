@@ -129,6 +129,7 @@ class SimBody(Body):
         self._stopped = False
         self._odometry = (0.0, 0.0, 0.0)
         self._head = HeadState()
+        self._last_camera: RgbdFrame | None = None
         self._in_contact = False
         self._last_tick_end = simulation.clock.now()
         self._scan: LaserScan | None = None
@@ -216,8 +217,12 @@ class SimBody(Body):
         and handles, the objects on their surfaces and the people, their arms as they move
         them at this moment (``homebot.sim.camera``, ``sim.body_tracker``)."""
         self._first_looks()
-        return self.camera_simulator.render(self.now(), self.sim.robot_pose, self._head,
-                                            self._solids())
+        self._last_camera = self.camera_simulator.render(self.now(), self.sim.robot_pose,
+                                                         self._head, self._solids())
+        return self._last_camera
+
+    def last_camera(self) -> RgbdFrame | None:
+        return self._last_camera
 
     def _first_looks(self) -> None:
         """The first time the camera sees a placement the robot stands at, someone may

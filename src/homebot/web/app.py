@@ -31,7 +31,7 @@ from typing import Any
 
 from fastapi import Depends, FastAPI, Header, Query, Request, WebSocket, WebSocketDisconnect
 from fastapi.exceptions import RequestValidationError
-from fastapi.responses import HTMLResponse, JSONResponse
+from fastapi.responses import HTMLResponse, JSONResponse, Response
 from starlette.exceptions import HTTPException as StarletteHTTPException
 
 from homebot.errors import ConsoleError, HomebotError
@@ -168,6 +168,15 @@ def create_app(settings: ConsoleSettings, *, rate: float = 10.0,
     @app.get("/api/map")
     def map_() -> dict[str, Any]:
         return static_map(home.world)
+
+    @app.get("/api/camera.jpg")
+    def camera(request: Request) -> Response:
+        try:
+            stamp, jpeg = home.camera_jpeg()
+        except ConsoleError as error:  # no camera (symbolic), or no image yet
+            return _bad("no_camera", request, str(error), 404)
+        return Response(jpeg, media_type="image/jpeg",
+                        headers={"Cache-Control": "no-store", "X-Homebot-Stamp": f"{stamp:.3f}"})
 
     @app.get("/api/state")
     def state() -> dict[str, Any]:

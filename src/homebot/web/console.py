@@ -21,6 +21,7 @@ drive, at the next step of the clock) and the task stops there, the robot saying
 
 from __future__ import annotations
 
+import io
 import logging
 import math
 import threading
@@ -31,6 +32,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+from PIL import Image
 
 from homebot.app import Fidelity, RunSettings, build_run, conversation_for
 from homebot.cancel import CancelToken
@@ -155,6 +157,7 @@ class Console:
         self.event_count = 0
         self.sim.events.listeners.append(self._heard)
         self.speech: deque[str] = deque(maxlen=20)
+        self._jpeg: tuple[float, bytes] | None = None  #: the latest camera image, encoded
         self._narrator = Narrator()  #: each event's line in the log, as ``do`` narrates
         self.steps = _Steps()
         self._task_open = False  #: a task.start was logged and its task.end not yet
@@ -598,11 +601,31 @@ class Console:
         particles = localisation.particles if localisation is not None else np.zeros((0, 3))
         if len(particles) > 150:
             particles = particles[:: math.ceil(len(particles) / 150)]
-        return {"scan": points,
+        frame = body.last_camera()
+        return {"scan": points, "camera": None if frame is None else round(frame.stamp, 3),
                 "particles": np.round(np.asarray(particles)[:, :2], 2).tolist(),
                 "nearest_ahead": round(min(self.nearest_ahead(), 99.0), 3),
                 "velocity": [round(body.odometry().twist.vx, 3),
                              round(body.odometry().twist.wz, 3)]}
+
+    def camera_jpeg(self) -> tuple[float, bytes]:
+        """The latest image the head camera took, as JPEG, with its stamp (simulated s).
+
+        It is the image the robot itself last saw (``Body.last_camera``): watching takes
+        no new one, so a watched run is the run unwatched.
+        """
+        if self.body is None:
+            raise ConsoleError("no camera: the console serves the symbolic home; serve with "
+                               "--fidelity embodied to see through the robot's head camera")
+        frame = self.body.last_camera()
+        if frame is None:
+            raise ConsoleError("no camera image yet: the robot takes one when it looks "
+                               "(finding an object or a person)")
+        if self._jpeg is None or self._jpeg[0] != frame.stamp:
+            encoded = io.BytesIO()
+            Image.fromarray(np.ascontiguousarray(frame.rgb)).save(encoded, "JPEG", quality=85)
+            self._jpeg = (frame.stamp, encoded.getvalue())
+        return self._jpeg
 
     def events_since(self, number: int) -> list[dict[str, Any]]:
         """The kept events numbered above ``number``, each with its number as ``n``."""

@@ -201,6 +201,28 @@ function drawPanels() {
   } else help.style.display = "none";
 }
 
+// the head camera: the image the robot last took, fetched again whenever its stamp moves
+// (the state comes several times a second)
+let cameraShown = null;
+function drawCamera() {
+  const image = document.getElementById("camera"), note = document.getElementById("camera-note");
+  if (state.fidelity !== "embodied") {
+    image.style.display = "none";
+    note.textContent = "no camera: this home is served symbolic (serve with --fidelity " +
+      "embodied to see through the robot's head camera)";
+    return;
+  }
+  if (state.camera === null || state.camera === undefined) {
+    note.textContent = "no image yet: the robot takes one when it looks";
+    return;
+  }
+  note.textContent = `taken at t=${state.camera.toFixed(1)} s`;
+  if (state.camera === cameraShown) return;
+  cameraShown = state.camera;
+  image.src = `/api/camera.jpg?token=${encodeURIComponent(TOKEN)}&t=${state.camera}`;
+  image.style.display = "block";
+}
+
 function logEvents(events, lost) {
   const log = document.getElementById("log");
   if (lost) { const d = document.createElement("div"); d.textContent = `(${lost} events skipped)`;
@@ -228,7 +250,7 @@ function connect() {
     const data = JSON.parse(message.data);
     if (data.type === "map") { map = data; drawMap(); }
     else if (data.type === "events") logEvents(data.events, data.lost);
-    else if (data.type === "state") { state = data; drawState(); drawPanels(); }
+    else if (data.type === "state") { state = data; drawState(); drawPanels(); drawCamera(); }
   };
   ws.onclose = () => { document.getElementById("status").textContent = "disconnected; retrying";
                        setTimeout(connect, 1000); };
