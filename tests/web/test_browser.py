@@ -3,6 +3,7 @@ control given back when its page is reloaded or closed."""
 
 from __future__ import annotations
 
+import contextlib
 import os
 import shutil
 import socket
@@ -35,11 +36,11 @@ def _chromium() -> str | None:
     return next((path for path in candidates if path and Path(path).exists()), None)
 
 
-@pytest.fixture(scope="module")
-def served() -> Iterator[tuple[str, Console]]:
+@contextlib.contextmanager
+def _serving(settings: ConsoleSettings) -> Iterator[tuple[str, Console]]:
+    """The console app served on a free local port: its address and its home."""
     import uvicorn
 
-    settings = ConsoleSettings(world=World.load("apartment"), token=TOKEN, speed=10.0)
     app = create_app(settings)
     with socket.socket() as probe:
         probe.bind(("127.0.0.1", 0))
@@ -57,6 +58,13 @@ def served() -> Iterator[tuple[str, Console]]:
     finally:
         server.should_exit = True
         thread.join(timeout=10.0)
+
+
+@pytest.fixture(scope="module")
+def served() -> Iterator[tuple[str, Console]]:
+    with _serving(ConsoleSettings(world=World.load("apartment"), token=TOKEN,
+                                  speed=10.0)) as serving:
+        yield serving
 
 
 @pytest.fixture(scope="module")
@@ -98,7 +106,7 @@ def test_a_fetch_typed_in_the_page_runs_live_and_the_stop_button_stops(
     page.screenshot(path=str(tmp_path / "done.png"))
     assert page.locator(".step[data-status=verified]").count() >= 4
     assert "I have done what you asked." in page.inner_text("#speech")
-    assert "task.end" in page.inner_text("#log")
+    assert "task done" in page.inner_text("#log")  # narrated
     with home.lock:  # ground truth: the operator holds the cola
         assert home.sim.object_location["cola"] == f"person:{home.world.model.operator}"
     # skill level: a click on an object picks it
@@ -183,30 +191,15 @@ def test_control_goes_back_when_its_page_is_reloaded_or_closed(
 def test_arrow_keys_drive_the_embodied_base_capped_and_slowed(browser: object,
                                                              tmp_path: Path) -> None:
     pytest.importorskip("cv2")
-    import uvicorn
-
     settings = ConsoleSettings(world=World.load("apartment"), token=TOKEN, speed=2.0,
                                fidelity=Fidelity.EMBODIED)
-    app = create_app(settings)
-    home: Console = app.state.console
-    with socket.socket() as probe:
-        probe.bind(("127.0.0.1", 0))
-        port = probe.getsockname()[1]
-    server = uvicorn.Server(uvicorn.Config(app, host="127.0.0.1", port=port,
-                                           log_level="warning"))
-    thread = threading.Thread(target=server.run, daemon=True)
-    thread.start()
     speeds: list[tuple[float, float]] = []  # (nearest return ahead, forward speed)
-    home.tick_hooks.append(lambda tick: speeds.append(
-        (home.nearest_ahead(), home.body.odometry().twist.vx)))
-    try:
-        for _ in range(400):
-            if server.started:
-                break
-            thread.join(0.05)
+    with _serving(settings) as (url, home):
+        home.tick_hooks.append(lambda tick: speeds.append(
+            (home.nearest_ahead(), home.body.odometry().twist.vx)))
         page = browser.new_page(viewport={"width": 1280, "height": 800})  # type: ignore[attr-defined]
         page.set_default_timeout(_TIMEOUT_MS)
-        page.goto(f"http://127.0.0.1:{port}/?token={TOKEN}")
+        page.goto(f"{url}/?token={TOKEN}")
         page.wait_for_selector("#robot", state="attached")
         page.click("#take")
         page.wait_for_function("document.getElementById('control').textContent"
@@ -219,9 +212,6 @@ def test_arrow_keys_drive_the_embodied_base_capped_and_slowed(browser: object,
         page.keyboard.up("ArrowUp")
         page.screenshot(path=str(tmp_path / "driven.png"))
         page.close()
-    finally:
-        server.should_exit = True
-        thread.join(timeout=10.0)
     cap = settings.max_linear
     moving = [(ahead, speed) for ahead, speed in speeds if speed > 0.01]
     assert moving and max(speed for _, speed in moving) <= cap + 1e-9
@@ -229,3 +219,45 @@ def test_arrow_keys_drive_the_embodied_base_capped_and_slowed(browser: object,
     assert any(ahead < 1.0 and speed < 0.75 * cap for ahead, speed in moving)  # slowed near
     assert home.sim.collisions == []
     assert (tmp_path / "driven.png").stat().st_size > 10_000
+
+
+def test_the_page_names_the_furniture_narrates_the_log_and_shows_the_head_camera(
+        browser: object, tmp_path: Path) -> None:
+    pytest.importorskip("cv2")
+    world = World.load("apartment")
+    settings = ConsoleSettings(world=world, token=TOKEN, speed=0.0, fidelity=Fidelity.EMBODIED)
+    with _serving(settings) as (url, home):
+        page = browser.new_page(viewport={"width": 1280, "height": 800})  # type: ignore[attr-defined]
+        page.set_default_timeout(_TIMEOUT_MS)
+        page.goto(f"{url}/?token={TOKEN}")
+        page.wait_for_selector("#robot", state="attached")
+        # every piece of furniture named on the map; the objects too
+        labels = page.locator(".placement-label")
+        assert sorted(labels.all_text_contents()) == sorted(
+            name.replace("_", " ") for name in world.placements)
+        assert page.locator(".object-label[data-object='cola']").text_content() == "cola"
+        assert page.get_attribute("#command", "placeholder") == \
+            "bring me the cola from the fridge"  # this home's own, from the served map
+        assert "no image yet" in page.inner_text("#camera-note")
+        page.click("#take")
+        page.wait_for_function("document.getElementById('control').textContent"
+                               ".includes('you have control')")
+        page.evaluate("api('/api/steps', {steps: [{skill: 'navigate', to: 'fridge'}, "
+                      "{skill: 'find_object', object: 'cola', placement: 'fridge'}]})")
+        page.wait_for_function("document.getElementById('log').textContent"
+                               ".includes('verified find_object(object=cola, placement=fridge)')")
+        # the camera shows the image the robot took, loaded
+        page.wait_for_function("(() => { const i = document.getElementById('camera'); "
+                               "return i.complete && i.naturalWidth === 320; })()")
+        page.screenshot(path=str(tmp_path / "labelled.png"))
+        assert page.locator("#log details.event").count() >= 5
+        raw = page.locator("#log details.event[data-kind='skill.start'] pre").first
+        assert not raw.is_visible()  # the raw JSON is one click away
+        page.locator("#log details.event[data-kind='skill.start'] summary").first.click()
+        assert raw.is_visible() and '"kind": "skill.start"' in raw.inner_text()
+        page.locator("#camera").screenshot(path=str(tmp_path / "camera.png"))
+        page.close()
+    frame = home.body.last_camera()
+    assert frame is not None
+    for name in ("labelled.png", "camera.png"):
+        assert (tmp_path / name).stat().st_size > 5_000

@@ -76,15 +76,9 @@ function drawMap() {
   scale = Math.max(10, Math.min((box.width - 20) / w, (box.height - 20) / h));
   svg.setAttribute("viewBox", `0 0 ${w * scale + 20} ${h * scale + 20}`);
   const base = el("g", {}, svg);
-  for (const [name, poly] of Object.entries(map.rooms)) {
+  for (const poly of Object.values(map.rooms))
     el("polygon", {points: poly.map(p => px(...p).join(",")).join(" "), fill: "#fff",
                    stroke: "#333", "stroke-width": 2}, base);
-    const cx = poly.reduce((a, p) => a + p[0], 0) / poly.length;
-    const cy = poly.reduce((a, p) => a + p[1], 0) / poly.length;
-    const t = el("text", {x: px(cx, cy)[0], y: px(cx, cy)[1], "font-size": 12, fill: "#888",
-                          "text-anchor": "middle"}, base);
-    t.textContent = name;
-  }
   placementLabels = [];
   for (const [name, p] of Object.entries(map.placements)) {
     const [x0, y0] = px(p.box[0], p.box[3]), [x1, y1] = px(p.box[2], p.box[1]);
@@ -92,13 +86,21 @@ function drawMap() {
                 fill: p.kind === "furniture" ? "#dcb" : "#eef", stroke: "#765"}, base)
       .appendChild(document.createElementNS(SVG, "title")).textContent = name;
   }
-  // furniture names at their footprints' centres, nudged apart where they would collide
+  // the rooms' names above the furniture, then the furniture's at their footprints'
+  // centres, each nudged off the names already drawn; a white halo keeps them readable
   const names = el("g", {id: "layer-placement-labels"}, base);
+  for (const [name, poly] of Object.entries(map.rooms)) {
+    const cx = poly.reduce((a, p) => a + p[0], 0) / poly.length;
+    const cy = poly.reduce((a, p) => a + p[1], 0) / poly.length;
+    const spot = label(placementLabels, spoken(name), px(cx, cy)[0], px(cx, cy)[1], 12);
+    el("text", {x: spot[0], y: spot[1], "font-size": 12, fill: "#888", "text-anchor": "middle",
+                class: "room-label halo"}, names).textContent = spoken(name);
+  }
   for (const [name, p] of Object.entries(map.placements)) {
     const [cx, cy] = px((p.box[0] + p.box[2]) / 2, (p.box[1] + p.box[3]) / 2);
     const spot = label(placementLabels, spoken(name), cx, cy + 3, 10);
     el("text", {x: spot[0], y: spot[1], "font-size": 10, fill: "#543", "text-anchor": "middle",
-                class: "placement-label", "data-placement": name}, names)
+                class: "placement-label halo", "data-placement": name}, names)
       .textContent = spoken(name);
   }
   document.getElementById("command").placeholder = map.example || "";
@@ -134,13 +136,15 @@ function drawState() {
     el("title", {}, c).textContent = `${name} (on ${o.at})`;
     const spot = label(taken, spoken(name), cx, cy - 4, 9);
     el("text", {x: spot[0], y: spot[1], "font-size": 9, fill: "#057", "text-anchor": "middle",
-                class: "object-label", "data-object": name}, layers.objects)
+                class: "object-label halo", "data-object": name}, layers.objects)
       .textContent = spoken(name);
   }
   for (const [name, p] of Object.entries(state.people)) {
     const [cx, cy] = px(...p);
     el("circle", {cx, cy, r: 7, fill: "#f90"}, layers.people);
-    el("text", {x: cx + 9, y: cy + 4, "font-size": 11}, layers.people).textContent = name;
+    const spot = label(taken, name, cx + 9 + name.length * 3, cy + 4, 11);
+    el("text", {x: spot[0], y: spot[1], "font-size": 11, "text-anchor": "middle",
+                class: "halo"}, layers.people).textContent = name;
   }
   const [x, y, th] = state.robot, [cx, cy] = px(x, y), r = Math.max(6, map.radius * scale);
   el("circle", {cx, cy, r, fill: "none", stroke: "#06c", "stroke-width": 3, id: "robot",
