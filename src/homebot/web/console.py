@@ -295,8 +295,8 @@ class Console:
         data = event.to_dict()
         self.event_count += 1
         kind = event.kind
-        data["line"] = self._narrator.line(kind, event.data)
         if kind not in ("robot.laser", "robot.particles", "robot.trajectory"):
+            data["line"] = self._narrator.line(kind, event.data)
             self.events.append((self.event_count, data))
         if kind == "speech":
             self.speech.append(str(event.data.get("text", "")))

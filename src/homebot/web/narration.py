@@ -1,10 +1,10 @@
 """``Narrator``: each logged event as one line a person reads, as ``homebot do`` narrates.
 
 A step's outcome is the run report's own step line (``StepReport.line``, its markup taken
-off): ``verified  navigate(to=kitchen)``, followed by what the skill said of it; what the
-robot says reads ``robot: ...``. The narrator remembers each started skill's arguments, since
-a skill's status events do not repeat them. A kind it does not know reads as its name and
-its fields, shortened.
+off, its padding closed up): ``verified navigate(to=kitchen)``, then what the skill said;
+what the robot says reads ``robot: ...``. The narrator remembers each started skill's
+arguments, since a skill's status events do not repeat them. A kind it does not know reads
+as its name and its fields, shortened.
 """
 
 from __future__ import annotations

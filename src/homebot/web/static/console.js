@@ -8,7 +8,7 @@ let SESSION = "", OPERATOR = "";
 const SVG = "http://www.w3.org/2000/svg";
 const svg = document.getElementById("map");
 let map = null, state = null, composed = [], scale = 40, layers = {};
-let placementLabels = [];  // the boxes the furniture's names take, so others keep off them
+let placementLabels = [];  // the boxes the rooms' and furniture's names take: others keep off
 
 function spoken(name) { return name.replaceAll("_", " "); }
 // where a centred label of `text` near (x, y) overlaps none of `taken` (tried: on the spot,
