@@ -111,7 +111,7 @@ def test_the_embodied_home_serves_the_image_its_head_camera_last_took() -> None:
         page = {**headers, "X-Homebot-Session": session}
         client.post("/api/control", json={"action": "take"}, headers=page)
         looked = client.post("/api/steps", headers=page, json={"steps": [
-            {"skill": "find_object", "object": "cola", "placement": "fridge"}]})
+            {"skill": "look", "placement": "coat rack"}]})  # by the robot, in the entrance
         assert looked.status_code == 200
         assert home.wait_idle(_WAIT)
         stamp = client.get("/api/state", headers=headers).json()["camera"]
