@@ -91,6 +91,9 @@ def test_a_fetch_typed_in_the_page_runs_live_and_the_stop_button_stops(
     page.set_default_timeout(_TIMEOUT_MS)
     page.goto(f"{url}/?token={TOKEN}")
     page.wait_for_selector("#robot", state="attached")
+    page.wait_for_function("document.getElementById('camera-note').textContent"
+                           ".includes('no camera')")  # served symbolic: the panel says so
+    assert not page.locator("#camera").is_visible()
     page.click("#take")
     page.wait_for_function("document.getElementById('control').textContent"
                            ".includes('you have control')")
