@@ -44,3 +44,10 @@ def test_an_empty_text_has_no_nodes() -> None:
 def test_a_missing_file_names_itself(tmp_path: Path) -> None:
     with pytest.raises(WorldError, match="no such file"):
         load_yaml_document(tmp_path / "nowhere.yaml", WorldError)
+
+
+def test_an_integer_too_long_for_python_names_its_line() -> None:
+    text = "name: a\nrooms:\n  - " + "9" * 5000 + "\n"
+    with pytest.raises(WorldError, match=r"^home.yaml: line 3: a number too long to read "
+                                         r"\(over \d+ digits\); write a smaller one$"):
+        parse_yaml_text(text, "home.yaml", WorldError)

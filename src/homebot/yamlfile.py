@@ -12,6 +12,7 @@ reader, so every layer may use it.
 from __future__ import annotations
 
 import reprlib
+import sys
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -116,7 +117,30 @@ def parse_yaml_text(text: str, source: str, error_type: type[HomebotError]) -> L
     except RecursionError:
         raise error_type(f"{source}: YAML nested too deeply; flatten the lists and mappings"
                          ) from None
+    except ValueError:  # Python refuses to read an integer of over 4300 digits
+        raise error_type(f"{source}: {_too_long_number_place(root)}: a number too long "
+                         f"to read (over {sys.get_int_max_str_digits()} digits); write a "
+                         "smaller one") from None
     return LocatedDocument(data, root, source)
+
+
+def _too_long_number_place(root: yaml.Node | None) -> str:
+    """``line N`` of the first integer too long for Python to read, for the message."""
+    stack, seen = [root], set()
+    while stack:
+        node = stack.pop()
+        if node is None or id(node) in seen:
+            continue
+        seen.add(id(node))
+        if isinstance(node, yaml.ScalarNode):
+            if node.tag == "tag:yaml.org,2002:int" and len(node.value) > \
+                    sys.get_int_max_str_digits():
+                return f"line {node.start_mark.line + 1}"
+        elif isinstance(node, yaml.MappingNode):
+            stack.extend(item for pair in reversed(node.value) for item in reversed(pair))
+        elif isinstance(node, yaml.SequenceNode):
+            stack.extend(reversed(node.value))
+    return "unknown line"
 
 
 def compose_yaml_text(text: str, source: str, error_type: type[HomebotError],

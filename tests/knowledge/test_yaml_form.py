@@ -72,6 +72,12 @@ classes:
         ("classes:\n  - name: top\n  - name: top\n", "line 3, column 11", "not used before"),
         ("classes:\n  - mother: top\n", "line 2, column 5", "class name"),
         ("- just a list", "line 1, column 1", "a mapping"),
+        (  # past Python's 4300 digits for reading an int
+            "classes:\n  - name: top\n    properties:\n      - {statement: 'a=>>b', weight: "
+            + "9" * 5000 + "}\n",
+            "line 4, column 38",
+            "whole-number weight",
+        ),
     ],
 )
 def test_yaml_errors_name_line_column_and_what_was_expected(

@@ -120,6 +120,11 @@ def test_an_unquoted_arc_is_explained() -> None:
     assert "Expectation : Action => Next" in message
 
 
+def test_a_number_too_long_to_read_names_its_place() -> None:
+    message = _error(GOOD.replace("{count: 0}", "{count: " + "9" * 5000 + "}"))
+    assert message == "test.yaml, line 2, column 18: a number too long to read; write a smaller one"
+
+
 def test_invalid_yaml_names_the_line() -> None:
     assert "line" in _error("dialogue_models: [\n  - id: x\n")
 

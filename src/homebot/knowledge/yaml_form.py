@@ -196,7 +196,7 @@ def _scalar(node: yaml.Node) -> object:
         return None
     try:
         return yaml.safe_load(node.value) if node.style is None else node.value
-    except yaml.YAMLError:
+    except (yaml.YAMLError, ValueError):  # ValueError: an integer of over 4300 digits
         return node.value
 
 

@@ -336,6 +336,9 @@ class _File:
                 value = self.constructor.construct_object(node)
             except yaml.YAMLError as error:
                 raise DialogueError(f"{self.place(node)}: {error}") from None
+            except ValueError:  # Python reads no integer of over 4300 digits
+                raise DialogueError(f"{self.place(node)}: a number too long to read; "
+                                    "write a smaller one") from None
             if isinstance(value, bool):
                 return "true" if value else "false"
             if isinstance(value, int | float):
