@@ -94,9 +94,14 @@ def _check_value(skill: str, name: str, value: Any, world: World, where: str) ->
             raise TaskError(f"{where}: a person is described by {', '.join(sorted(_PERSON_FIELDS))}"
                             f", not '{unknown[0]}'")
         for field, text in value.items():
-            if isinstance(text, (list, dict)):
+            if isinstance(text, (list, dict)) or not str(text).strip():
                 raise TaskError(f"{where}: {skill}.person.{field} is a word such as 'waving', "
                                 f"not {short_repr(text)}")
+        return
+    if name == "hand":
+        if str(value) not in world.robot.hands:
+            raise TaskError(f"{where}: {skill}.hand is one of the robot's hands "
+                            f"({', '.join(world.robot.hands)}), not {short_repr(value)}")
         return
     if name == "to" and skill in _POINT_GOAL_SKILLS and isinstance(value, (list, Mapping)):
         _check_point_goal(skill, value, world, where)
