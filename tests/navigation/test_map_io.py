@@ -165,9 +165,10 @@ def test_bad_map_yaml_is_a_map_error(tmp_path: Path, l_shape: World,
 
 @pytest.mark.parametrize(("content", "expected"), [
     (b"P5\n10 10\n255\n" + bytes(20), "cannot be read|not an image"),
-    (b"not an image at all", "not an image Pillow can read"),
+    (b"not an image at all", r"not an image Pillow can read \(no known image format\)"),
     (b"P5\n10000 10000\n255\n", "too large to read"),
     (b"P5\n100000 100000\n255\n", "too large to read"),
+    (b"P5\n8000 8000\n255\n" + bytes(64), r"8000×8000 pixels, more than the 4,194,304"),
 ])
 def test_a_broken_image_is_a_map_error(tmp_path: Path, l_shape: World, content: bytes,
                                        expected: str) -> None:

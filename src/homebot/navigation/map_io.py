@@ -51,6 +51,7 @@ from homebot.yamlfile import load_yaml_document, short_repr
 
 __all__ = [
     "FREE_PIXEL",
+    "MAX_MAP_PIXELS",
     "OCCUPIED_PIXEL",
     "UNKNOWN_PIXEL",
     "RosMap",
@@ -273,6 +274,11 @@ def _finite(value: Any, where: str) -> float:
     return float(value)
 
 
+#: The most pixels a map image may have: reading one costs some 80 bytes a pixel (a
+#: 2000×2000 map took 350 MB, 8000×8000 over 2 GB), and a home is far smaller.
+MAX_MAP_PIXELS = 2048 * 2048
+
+
 def _read_image(path: Path, where: str, mode: str) -> tuple[np.ndarray, np.ndarray]:
     """Brightness in [0, 1] per pixel (channels averaged, as map_server does) and opacity."""
     if not path.exists():
@@ -284,6 +290,11 @@ def _read_image(path: Path, where: str, mode: str) -> tuple[np.ndarray, np.ndarr
             warnings.simplefilter("error", Image.DecompressionBombWarning)
             image = Image.open(io.BytesIO(data))
         with image:
+            width, height = image.size
+            if width * height > MAX_MAP_PIXELS:
+                raise MapError(f"{where}: {path} has {width}×{height} pixels, more than the "
+                               f"{MAX_MAP_PIXELS:,} a map may have (2048×2048, 102 m square "
+                               "at 5 cm); crop it or give a coarser resolution")
             image.load()
             if image.mode not in ("1", "L", "LA", "P", "RGB", "RGBA"):
                 raise MapError(f"{where}: {path} is a {image.mode} image; give an 8-bit grey "
@@ -293,7 +304,10 @@ def _read_image(path: Path, where: str, mode: str) -> tuple[np.ndarray, np.ndarr
             rgba = np.asarray(image.convert("RGBA"), dtype=np.float64) / 255.0
     except (Image.DecompressionBombError, Image.DecompressionBombWarning) as error:
         raise MapError(f"{where}: {path} is too large to read ({error})") from None
-    except (UnidentifiedImageError, SyntaxError, ValueError) as error:
+    except UnidentifiedImageError:  # its message names only an in-memory buffer
+        raise MapError(f"{where}: {path} is not an image Pillow can read (no known image "
+                       "format); give an 8-bit grey PGM (P5)") from None
+    except (SyntaxError, ValueError) as error:
         raise MapError(f"{where}: {path} is not an image Pillow can read ({error}); give an "
                        "8-bit grey PGM (P5)") from None
     except OSError as error:
