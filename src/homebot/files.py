@@ -11,12 +11,13 @@ nothing of homebot but its errors, so every layer may use it.
 
 from __future__ import annotations
 
+import sys
 from pathlib import Path
 from types import MappingProxyType
 
 from homebot.errors import HomebotError
 
-__all__ = ["SIZE_LIMITS", "read_bytes_file", "read_text_file", "size_text"]
+__all__ = ["SIZE_LIMITS", "read_bytes_file", "read_text_file", "read_typed_line", "size_text"]
 
 _MIB = 1 << 20
 
@@ -76,3 +77,25 @@ def read_text_file(path: Path | str, error_type: type[HomebotError], kind: str,
     except UnicodeDecodeError as error:
         raise error_type(f"{path}: not UTF-8 text (byte {error.start + 1}: {error.reason}); "
                          "give a UTF-8 text file") from None
+
+
+def read_typed_line(prompt: str, error_type: type[HomebotError]) -> str:
+    """A line typed at ``prompt``, like ``input``, read within ``SIZE_LIMITS["text"]``.
+
+    A terminal is read by ``input`` (a person's line, with line editing); piped input is
+    read at most the limit at a time, so ``homebot chat < /dev/zero`` is refused with
+    ``error_type`` instead of growing without end. The end of input raises ``EOFError``.
+    """
+    if sys.stdin.isatty():
+        return input(prompt)
+    sys.stdout.write(prompt)
+    sys.stdout.flush()
+    limit = SIZE_LIMITS["text"]
+    line = sys.stdin.readline(limit + 1)
+    if not line:
+        raise EOFError
+    line = line.removesuffix("\n")
+    if len(line) > limit:
+        raise error_type(f"<stdin>: a line longer than {size_text(limit)}, the limit for "
+                         "one typed line; give one command or answer a line")
+    return line

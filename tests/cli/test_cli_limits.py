@@ -3,13 +3,16 @@ bounds and names with control characters each end in one clear line."""
 
 from __future__ import annotations
 
+import io
 import os
+import sys
 from pathlib import Path
 
 import pytest
 
 from homebot.cli import main
 from homebot.errors import KnowledgeError
+from homebot.files import SIZE_LIMITS
 from homebot.text import MOST_LISTED
 
 DATA = Path(__file__).resolve().parents[2] / "src/homebot/data"
@@ -177,3 +180,20 @@ def test_what_a_dialogue_model_says_is_printed_escaped(
     assert main(["sitlog", "run", str(model), "--trace"]) == 0
     out = capsys.readouterr().out
     assert "robot: hi\\x1b[2J there" in out and "\x1b" not in out
+
+
+@pytest.mark.parametrize("argv", [["chat"], ["do", "--interactive", "ask Alex what time it is"]])
+def test_a_typed_line_past_the_text_limit_is_refused(argv: list[str],
+                                                     monkeypatch: pytest.MonkeyPatch,
+                                                     capsys: pytest.CaptureFixture[str]) -> None:
+    # as from /dev/zero: a line with no end (chat < /dev/zero grew 1.8 GB in 20 s)
+    monkeypatch.setattr(sys, "stdin", io.StringIO("a" * (SIZE_LIMITS["text"] + 10)))
+    _fails_cleanly(capsys, main(argv), "<stdin>: a line longer than 4 MiB, the limit for one "
+                                       "typed line")
+
+
+def test_chat_reads_piped_lines_within_the_limit(monkeypatch: pytest.MonkeyPatch,
+                                                 capsys: pytest.CaptureFixture[str]) -> None:
+    monkeypatch.setattr(sys, "stdin", io.StringIO("go to the kitchen\nquit\n"))
+    assert main(["chat"]) == 0
+    assert "done" in capsys.readouterr().out

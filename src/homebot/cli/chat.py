@@ -17,7 +17,9 @@ from rich.markup import escape
 from homebot.app import QUESTION_COST, conversation_for
 from homebot.cli.options import GPSR_TIME_LIMIT, load_world
 from homebot.cli.simulated import add_run_options, finish_run, keep_events, simulated_run
+from homebot.errors import LanguageError
 from homebot.executive.conversation import Turn
+from homebot.files import read_typed_line
 
 __all__ = ["add_question_cost_option", "converse", "register", "show_turn"]
 
@@ -71,7 +73,7 @@ def _cost(text: str) -> float:
 
 def _read(prompt: str) -> str | None:
     try:
-        return input(prompt)
+        return read_typed_line(prompt, LanguageError)
     except EOFError:
         return None
 

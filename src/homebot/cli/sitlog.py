@@ -21,7 +21,7 @@ from rich.console import Console
 from homebot import seeds
 from homebot.errors import DialogueError
 from homebot.executive import print_report
-from homebot.files import read_text_file
+from homebot.files import read_text_file, read_typed_line
 from homebot.sitlog import (
     Environment,
     Interpreter,
@@ -128,7 +128,7 @@ def _run(args: argparse.Namespace) -> int:
 
 
 def _prompt(text: str) -> str:
-    return input(text)
+    return read_typed_line(text, DialogueError)
 
 
 def _on_robot(args: argparse.Namespace,

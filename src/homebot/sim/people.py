@@ -5,7 +5,10 @@ from __future__ import annotations
 import re
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
+from functools import partial
 
+from homebot.errors import TaskError
+from homebot.files import read_typed_line
 from homebot.text import fold
 from homebot.world import PersonModel
 
@@ -48,7 +51,8 @@ class ScriptedResponder:
 class InteractiveResponder:
     """A human types each person's answers at a prompt (``--interactive``)."""
 
-    read_line: Callable[[str], str] = input
+    read_line: Callable[[str], str] = field(
+        default_factory=lambda: partial(read_typed_line, error_type=TaskError))
 
     def __call__(self, person: PersonModel, question: str) -> str | None:
         try:
