@@ -178,3 +178,9 @@ def test_a_procedure_may_not_take_the_name_of_an_action() -> None:
     with pytest.raises(GologError, match=r"^mine.golog:2:6: procedure 'up' has the name of an "
                                          r"action"):
         check_theory(theory)
+
+
+def test_a_number_too_long_to_read_is_an_error_at_its_column() -> None:
+    with pytest.raises(GologError, match=r"^<program>:1:13: a number of 5000 digits, too long "
+                                         r"to read; write a smaller number"):
+        parse_program("build_tower(" + "9" * 5000 + ")")

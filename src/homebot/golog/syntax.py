@@ -25,6 +25,7 @@ start with ``%`` or ``#``. Errors name the line and column and show the line.
 from __future__ import annotations
 
 import re
+import sys
 from dataclasses import dataclass
 
 from homebot.errors import GologError
@@ -415,8 +416,11 @@ class _Parser:
     def atom(self) -> Expr:
         token = self.token
         if token.kind == "number":
-            self.advance()
             whole = not any(mark in token.text for mark in ".eE")
+            if whole and len(token.text) > sys.get_int_max_str_digits():
+                raise self.fail(f"a number of {len(token.text)} digits, too long to read",
+                                "write a smaller number")
+            self.advance()
             return Const(int(token.text) if whole else float(token.text))
         if token.kind == "string":
             self.advance()
