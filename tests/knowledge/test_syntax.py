@@ -173,3 +173,11 @@ def test_mutated_valid_kbs_raise_only_knowledge_errors(
     mutated = text[:position] + insertion + text[position + cut :]
     with contextlib.suppress(KnowledgeError):
         read_kb_text(mutated)
+
+
+def test_a_number_too_long_to_read_is_an_error_at_its_column() -> None:
+    text = "[class(top,none,[[p=>" + "9" * 5000 + ",0]],[],[])]"
+    with pytest.raises(KnowledgeError, match=r"^kb, line 1, column 22: expected a number short "
+                                             r"enough to read, found a number of 5000 digits$"):
+        read_kb_text(text, "kb")
+    assert read_kb_text(text.replace("9" * 5000, "-" + "9" * 4300), "kb")  # the most Python reads

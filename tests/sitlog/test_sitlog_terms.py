@@ -89,3 +89,9 @@ def test_a_term_nested_to_the_limit_is_read_printed_and_unified() -> None:
     term = parse_term(source)
     assert format_term(term) == source
     assert unify(term, parse_term(source.replace("X", "done")), Trail())
+
+
+def test_a_number_too_long_to_read_is_an_error_at_its_column() -> None:
+    with pytest.raises(DialogueError, match=r"^here, column 3: a number of 5000 digits, too long "
+                                            r"to read; write a smaller number$"):
+        parse_term("f(" + "9" * 5000 + ")", "here")

@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import math
 import re
+import sys
 import unicodedata
 from typing import NamedTuple
 
@@ -166,8 +167,14 @@ class TermParser:
             self.index += 1
             return ANY
         if first in _NUMBER_START and token != "-":
+            if "." in token or "e" in token or "E" in token:
+                self.index += 1
+                return float(token)
+            if len(token.lstrip("-")) > sys.get_int_max_str_digits():
+                raise self.error("a number short enough to read",
+                                 found=f"a number of {len(token)} digits")
             self.index += 1
-            return float(token) if ("." in token or "e" in token or "E" in token) else int(token)
+            return int(token)
         if token == "[":
             self.index += 1
             items: list[Term] = []

@@ -10,6 +10,7 @@ logic variable bound in place (``bind`` records it on a ``Trail`` for undo).
 from __future__ import annotations
 
 import re
+import sys
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
@@ -345,7 +346,12 @@ class _Parser:
     def primary(self) -> Term:
         token = self.take()
         if token.kind == "number":
-            return float(token.text) if any(c in token.text for c in ".eE") else int(token.text)
+            if any(c in token.text for c in ".eE"):
+                return float(token.text)
+            if len(token.text) > sys.get_int_max_str_digits():
+                raise DialogueError(f"{self.place(token)}: a number of {len(token.text)} "
+                                    "digits, too long to read; write a smaller number")
+            return int(token.text)
         if token.kind == "var":
             if token.text == "_":
                 return Var("_")
