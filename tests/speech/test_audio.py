@@ -59,6 +59,8 @@ def test_eight_bit_samples_are_widened() -> None:
     (b"bring me a cola from the kitchen\n", "not a WAV file"),
     (b"RIFF\x00\x00\x00\x00WAVEfmt junk", "not a PCM WAV file"),
     (wav_bytes(np.zeros(0, dtype=np.int16)), "holds no samples"),
+    (wav_bytes(np.zeros(16000, dtype=np.int16))[:50],
+     "the WAV ends after 6 of the 32000 bytes of samples its header declares"),
 ])
 def test_unusable_files_are_refused_with_a_reason(tmp_path: Path, data: bytes,
                                                   expected: str) -> None:

@@ -69,6 +69,10 @@ def read_wav(source: str | Path | bytes, *, name: str | None = None,
                 raise SpeechError(f"{label}: {frames / rate:.0f} s long; a command is at most "
                                   f"{max_seconds:.0f} s: cut out the utterance")
             raw = reader.readframes(frames)
+            if len(raw) < frames * channels * width:
+                raise SpeechError(f"{label}: the WAV ends after {len(raw)} of the "
+                                  f"{frames * channels * width} bytes of samples its header "
+                                  "declares (cut short?); record or copy it again")
     except (wave.Error, EOFError) as error:
         raise SpeechError(f"{label}: not a PCM WAV file ({error}); convert it, e.g. "
                           "ffmpeg -i IN -ar 16000 -ac 1 -c:a pcm_s16le OUT.wav") from None
