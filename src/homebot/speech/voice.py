@@ -177,8 +177,6 @@ class _SynthesisClient:
     """Talks to ``homebot.speech.synthesis_process``, started on first use."""
 
     def __init__(self) -> None:
-        if importlib.util.find_spec("espeakng_loader") is None:
-            raise _NO_EXTRA
         root = str(Path(__file__).resolve().parents[2])  # so the process imports this homebot
         path = os.pathsep.join(filter(None, (root, os.environ.get("PYTHONPATH"))))
         self._process = subprocess.Popen(
@@ -227,8 +225,16 @@ class Voice:
 
     def __init__(self, *, reproducible: bool = hasattr(os, "fork")) -> None:
         self.reproducible = reproducible
-        engine = _synthesis_client() if reproducible else in_process_voice()
-        self.rate = engine.rate
+        if importlib.util.find_spec("espeakng_loader") is None:
+            raise _NO_EXTRA
+        if not reproducible:
+            in_process_voice()
+
+    @property
+    def rate(self) -> int:
+        """espeak-ng's own sample rate (asking starts the synthesis process: a text refused
+        before then costs nothing)."""
+        return (_synthesis_client() if self.reproducible else in_process_voice()).rate
 
     def synthesise(self, text: str, settings: VoiceSettings = VoiceSettings()) -> NDArray[
             np.int16]:
