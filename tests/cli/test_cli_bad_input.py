@@ -43,6 +43,8 @@ def _fails_cleanly(capsys: pytest.CaptureFixture[str], status: int, expected: st
     ("- {skill: navigate, to: '[/bold]x'}\n", "unknown target '[/bold]x'"),
     ("a: " + "[" * 3000 + "]" * 3000 + "\n", "nested too deeply"),
     ("- {skill: navigate, to: kitchen, to: office}\n", "line 1: 'to' appears twice"),
+    ("- {skill: navigate, to: kitchen}\n" * 1_001,
+     "line 1001: 1,001 steps, more than the 1,000 a task may have; split it"),
 ])
 def test_odd_task_files_exit_2(tmp_path: Path, task: str, expected: str,
                                capsys: pytest.CaptureFixture[str]) -> None:

@@ -23,7 +23,11 @@ from homebot.task import Step, Task
 from homebot.world import World
 from homebot.yamlfile import LocatedDocument, load_yaml_document, parse_yaml_text
 
-__all__ = ["load_task", "task_from_text", "validate_task"]
+__all__ = ["MAX_TASK_STEPS", "load_task", "task_from_text", "validate_task"]
+
+#: the most steps a task file may hold: what a person asks for at once is tens of steps (a
+#: GPSR command is at most about 15); 20 000 steps ran for minutes before anything was said
+MAX_TASK_STEPS = 1_000
 
 
 def load_task(path: str | Path, world: World) -> Task:
@@ -61,6 +65,10 @@ def _task(document: LocatedDocument, world: World) -> Task:
     if not isinstance(data, list) or not data:
         raise TaskError(f"{document.source}: a task is a non-empty list of steps "
                         "({skill: NAME, ARG: VALUE}), or a mapping with 'steps'")
+    if len(data) > MAX_TASK_STEPS:
+        raise TaskError(f"{document.source}: line {document.line_of([*prefix, MAX_TASK_STEPS])}: "
+                        f"{len(data):,} steps, more than the {MAX_TASK_STEPS:,} a task may have; "
+                        "split it into several tasks")
     steps = []
     for index, entry in enumerate(data):
         where = f"{document.source}: line {document.line_of([*prefix, index])}: step {index + 1}"
