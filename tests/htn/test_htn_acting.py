@@ -14,10 +14,11 @@ from homebot.world import DisturbanceModel, World
 
 
 def _carry_out(world: World, navigator: Navigator, task: str, args: list[str], *, seed: int = 0,
-               disturbances: DisturbanceModel | None = None,
+               disturbances: DisturbanceModel | None = None, keep: int | None = None,
                **actor: object) -> tuple[RunReport[HtnTrace], EventLog]:
     run = build_run(RunSettings(
         world=world, seed=seed, disturbances=disturbances, navigator=navigator))
+    run.simulation.events.keep = keep
     names = Names()
     domain = home_domain()
     done = PlanActor(run.executive, domain, **actor).run(Goal.of(task, args, world, names, domain),
@@ -57,6 +58,16 @@ def test_a_slipping_grasp_is_retried(apartment: World, apartment_navigator: Navi
     assert done and done.detail.replans == 0 and grasp.attempts == 3 and grasp.status == "verified"
     assert _statuses(events, "pick") == ["finished", "aborted", "retrying", "finished",
                                          "aborted", "retrying", "finished", "verified"]
+
+
+def test_attempts_are_counted_when_the_log_keeps_only_its_latest_events(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    # a long-running robot's log lets old events go while a step runs
+    done, events = _carry_out(apartment, apartment_navigator, "bring_object",
+                              ["pringles", "Alex"], seed=2, keep=5,
+                              disturbances=DisturbanceModel(grasp_slip=0.5))
+    grasp = next(r for r in done.detail.operators if r.operator == "!grasp")
+    assert events.dropped > 0 and (grasp.status, grasp.attempts) == ("verified", 3)
 
 
 def test_an_aborted_grasp_leads_to_a_new_plan(apartment: World,

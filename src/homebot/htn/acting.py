@@ -22,6 +22,7 @@ from typing import Any
 
 from rich.markup import escape
 
+from homebot.events import Event
 from homebot.executive import WAY_BLOCKED, Executive, RunReport
 from homebot.htn.domain import Domain
 from homebot.htn.home import Goal, Names, home_domain, state_from_beliefs
@@ -265,15 +266,21 @@ class PlanActor:
             run.forgotten.add(wanted)
             context.beliefs.not_at.pop(wanted, None)
             context.events.record("belief", what="forgot_not_at", object=wanted)
-        events = context.events.events
-        first = len(events)
-        outcome = self.executive.run_step(skill_step.skill, skill_step.args,
-                                          recover=WAY_BLOCKED,  # the rest: replan
-                                          retries=self.retries.get(step.operator))
-        attempts = 1 + sum(1 for event in events[first:] if event.kind == "skill.status"
-                           and event.data.get("status") == Status.RETRYING.value
-                           and event.data.get("skill") == skill_step.skill)
-        return outcome, attempts
+        retried: list[Event] = []
+
+        def heard(event: Event) -> None:  # heard as recorded: a long run's log lets events go
+            if event.kind == "skill.status" and event.data.get("skill") == skill_step.skill \
+                    and event.data.get("status") == Status.RETRYING.value:
+                retried.append(event)
+
+        context.events.listeners.append(heard)
+        try:
+            outcome = self.executive.run_step(skill_step.skill, skill_step.args,
+                                              recover=WAY_BLOCKED,  # the rest: replan
+                                              retries=self.retries.get(step.operator))
+        finally:
+            context.events.listeners.remove(heard)
+        return outcome, 1 + len(retried)
 
     def _unexpected(self, deletes: list[Atom], adds: list[Atom], goal: Goal, names: Names,
                     memory: set[Atom]) -> list[str]:
