@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import reprlib
 import sys
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 from typing import Any
 
@@ -126,21 +126,27 @@ def parse_yaml_text(text: str, source: str, error_type: type[HomebotError]) -> L
 
 def _too_long_number_place(root: yaml.Node | None) -> str:
     """``line N`` of the first integer too long for Python to read, for the message."""
+    for node in _nodes(root):
+        if isinstance(node, yaml.ScalarNode) and node.tag == "tag:yaml.org,2002:int" and \
+                len(node.value) > sys.get_int_max_str_digits():
+            return f"line {node.start_mark.line + 1}"
+    return "unknown line"
+
+
+def _nodes(root: yaml.Node | None) -> Iterator[yaml.Node]:
+    """Every node of a tree once (aliases share nodes), in document order, without
+    recursion (a deep tree)."""
     stack, seen = [root], set()
     while stack:
         node = stack.pop()
         if node is None or id(node) in seen:
             continue
         seen.add(id(node))
-        if isinstance(node, yaml.ScalarNode):
-            if node.tag == "tag:yaml.org,2002:int" and len(node.value) > \
-                    sys.get_int_max_str_digits():
-                return f"line {node.start_mark.line + 1}"
-        elif isinstance(node, yaml.MappingNode):
+        yield node
+        if isinstance(node, yaml.MappingNode):
             stack.extend(item for pair in reversed(node.value) for item in reversed(pair))
         elif isinstance(node, yaml.SequenceNode):
             stack.extend(reversed(node.value))
-    return "unknown line"
 
 
 def compose_yaml_text(text: str, source: str, error_type: type[HomebotError],
@@ -177,20 +183,10 @@ def _compose(text: str) -> yaml.Node | None:
 
 def _plain_style_as_pyyaml(root: yaml.Node | None) -> None:
     """libyaml marks a plain scalar with style ``''``, PyYAML with ``None``: readers test
-    ``node.style is None``, so the nodes get PyYAML's. Each node once: aliases share them."""
-    stack, seen = [root], set()
-    while stack:
-        node = stack.pop()
-        if node is None or id(node) in seen:
-            continue
-        seen.add(id(node))
-        if isinstance(node, yaml.ScalarNode):
-            if node.style == "":
-                node.style = None
-        elif isinstance(node, yaml.MappingNode):
-            stack.extend(item for pair in node.value for item in pair)
-        elif isinstance(node, yaml.SequenceNode):
-            stack.extend(node.value)
+    ``node.style is None``, so the nodes get PyYAML's."""
+    for node in _nodes(root):
+        if isinstance(node, yaml.ScalarNode) and node.style == "":
+            node.style = None
 
 
 def _syntax_error(error: yaml.YAMLError, source: str, error_type: type[HomebotError],
