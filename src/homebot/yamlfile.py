@@ -201,24 +201,16 @@ def _syntax_error(error: yaml.YAMLError, source: str, error_type: type[HomebotEr
 def _check_unique_keys(root: yaml.Node | None, source: str,
                        error_type: type[HomebotError]) -> None:
     """A key written twice in one mapping is an error: YAML would keep only the last."""
-    stack, seen = [root], set()
-    while stack:
-        node = stack.pop()
-        if node is None or id(node) in seen:
-            continue
-        seen.add(id(node))
+    for node in _nodes(root):
         if isinstance(node, yaml.MappingNode):
             keys: set[str] = set()
-            for key, value in node.value:
+            for key, _ in node.value:
                 if isinstance(key, yaml.ScalarNode) and key.value != "<<":
                     if key.value in keys:
                         raise error_type(f"{source}: line {key.start_mark.line + 1}: "
                                          f"'{key.value}' appears twice in one mapping; "
                                          "keep one (YAML would drop the first)")
                     keys.add(key.value)
-                stack.extend((key, value))
-        elif isinstance(node, yaml.SequenceNode):
-            stack.extend(node.value)
 
 
 def field_error(document: LocatedDocument, location: Sequence[str | int], message: str) -> str:
