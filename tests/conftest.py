@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from pathlib import Path
 
 import pytest
@@ -12,6 +12,24 @@ from homebot.navigation import Navigator
 from homebot.world import World
 
 SHARED = Path(__file__).resolve().parents[1].parent / "shared"
+
+
+#: ``fails_cleanly(status, expected)``: a command exited 2 with one line on stderr holding
+#: ``expected`` and no traceback anywhere; gives that line
+FailsCleanly = Callable[[int, str], str]
+
+
+@pytest.fixture
+def fails_cleanly(capsys: pytest.CaptureFixture[str]) -> FailsCleanly:
+    def check(status: int, expected: str) -> str:
+        captured = capsys.readouterr()
+        assert status == 2
+        assert expected in captured.err
+        assert "Traceback" not in captured.err + captured.out
+        assert len(captured.err.strip().splitlines()) == 1  # one line, however long
+        return captured.err
+
+    return check
 
 
 @pytest.fixture(scope="session")

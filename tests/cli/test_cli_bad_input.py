@@ -3,10 +3,14 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import pytest
 
 from homebot.cli import main
+
+if TYPE_CHECKING:
+    from conftest import FailsCleanly
 
 SUPERMARKET = Path(__file__).resolve().parents[2] / "src/homebot/data/worlds/supermarket.yaml"
 FETCH = "- {skill: find_object, object: drink}\n- {skill: pick, object: drink}\n"
@@ -16,14 +20,6 @@ def _file(tmp_path: Path, name: str, text: str) -> Path:
     path = tmp_path / name
     path.write_text(text, encoding="utf-8")
     return path
-
-
-def _fails_cleanly(capsys: pytest.CaptureFixture[str], status: int, expected: str) -> None:
-    captured = capsys.readouterr()
-    assert status == 2
-    assert expected in captured.err
-    assert "Traceback" not in captured.err + captured.out
-    assert len(captured.err.strip().splitlines()) == 1  # one line, however long
 
 
 @pytest.mark.parametrize(("task", "expected"), [
@@ -47,17 +43,17 @@ def _fails_cleanly(capsys: pytest.CaptureFixture[str], status: int, expected: st
      "line 1001: 1,001 steps, more than the 1,000 a task may have; split it"),
 ])
 def test_odd_task_files_exit_2(tmp_path: Path, task: str, expected: str,
-                               capsys: pytest.CaptureFixture[str]) -> None:
+                               fails_cleanly: FailsCleanly) -> None:
     status = main(["run-task", str(_file(tmp_path, "task.yaml", task))])
-    _fails_cleanly(capsys, status, expected)
+    fails_cleanly(status, expected)
 
 
 def test_binary_and_directory_task_files_exit_2(tmp_path: Path,
-                                                capsys: pytest.CaptureFixture[str]) -> None:
+                                                fails_cleanly: FailsCleanly) -> None:
     binary = tmp_path / "task.yaml"
     binary.write_bytes(bytes(range(256)))
-    _fails_cleanly(capsys, main(["run-task", str(binary)]), "give a UTF-8 text file")
-    _fails_cleanly(capsys, main(["run-task", str(tmp_path)]), "cannot read it")
+    fails_cleanly(main(["run-task", str(binary)]), "give a UTF-8 text file")
+    fails_cleanly(main(["run-task", str(tmp_path)]), "cannot read it")
 
 
 def test_speech_with_markup_is_printed_as_said(tmp_path: Path,
@@ -104,21 +100,21 @@ def test_out_of_range_levels_are_usage_errors(argv: list[str],
 
 
 def test_world_show_png_to_bad_places_exits_2(tmp_path: Path,
-                                              capsys: pytest.CaptureFixture[str]) -> None:
+                                              fails_cleanly: FailsCleanly) -> None:
     status = main(["world", "show", "--png", str(tmp_path / "map.txt")])
-    _fails_cleanly(capsys, status, "give a name ending in .png")
+    fails_cleanly(status, "give a name ending in .png")
     status = main(["world", "show", "--png", str(tmp_path / "no" / "map.png")])
-    _fails_cleanly(capsys, status, "check that its folder exists")
+    fails_cleanly(status, "check that its folder exists")
     events = _file(tmp_path, "events.jsonl", "[1]\n")
     status = main(["world", "show", "--png", str(tmp_path / "m.png"), "--events", str(events)])
-    _fails_cleanly(capsys, status, "not a homebot event log")
+    fails_cleanly(status, "not a homebot event log")
 
 
 def test_events_to_a_bad_place_exit_2(tmp_path: Path,
-                                      capsys: pytest.CaptureFixture[str]) -> None:
+                                      fails_cleanly: FailsCleanly) -> None:
     task = _file(tmp_path, "task.yaml", FETCH)
     status = main(["run-task", str(task), "--events", str(tmp_path)])
-    _fails_cleanly(capsys, status, "cannot write the event log")
+    fails_cleanly(status, "cannot write the event log")
 
 
 def test_same_seed_same_event_log(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
@@ -134,9 +130,9 @@ def test_same_seed_same_event_log(tmp_path: Path, capsys: pytest.CaptureFixture[
     assert logs[0] and logs[1]
 
 
-def test_demo_in_a_world_without_its_names_exits_2(capsys: pytest.CaptureFixture[str]) -> None:
+def test_demo_in_a_world_without_its_names_exits_2(fails_cleanly: FailsCleanly) -> None:
     status = main(["demo", "--world", "supermarket", "--quiet"])
-    _fails_cleanly(capsys, status, "the demo is written for the apartment")
+    fails_cleanly(status, "the demo is written for the apartment")
 
 
 def test_parse_file_names_the_line_it_cannot_take(tmp_path: Path,
@@ -171,16 +167,16 @@ def test_a_world_of_nested_aliases_gives_a_short_message(
     assert "rooms.0" in err and len(err) < 2000
 
 
-def test_world_without_a_command_names_all_three(capsys: pytest.CaptureFixture[str]) -> None:
-    _fails_cleanly(capsys, main(["world"]), "from-robocup DIR")
+def test_world_without_a_command_names_all_three(fails_cleanly: FailsCleanly) -> None:
+    fails_cleanly(main(["world"]), "from-robocup DIR")
 
 
 def test_an_approach_pose_outside_the_room_exits_2(tmp_path: Path,
-                                                   capsys: pytest.CaptureFixture[str]) -> None:
+                                                   fails_cleanly: FailsCleanly) -> None:
     text = SUPERMARKET.read_text(encoding="utf-8").replace(
         "holds: [drink]", "approach: [50, 50, 0], holds: [drink]")
     status = main(["world", "check", str(_file(tmp_path, "w.yaml", text))])
-    _fails_cleanly(capsys, status, "placements.1.approach: [50.0, 50.0] lies outside room")
+    fails_cleanly(status, "placements.1.approach: [50.0, 50.0] lies outside room")
 
 
 @pytest.mark.parametrize("argv", [
@@ -188,9 +184,9 @@ def test_an_approach_pose_outside_the_room_exits_2(tmp_path: Path,
     ["serve"], ["sim", "serve"], ["sitlog", "run", "model.yaml"], ["bench", "fetch"],
 ])
 def test_a_negative_seed_is_refused_everywhere(argv: list[str],
-                                               capsys: pytest.CaptureFixture[str]) -> None:
+                                               fails_cleanly: FailsCleanly) -> None:
     # random.Random(-1) plays as Random(1): -1 must not silently repeat seed 1
-    _fails_cleanly(capsys, main([*argv, "--seed", "-1"]), "--seed '-1': give a whole number")
+    fails_cleanly(main([*argv, "--seed", "-1"]), "--seed '-1': give a whole number")
 
 
 def _usage_error(capsys: pytest.CaptureFixture[str], argv: list[str]) -> str:
@@ -239,20 +235,20 @@ def test_a_host_of_this_machine_is_taken() -> None:
      "not a point [x, y]"),
 ])
 def test_world_show_refuses_event_logs_with_points_off_the_map(
-        tmp_path: Path, log: str, expected: str, capsys: pytest.CaptureFixture[str]) -> None:
+        tmp_path: Path, log: str, expected: str, fails_cleanly: FailsCleanly) -> None:
     events = _file(tmp_path, "events.jsonl", log)
     status = main(["world", "show", "--png", str(tmp_path / "m.png"), "--events", str(events)])
-    _fails_cleanly(capsys, status, expected)
+    fails_cleanly(status, expected)
     assert not (tmp_path / "m.png").exists()
 
 
 def test_world_show_events_needs_a_file_and_a_map(tmp_path: Path,
-                                                 capsys: pytest.CaptureFixture[str]) -> None:
+                                                 fails_cleanly: FailsCleanly) -> None:
     missing = str(tmp_path / "missing.jsonl")
-    _fails_cleanly(capsys, main(["world", "show", "--png", str(tmp_path / "m.png"),
-                                 "--events", missing]), "missing.jsonl: no such file")
-    _fails_cleanly(capsys, main(["world", "show", "--events", missing]),
-                   "the run is drawn on the map; give --png")
+    fails_cleanly(main(["world", "show", "--png", str(tmp_path / "m.png"),
+                  "--events", missing]), "missing.jsonl: no such file")
+    fails_cleanly(main(["world", "show", "--events", missing]),
+                  "the run is drawn on the map; give --png")
 
 
 def test_world_show_draws_a_run_of_this_world(tmp_path: Path,

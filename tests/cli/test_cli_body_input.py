@@ -5,10 +5,14 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import pytest
 
 from homebot.cli import main
+
+if TYPE_CHECKING:
+    from conftest import FailsCleanly
 
 SUPERMARKET = Path(__file__).resolve().parents[2] / "src/homebot/data/worlds/supermarket.yaml"
 START = "pose: [1.5, 1.5, 0.0]"
@@ -18,15 +22,6 @@ def _file(tmp_path: Path, name: str, text: str) -> Path:
     path = tmp_path / name
     path.write_text(text, encoding="utf-8")
     return path
-
-
-def _fails_cleanly(capsys: pytest.CaptureFixture[str], status: int, expected: str) -> str:
-    captured = capsys.readouterr()
-    assert status == 2
-    assert expected in captured.err
-    assert "Traceback" not in captured.err + captured.out
-    assert len(captured.err.strip().splitlines()) == 1
-    return captured.err
 
 
 def _supermarket(tmp_path: Path, robot: str) -> Path:
@@ -43,11 +38,11 @@ def _supermarket(tmp_path: Path, robot: str) -> Path:
     ("pose: [20.0, 3.0, 0.0]", "is outside every room"),
 ])
 def test_a_robot_placed_in_a_wall_or_furniture_exits_2(
-        tmp_path: Path, robot: str, expected: str, capsys: pytest.CaptureFixture[str]) -> None:
+        tmp_path: Path, robot: str, expected: str, fails_cleanly: FailsCleanly) -> None:
     world = _supermarket(tmp_path, robot)
-    _fails_cleanly(capsys, main(["world", "check", str(world)]), expected)
+    fails_cleanly(main(["world", "check", str(world)]), expected)
     task = _file(tmp_path, "t.yaml", "- {skill: say, text: hello}\n")
-    _fails_cleanly(capsys, main(["run-task", str(task), "--world", str(world)]), expected)
+    fails_cleanly(main(["run-task", str(task), "--world", str(world)]), expected)
 
 
 def test_a_robot_in_a_door_opening_is_fine(tmp_path: Path,
@@ -65,9 +60,9 @@ def test_a_robot_in_a_door_opening_is_fine(tmp_path: Path,
     (START + "\n  speed: -0.5", "robot.speed: must be greater than 0 (got -0.5)"),
 ])
 def test_a_velocity_limit_of_zero_exits_2(tmp_path: Path, robot: str, expected: str,
-                                          capsys: pytest.CaptureFixture[str]) -> None:
+                                          fails_cleanly: FailsCleanly) -> None:
     world = _supermarket(tmp_path, robot)
-    err = _fails_cleanly(capsys, main(["world", "check", str(world)]), expected)
+    err = fails_cleanly(main(["world", "check", str(world)]), expected)
     assert "line 42" in err
 
 
@@ -97,31 +92,34 @@ def test_world_map_writes_a_pair_that_map_check_reads(tmp_path: Path,
 ])
 def test_a_map_that_does_not_match_its_yaml_exits_2(
         tmp_path: Path, change: tuple[str, str], expected: str,
-        capsys: pytest.CaptureFixture[str]) -> None:
+        capsys: pytest.CaptureFixture[str],
+        fails_cleanly: FailsCleanly) -> None:
     assert main(["world", "map", "--world", "supermarket", "-o", str(tmp_path)]) == 0
     capsys.readouterr()
     yaml_path = tmp_path / "supermarket.yaml"
     yaml_path.write_text(yaml_path.read_text(encoding="utf-8").replace(*change),
                          encoding="utf-8")
-    err = _fails_cleanly(capsys, main(["world", "map-check", str(yaml_path)]), expected)
+    err = fails_cleanly(main(["world", "map-check", str(yaml_path)]), expected)
     assert str(yaml_path) in err
 
 
 def test_a_map_too_small_for_the_world_exits_2(tmp_path: Path,
-                                               capsys: pytest.CaptureFixture[str]) -> None:
+                                               capsys: pytest.CaptureFixture[str],
+        fails_cleanly: FailsCleanly) -> None:
     assert main(["world", "map", "--world", "supermarket", "-o", str(tmp_path)]) == 0
     capsys.readouterr()
     status = main(["world", "map-check", str(tmp_path / "supermarket.yaml"),
                    "--world", "apartment"])
-    _fails_cleanly(capsys, status, "but world 'apartment' spans x 0..12, y 0..10 m")
+    fails_cleanly(status, "but world 'apartment' spans x 0..12, y 0..10 m")
 
 
-def test_a_broken_map_image_exits_2(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_a_broken_map_image_exits_2(tmp_path: Path, capsys: pytest.CaptureFixture[str],
+        fails_cleanly: FailsCleanly) -> None:
     assert main(["world", "map", "--world", "supermarket", "-o", str(tmp_path)]) == 0
     capsys.readouterr()
     (tmp_path / "supermarket.pgm").write_bytes(b"P5\n288 168\n255\n" + bytes(100))
-    _fails_cleanly(capsys, main(["world", "map-check", str(tmp_path / "supermarket.yaml")]),
-                   "check it is a complete PGM file")
+    fails_cleanly(main(["world", "map-check", str(tmp_path / "supermarket.yaml")]),
+                  "check it is a complete PGM file")
 
 
 @pytest.mark.parametrize(("to", "expected"), [
@@ -136,11 +134,11 @@ def test_a_broken_map_image_exits_2(tmp_path: Path, capsys: pytest.CaptureFixtur
     ("[true, 2]", "a point's x and y are finite numbers"),
 ])
 def test_a_point_goal_where_the_robot_cannot_stand_exits_2(
-        tmp_path: Path, to: str, expected: str, capsys: pytest.CaptureFixture[str]) -> None:
+        tmp_path: Path, to: str, expected: str, fails_cleanly: FailsCleanly) -> None:
     task = _file(tmp_path, "t.yaml", "- {skill: say, text: hello}\n"
                                      f"- {{skill: navigate, to: {to}}}\n")
     status = main(["run-task", str(task), "--world", str(SUPERMARKET)])
-    err = _fails_cleanly(capsys, status, expected)
+    err = fails_cleanly(status, expected)
     assert "t.yaml: line 2: step 2" in err
 
 

@@ -7,6 +7,7 @@ import io
 import os
 import sys
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import pytest
 
@@ -15,17 +16,11 @@ from homebot.errors import KnowledgeError
 from homebot.files import SIZE_LIMITS
 from homebot.text import MOST_LISTED
 
+if TYPE_CHECKING:
+    from conftest import FailsCleanly
+
 DATA = Path(__file__).resolve().parents[2] / "src/homebot/data"
 JSHOP2 = Path(__file__).resolve().parents[1] / "htn/data/jshop2"
-
-
-def _fails_cleanly(capsys: pytest.CaptureFixture[str], status: int, expected: str) -> str:
-    captured = capsys.readouterr()
-    assert status == 2
-    assert expected in captured.err
-    assert "Traceback" not in captured.err + captured.out
-    assert len(captured.err.strip().splitlines()) == 1
-    return captured.err
 
 
 needs_dev_zero = pytest.mark.skipif(not os.path.exists("/dev/zero"), reason="no /dev/zero")
@@ -51,21 +46,21 @@ needs_dev_zero = pytest.mark.skipif(not os.path.exists("/dev/zero"), reason="no 
 ])
 def test_an_endless_file_is_refused_at_its_formats_limit(
         argv: list[str], limit: str, tmp_path: Path,
-        capsys: pytest.CaptureFixture[str]) -> None:
+        fails_cleanly: FailsCleanly) -> None:
     argv = [argument.format(tmp=tmp_path) for argument in argv]
-    _fails_cleanly(capsys, main(argv), f"/dev/zero: larger than {limit}")
+    fails_cleanly(main(argv), f"/dev/zero: larger than {limit}")
 
 
 def test_a_map_image_past_its_limit_is_refused(tmp_path: Path,
-                                              capsys: pytest.CaptureFixture[str]) -> None:
+                                              fails_cleanly: FailsCleanly) -> None:
     image = tmp_path / "home.pgm"
     with image.open("wb") as handle:  # sparse
         handle.truncate((64 << 20) + 1)
     (tmp_path / "home.yaml").write_text(
         "image: home.pgm\nresolution: 0.05\norigin: [0, 0, 0]\nnegate: 0\n"
         "occupied_thresh: 0.65\nfree_thresh: 0.196\n", encoding="utf-8")
-    _fails_cleanly(capsys, main(["world", "map-check", str(tmp_path / "home.yaml")]),
-                   "home.pgm: larger than 64 MiB, the limit for a map image")
+    fails_cleanly(main(["world", "map-check", str(tmp_path / "home.yaml")]),
+                  "home.pgm: larger than 64 MiB, the limit for a map image")
 
 
 def test_a_world_with_a_thousand_problems_lists_the_first_and_counts_the_rest(
@@ -103,10 +98,10 @@ def test_a_long_error_message_of_any_kind_is_capped_when_printed(
 
 @pytest.mark.parametrize("depth", ["100000000", "100001"])
 def test_plan_refuses_a_max_depth_past_its_bound(depth: str,
-                                                 capsys: pytest.CaptureFixture[str]) -> None:
+                                                 fails_cleanly: FailsCleanly) -> None:
     # --max-depth 100000000 once took 1.6 GB on a recursive domain
-    _fails_cleanly(capsys, main(["plan", "bring_object", "coke", "Alex", "--max-depth", depth]),
-                   f"--max-depth {depth}: at most 100,000")
+    fails_cleanly(main(["plan", "bring_object", "coke", "Alex", "--max-depth", depth]),
+                  f"--max-depth {depth}: at most 100,000")
 
 
 def test_a_problem_for_another_domain_plans_with_a_note(capsys: pytest.CaptureFixture[str],
@@ -142,14 +137,14 @@ def test_kb_names_with_control_characters_are_printed_escaped(
 
 
 def test_an_error_quoting_control_characters_prints_them_escaped(
-        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    err = _fails_cleanly(capsys, main(["world", "check", str(tmp_path / "no\x1b[2Jworld.yaml")]),
-                         "no\\x1b[2Jworld.yaml")
+        tmp_path: Path, fails_cleanly: FailsCleanly) -> None:
+    err = fails_cleanly(main(["world", "check", str(tmp_path / "no\x1b[2Jworld.yaml")]),
+                        "no\\x1b[2Jworld.yaml")
     assert "\x1b" not in err
 
 
 def test_a_sitlog_arc_50000_deep_is_an_error_with_its_line(
-        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+        tmp_path: Path, fails_cleanly: FailsCleanly) -> None:
     depth = 50_000
     model = tmp_path / "deep.yaml"
     model.write_text("dialogue_models:\n  - id: main\n    situations:\n      - id: is\n"
@@ -157,17 +152,17 @@ def test_a_sitlog_arc_50000_deep_is_an_error_with_its_line(
                      f"          - \"{'f(' * depth}x{')' * depth} : empty => fs\"\n"
                      "      - {id: fs, type: final}\n", encoding="utf-8")
     for command in ("show", "run"):
-        _fails_cleanly(capsys, main(["sitlog", command, str(model)]),
-                       f"{model}, line 7, column 214: the term nests deeper than 100 levels")
+        fails_cleanly(main(["sitlog", command, str(model)]),
+                      f"{model}, line 7, column 214: the term nests deeper than 100 levels")
 
 
 def test_sitlog_yaml_lists_nested_too_deep_are_an_error(
-        tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+        tmp_path: Path, fails_cleanly: FailsCleanly) -> None:
     model = tmp_path / "lists.yaml"
     model.write_text("globals: {g: " + "[" * 150 + "]" * 150 + "}\ndialogue_models: []\n",
                      encoding="utf-8")
-    _fails_cleanly(capsys, main(["sitlog", "check", str(model)]),
-                   "the lists nest deeper than 100 levels; flatten them")
+    fails_cleanly(main(["sitlog", "check", str(model)]),
+                  "the lists nest deeper than 100 levels; flatten them")
 
 
 def test_what_a_dialogue_model_says_is_printed_escaped(
@@ -185,11 +180,11 @@ def test_what_a_dialogue_model_says_is_printed_escaped(
 @pytest.mark.parametrize("argv", [["chat"], ["do", "--interactive", "ask Alex what time it is"]])
 def test_a_typed_line_past_the_text_limit_is_refused(argv: list[str],
                                                      monkeypatch: pytest.MonkeyPatch,
-                                                     capsys: pytest.CaptureFixture[str]) -> None:
+                                                     fails_cleanly: FailsCleanly) -> None:
     # as from /dev/zero: a line with no end (chat < /dev/zero grew 1.8 GB in 20 s)
     monkeypatch.setattr(sys, "stdin", io.StringIO("a" * (SIZE_LIMITS["text"] + 10)))
-    _fails_cleanly(capsys, main(argv), "<stdin>: a line longer than 4 MiB, the limit for one "
-                                       "typed line")
+    fails_cleanly(main(argv), "<stdin>: a line longer than 4 MiB, the limit for one "
+                  "typed line")
 
 
 def test_chat_reads_piped_lines_within_the_limit(monkeypatch: pytest.MonkeyPatch,

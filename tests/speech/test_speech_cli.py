@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pytest
@@ -15,6 +16,9 @@ from homebot.cli import main
 from homebot.speech.audio import read_wav, resample, wav_bytes, write_wav
 from homebot.speech.voice import MAX_SPOKEN_CHARACTERS, espeak
 
+if TYPE_CHECKING:
+    from conftest import FailsCleanly
+
 COMMAND = "Bring me a cola from the kitchen table"
 
 
@@ -24,14 +28,6 @@ def command_wav(tmp_path_factory: pytest.TempPathFactory) -> Path:
     assert main(["say", COMMAND, "-o", str(path), "--voice", "en-us+klatt", "--rate",
                  "125"]) == 0
     return path
-
-
-def _fails_cleanly(capsys: pytest.CaptureFixture[str], status: int, expected: str) -> None:
-    captured = capsys.readouterr()
-    assert status == 2
-    assert expected in captured.err
-    assert "Traceback" not in captured.err + captured.out
-    assert len(captured.err.strip().splitlines()) == 1
 
 
 def test_say_writes_speech(command_wav: Path) -> None:
@@ -81,36 +77,36 @@ def test_do_voice_with_noise_runs_no_skill(tmp_path: Path,
 ])
 @pytest.mark.parametrize("command", ["listen", "do"])
 def test_bad_files_exit_2_in_one_line(tmp_path: Path, data: bytes, expected: str, command: str,
-                                      capsys: pytest.CaptureFixture[str]) -> None:
+                                      fails_cleanly: FailsCleanly) -> None:
     path = tmp_path / "clip.wav"
     path.write_bytes(data)
     argv = ["listen", str(path)] if command == "listen" else ["do", "--voice", str(path)]
-    _fails_cleanly(capsys, main(argv), expected)
+    fails_cleanly(main(argv), expected)
 
 
 def test_do_wants_text_or_voice_not_both(command_wav: Path,
-                                         capsys: pytest.CaptureFixture[str]) -> None:
-    _fails_cleanly(capsys, main(["do", COMMAND, "--voice", str(command_wav)]), "not both")
-    _fails_cleanly(capsys, main(["do"]), "give the command in quotes")
+                                         fails_cleanly: FailsCleanly) -> None:
+    fails_cleanly(main(["do", COMMAND, "--voice", str(command_wav)]), "not both")
+    fails_cleanly(main(["do"]), "give the command in quotes")
 
 
 def test_say_refuses_nothing_and_bad_rates(tmp_path: Path,
-                                           capsys: pytest.CaptureFixture[str]) -> None:
-    _fails_cleanly(capsys, main(["say", " ", "-o", str(tmp_path / "a.wav")]), "nothing to say")
-    _fails_cleanly(capsys, main(["say", "hi", "-o", str(tmp_path / "a.wav"), "--rate", "9"]),
-                   "--rate '9'")
-    _fails_cleanly(capsys, main(["say", "hi", "-o", str(tmp_path / "no" / "a.wav")]),
-                   "cannot be written")
-    _fails_cleanly(capsys, main(["say", "hi", "-o", str(tmp_path / "b.wav"), "--voice",
-                                 "nosuchvoice"]), "no voice 'nosuchvoice'")
+                                           fails_cleanly: FailsCleanly) -> None:
+    fails_cleanly(main(["say", " ", "-o", str(tmp_path / "a.wav")]), "nothing to say")
+    fails_cleanly(main(["say", "hi", "-o", str(tmp_path / "a.wav"), "--rate", "9"]),
+                  "--rate '9'")
+    fails_cleanly(main(["say", "hi", "-o", str(tmp_path / "no" / "a.wav")]),
+                  "cannot be written")
+    fails_cleanly(main(["say", "hi", "-o", str(tmp_path / "b.wav"), "--voice",
+                  "nosuchvoice"]), "no voice 'nosuchvoice'")
 
 
 def test_say_refuses_a_text_too_long_to_speak_at_once(tmp_path: Path,
-                                                      capsys: pytest.CaptureFixture[str]) -> None:
+                                                      fails_cleanly: FailsCleanly) -> None:
     # 96 KB of text took 2.25 GB to synthesise; it is refused before espeak-ng starts on it
     path = tmp_path / "long.wav"
-    _fails_cleanly(capsys, main(["say", "bring me a cola " * 6_000, "-o", str(path)]),
-                   "a text of 96,000 characters is too long to say at once")
+    fails_cleanly(main(["say", "bring me a cola " * 6_000, "-o", str(path)]),
+                  "a text of 96,000 characters is too long to say at once")
     assert not path.exists()
     longest = "a" * MAX_SPOKEN_CHARACTERS
     assert espeak().synthesise(longest).size > 0
