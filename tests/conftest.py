@@ -6,6 +6,7 @@ from collections.abc import Callable, Iterator
 from pathlib import Path
 
 import pytest
+from hypothesis import settings
 
 from homebot.app.cache import CACHE_DIRECTORY_VARIABLE
 from homebot.navigation import Navigator
@@ -13,6 +14,11 @@ from homebot.world import World
 
 SHARED = Path(__file__).resolve().parents[1].parent / "shared"
 
+
+# Tests assert behaviour, not time (timing is the benchmarks'): on a loaded machine one
+# example can take seconds, which hypothesis's default 200 ms deadline reads as a failure.
+settings.register_profile("homebot", deadline=None)
+settings.load_profile("homebot")
 
 #: ``fails_cleanly(status, expected)``: a command exited 2 with one line on stderr holding
 #: ``expected`` and no traceback anywhere; gives that line

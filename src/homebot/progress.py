@@ -16,79 +16,29 @@ disappears.
 from __future__ import annotations
 
 import sys
-import threading
 from collections.abc import Iterable, Iterator, Sized
 from contextlib import contextmanager
 from contextvars import ContextVar
-from typing import TypeVar
+from typing import TYPE_CHECKING, TypeVar
 
-from rich.console import Console
-from rich.progress import (
-    BarColumn,
-    MofNCompleteColumn,
-    Progress,
-    SpinnerColumn,
-    TaskID,
-    TextColumn,
-    TimeElapsedColumn,
-)
-from rich.progress import Task as RichTask
-from rich.text import Text
+if TYPE_CHECKING:  # rich is imported only where progress is shown
+    from rich.console import Console
+    from rich.progress import TaskID
+
+    from homebot.progress_display import Display
 
 __all__ = ["Task", "progress_console", "showing_progress", "start", "task", "track"]
 
 _T = TypeVar("_T")
 
 
-class _Count(MofNCompleteColumn):
-    """"3/10"; nothing for a task whose size is unknown (rather than "3/?")."""
-
-    def render(self, task: RichTask) -> Text:
-        return super().render(task) if task.total is not None else Text("")
-
-
-class _Display:
-    """A ``rich`` progress display that is live while at least one task is under way."""
-
-    def __init__(self, console: Console) -> None:
-        # stdout's lines are drawn above the bars only when stdout is that terminal too:
-        # otherwise they would leave a redirected stdout for the terminal
-        self.progress = Progress(
-            SpinnerColumn(), TextColumn("{task.description}"), BarColumn(),
-            _Count(), TimeElapsedColumn(), console=console, transient=True,
-            redirect_stdout=sys.stdout.isatty(), redirect_stderr=False)
-        self._under_way = 0
-        self._lock = threading.Lock()
-
-    # A task is drawn when it is added and when it ends, however short: the display
-    # starts (and stops) with it drawn, or is redrawn.
-    def add(self, description: str, total: float | None) -> TaskID:
-        with self._lock:
-            task_id = self.progress.add_task(description, total=total)
-            self._under_way += 1
-            if self._under_way == 1:
-                self.progress.start()
-            else:
-                self.progress.refresh()
-            return task_id
-
-    def remove(self, task_id: TaskID) -> None:
-        with self._lock:
-            self._under_way -= 1
-            if self._under_way:
-                self.progress.refresh()
-            else:
-                self.progress.stop()
-            self.progress.remove_task(task_id)
-
-
-_display: ContextVar[_Display | None] = ContextVar("homebot_progress_display", default=None)
+_display: ContextVar[Display | None] = ContextVar("homebot_progress_display", default=None)
 
 
 class Task:
     """One piece of work on the display (or on none, when progress is not shown)."""
 
-    def __init__(self, display: _Display | None, task_id: TaskID | None) -> None:
+    def __init__(self, display: Display | None, task_id: TaskID | None) -> None:
         self._display = display
         self._task_id = task_id
 
@@ -150,19 +100,26 @@ def progress_console(*, quiet: bool = False) -> Console | None:
         terminal = sys.stderr.isatty()
     except (AttributeError, ValueError):  # no stream, or a closed one
         terminal = False
+    if not terminal:
+        return None
+    from rich.console import Console
+
     console = Console(stderr=True)
-    return console if terminal and console.is_terminal and not console.is_dumb_terminal \
-        else None
+    return console if console.is_terminal and not console.is_dumb_terminal else None
 
 
 @contextmanager
 def showing_progress(console: Console | None) -> Iterator[None]:
     """Show the tasks begun in the ``with`` block on ``console`` (None: show nothing)."""
-    token = _display.set(_Display(console) if console is not None else None)
+    display: Display | None = None
+    if console is not None:
+        from homebot.progress_display import Display
+
+        display = Display(console)
+    token = _display.set(display)
     try:
         yield
     finally:
-        display = _display.get()
         _display.reset(token)
         if display is not None:
             display.progress.stop()  # a task left open (an exception) takes no bar with it

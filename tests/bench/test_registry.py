@@ -36,6 +36,8 @@ TINY: dict[str, tuple[list[str], set[str], set[str]]] = {
     "gpsr": (["--commands", "1"], {"commands", "success_rate", "judged_by"}, set()),
     "robustness": (["--tasks", "1"], {"tasks", "modes"}, set()),
     "fetch": (["--tasks", "1"], {"tasks", "figures"}, {"warm_speedup_in_this_run"}),
+    "startup": (["--runs", "1"], {"runs", "figures", "load_average_before_after"},
+                {"homebot --help", "parse, cold (no names kept)"}),
     "long_run": (["--tasks", "1", "--warm-up", "0", "--keep", "1"],
                  {"tasks", "succeeded", "ms_per_task"}, set()),
     "navigation": (["--repeat", "1", "--goals", "0"], {"figures"},

@@ -29,3 +29,9 @@ def shared_robocup() -> Path:
     if not ROBOCUP_DIRECTORY.is_dir() or not GPSR_COMMANDS.is_file():
         pytest.skip("the shared acceptance data (../shared/data) is absent")
     return ROBOCUP_DIRECTORY
+
+
+@pytest.fixture(scope="session")
+def shared_gpsr_commands(shared_robocup: Path) -> Path:
+    """The shared 1000 GPSR commands (a TSV); skipped as ``shared_robocup`` is."""
+    return GPSR_COMMANDS

@@ -8,7 +8,6 @@ from pathlib import Path
 import pytest
 from gpsr_expectations import Expectations, Names
 
-from conftest import GPSR_COMMANDS
 from homebot.language import Vocabulary, parse_command
 from homebot.language.generator import generate_commands
 from homebot.world import World
@@ -17,10 +16,11 @@ from homebot.world.robocup import world_from_robocup
 pytestmark = pytest.mark.acceptance
 
 
-def test_shared_commands_parse_to_expected_steps(shared_robocup: Path) -> None:
+def test_shared_commands_parse_to_expected_steps(shared_robocup: Path,
+                                                 shared_gpsr_commands: Path) -> None:
     expectations = Expectations(Names.from_directory(str(shared_robocup)))
     vocabulary = Vocabulary.from_world(World.from_dict(world_from_robocup(shared_robocup)))
-    with GPSR_COMMANDS.open(encoding="utf-8") as handle:
+    with shared_gpsr_commands.open(encoding="utf-8") as handle:
         rows = list(csv.reader(handle, delimiter="\t"))
     assert len(rows) == 1000
     wrong = []

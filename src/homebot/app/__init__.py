@@ -7,9 +7,16 @@ simulated home with the robot in either fidelity, its perception, beliefs and ex
 ``conversation_for(run)`` the conversation one person holds with it.
 """
 
-from homebot.app.conversation import QUESTION_COST, believed, conversation_for, told
-from homebot.app.fidelity import Fidelity, require_embodied
-from homebot.app.run import Run, RunSettings, build_run, disturbed
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from homebot.lazy import lazy_exports
+
+if TYPE_CHECKING:
+    from homebot.app.conversation import QUESTION_COST, believed, conversation_for, told
+    from homebot.app.fidelity import Fidelity, require_embodied
+    from homebot.app.run import Run, RunSettings, build_run, disturbed
 
 __all__ = [
     "QUESTION_COST",
@@ -23,3 +30,5 @@ __all__ = [
     "require_embodied",
     "told",
 ]
+
+__getattr__ = lazy_exports(globals())

@@ -69,6 +69,8 @@ BENCHMARKS: tuple[Benchmark, ...] = (
            "and recovery against a plain sequence"),
     _bench("fetch", "wall time of one simulated fetch-and-deliver task, cold (every cache "
            "cleared) and warm"),
+    _bench("startup", "one-shot commands (parse, kb query, --help) in fresh processes: wall and "
+           "CPU from start to exit, beside a bare Python start"),
     _bench("long_run", "a long-running simulation: memory over thousands of consecutive tasks "
            "in one home"),
     _bench("navigation", "navigation: stage-1 A* timing, and goals driven through the "

@@ -7,7 +7,7 @@ import json
 from pathlib import Path
 from typing import Any
 
-from homebot.cli.options import load_world
+from homebot.app.world_names import world_vocabulary
 from homebot.errors import LanguageError
 from homebot.files import read_text_file
 from homebot.language import ParseResult, Vocabulary, parse_command
@@ -29,7 +29,7 @@ def register(subparsers: Any) -> None:
 def _parse(args: argparse.Namespace) -> int:
     if (args.command is None) == (args.file is None):
         raise LanguageError('give one command in quotes, or --file FILE (not both)')
-    vocabulary = Vocabulary.from_world(load_world(args))
+    vocabulary = world_vocabulary(args.world)
     if args.file is not None:
         return _parse_file(args.file, vocabulary)
     result = parse_command(args.command, vocabulary)

@@ -5,15 +5,22 @@ layer above uses these, as every ROS package uses ``geometry_msgs``; this packag
 imports nothing of homebot.
 """
 
-from homebot.geometry.angles import (
-    quaternion_from_yaw,
-    wrap_angle,
-    wrap_angles,
-    yaw_from_quaternion,
-    yaw_rotation,
-)
-from homebot.geometry.pose import Pose, from_frame, to_frame
-from homebot.geometry.rays import Point3, Ray, nearest_by_angle, rays_cross_line
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from homebot.lazy import lazy_exports
+
+if TYPE_CHECKING:
+    from homebot.geometry.angles import (
+        quaternion_from_yaw,
+        wrap_angle,
+        wrap_angles,
+        yaw_from_quaternion,
+        yaw_rotation,
+    )
+    from homebot.geometry.pose import Pose, from_frame, to_frame
+    from homebot.geometry.rays import Point3, Ray, nearest_by_angle, rays_cross_line
 
 __all__ = [
     "Point3",
@@ -29,3 +36,5 @@ __all__ = [
     "yaw_from_quaternion",
     "yaw_rotation",
 ]
+
+__getattr__ = lazy_exports(globals())

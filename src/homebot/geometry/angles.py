@@ -1,11 +1,17 @@
-"""Planar angles: wrapping into one turn, and the yaw of a quaternion (REP 103: radians)."""
+"""Planar angles: wrapping into one turn, and the yaw of a quaternion (REP 103: radians).
+
+numpy is imported by the two functions on arrays only: the language layer wraps single
+angles, and a one-shot ``homebot parse`` should not load numpy for that.
+"""
 
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
-import numpy as np
-import numpy.typing as npt
+if TYPE_CHECKING:
+    import numpy as np
+    import numpy.typing as npt
 
 __all__ = [
     "quaternion_from_yaw",
@@ -23,6 +29,8 @@ def wrap_angle(angle: float) -> float:
 
 def wrap_angles(angles: npt.ArrayLike) -> npt.NDArray[np.float64]:
     """``wrap_angle`` for every angle of an array, elementwise."""
+    import numpy as np
+
     wrapped: npt.NDArray[np.float64] = (np.asarray(angles, dtype=float) + np.pi) % (2 * np.pi) \
         - np.pi
     return wrapped
@@ -36,6 +44,8 @@ def quaternion_from_yaw(yaw: float) -> tuple[float, float, float, float]:
 def yaw_rotation(yaw: float) -> npt.NDArray[np.float64]:
     """The 3×3 rotation matrix of a turn by ``yaw`` radians about z (up); its transpose
     turns back."""
+    import numpy as np
+
     cos, sin = math.cos(yaw), math.sin(yaw)
     return np.array([[cos, -sin, 0.0], [sin, cos, 0.0], [0.0, 0.0, 1.0]])
 

@@ -28,43 +28,50 @@ Where homebot keeps its own answer, on purpose:
   more specific place; the original lists each literal at its own level.
 """
 
-from homebot.knowledge.abduction import Explanation
-from homebot.knowledge.knowledge_base import UNKNOWN, Answer, KnowledgeBase
-from homebot.knowledge.model import (
-    ANY,
-    TOP,
-    ClassNode,
-    IndividualNode,
-    Kind,
-    Literal,
-    Preference,
-    Statement,
-    Taxonomy,
-    Value,
-)
-from homebot.knowledge.reasoner import Touched
-from homebot.knowledge.syntax import read_kb, read_kb_text, write_kb, write_kb_text
-from homebot.knowledge.terms import parse_statement
-from homebot.knowledge.updates import (
-    AddClass,
-    AddIndividual,
-    AddStatement,
-    ChangeValue,
-    ChangeWeight,
-    MoveClass,
-    MoveIndividual,
-    RemoveClass,
-    RemoveIndividual,
-    RemoveStatement,
-    Rename,
-    Update,
-)
-from homebot.knowledge.yaml_form import (
-    read_kb_yaml,
-    read_kb_yaml_text,
-    write_kb_yaml,
-    write_kb_yaml_text,
-)
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from homebot.lazy import lazy_exports
+
+if TYPE_CHECKING:
+    from homebot.knowledge.abduction import Explanation
+    from homebot.knowledge.knowledge_base import UNKNOWN, Answer, KnowledgeBase
+    from homebot.knowledge.model import (
+        ANY,
+        TOP,
+        ClassNode,
+        IndividualNode,
+        Kind,
+        Literal,
+        Preference,
+        Statement,
+        Taxonomy,
+        Value,
+    )
+    from homebot.knowledge.reasoner import Touched
+    from homebot.knowledge.syntax import read_kb, read_kb_text, write_kb, write_kb_text
+    from homebot.knowledge.terms import parse_statement
+    from homebot.knowledge.updates import (
+        AddClass,
+        AddIndividual,
+        AddStatement,
+        ChangeValue,
+        ChangeWeight,
+        MoveClass,
+        MoveIndividual,
+        RemoveClass,
+        RemoveIndividual,
+        RemoveStatement,
+        Rename,
+        Update,
+    )
+    from homebot.knowledge.yaml_form import (
+        read_kb_yaml,
+        read_kb_yaml_text,
+        write_kb_yaml,
+        write_kb_yaml_text,
+    )
 
 __all__ = [
     "ANY",
@@ -104,3 +111,5 @@ __all__ = [
     "write_kb_yaml",
     "write_kb_yaml_text",
 ]
+
+__getattr__ = lazy_exports(globals())

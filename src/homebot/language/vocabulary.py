@@ -12,7 +12,8 @@ from homebot.errors import LanguageError
 from homebot.language import lexicon
 from homebot.text import fold
 
-__all__ = ["SYNONYMS", "Entity", "Token", "Vocabulary", "phrase_tokens", "progressive"]
+__all__ = ["SYNONYMS", "Entity", "Token", "Vocabulary", "names_in_world", "phrase_tokens",
+           "progressive"]
 
 # Other words for common places and things; used only when the target exists in the
 # world and the word is not itself a name there.
@@ -101,15 +102,7 @@ class Vocabulary:
     @classmethod
     def from_world(cls, world: Any) -> Vocabulary:
         """The vocabulary of a ``homebot.world.World``."""
-        objects = {name: model.category for name, model in world.objects.items()}
-        categories = {name: model.plural for name, model in world.categories.items()}
-        for category in objects.values():
-            categories.setdefault(category, world.plural_of(category))
-        return cls.from_names(
-            rooms=list(world.rooms), people=list(world.people), objects=objects,
-            placements={name: placement.room for name, placement in world.placements.items()},
-            categories=categories, doors=list(world.doors),
-        )
+        return cls.from_names(**names_in_world(world))
 
     @classmethod
     def from_names(cls, *, rooms: Iterable[str], placements: Mapping[str, str],
@@ -285,3 +278,14 @@ def _possessive_variants(phrase: str) -> list[tuple[str, ...]]:
         return [tokens]
     at = tokens.index("their")
     return [(*tokens[:at], word, *tokens[at + 1:]) for word in lexicon.POSSESSIVES]
+
+
+def names_in_world(world: Any) -> dict[str, Any]:
+    """``Vocabulary.from_names``'s arguments for a ``homebot.world.World``, as plain data."""
+    objects = {name: model.category for name, model in world.objects.items()}
+    categories = {name: model.plural for name, model in world.categories.items()}
+    for category in objects.values():
+        categories.setdefault(category, world.plural_of(category))
+    return {"rooms": list(world.rooms), "people": list(world.people), "objects": objects,
+            "placements": {name: placement.room for name, placement in world.placements.items()},
+            "categories": categories, "doors": list(world.doors)}

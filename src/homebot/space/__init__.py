@@ -7,28 +7,35 @@ to the plate" among the things the robot sees. A knowledge-layer package: it rea
 the world model, nothing above it.
 """
 
-from homebot.space.distance import (
-    BOUNDARIES,
-    CENTRES,
-    DISTANCES,
-    at_most,
-    closeness,
-    distance_category,
-    distance_memberships,
-    is_distance,
-)
-from homebot.space.frames import Frame, Frames, frames_of
-from homebot.space.orientation import (
-    ORIENTATIONS,
-    intrinsic_angle,
-    orientation_category,
-    orientation_memberships,
-    relative_angle,
-    side_degree,
-)
-from homebot.space.places import resolve_place
-from homebot.space.referring import MARGIN, Modifier, Resolution, Scene, resolve, split_spatial
-from homebot.space.relations import SceneRelations, scene_relations
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from homebot.lazy import lazy_exports
+
+if TYPE_CHECKING:
+    from homebot.space.distance import (
+        BOUNDARIES,
+        CENTRES,
+        DISTANCES,
+        at_most,
+        closeness,
+        distance_category,
+        distance_memberships,
+        is_distance,
+    )
+    from homebot.space.frames import Frame, Frames, frames_of
+    from homebot.space.orientation import (
+        ORIENTATIONS,
+        intrinsic_angle,
+        orientation_category,
+        orientation_memberships,
+        relative_angle,
+        side_degree,
+    )
+    from homebot.space.places import resolve_place
+    from homebot.space.referring import MARGIN, Modifier, Resolution, Scene, resolve, split_spatial
+    from homebot.space.relations import SceneRelations, scene_relations
 
 __all__ = [
     "BOUNDARIES",
@@ -58,3 +65,5 @@ __all__ = [
     "side_degree",
     "split_spatial",
 ]
+
+__getattr__ = lazy_exports(globals())

@@ -5,7 +5,6 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
-from importlib import resources
 from pathlib import Path
 from typing import Any
 
@@ -37,9 +36,10 @@ from homebot.world.physical import (
     points_inside,
     reach_beyond,
 )
+from homebot.world.shipped import world_file
 from homebot.yamlfile import LocatedDocument, load_yaml_document, parse_yaml_text
 
-__all__ = ["Placement", "World", "shipped_world_names", "shipped_world_path"]
+__all__ = ["Placement", "World"]
 
 # Clearance between the robot's body and furniture when the approach pose is derived.
 _APPROACH_CLEARANCE = 0.12
@@ -76,18 +76,6 @@ class Placement:
     @property
     def holds(self) -> list[str]:
         return self.model.holds
-
-
-def shipped_world_names() -> list[str]:
-    """Names of the worlds that ship with homebot (``apartment``, ``supermarket``...)."""
-    folder = resources.files("homebot.data") / "worlds"
-    return sorted(entry.name[: -len(".yaml")] for entry in folder.iterdir()
-                  if entry.name.endswith(".yaml"))
-
-
-def shipped_world_path(name: str) -> Path:
-    """The file of a shipped world."""
-    return Path(str(resources.files("homebot.data") / "worlds" / f"{name}.yaml"))
 
 
 #: the lists of entities a command names, with what one entry is called, in file order
@@ -146,15 +134,7 @@ class World:
     @classmethod
     def load(cls, path_or_name: str | Path) -> World:
         """Load a world file, or a shipped world by name (``apartment``)."""
-        candidate = Path(path_or_name)
-        if not candidate.suffix and not candidate.exists():
-            if str(path_or_name) not in shipped_world_names():
-                raise WorldError(
-                    f"no world named '{path_or_name}'; give a YAML file or one of: "
-                    f"{', '.join(shipped_world_names())}"
-                )
-            candidate = shipped_world_path(str(path_or_name))
-        document = load_yaml_document(candidate, WorldError)
+        document = load_yaml_document(world_file(path_or_name), WorldError)
         return cls(validate_document(document, WorldModel), document)
 
     @classmethod
