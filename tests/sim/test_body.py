@@ -13,7 +13,7 @@ from homebot.navigation import Navigator
 from homebot.robot import DriveKind, Twist, VelocityLimits
 from homebot.sim import Simulation
 from homebot.sim.body import SimBody
-from homebot.world import LaserModel, World
+from homebot.world import DisturbanceModel, LaserModel, World
 
 QUIET_LASER = LaserModel(noise=0.0)
 
@@ -245,3 +245,59 @@ def test_a_walker_who_sets_off_has_got_up(apartment: World,
     assert body.people.walkers[0].destination is not None  # he went somewhere
     assert body.sim.people["John"].posture.value == "standing"
     assert len([leg for name, leg in body.people.named_legs() if name == "John"]) == 2
+
+
+def _a_run_maybe_watched(world: World, navigator: Navigator, *, watched: bool
+                         ) -> tuple[list[object], list[float]]:
+    """A short embodied run by the fridge and the kitchen table, someone moving an object at
+    each first look; a watcher's ``view`` drawn before each tick when ``watched``. What the
+    robot sensed and did, and the views' stamps."""
+    moving = DisturbanceModel(object_moved_during_task=1.0)
+    body = SimBody(Simulation(world, seed=7, navigator=navigator, disturbances=moving),
+                   walkers=2)
+    stamps: list[float] = []
+    sensed: list[object] = []
+
+    def tick(ticks: int) -> None:
+        for _ in range(ticks):
+            if watched:  # the watcher looks at the fridge, where the robot never looks
+                stamps.append(body.view().stamp)
+            body.tick()
+        sensed.extend([body.scan().ranges.tobytes(), body.odometry().pose])
+
+    body.teleport(Pose(10.88, 3.4, 0.0))  # before the fridge
+    body.command_velocity(Twist(0.0, 0.0, 0.5))
+    tick(6)
+    body.teleport(Pose(9.5, 2.62, -math.pi / 2))  # before the kitchen table
+    body.command_velocity(Twist(0.1, 0.0, 0.0))
+    tick(4)
+    frame = body.camera()  # the robot's own look: its first at the table
+    tick(2)
+    again = body.camera()
+    sim = body.sim
+    sensed += [frame.rgb.tobytes(), frame.depth.tobytes(), again.rgb.tobytes(),
+               dict(sim.object_location), [event.to_dict() for event in sim.events.events]]
+    assert body.last_camera() is again  # the robot's latest image is its own, not a view
+    return sensed, stamps
+
+
+def test_a_watched_run_is_the_run_unwatched(apartment: World,
+                                            apartment_navigator: Navigator) -> None:
+    unwatched, _ = _a_run_maybe_watched(apartment, apartment_navigator, watched=False)
+    watched, stamps = _a_run_maybe_watched(apartment, apartment_navigator, watched=True)
+    assert len(stamps) == 12 and stamps == sorted(stamps) and stamps[0] < stamps[-1]
+    assert watched == unwatched  # the same scans, poses, images, objects and events
+
+
+def test_the_view_shows_the_home_as_the_head_camera_sees_it_now(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    body = _body(apartment, apartment_navigator)
+    body.teleport(Pose(10.88, 3.4, 0.0))  # before the fridge
+    view, frame = body.view(), body.camera()
+    assert view.stamp == frame.stamp and view.rgb.shape == frame.rgb.shape
+    # the same scene under other noise: close, not equal
+    difference = np.abs(view.rgb.astype(float) - frame.rgb.astype(float))
+    assert 0.0 < difference.mean() < 6.0
+    body.point_head(1.2, 0.0)  # the head turned: the view turns with it
+    turned = body.view()
+    assert np.abs(turned.rgb.astype(float) - view.rgb.astype(float)).mean() > 10.0

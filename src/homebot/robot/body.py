@@ -303,9 +303,16 @@ class Body(ABC):
         raise PartMissing("RGB-D camera")
 
     def last_camera(self) -> RgbdFrame | None:
-        """The latest image ``camera`` took (None: none yet), for a viewer: reading it takes
-        no new image, so watching changes nothing the robot senses or does."""
+        """The latest image ``camera`` took (None: none yet): reading it takes no new
+        image."""
         return None
+
+    def view(self) -> RgbdFrame | None:
+        """What the head camera sees now, for a watcher (the console's page), not for the
+        robot: watching changes nothing the robot senses or does. A simulated body draws
+        it apart from the robot's own images; a body that cannot gives the latest image
+        ``camera`` took (None: none yet)."""
+        return self.last_camera()
 
     def face_crops(self, views: int) -> list[np.ndarray]:
         """The head camera's close-ups of the face of the person in front (grey images), so

@@ -70,7 +70,8 @@ _TRAJECTORY_STEP = 0.1  #: metres between recorded trajectory points
 _LOOKING_REACH = 1.0  #: metres from a placement within which the robot looks at it
 _CATCH_UP_STEP = 0.5  #: seconds per walking step when time passed outside the ticks
 # Seeds of the body's own random streams, apart from the simulation's disturbances.
-_SENSOR_STREAM, _WALKER_STREAM, _CAMERA_STREAM = 101, 202, 404
+# A watcher's view has a stream of its own: drawing it takes nothing from the robot's.
+_SENSOR_STREAM, _WALKER_STREAM, _CAMERA_STREAM, _VIEW_STREAM = 101, 202, 404, 505
 
 
 class OdometryNoise:
@@ -135,8 +136,12 @@ class SimBody(Body):
         self._scan: LaserScan | None = None
         self.components = components
         self._catalogue = object_catalogue(world)
+        scene = SceneGeometry.of(world)
         self.camera_simulator = CameraSimulator(
-            SceneGeometry.of(world), np.random.default_rng([simulation.seed, _CAMERA_STREAM]))
+            scene, np.random.default_rng([simulation.seed, _CAMERA_STREAM]))
+        #: the same camera drawn for watchers (``view``), with its own noise
+        self._viewer = CameraSimulator(
+            scene, np.random.default_rng([simulation.seed, _VIEW_STREAM]))
         #: how people move their arms, as the head camera sees them
         self.arms = PeopleArms(simulation.seed)
         self._face_camera = FaceCamera(self, half_angle=face_half_angle)
@@ -223,6 +228,12 @@ class SimBody(Body):
 
     def last_camera(self) -> RgbdFrame | None:
         return self._last_camera
+
+    def view(self) -> RgbdFrame:
+        """What the head camera sees now, drawn for a watcher: the scene ``camera`` draws,
+        with the viewer's own noise; no first looks (nobody moves an object because a page
+        watches), and the robot's latest image stays its own."""
+        return self._viewer.render(self.now(), self.sim.robot_pose, self._head, self._solids())
 
     def _first_looks(self) -> None:
         """The first time the camera sees a placement the robot stands at, someone may

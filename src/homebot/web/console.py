@@ -49,7 +49,10 @@ from homebot.web.narration import Narrator
 from homebot.web.sessions import ControlLease
 from homebot.world import World
 
-__all__ = ["Console", "ConsoleSettings", "static_map"]
+__all__ = ["VIEW_PERIOD", "Console", "ConsoleSettings", "static_map"]
+
+#: simulated seconds between two images of the head camera drawn for watchers (at most)
+VIEW_PERIOD = 0.25
 
 _COMMAND_HOLD = 0.5  #: simulated seconds a body-level velocity command holds
 _EVENTS_KEPT = 2000  #: events the console keeps for late-joining watchers
@@ -157,7 +160,7 @@ class Console:
         self.event_count = 0
         self.sim.events.listeners.append(self._heard)
         self.speech: deque[str] = deque(maxlen=20)
-        self._jpeg: tuple[float, bytes] | None = None  #: the latest camera image, encoded
+        self._jpeg: tuple[float, bytes] | None = None  #: the latest view drawn, encoded
         self._narrator = Narrator()  #: each event's line in the log, as ``do`` narrates
         self.steps = _Steps()
         self._task_open = False  #: a task.start was logged and its task.end not yet
@@ -609,22 +612,26 @@ class Console:
                              round(body.odometry().twist.wz, 3)]}
 
     def camera_jpeg(self) -> tuple[float, bytes]:
-        """The latest image the head camera took, as JPEG, with its stamp (simulated s).
+        """What the head camera sees now, as JPEG, with its stamp (simulated seconds).
 
-        It is the image the robot itself last saw (``Body.last_camera``): watching takes
-        no new one, so a watched run is the run unwatched.
+        Drawn for the watcher (``Body.view``), not taken by the robot, so a watched run is
+        the run unwatched; at most once per ``VIEW_PERIOD`` of simulated time, however
+        many pages ask (within it, they share the image drawn last).
         """
         if self.body is None:
             raise ConsoleError("no camera: the console serves the symbolic home; serve with "
                                "--fidelity embodied to see through the robot's head camera")
-        frame = self.body.last_camera()
+        with self.lock:  # between two ticks: the home stands still while it is drawn
+            now = self.sim.clock.now()
+            if self._jpeg is not None and 0.0 <= now - self._jpeg[0] < VIEW_PERIOD:
+                return self._jpeg
+            frame = self.body.view()
         if frame is None:
-            raise ConsoleError("no camera image yet: the robot takes one when it looks "
-                               "(finding an object or a person)")
-        if self._jpeg is None or self._jpeg[0] != frame.stamp:
-            encoded = io.BytesIO()
-            Image.fromarray(np.ascontiguousarray(frame.rgb)).save(encoded, "JPEG", quality=85)
-            self._jpeg = (frame.stamp, encoded.getvalue())
+            raise ConsoleError("no camera image yet: the robot's body sends one when it "
+                               "looks")
+        encoded = io.BytesIO()
+        Image.fromarray(np.ascontiguousarray(frame.rgb)).save(encoded, "JPEG", quality=85)
+        self._jpeg = (frame.stamp, encoded.getvalue())
         return self._jpeg
 
     def events_since(self, number: int) -> list[dict[str, Any]]:

@@ -205,9 +205,12 @@ function drawPanels() {
   } else help.style.display = "none";
 }
 
-// the head camera: the image the robot last took, fetched again whenever its stamp moves
-// (the state comes several times a second)
-let cameraShown = null;
+// the head camera, live: what it sees now, drawn for this page (the robot's run is the same
+// watched or not). One image at a time, a new one once the home's clock has moved on by a
+// quarter of a simulated second and a quarter of a wall second has passed; none while the
+// page is hidden (a background tab watches nothing).
+const CAMERA_PERIOD = 0.25;
+let cameraStamp = -Infinity, cameraAsked = 0, cameraBusy = false;
 function drawCamera() {
   const image = document.getElementById("camera"), note = document.getElementById("camera-note");
   if (state.fidelity !== "embodied") {
@@ -216,15 +219,28 @@ function drawCamera() {
       "embodied to see through the robot's head camera)";
     return;
   }
-  if (state.camera === null || state.camera === undefined) {
-    note.textContent = "no image yet: the robot takes one when it looks";
+  if (cameraBusy || document.hidden || Math.abs(state.time - cameraStamp) < CAMERA_PERIOD ||
+      performance.now() - cameraAsked < CAMERA_PERIOD * 1000) return;
+  cameraBusy = true; cameraAsked = performance.now();
+  fetchCamera(image, note).finally(() => { cameraBusy = false; });
+}
+async function fetchCamera(image, note) {
+  const response = await fetch("/api/camera.jpg", {headers: {"X-Homebot-Token": TOKEN}});
+  if (!response.ok) {
+    let data = {};
+    try { data = await response.json(); } catch (err) { data = {error: String(response.status)}; }
+    note.textContent = data.error || String(response.status);
     return;
   }
-  note.textContent = `taken at t=${state.camera.toFixed(1)} s`;
-  if (state.camera === cameraShown) return;
-  cameraShown = state.camera;
-  image.src = `/api/camera.jpg?token=${encodeURIComponent(TOKEN)}&t=${state.camera}`;
+  const stamp = parseFloat(response.headers.get("X-Homebot-Stamp"));
+  const url = URL.createObjectURL(await response.blob());
+  await new Promise((done) => { image.onload = image.onerror = done; image.src = url; });
+  if (image.dataset.url) URL.revokeObjectURL(image.dataset.url);
+  image.dataset.url = url; image.dataset.stamp = stamp;
   image.style.display = "block";
+  cameraStamp = stamp;
+  note.textContent = `seen at t=${stamp.toFixed(1)} s (simulated)` + (state.camera == null ?
+    "" : ` · the robot itself last looked at t=${state.camera.toFixed(1)} s`);
 }
 
 function logEvents(events, lost) {
