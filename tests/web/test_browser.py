@@ -11,7 +11,9 @@ import threading
 from collections.abc import Iterator
 from pathlib import Path
 
+import numpy as np
 import pytest
+from PIL import Image
 
 pytest.importorskip("fastapi")
 pytest.importorskip("uvicorn")
@@ -224,11 +226,22 @@ def test_arrow_keys_drive_the_embodied_base_capped_and_slowed(browser: object,
     assert (tmp_path / "driven.png").stat().st_size > 10_000
 
 
-def test_the_page_names_the_furniture_narrates_the_log_and_shows_the_head_camera(
+_CAMERA_STAMP = "(() => {{ const i = document.getElementById('camera'); return i.complete && " \
+    "i.naturalWidth === 320 && +i.dataset.stamp > {}; }})()"
+
+
+def _camera_shot(page: object, path: Path) -> tuple[float, np.ndarray]:
+    """The camera panel's image as the page shows it (saved at ``path``), and its stamp."""
+    stamp = float(page.get_attribute("#camera", "data-stamp"))  # type: ignore[attr-defined]
+    page.locator("#camera").screenshot(path=str(path))  # type: ignore[attr-defined]
+    return stamp, np.asarray(Image.open(path).convert("RGB"), dtype=float)
+
+
+def test_the_page_names_the_furniture_narrates_the_log_and_shows_the_head_camera_live(
         browser: object, tmp_path: Path) -> None:
     pytest.importorskip("cv2")
     world = World.load("apartment")
-    settings = ConsoleSettings(world=world, token=TOKEN, speed=0.0, fidelity=Fidelity.EMBODIED)
+    settings = ConsoleSettings(world=world, token=TOKEN, speed=4.0, fidelity=Fidelity.EMBODIED)
     with _serving(settings) as (url, home):
         page = browser.new_page(viewport={"width": 1280, "height": 800})  # type: ignore[attr-defined]
         page.set_default_timeout(_TIMEOUT_MS)
@@ -241,26 +254,63 @@ def test_the_page_names_the_furniture_narrates_the_log_and_shows_the_head_camera
         assert page.locator(".object-label[data-object='cola']").text_content() == "cola"
         assert page.get_attribute("#command", "placeholder") == \
             "bring me the cola from the fridge"  # this home's own, from the served map
-        assert "no image yet" in page.inner_text("#camera-note")
+        # the head camera, live before the robot has looked at anything itself
+        page.wait_for_function(_CAMERA_STAMP.format(-1))
+        assert "seen at t=" in page.inner_text("#camera-note")
+        assert "(simulated)" in page.inner_text("#camera-note")
+        before, before_image = _camera_shot(page, tmp_path / "camera_before.png")
         page.click("#take")
         page.wait_for_function("document.getElementById('control').textContent"
                                ".includes('you have control')")
         page.evaluate("api('/api/steps', {steps: [{skill: 'navigate', to: 'fridge'}, "
                       "{skill: 'find_object', object: 'cola', placement: 'fridge'}]})")
+        # while the robot drives, the camera keeps up: a later image, another scene
+        start = _robot_xy(page)
+        page.wait_for_function(
+            f"(() => {{ const r = document.getElementById('robot'); return r && "
+            f"Math.hypot(r.dataset.x - {start[0]}, r.dataset.y - {start[1]}) > 1.5; }})()")
+        with home.lock:
+            driven = home.sim.clock.now()
+        page.wait_for_function(_CAMERA_STAMP.format(driven))
+        moving, moving_image = _camera_shot(page, tmp_path / "camera_moving.png")
+        page.screenshot(path=str(tmp_path / "driving.png"))
         page.wait_for_function("document.getElementById('log').textContent"
                                ".includes('verified find_object(object=cola, placement=fridge)')")
-        # the camera shows the image the robot took, loaded
-        page.wait_for_function("(() => { const i = document.getElementById('camera'); "
-                               "return i.complete && i.naturalWidth === 320; })()")
+        with home.lock:
+            now = home.sim.clock.now()
+        page.wait_for_function(_CAMERA_STAMP.format(now - 1e-3))  # caught up with the robot
+        at_fridge, fridge_image = _camera_shot(page, tmp_path / "camera_fridge.png")
+        assert "the robot itself last looked at t=" in page.inner_text("#camera-note")
         page.screenshot(path=str(tmp_path / "labelled.png"))
         assert page.locator("#log details.event").count() >= 5
         raw = page.locator("#log details.event[data-kind='skill.start'] pre").first
         assert not raw.is_visible()  # the raw JSON is one click away
         page.locator("#log details.event[data-kind='skill.start'] summary").first.click()
         assert raw.is_visible() and '"kind": "skill.start"' in raw.inner_text()
-        page.locator("#camera").screenshot(path=str(tmp_path / "camera.png"))
-        page.close()
-    frame = home.body.last_camera()
-    assert frame is not None
-    for name in ("labelled.png", "camera.png"):
+        # reloaded, the page watches again (a new session, control given back)
+        page.reload()
+        page.wait_for_selector("#robot", state="attached")
+        page.wait_for_function(_CAMERA_STAMP.format(-1))
+        page.wait_for_function("document.getElementById('control').textContent"
+                               ".includes('nobody has control')")
+        page.locator("#camera").screenshot(path=str(tmp_path / "camera_reloaded.png"))
+        page.click("#take")
+        page.wait_for_function("document.getElementById('control').textContent"
+                               ".includes('you have control')")
+        assert home.controller is not None
+        # the tab closed: control given back at once, not when the lease lapses
+        page.close(run_before_unload=True)
+        for _ in range(100):
+            if home.controller is None:
+                break
+            threading.Event().wait(0.05)
+        assert home.controller is None
+        assert home.lease.seconds >= 10.0  # well within the lease
+    assert before < moving < at_fridge
+    assert np.abs(moving_image - before_image).mean() > 10.0
+    assert np.abs(fridge_image - moving_image).mean() > 10.0
+    # the robot's own look at the fridge is not the page's: watching took no image
+    assert home.body.last_camera() is not None
+    for name in ("labelled.png", "driving.png", "camera_before.png", "camera_fridge.png",
+                 "camera_reloaded.png"):
         assert (tmp_path / name).stat().st_size > 5_000

@@ -14,9 +14,9 @@ pytest.importorskip("httpx")
 from fastapi.testclient import TestClient
 
 from homebot.app import Fidelity
-from homebot.web import ConsoleSettings
+from homebot.web import Console, ConsoleSettings
 from homebot.web.app import create_app
-from homebot.web.console import example_command
+from homebot.web.console import VIEW_PERIOD, example_command
 from homebot.web.narration import Narrator
 from homebot.world import World
 
@@ -95,18 +95,27 @@ def test_the_symbolic_home_says_it_has_no_camera() -> None:
     assert "camera" not in state  # the page says so from the fidelity
 
 
-def test_the_embodied_home_serves_the_image_its_head_camera_last_took() -> None:
-    pytest.importorskip("cv2")
+def _jpeg(answer: object) -> np.ndarray:
     from PIL import Image
 
+    return np.asarray(Image.open(io.BytesIO(answer.content)).convert("RGB"),  # type: ignore[attr-defined]
+                      dtype=float)
+
+
+def test_the_embodied_home_serves_what_its_head_camera_sees_now() -> None:
+    pytest.importorskip("cv2")
     settings = ConsoleSettings(world=World.load("apartment"), token=TOKEN, speed=0.0,
                                fidelity=Fidelity.EMBODIED)
     with TestClient(create_app(settings)) as client:
         headers = {"X-Homebot-Token": TOKEN}
         home = client.app.state.console  # type: ignore[attr-defined]
-        before = client.get("/api/camera.jpg", headers=headers)
-        assert before.status_code == 404 and "no camera image yet" in before.json()["error"]
+        # before the robot has looked at all, the page sees what it would see
+        first = client.get(f"/api/camera.jpg?token={TOKEN}")
+        assert first.status_code == 200 and first.headers["content-type"] == "image/jpeg"
         assert client.get("/api/state", headers=headers).json()["camera"] is None
+        assert home.body.last_camera() is None  # watching took no image for the robot
+        again = client.get(f"/api/camera.jpg?token={TOKEN}")  # no time passed: the same one
+        assert again.content == first.content
         session = client.post("/api/session", headers=headers).json()["session"]
         page = {**headers, "X-Homebot-Session": session}
         client.post("/api/control", json={"action": "take"}, headers=page)
@@ -115,11 +124,37 @@ def test_the_embodied_home_serves_the_image_its_head_camera_last_took() -> None:
         assert looked.status_code == 200
         assert home.wait_idle(_WAIT)
         stamp = client.get("/api/state", headers=headers).json()["camera"]
-        answer = client.get(f"/api/camera.jpg?token={TOKEN}")
+        after = client.get(f"/api/camera.jpg?token={TOKEN}")
         frame = home.body.last_camera()
-    assert stamp is not None and answer.status_code == 200
-    assert answer.headers["content-type"] == "image/jpeg"
-    assert float(answer.headers["X-Homebot-Stamp"]) == pytest.approx(stamp, abs=1e-3)
-    image = np.asarray(Image.open(io.BytesIO(answer.content)).convert("RGB"), dtype=float)
-    assert image.shape == frame.rgb.shape  # the robot's own image, encoded
-    assert np.abs(image - frame.rgb).mean() < 8.0  # JPEG keeps it close
+    assert stamp is not None and stamp == pytest.approx(frame.stamp, abs=1e-3)
+    # the view is stamped now, later than the first; the robot turned to the rack
+    assert float(after.headers["X-Homebot-Stamp"]) > float(first.headers["X-Homebot-Stamp"])
+    assert float(after.headers["X-Homebot-Stamp"]) >= stamp - 1e-3
+    assert np.abs(_jpeg(after) - _jpeg(first)).mean() > 10.0
+
+
+def test_a_watched_console_runs_as_an_unwatched_one() -> None:
+    """A page watching the camera all along changes nothing the robot senses or does."""
+    pytest.importorskip("cv2")
+
+    def events(watched: bool) -> list[dict[str, object]]:
+        settings = ConsoleSettings(world=World.load("apartment"), token=TOKEN, speed=0.0,
+                                   fidelity=Fidelity.EMBODIED, seed=5)
+        home = Console(settings)
+        views: list[float] = []
+        if watched:
+            home.tick_hooks.append(lambda tick: views.append(home.camera_jpeg()[0]))
+        home.start()
+        try:
+            home.take_control("operator")
+            home.run_steps("operator", [{"skill": "look", "placement": "coat rack"}])
+            assert home.wait_idle(_WAIT)
+        finally:
+            home.close()
+        if watched:  # drawn as the robot acted, at most four times a simulated second
+            assert len(set(views)) >= 4
+            assert all(b - a >= VIEW_PERIOD - 1e-9 for a, b in zip(sorted(set(views)),
+                                                                   sorted(set(views))[1:]))
+        return [data for _, data in home.events]
+
+    assert events(watched=True) == events(watched=False)
