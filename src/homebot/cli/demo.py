@@ -12,10 +12,15 @@ from homebot.cli.options import add_fidelity_option, fidelity_of
 from homebot.cli.scenario import run_builder
 from homebot.cli.world import remember_last_run
 from homebot.events import Event
+from homebot.executive.narration import Narrator
 from homebot.scenarios.demo import DemoTask, run_demo
 from homebot.world import World
 
 __all__ = ["register"]
+
+#: what the demo narrates as it runs: the skills, the robot's words and what got in its way
+_TOLD = frozenset({"skill.start", "skill.status", "speech", "sim.speech", "sim.blocked",
+                   "robot.blocked", "recovery"})
 
 
 def register(subparsers: Any) -> None:
@@ -30,23 +35,15 @@ def demo(args: argparse.Namespace) -> int:
     console = Console()
     world = World.load(args.world)
 
+    narrator = Narrator()
+
     def narrate(event: Event) -> None:
-        data = event.data
-        stamp = f"[dim]{event.time:7.1f}s[/]"
-        if event.kind == "skill.start":
-            shown = ", ".join(f"{k}={v}" for k, v in data["args"].items())
-            console.print(f"{stamp} ▶ {data['skill']}({shown})", highlight=False)
-        elif event.kind == "skill.status" and data["status"] != "finished":
-            colour = {"verified": "green", "retrying": "yellow"}.get(data["status"], "red")
-            detail = f" — {data.get('message') or data.get('error') or ''}"
-            console.print(f"{stamp}   [{colour}]{data['status']}[/]{detail}", highlight=False)
-        elif event.kind == "speech":
-            console.print(f"{stamp}   [cyan]robot says:[/] {data['text']}", highlight=False)
-        elif event.kind in ("sim.blocked", "robot.blocked"):
-            console.print(f"{stamp}   [magenta]world:[/] the way through the {data['door']} "
-                          f"is blocked ({data['blocker']})", highlight=False)
-        elif event.kind == "recovery":
-            console.print(f"{stamp}   [yellow]recovery protocol for {data['error']}[/]")
+        # the console's narration, coloured; a step's "finished" is left to its outcome
+        if event.kind not in _TOLD or event.data.get("status") == "finished":
+            return
+        line = narrator.markup(event.kind, event.data)
+        if line is not None:
+            console.print(f"[dim]{event.time:7.1f}s[/] {line}", highlight=False)
 
     def announce(task: DemoTask) -> None:
         console.rule(f"[bold]{task.title}")

@@ -39,13 +39,13 @@ from homebot.cancel import CancelToken
 from homebot.errors import ConsoleError
 from homebot.events import Event
 from homebot.executive.conversation import Turn
+from homebot.executive.narration import Narrator
 from homebot.executive.report import RunReport
 from homebot.geometry import wrap_angles
 from homebot.robot import Body, Twist
 from homebot.skills.catalogue import check_step, spelled_as_world
 from homebot.skills.places import resolve_target
 from homebot.task import Step, Task
-from homebot.web.narration import Narrator
 from homebot.web.sessions import ControlLease
 from homebot.world import World
 
@@ -298,10 +298,12 @@ class Console:
         data = event.to_dict()
         self.event_count += 1
         kind = event.kind
-        if kind not in ("robot.laser", "robot.particles", "robot.trajectory"):
-            data["line"] = self._narrator.line(kind, event.data)
-            self.events.append((self.event_count, data))
-        if kind == "speech":
+        if kind in ("robot.laser", "robot.particles", "robot.trajectory"):
+            return
+        # None: the second record of words the line before says (the page folds it in)
+        data["line"] = line = self._narrator.line(kind, event.data)
+        self.events.append((self.event_count, data))
+        if kind in ("speech", "sim.speech") and line is not None:
             self.speech.append(str(event.data.get("text", "")))
         elif kind == "task.start":
             self._task_open = True

@@ -247,9 +247,15 @@ function logEvents(events, lost) {
   const log = document.getElementById("log");
   if (lost) { const d = document.createElement("div"); d.textContent = `(${lost} events skipped)`;
               log.appendChild(d); }
-  // one narrated line per event; its raw JSON one click away
+  // one narrated line per event; its raw JSON one click away. An event without a line is the
+  // second record of the words the line before says: its JSON joins that line's.
   for (const e of events) {
     const {line, ...raw} = e;
+    const last = log.lastElementChild;
+    if (line === null && last && last.tagName === "DETAILS") {
+      last.querySelector("pre").textContent += "\n" + JSON.stringify(raw, null, 1);
+      continue;
+    }
     const d = document.createElement("details");
     d.className = "event"; d.dataset.kind = e.kind;
     const summary = document.createElement("summary");
