@@ -16,7 +16,13 @@ from rich.markup import escape
 
 from homebot.app import QUESTION_COST, conversation_for
 from homebot.cli.options import GPSR_TIME_LIMIT, load_world
-from homebot.cli.simulated import add_run_options, finish_run, keep_events, simulated_run
+from homebot.cli.simulated import (
+    add_run_options,
+    finish_run,
+    keep_events,
+    showing_steps,
+    simulated_run,
+)
 from homebot.errors import LanguageError
 from homebot.executive.conversation import Turn
 from homebot.files import read_typed_line
@@ -49,7 +55,9 @@ def chat(args: argparse.Namespace) -> int:
             break
         if not line.strip():
             continue
-        show_turn(console, conversation.hear(line))
+        with showing_steps(run):
+            turn = conversation.hear(line)
+        show_turn(console, turn)
     keep_events(args, run)
     return 0
 
@@ -105,12 +113,14 @@ def converse(args: argparse.Namespace, command: str, answers: Iterable[str]) -> 
         run, question_cost=getattr(args, "question_cost", QUESTION_COST))
     console = Console()
     replies = list(answers)
-    turn = conversation.hear(command)
+    with showing_steps(run):
+        turn = conversation.hear(command)
     while turn.status == "asked" and replies:
         if not args.json:
             show_turn(console, turn)
             console.print(f"  [magenta]answer:[/] {escape(replies[0])}", highlight=False)
-        turn = conversation.hear(replies.pop(0))
+        with showing_steps(run):
+            turn = conversation.hear(replies.pop(0))
     if turn.report is None:
         if args.json:
             import json

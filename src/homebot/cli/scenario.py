@@ -17,9 +17,12 @@ from homebot import seeds
 from homebot.app import Fidelity, Run, RunSettings, build_run, disturbed
 from homebot.cli.modules import add_module_commands, lazy_subparsers, module_names
 from homebot.cli.options import add_fidelity_option, disturbance_level, fidelity_of, probability
+from homebot.cli.simulated import naming_skills
 from homebot.errors import HomebotError
+from homebot.events import Event
 from homebot.executive.recovery import Protocol
 from homebot.navigation import Navigator
+from homebot.progress import task
 from homebot.scenarios.running import OptionKind, RunBuilder, SharedOption
 from homebot.world import DisturbanceModel, PersonModel, World
 
@@ -34,18 +37,23 @@ def scenario_names() -> list[str]:
     return module_names(homebot.scenarios.library)
 
 
-def run_builder(fidelity: Fidelity = Fidelity.SYMBOLIC) -> RunBuilder:
-    """A scenario's run builder: ``homebot.app.build_run`` in ``fidelity``."""
+def run_builder(fidelity: Fidelity = Fidelity.SYMBOLIC, *,
+                watch: Callable[[Event], None] | None = None) -> RunBuilder:
+    """A scenario's run builder: ``homebot.app.build_run`` in ``fidelity``; ``watch``
+    listens to each run's events."""
     def build(world: World, *, seed: int, level: float | None = None,
               disturbances: DisturbanceModel | None = None,
               # a ``homebot.sim.Responder``, spelt out: the simulator is not the CLI's to import
               responder: Callable[[PersonModel, str], str | None] | None = None,
               inference: Protocol | None = None,
               navigator: Navigator | None = None) -> Run:
-        return build_run(RunSettings(
+        run = build_run(RunSettings(
             world=world, seed=seed, fidelity=fidelity,
             disturbances=disturbed(level) if level is not None else disturbances,
             responder=responder, inference=inference, navigator=navigator))
+        if watch is not None:
+            run.events.listeners.append(watch)
+        return run
     return build
 
 
@@ -74,7 +82,10 @@ def _add_arguments(module: ModuleType, parser: argparse.ArgumentParser) -> None:
 
 def _run(module: ModuleType, args: argparse.Namespace,
          console: Console | None) -> dict[str, Any]:
-    summary: dict[str, Any] = module.run(args, console, run_builder(fidelity_of(args)))
+    doing = f"scenario {args.scenario}"
+    with task(doing) as under_way:  # progress names the skill under way, as do's does
+        build = run_builder(fidelity_of(args), watch=naming_skills(under_way, doing))
+        summary: dict[str, Any] = module.run(args, console, build)
     return summary
 
 

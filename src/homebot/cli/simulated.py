@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import argparse
 import json
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from datetime import datetime
 from pathlib import Path
@@ -27,13 +27,14 @@ from homebot.clock import DEFAULT_START, start_time
 from homebot.errors import TaskError
 from homebot.events import Event, EventLog
 from homebot.executive import RunReport, print_report
-from homebot.progress import task
+from homebot.progress import Task, task
 from homebot.world import World
 
 __all__ = [
     "add_run_options",
     "finish_run",
     "keep_events",
+    "naming_skills",
     "run_settings",
     "showing_steps",
     "simulated_run",
@@ -92,17 +93,22 @@ def showing_steps(run: Run) -> Iterator[None]:
     """While the ``with`` block runs a task in ``run``, progress names the skill under way
     (an embodied step takes tens of seconds; the report comes at the end)."""
     with task("carrying out the task") as under_way:
-        def show(event: Event) -> None:
-            if event.kind == "skill.start":
-                arguments = ", ".join(f"{name}={value}"
-                                      for name, value in event.data["args"].items())
-                under_way.describe(f"carrying out the task: {event.data['skill']}({arguments})")
-
+        show = naming_skills(under_way, "carrying out the task")
         run.events.listeners.append(show)
         try:
             yield
         finally:
             run.events.listeners.remove(show)
+
+
+def naming_skills(under_way: Task, doing: str) -> Callable[[Event], None]:
+    """An event listener that describes ``under_way`` as ``doing: skill(arguments)`` each
+    time a skill starts."""
+    def show(event: Event) -> None:
+        if event.kind == "skill.start":
+            arguments = ", ".join(f"{name}={value}" for name, value in event.data["args"].items())
+            under_way.describe(f"{doing}: {event.data['skill']}({arguments})")
+    return show
 
 
 def keep_events(args: argparse.Namespace, run: Run) -> None:
