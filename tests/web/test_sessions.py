@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import threading
 
 import pytest
 
@@ -81,3 +82,43 @@ def test_a_flood_of_new_sessions_never_forgets_the_one_named_to_keep() -> None:
         clock.now += 1
         sessions.open(keep=name)
     assert len(sessions) == 3 and sessions.name(holder) == name
+
+
+def test_the_heartbeat_never_waits_for_the_robot() -> None:
+    """While the robot thinks (the console's lock held), a page still renews, takes and
+    gives back control: a renewal that waited for it could find the lease lapsed."""
+    pytest.importorskip("fastapi")
+    from homebot.web import Console, ConsoleSettings
+    from homebot.world import World
+
+    clock = Stepped()
+    home = Console(ConsoleSettings(world=World.load("apartment"), token="t", speed=0.0),
+                   lease_clock=clock)
+    home.take_control("ann")
+    thinking, done = threading.Event(), threading.Event()
+
+    def think() -> None:
+        with home.lock:
+            thinking.set()
+            done.wait(30.0)
+
+    robot = threading.Thread(target=think)
+    robot.start()
+    assert thinking.wait(30.0)
+    answers: list[object] = []
+
+    def page() -> None:
+        answers.append(home.renew_control("ann"))
+        home.release_control("ann")
+        answers.append(home.controller)
+        home.take_control("bob")
+        answers.append(home.controller)
+
+    heartbeat = threading.Thread(target=page)
+    heartbeat.start()
+    heartbeat.join(10.0)
+    answered = list(answers)  # while the robot still thinks
+    done.set()
+    robot.join()
+    heartbeat.join()
+    assert answered == [True, None, "bob"]

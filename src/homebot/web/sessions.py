@@ -99,7 +99,9 @@ class Sessions:
 
 class ControlLease:
     """Control of the robot: held by one operator until released or ``seconds`` without a
-    renewal have passed."""
+    renewal have passed. It has a lock of its own: a page's heartbeat never waits for the
+    robot (the console's lock is held while the robot thinks, seconds on a loaded machine,
+    and a renewal that waited that long would find the lease lapsed)."""
 
     def __init__(self, seconds: float, *, clock: Callable[[], float] = time.monotonic) -> None:
         if not seconds > 0:
@@ -109,33 +111,39 @@ class ControlLease:
         self._clock = clock
         self._holder: str | None = None
         self._until = 0.0
+        self._lock = threading.RLock()
 
     @property
     def holder(self) -> str | None:
         """Who holds control now (None: nobody, or the lease lapsed)."""
-        if self._holder is not None and self._clock() > self._until:
-            self._holder = None
-        return self._holder
+        with self._lock:
+            if self._holder is not None and self._clock() > self._until:
+                self._holder = None
+            return self._holder
 
     def left(self) -> float:
         """Seconds until the lease lapses without a renewal (0 when nobody holds it)."""
-        return max(0.0, self._until - self._clock()) if self.holder is not None else 0.0
+        with self._lock:
+            return max(0.0, self._until - self._clock()) if self.holder is not None else 0.0
 
     def take(self, operator: str) -> None:
         """``operator`` takes control (or renews it); refused while another holds it."""
-        if self.holder not in (None, operator):
-            raise ConsoleError("another operator holds control; watch, or wait until they "
-                               "release it (it lapses when their page goes away)")
-        self._holder, self._until = operator, self._clock() + self.seconds
+        with self._lock:
+            if self.holder not in (None, operator):
+                raise ConsoleError("another operator holds control; watch, or wait until "
+                                   "they release it (it lapses when their page goes away)")
+            self._holder, self._until = operator, self._clock() + self.seconds
 
     def renew(self, operator: str) -> bool:
         """Renew ``operator``'s lease; False when they do not hold it (any more)."""
-        if self.holder != operator:
-            return False
-        self._until = self._clock() + self.seconds
-        return True
+        with self._lock:
+            if self.holder != operator:
+                return False
+            self._until = self._clock() + self.seconds
+            return True
 
     def release(self, operator: str) -> None:
         """``operator`` gives control back (nothing happens when they do not hold it)."""
-        if self.holder == operator:
-            self._holder = None
+        with self._lock:
+            if self.holder == operator:
+                self._holder = None
