@@ -118,8 +118,10 @@ def test_a_fetch_typed_in_the_page_runs_live_and_the_stop_button_stops(
     page.check("input[name=click][value=pick]")
     # at the milk's dot: the page redraws its dots with each state, so a click on the element
     # itself may meet one just replaced; the map picks the object nearest the click
-    dot = page.locator("circle[data-object='milk']").bounding_box()
-    page.mouse.click(dot["x"] + dot["width"] / 2, dot["y"] + dot["height"] / 2)
+    x, y = page.evaluate("(() => { const box = document.querySelector("
+                         "\"circle[data-object='milk']\").getBoundingClientRect(); "
+                         "return [box.x + box.width / 2, box.y + box.height / 2]; })()")
+    page.mouse.click(x, y)
     page.wait_for_function("document.getElementById('task').textContent.includes('pick milk')")
     page.wait_for_function("document.getElementById('task').textContent.includes('— done')")
     with home.lock:  # ground truth: the milk is in the robot's hand
