@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import asyncio
 import json
+import tracemalloc
 from collections.abc import MutableMapping
 from typing import Any
 
@@ -126,6 +127,25 @@ def test_nesting_depth_counts_brackets_outside_strings_only() -> None:
     assert nesting_depth(b'{"text": "[[[[[[[[[[[[ {{{{ \\" [[["}') == 1
     assert nesting_depth(b"[" * 100_000) == 100_000
     assert nesting_depth(b"not json at all") == 0
+    assert nesting_depth(b'["a\\\\", ["b"]]') == 2  # an escaped backslash ends no string early
+    assert nesting_depth(b'["\\"]", [[') == 3  # an escaped quote does not end it
+    assert nesting_depth(b'[["never closed [[[[') == 6  # an unclosed quote opens no string
+
+
+@pytest.mark.parametrize("text", [b"y" * 60_000, b"ab\\n" * 20_000, b"\\u00e9" * 10_000])
+def test_nesting_depth_reads_a_long_string_in_little_memory(text: bytes) -> None:
+    """A body under the cap that is one long string costs the guard no more than a few
+    times its size: the regex engine keeps no frame per byte (it took 8 MB for 60 KB, and
+    the heap it grew stayed with the server)."""
+    body = b'{"text": "' + text + b'"}'
+    tracemalloc.start()
+    try:
+        depth = nesting_depth(body)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    assert depth == 1
+    assert peak < 4 * len(body)
 
 
 def test_unauthenticated_100_mb_posts_cost_the_served_console_under_5_mb() -> None:

@@ -25,7 +25,7 @@ import subprocess
 import sys
 import time
 from collections import Counter
-from collections.abc import Iterator
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -33,12 +33,16 @@ from rich.console import Console as Terminal
 
 from homebot.bench.arguments import count, seed
 
-__all__ = ["BadRequest", "ServedConsole", "add_arguments", "big_post", "fuzz",
+__all__ = ["KINDS", "BadRequest", "ServedConsole", "add_arguments", "big_post", "fuzz",
            "malformed_requests", "run", "served_console"]
 
 _TOKEN = "console-fuzz-token"
 _START_TIMEOUT = 60.0  #: wall seconds for the server to listen
 _WARM_UP = 300  #: requests before the first memory reading
+#: the kinds of malformed request, each drawn with its share (steps twice as often)
+KINDS = ("no_token", "wrong_token", "no_session", "forged_session", "unknown_path",
+         "wrong_method", "not_json", "odd_json", "control", "drive", "command", "steps",
+         "steps", "query")
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -47,6 +51,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--big-mb", type=count("--big-mb", 0, 2000), default=100,
                         help="size of the unauthenticated POSTs in MB (0: none; default 100)")
     parser.add_argument("--seed", type=seed, default=0, help="seed of the generator")
+    parser.add_argument("--only", choices=sorted(set(KINDS)), default=None, metavar="KIND",
+                        help="send malformed requests of this kind only (one of "
+                             f"{', '.join(sorted(set(KINDS)))}; default: all, mixed)")
 
 
 def run(args: argparse.Namespace, console: Terminal | None = None) -> dict[str, Any]:
@@ -58,7 +65,8 @@ def run(args: argparse.Namespace, console: Terminal | None = None) -> dict[str, 
             figures["unauthenticated_chunked_post"] = big_post(server, size, chunked=True)
             figures["authenticated_post_over_the_cap"] = big_post(server, size, chunked=False,
                                                                   token=_TOKEN)
-        figures["fuzz"] = fuzz(server, args.requests, args.seed)
+        kinds = KINDS if args.only is None else (args.only,)
+        figures["fuzz"] = fuzz(server, args.requests, args.seed, kinds)
     if console is not None:
         for name, values in figures.items():
             console.print(f"{name}: {values}", highlight=False)
@@ -240,15 +248,14 @@ def _step(rng: random.Random) -> str:
     return "{" + ", ".join(f'"{key}": {value}' for key, value in keys.items()) + "}"
 
 
-def malformed_requests(rng: random.Random, token: str, session: str) -> Iterator[BadRequest]:
+def malformed_requests(rng: random.Random, token: str, session: str,
+                       kinds: Sequence[str] = KINDS) -> Iterator[BadRequest]:
     """An endless seeded stream of malformed requests to a console with ``token``, sent in
-    the live session ``session`` (which may or may not hold control)."""
+    the live session ``session`` (which may or may not hold control), of ``kinds``."""
     good = {"X-Homebot-Token": token, "X-Homebot-Session": session,
             "Content-Type": "application/json"}
     while True:
-        kind = rng.choice(["no_token", "wrong_token", "no_session", "forged_session",
-                           "unknown_path", "wrong_method", "not_json", "odd_json", "control",
-                           "drive", "command", "steps", "steps", "query"])
+        kind = rng.choice(kinds)
         headers, method = dict(good), "POST"
         path = rng.choice(_ROUTES)
         body = _odd_value(rng).encode()
@@ -290,8 +297,10 @@ def malformed_requests(rng: random.Random, token: str, session: str) -> Iterator
         yield BadRequest(kind, method, path, headers, body)
 
 
-def fuzz(server: ServedConsole, requests: int, seed: int) -> dict[str, Any]:
-    """Send ``requests`` malformed requests; answers by status, time and memory."""
+def fuzz(server: ServedConsole, requests: int, seed: int,
+         kinds: Sequence[str] = KINDS) -> dict[str, Any]:
+    """Send ``requests`` malformed requests of ``kinds``; answers by status, time and
+    memory."""
     rng = random.Random(seed)
     session = _open_session(server)
     statuses: Counter[int] = Counter()
@@ -299,7 +308,7 @@ def fuzz(server: ServedConsole, requests: int, seed: int) -> dict[str, Any]:
     connection = http.client.HTTPConnection("127.0.0.1", server.port, timeout=30)
     rss_warm = rss_end = 0.0
     began = time.perf_counter()
-    stream = malformed_requests(rng, server.token, session)
+    stream = malformed_requests(rng, server.token, session, kinds)
     samples: list[float] = []  # the server's resident memory at each tenth of the run
     for index in range(requests):
         if index == min(_WARM_UP, requests - 1):
@@ -314,7 +323,8 @@ def fuzz(server: ServedConsole, requests: int, seed: int) -> dict[str, Any]:
     seconds = time.perf_counter() - began
     connection.close()
     rss_end = server.memory_mb()[0]
-    return {"requests": requests, "seed": seed, "seconds": round(seconds, 1),
+    return {"requests": requests, "seed": seed, "kinds": sorted(set(kinds)),
+            "seconds": round(seconds, 1),
             "by_status": {str(key): value for key, value in sorted(statuses.items())},
             "server_errors": sum(n for status, n in statuses.items() if status >= 500),
             "faults": faults, "rss_after_warm_up_mb": round(rss_warm, 1),
