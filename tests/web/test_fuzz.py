@@ -17,7 +17,7 @@ pytest.importorskip("httpx")
 
 from fastapi.testclient import TestClient
 
-from homebot.bench.console_fuzz import malformed_requests
+from homebot.bench.console_fuzz import KINDS, malformed_requests
 from homebot.web import ConsoleSettings
 from homebot.web.app import create_app
 from homebot.world import World
@@ -54,3 +54,22 @@ def test_malformed_requests_are_answered_with_one_line_errors_and_the_console_go
     # the stream reached every kind of refusal
     assert {401, 403, 404, 405, 413, 422} <= set(statuses), statuses
     assert app.state.refused["unauthorised"] == statuses[401]
+
+
+@pytest.mark.parametrize("kind", sorted(set(KINDS)))
+def test_the_generator_sends_one_kind_alone_when_asked(kind: str) -> None:
+    """``--only KIND``: every request is of that kind, and each kind is its own shape."""
+    stream = malformed_requests(random.Random(3), TOKEN, "s", (kind,))
+    requests = [next(stream) for _ in range(60)]
+    assert {request.kind for request in requests} == {kind}
+    with_token = [request for request in requests
+                  if request.headers.get("X-Homebot-Token") == TOKEN]
+    if kind == "query":
+        assert {request.method for request in requests} == {"GET"}
+        assert all(request.path.startswith("/api/events?since=") for request in requests)
+    elif kind == "odd_json":  # an odd body to a known route, with the token and the session
+        assert len(with_token) == len(requests)
+        assert {request.method for request in requests} == {"POST"}
+        assert all(request.body and request.path.startswith("/api/") for request in requests)
+    elif kind == "no_token":
+        assert not with_token

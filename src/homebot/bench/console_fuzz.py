@@ -8,8 +8,10 @@ and in its peak (VmHWM). Then a seeded generator sends ``--requests`` malformed 
 HTTP (keep-alive, reconnecting where the server closes): no token or a wrong one, unknown
 paths and methods, bodies that are not JSON, too big or too deep, wrong types, NaN and
 infinities, long and control-character strings, extra fields, forged sessions, steps naming
-no skill or bad arguments. The figures: answers by status (a 5xx is a fault), time, the
-server's memory after a warm-up and at the end, and whether it still answers.
+no skill or bad arguments (``--only KIND``: one kind alone). The figures: answers by status
+(a 5xx is a fault), time, the server's memory after a warm-up, at each tenth and at the end,
+the events it had logged at each tenth (the few requests that are well formed run tasks,
+and the console's bounded log fills), and whether it still answers.
 """
 
 from __future__ import annotations
@@ -93,6 +95,20 @@ class ServedConsole:
                 if key in ("VmRSS", "VmHWM"):
                     values[key] = int(rest.split()[0]) / 1024
         return values["VmRSS"], values["VmHWM"]
+
+    def events_logged(self) -> int | None:
+        """How many events the console has logged so far (its state's count; it keeps only
+        the latest), or None when it does not answer."""
+        connection = http.client.HTTPConnection("127.0.0.1", self.port, timeout=30)
+        try:
+            connection.request("GET", "/api/state", headers={"X-Homebot-Token": self.token})
+            response = connection.getresponse()
+            body = response.read()
+            return int(json.loads(body)["events"]) if response.status == 200 else None
+        except (OSError, ValueError, KeyError):
+            return None
+        finally:
+            connection.close()
 
     def answers(self) -> bool:
         """Whether the server answers a good request (its state) with 200."""
@@ -256,6 +272,7 @@ def malformed_requests(rng: random.Random, token: str, session: str,
             "Content-Type": "application/json"}
     while True:
         kind = rng.choice(kinds)
+        # odd_json: these as they are, an odd JSON body to a route with the right headers
         headers, method = dict(good), "POST"
         path = rng.choice(_ROUTES)
         body = _odd_value(rng).encode()
@@ -291,7 +308,7 @@ def malformed_requests(rng: random.Random, token: str, session: str,
             path = "/api/steps"
             steps = ", ".join(_step(rng) for _ in range(rng.choice([0, 1, 2, 31])))
             body = f'{{"steps": [{steps}], "description": {_odd_value(rng)}}}'.encode()
-        else:
+        elif kind == "query":
             method, body = "GET", b""
             path = "/api/events?since=" + rng.choice(["-1", "abc", "1e9", "9" * 40, "", "%00"])
         yield BadRequest(kind, method, path, headers, body)
@@ -310,11 +327,13 @@ def fuzz(server: ServedConsole, requests: int, seed: int,
     began = time.perf_counter()
     stream = malformed_requests(rng, server.token, session, kinds)
     samples: list[float] = []  # the server's resident memory at each tenth of the run
+    logged: list[int | None] = []  # and the events it had logged by then
     for index in range(requests):
         if index == min(_WARM_UP, requests - 1):
             rss_warm = server.memory_mb()[0]
         if index % max(1, requests // 10) == 0:
             samples.append(round(server.memory_mb()[0], 1))
+            logged.append(server.events_logged())
         request = next(stream)
         status = _send(connection, request)
         statuses[status] += 1
@@ -329,7 +348,7 @@ def fuzz(server: ServedConsole, requests: int, seed: int,
             "server_errors": sum(n for status, n in statuses.items() if status >= 500),
             "faults": faults, "rss_after_warm_up_mb": round(rss_warm, 1),
             "rss_end_mb": round(rss_end, 1), "rss_growth_mb": round(rss_end - rss_warm, 2),
-            "rss_by_tenth_mb": samples,
+            "rss_by_tenth_mb": samples, "events_logged_by_tenth": logged,
             "still_answers": server.answers()}
 
 
