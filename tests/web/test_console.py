@@ -172,3 +172,24 @@ def test_a_fault_inside_a_task_ends_it_in_the_log_and_the_worker_goes_on(
             assert apartment.room_at(*home.sim.robot_pose[:2]) == "kitchen"
     finally:
         home.close()
+
+
+def test_going_on_again_and_again_keeps_one_go_on_in_the_description(
+        apartment: World) -> None:
+    """Each "go on" names the task it goes on with once: the description does not grow
+    with every press (it did, "go on: go on: ...", kept in every task.start event)."""
+    home = Console(ConsoleSettings(world=apartment, token="test-token", speed=0.0),
+                   lease_clock=_FROZEN)
+    home.start()
+    try:
+        home.take_control("ann")
+        home.run_steps("ann", [{"skill": "say"}], "say something")  # nothing to say: fails
+        assert home.wait_idle(60.0) and home.failed_at == 0
+        for _ in range(3):
+            assert home.resume("ann").description == "go on: say something"
+            assert home.wait_idle(60.0) and home.failed_at == 0
+        with home.lock:
+            started = [e.data["description"] for e in home.sim.events.of_kind("task.start")]
+        assert started == ["say something"] + ["go on: say something"] * 3
+    finally:
+        home.close()

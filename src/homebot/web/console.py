@@ -62,6 +62,7 @@ _AHEAD = math.radians(35.0)  #: half-width of the cone "ahead" for obstacle slow
 _SCAN_POINTS_SHOWN = 120
 _SLICE = 0.05  #: simulated seconds: the longest single advance (one body tick at 20 Hz)
 _UNDER_WAY = frozenset({"running", "finished", "retrying"})
+_GO_ON = "go on: "  #: what a task that goes on with a failed one is called, before its name
 _log = logging.getLogger("homebot.web")
 
 
@@ -495,8 +496,10 @@ class Console:
             self._check_can_act()
             if self.last_task is None or self.failed_at is None:
                 raise ConsoleError("no failed task to go on with")
-            rest = Task(self.last_task.steps[self.failed_at:],
-                        f"go on: {self.last_task.description}")
+            # named once however often it went on: the description (kept in each
+            # task.start event) does not grow with every press
+            task = self.last_task.description.removeprefix(_GO_ON)
+            rest = Task(self.last_task.steps[self.failed_at:], _GO_ON + task)
             self._queue(lambda: self._run_task(rest))
             return rest
 
