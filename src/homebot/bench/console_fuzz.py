@@ -56,6 +56,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--only", choices=sorted(set(KINDS)), default=None, metavar="KIND",
                         help="send malformed requests of this kind only (one of "
                              f"{', '.join(sorted(set(KINDS)))}; default: all, mixed)")
+    parser.add_argument("--stopped", action="store_true",
+                        help="press the emergency stop first: no request can start a task, "
+                             "so the memory is the request handling's alone")
 
 
 def run(args: argparse.Namespace, console: Terminal | None = None) -> dict[str, Any]:
@@ -68,7 +71,7 @@ def run(args: argparse.Namespace, console: Terminal | None = None) -> dict[str, 
             figures["authenticated_post_over_the_cap"] = big_post(server, size, chunked=False,
                                                                   token=_TOKEN)
         kinds = KINDS if args.only is None else (args.only,)
-        figures["fuzz"] = fuzz(server, args.requests, args.seed, kinds)
+        figures["fuzz"] = fuzz(server, args.requests, args.seed, kinds, stopped=args.stopped)
     if console is not None:
         for name, values in figures.items():
             console.print(f"{name}: {values}", highlight=False)
@@ -314,12 +317,12 @@ def malformed_requests(rng: random.Random, token: str, session: str,
         yield BadRequest(kind, method, path, headers, body)
 
 
-def fuzz(server: ServedConsole, requests: int, seed: int,
-         kinds: Sequence[str] = KINDS) -> dict[str, Any]:
-    """Send ``requests`` malformed requests of ``kinds``; answers by status, time and
-    memory."""
+def fuzz(server: ServedConsole, requests: int, seed: int, kinds: Sequence[str] = KINDS, *,
+         stopped: bool = False) -> dict[str, Any]:
+    """Send ``requests`` malformed requests of ``kinds`` (``stopped``: with the emergency
+    stop pressed first); answers by status, time and memory."""
     rng = random.Random(seed)
-    session = _open_session(server)
+    session = _open_session(server, stopped=stopped)
     statuses: Counter[int] = Counter()
     faults: list[str] = []
     connection = http.client.HTTPConnection("127.0.0.1", server.port, timeout=30)
@@ -342,7 +345,7 @@ def fuzz(server: ServedConsole, requests: int, seed: int,
     seconds = time.perf_counter() - began
     connection.close()
     rss_end = server.memory_mb()[0]
-    return {"requests": requests, "seed": seed, "kinds": sorted(set(kinds)),
+    return {"requests": requests, "seed": seed, "kinds": sorted(set(kinds)), "stopped": stopped,
             "seconds": round(seconds, 1),
             "by_status": {str(key): value for key, value in sorted(statuses.items())},
             "server_errors": sum(n for status, n in statuses.items() if status >= 500),
@@ -352,7 +355,8 @@ def fuzz(server: ServedConsole, requests: int, seed: int,
             "still_answers": server.answers()}
 
 
-def _open_session(server: ServedConsole) -> str:
+def _open_session(server: ServedConsole, *, stopped: bool = False) -> str:
+    """A session that holds control (``stopped``: and the emergency stop pressed)."""
     connection = http.client.HTTPConnection("127.0.0.1", server.port, timeout=30)
     try:
         connection.request("POST", "/api/session", headers={"X-Homebot-Token": server.token})
@@ -362,6 +366,12 @@ def _open_session(server: ServedConsole) -> str:
                                     "X-Homebot-Session": session,
                                     "Content-Type": "application/json"})
         connection.getresponse().read()
+        if stopped:
+            connection.request("POST", "/api/estop", headers={"X-Homebot-Token": server.token})
+            pressed = connection.getresponse()
+            pressed.read()
+            if pressed.status != 200:
+                raise RuntimeError(f"the emergency stop was answered {pressed.status}")
         return session
     finally:
         connection.close()
