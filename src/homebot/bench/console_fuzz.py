@@ -99,32 +99,28 @@ class ServedConsole:
                     values[key] = int(rest.split()[0]) / 1024
         return values["VmRSS"], values["VmHWM"]
 
-    def events_logged(self) -> int | None:
-        """How many events the console has logged so far (its state's count; it keeps only
-        the latest), or None when it does not answer."""
+    def state(self) -> dict[str, Any] | None:
+        """The console's state (a good request), or None when it does not answer with it."""
         connection = http.client.HTTPConnection("127.0.0.1", self.port, timeout=30)
         try:
             connection.request("GET", "/api/state", headers={"X-Homebot-Token": self.token})
             response = connection.getresponse()
             body = response.read()
-            return int(json.loads(body)["events"]) if response.status == 200 else None
-        except (OSError, ValueError, KeyError):
+            return dict(json.loads(body)) if response.status == 200 else None
+        except (OSError, ValueError):
             return None
         finally:
             connection.close()
 
+    def events_logged(self) -> int | None:
+        """How many events the console has logged so far (it keeps only the latest), or
+        None when it does not answer."""
+        state = self.state()
+        return None if state is None else int(state["events"])
+
     def answers(self) -> bool:
         """Whether the server answers a good request (its state) with 200."""
-        connection = http.client.HTTPConnection("127.0.0.1", self.port, timeout=30)
-        try:
-            connection.request("GET", "/api/state", headers={"X-Homebot-Token": self.token})
-            response = connection.getresponse()
-            response.read()
-            return response.status == 200
-        except OSError:
-            return False
-        finally:
-            connection.close()
+        return self.state() is not None
 
 
 @contextlib.contextmanager
