@@ -48,6 +48,9 @@ _STOP_TICKS = 60  #: control periods allowed beyond a goal's budget to come to r
 _FACE_AHEAD = 0.5  #: metres along the path to the point a spin recovery turns to face
 _FACED = 0.3  #: radians: a spin recovery stops this close to facing that point
 _DETOUR_BUDGETS = 3.0  #: a goal's whole time, detours included, in first budgets
+#: metres nearer the target that end a wait: a squeeze that gets no nearer than this
+#: keeps the patience running (it would otherwise restart with every narrow way tried)
+_PROGRESS = 0.5
 _AT_THE_MAP = 0.075  #: metres: a return this near a wall or furniture cell is that obstacle
 _CLUSTER_JUMP = 0.1  #: metres between neighbouring returns of one thing
 _NARROW_MARGIN = 0.05  #: metres from walls beyond the radius a narrow way keeps where it can
@@ -82,8 +85,9 @@ class RecoveryPolicy:
         obstacle_memory: seconds an unexpected return is remembered.
         unexplained: a return this much shorter than the static map explains is unexpected.
         wait: seconds to stand still when no way round exists.
-        patience: seconds of waiting in a row, with no way round, before giving up as
-            blocked (someone who stays in the way has to be asked to move).
+        patience: seconds of waiting in a row, with no way round (or only narrow ways
+            that bring the robot no nearer), before giving up as blocked (someone who
+            stays in the way has to be asked to move).
         make_way_after: seconds of waiting, with someone near, before the robot steps
             out of their way (they may be waiting for it), and again after as long.
     """
@@ -333,6 +337,7 @@ class RecoveringNavigation:
         travelled, replans, waits = 0.0, 0, 0
         reason = StopReason.TIMEOUT
         waiting_since: float | None = None
+        waiting_from = math.inf  #: metres from the target when the wait began
         made_way_at = -math.inf
         obstacles = np.zeros((0, 2))
         extended = np.zeros(0, dtype=bool)
@@ -340,6 +345,7 @@ class RecoveringNavigation:
             if path is None:
                 if waiting_since is None:
                     waiting_since = body.now()
+                    waiting_from = math.dist(self.localise().xy(), target.xy())
                 elif body.now() - waiting_since >= policy.patience:
                     reason = StopReason.BLOCKED
                     break
@@ -358,7 +364,6 @@ class RecoveringNavigation:
                     self._face(way)
                 self._wait(policy.wait)
             else:
-                waiting_since = None
                 budget = max(deadline - body.now(), body.tick_period)
                 # Someone standing on the target: as near as the robot can come to it.
                 aim = target if path[-1] == target.xy() else Pose(*path[-1], target.theta)
@@ -378,6 +383,9 @@ class RecoveringNavigation:
                 else:
                     self._face(path)
             pose = self.localise()
+            if waiting_since is not None and \
+                    math.dist(pose.xy(), target.xy()) <= waiting_from - _PROGRESS:
+                waiting_since = None  # on the way again
             obstacles = self.memory.observe(body.now(), pose, body.scan())
             extended = self.memory.extended
             # Waited a while for the wide way (people staying in it): a narrower way will do.
