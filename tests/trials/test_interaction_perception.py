@@ -43,3 +43,18 @@ def test_the_torso_laser_finds_the_pot_where_it_stands(pot: tuple[float, float])
 def test_the_plant_is_watered_from_what_the_laser_sees(seed: int) -> None:
     figures = pour(seed)
     assert figures["success"] and figures["watered_l"] >= 0.3 and figures["spilled_l"] <= 0.03
+
+
+def test_the_head_camera_sees_the_door_leaf_where_it_stands() -> None:
+    from homebot.robot import HeadState
+    from homebot.trials.interaction import DoorVariant, door_scene
+
+    door = DoorVariant("left", 0.8, 1.0, 1.0)
+    scene = door_scene(door)
+    scene.set_arm(np.array([0.0, -1.4, 0.0, -1.8, 0.0, -1.3, 0.0]))
+    scene.move_base(-0.4, 0.0, 0.0)
+    points = scene.camera(HeadState(0.0, 0.2)).points()[0]
+    leaf = points[(points[:, 2] > 0.3) & (points[:, 2] < 1.8) & (np.abs(points[:, 1]) < 0.3)]
+    # the leaf's near face stands 2 cm before the hinge axis, 1.2 m - 2 cm before the robot
+    assert len(leaf) > 1000
+    assert float(np.median(leaf[:, 0])) == pytest.approx(1.18, abs=0.005)

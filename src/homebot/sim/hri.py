@@ -21,7 +21,9 @@ The robot sees the scene through a laser range finder (``laser``): rays cast fro
 mount on the robot against the scene's geometry, the robot's own links filtered out (as
 a self-filter does with the robot's model), each range with seeded noise. Cosero's
 torso laser is pitchable and its head carries a depth camera; a fan of rays in any
-plane stands for either.
+plane stands for either. ``camera`` gives the head camera's RGB-D frame of the scene
+(the home's camera model: the same pinhole, mounting, range and depth noise), cast with
+``mujoco.mj_multiRay``, so perception runs on the scene as it runs in the home.
 """
 
 from __future__ import annotations
@@ -35,6 +37,7 @@ import numpy as np
 
 from homebot.errors import SceneError
 from homebot.geometry import yaw_rotation
+from homebot.robot import CameraIntrinsics, HeadState, RgbdFrame
 
 __all__ = ["ARM_JOINTS", "LASER_NOISE", "LASER_RANGE", "InteractionScene", "scene_path"]
 
@@ -49,6 +52,8 @@ Pusher = Callable[["InteractionScene", float], None]
 
 _BASE_JOINTS = ("base_x", "base_y", "base_yaw")
 _LASER_STREAM = 2077
+_CAMERA_STREAM = 2078
+_CAMERA_RANGE = (0.4, 6.0)  #: metres the head's depth sensor measures between
 LASER_NOISE = 0.01  #: metres: the range noise of a laser scanner (1 sigma)
 LASER_RANGE = 5.0  #: metres: no return beyond this
 
@@ -147,6 +152,7 @@ class InteractionScene:
         self._robot_bodies = {b for b in range(model.nbody)
                               if int(model.body_rootid[b]) == self._base}
         self._sensor_rng = np.random.default_rng([sensor_seed, _LASER_STREAM])
+        self._camera_rng = np.random.default_rng([sensor_seed, _CAMERA_STREAM])
         mujoco.mj_forward(model, self.data)
 
     # ------------------------------------------------------------ set-up
@@ -256,6 +262,57 @@ class InteractionScene:
         ranges[seen] += self._sensor_rng.normal(0.0, noise, int(seen.sum()))
         ranges[ranges > LASER_RANGE] = np.inf
         return ranges
+
+    def camera(self, head: HeadState, intrinsics: CameraIntrinsics | None = None
+               ) -> RgbdFrame:
+        """The head camera's RGB-D frame (the home's camera: ``homebot.sim.camera``'s
+        pinhole, height and depth noise) with the head at ``head``: the depth along the
+        optical axis to the first surface that is not the robot's own, ``nan`` outside
+        the sensor's range; the colour is the surface's."""
+        from homebot.sim.camera import CAMERA_HEIGHT, DEFAULT_INTRINSICS, camera_pose
+
+        mj, model, data = self._mj, self.model, self.data
+        k = intrinsics or DEFAULT_INTRINSICS
+        pose = camera_pose(head, CAMERA_HEIGHT)
+        optical = k.rays().reshape(-1, 3)
+        lengths = np.linalg.norm(optical, axis=1)
+        rotation = self._base_rotation() @ pose[:3, :3]
+        rays = (optical / lengths[:, None]) @ rotation.T
+        origin = self.to_world(pose[:3, 3])
+        hit = np.full(len(rays), -1, dtype=np.int32)
+        distance = np.full(len(rays), -1.0)
+        mj.mj_multiRay(model, data, origin, rays.ravel(), None, 1, -1, hit, distance, None,
+                       len(rays), _CAMERA_RANGE[1] * 2)
+        own = np.flatnonzero((hit >= 0) & np.isin(model.geom_bodyid[np.maximum(hit, 0)],
+                                                  list(self._robot_bodies)))
+        for index in own:  # past the robot's own links, as a self-filter does
+            distance[index], hit[index] = self._past_own_links(origin, rays[index])
+        depth = np.where(distance >= 0, distance / lengths, np.inf)
+        depth += self._camera_rng.standard_normal(depth.shape) * (
+            0.0012 + 0.0019 * np.square(np.nan_to_num(depth, posinf=0.0) - 0.4))
+        depth = np.where((depth >= _CAMERA_RANGE[0]) & (depth <= _CAMERA_RANGE[1]), depth,
+                         np.nan)
+        colour = np.where(hit[:, None] >= 0, model.geom_rgba[np.maximum(hit, 0), :3], 0.0)
+        return RgbdFrame(self.time, (255 * colour).astype(np.uint8).reshape(
+            k.height, k.width, 3), depth.reshape(k.height, k.width).astype(np.float32), k,
+            pose)
+
+    def _past_own_links(self, origin: np.ndarray, ray: np.ndarray) -> tuple[float, int]:
+        """The distance along ``ray`` to the first surface not the robot's, and its geom
+        ((-1, -1): none)."""
+        mj, model, data = self._mj, self.model, self.data
+        hit = np.zeros(1, dtype=np.int32)
+        travelled, start = 0.0, origin.copy()
+        for _ in range(8):
+            distance = mj.mj_ray(model, data, start, ray, None, 1, -1, hit)
+            if distance < 0:
+                return -1.0, -1
+            travelled += distance
+            if int(model.geom_bodyid[hit[0]]) not in self._robot_bodies:
+                return travelled, int(hit[0])
+            travelled += 1e-4
+            start = origin + travelled * ray
+        return -1.0, -1
 
     # ------------------------------------------------------------ commands
 

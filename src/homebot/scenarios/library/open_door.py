@@ -1,14 +1,15 @@
 """Opening and closing a door under compliance (Cosero §4.2).
 
 The robot stands before a seeded door (hinged left or right, 0.7–0.95 m wide, with hinge
-friction and damping) that opens towards it. It knows roughly where the hinge is (its
-estimate is centimetres off) and sees the bar handle within a centimetre; it grasps the
-handle, pulls the door round the hinge until it believes it is open by 69°, holds it a
-moment, and pushes it shut again, then lets go. The hand is compliant in the plane and in
-yaw, and its target is set every tick from where the hand actually is, so the door's
-true circle prevails over the robot's estimate. Success is the truth: the hinge truly
-opened at least 60°, ended within 2° of shut, the handle never left the fingers and
-the robot's body never touched the door or its frame.
+friction and damping) that opens towards it. It looks at the door from 1.2 m before it and
+finds the leaf, the bar handle and the hinge in the head camera's depth points
+(``homebot.perception.door_leaf``; the hinge it finds is centimetres off); it steps up to
+the handle, grasps it, pulls the door round the hinge until it believes it is open by 69°,
+holds it a moment, and pushes it shut again, then lets go. The hand is compliant in the
+plane and in yaw, and its target is set every tick from where the hand actually is, so the
+door's true circle prevails over the robot's estimate. Success is the truth: the hinge truly
+opened at least 60°, ended within 2° of shut, the handle never left the fingers and the
+robot's body never touched the door or its frame.
 """
 
 from __future__ import annotations
@@ -38,6 +39,8 @@ def run(args: argparse.Namespace, console: Console | None, build: RunBuilder) ->
               "The door is open, and shut again." if result.success else
               "I could not open and close the door properly."]
     if console is not None:
+        if not result.perceived:
+            console.print("no door with a handle was seen before the robot")
         console.print(f"a door {door.width:.2f} m wide hinged on the {door.side} "
                       f"(hinge friction {door.friction:.1f} N·m): opened to "
                       f"{result.opened_deg:.1f}°, closed to {result.closed_deg:.1f}°"
@@ -52,6 +55,7 @@ def run(args: argparse.Namespace, console: Console | None, build: RunBuilder) ->
     return scenario_summary("open_door", result.success, actions, speech,
                             side=door.side, width_m=round(door.width, 3),
                             hinge_friction_nm=round(door.friction, 2),
+                            perceived=result.perceived, hinge_error_m=result.hinge_error,
                             opened_deg=result.opened_deg, closed_deg=result.closed_deg,
                             lost_handle=result.lost_handle, bumped=bool(result.bumped),
                             open_s=result.open_s, close_s=result.close_s)
