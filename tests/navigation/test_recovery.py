@@ -245,3 +245,47 @@ def test_a_target_off_the_map_is_a_navigation_error(
 def test_a_policy_with_a_non_positive_time_is_refused(field: str) -> None:
     with pytest.raises(NavigationError, match=field):
         RecoveryPolicy(**{field: 0.0})
+
+
+# A dining room off a 1.0 m corridor through a 0.8 m door near its west wall (as in
+# benchmarks/flats/flat_narrow), a sideboard against that wall.
+_DINING = """
+name: dining_off_a_corridor
+rooms:
+  - {name: corridor, polygon: [[0, 3], [8, 3], [8, 4], [0, 4]]}
+  - {name: dining room, polygon: [[3.5, 0], [7, 0], [7, 3], [3.5, 3]]}
+doors:
+  - {name: dining room door, rooms: [dining room, corridor], position: [4.2, 3], width: 0.8}
+categories:
+  - {name: dish, plural: dishes}
+placements:
+  - {name: sideboard, category: storage, room: dining room, center: [3.75, 1.3],
+     size: [0.45, 1.2], holds: [dish]}
+  - {name: dining table, category: table, room: dining room, center: [5.7, 1.3],
+     size: [1.4, 0.9]}
+objects:
+  - {name: cup, category: dish, placement: sideboard}
+people:
+  - {name: Mei, room: dining room, position: [4.5, 2.3]}
+robot:
+  pose: [6.5, 3.5, 3.14]
+"""
+
+
+def test_making_way_just_past_a_doorway_never_goes_back_through_it() -> None:
+    # Just through the door, someone stands a step ahead in the robot's way: it may step
+    # aside in the dining room, but going back out to the corridor and in again is the
+    # shuttling seen in flat_narrow (five times through the same door in one task).
+    world = World.from_yaml_text(_DINING)
+    navigator = Navigator(world)
+    simulation, body = _sim(world, navigator)
+    body.teleport(Pose(4.07, 2.58, -1.4))
+    navigation = RecoveringNavigation(body, navigator, MotionSearchPlanner(),
+                                      lambda: _truth(simulation))
+    body.tick()
+    seen = navigation.memory.observe(body.now(), _truth(simulation), body.scan())
+    assert len(seen) and float(np.min(np.hypot(*(seen - (4.5, 2.3)).T))) < 0.3
+    navigation.make_way(_truth(simulation), seen, frozenset())
+    assert world.room_at(*simulation.robot_pose[:2]) == "dining room"
+    assert simulation.robot_pose[1] < 3.0 - 0.3  # never into the doorway either
+    assert simulation.collisions == []

@@ -20,6 +20,7 @@ and furniture is preferred wherever one exists.
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -67,6 +68,7 @@ _MAKE_WAY_PER_METRE = 0.3  #: a spot's score lost per metre of reach
 _MAKE_WAY_TRIES = 6  #: best spots tried for a way there
 _MAKE_WAY_DETOUR = 2.5  #: a way to a spot at most this many times its straight distance
 _MAKE_WAY_TOLERANCE = 0.2  #: metres: near enough to the spot
+_ROOM_CHECK_STEP = 0.05  #: metres between the points of a way checked to stay in the room
 
 
 @dataclass(frozen=True)
@@ -466,13 +468,17 @@ class RecoveringNavigation:
         if float(distance.min()) > _CROWDED:
             return 0.0
         around, wide = body.radius + policy.obstacle_margin, body.radius + policy.static_margin
-        doors = [door.position for door in navigator.world.doors.values()]
+        world = navigator.world
+        doors = [door.position for door in world.doors.values()]
+        # Aside within the room the robot is in (either room, standing in a doorway): a
+        # spot back through a doorway it has just come through would be a shuttle.
+        rooms = self._rooms_beside(here)
         spots: list[tuple[float, tuple[float, float]]] = []
         for reach in _MAKE_WAY_REACH:
             for turn in range(_MAKE_WAY_DIRECTIONS):
                 angle = math.tau * turn / _MAKE_WAY_DIRECTIONS
                 spot = (here.x + reach * math.cos(angle), here.y + reach * math.sin(angle))
-                if navigator.world.room_at(*spot) is None \
+                if world.room_at(*spot) not in rooms \
                         or navigator.clearance_at(*spot) < wide \
                         or any(math.dist(spot, door) < _DOORWAY for door in doors):
                     continue
@@ -484,7 +490,8 @@ class RecoveringNavigation:
         for _, spot in sorted(spots, reverse=True)[:_MAKE_WAY_TRIES]:
             path = navigator.plan_around(here.xy(), spot, avoid_doors, obstacles, around, wide)
             if path is None or polyline_length(path) > _MAKE_WAY_DETOUR * math.dist(
-                    here.xy(), spot):
+                    here.xy(), spot) or any(world.room_at(*point) not in rooms
+                                            for point in _densified(path, _ROOM_CHECK_STEP)):
                 continue
             self._face(path)
             length = polyline_length(path)
@@ -495,6 +502,22 @@ class RecoveringNavigation:
                                     stuck_after=policy.stuck_after)
             return action.run(int(budget / body.tick_period) + _STOP_TICKS).travelled
         return 0.0
+
+    def _rooms_beside(self, here: Pose) -> set[str | None]:
+        """The room the robot stands in; standing in a doorway (its disc across the
+        wall's line), both of that door's rooms."""
+        world = self.navigator.world
+        rooms: set[str | None] = {world.room_at(here.x, here.y)}
+        across_the_line = self.body.radius + world.model.wall_thickness / 2
+        for name, door in world.doors.items():
+            inside = world.point_before_door(name, door.rooms[0], 1.0)
+            nx, ny = inside.x - door.position[0], inside.y - door.position[1]
+            dx, dy = here.x - door.position[0], here.y - door.position[1]
+            if abs(dx * nx + dy * ny) < across_the_line and \
+                    abs(dx * ny - dy * nx) < door.width / 2:
+                rooms.update(door.rooms)
+        rooms.discard(None)
+        return rooms
 
     def _face(self, path: tuple[tuple[float, float], ...]) -> None:
         """Turn on the spot to face along ``path`` (Nav2's spin recovery): a local
@@ -534,6 +557,17 @@ def _run(action: NavigateToPose, steps: int, stop: Callable[[], bool] | None
         if action.step().done:
             return action.result()
     return action.run(0)  # out of steps: aborted, as run does
+
+
+def _densified(path: tuple[tuple[float, float], ...], step: float
+               ) -> list[tuple[float, float]]:
+    """The points of ``path`` with points put between them at most ``step`` metres apart."""
+    points = list(path[:1])
+    for start, end in itertools.pairwise(path):
+        pieces = max(1, math.ceil(math.dist(start, end) / step))
+        points += [(start[0] + (end[0] - start[0]) * k / pieces,
+                    start[1] + (end[1] - start[1]) * k / pieces) for k in range(1, pieces + 1)]
+    return points
 
 
 def _point_along(path: tuple[tuple[float, float], ...], here: tuple[float, float],
