@@ -100,3 +100,19 @@ def test_a_leaf_written_wrong_is_named_with_its_field(door: str, field: str, fix
     with pytest.raises(WorldError) as error:
         _world(door)
     assert field in str(error.value) and fix in str(error.value)
+
+
+def test_a_door_opened_wide_has_its_leaf_swung_back_against_the_wall() -> None:
+    world = _world(", opening: 15, hinge: west, swings_into: room")
+    body = _body(world)
+    # looking north through the middle of the doorway: the leaf, barely ajar
+    body.teleport(Pose(2.0, 2.0, math.pi / 2))
+    ahead = len(body.scan().ranges) // 2
+    assert body.scan().ranges[ahead] < 1.5
+    body.sim.open_wide("door")
+    body.tick()
+    assert body.scan().ranges[ahead] > 3.5  # on to the room's far wall
+    assert body.sim.door_state["door"] is DoorState.OPEN
+    # and the bumper no longer meets it in the doorway
+    assert TrueGeometry.of(world).clearance(2.0, 3.0, frozenset(), frozenset({"door"})) > 0.3
+    assert TrueGeometry.of(world).clearance(2.0, 3.0, frozenset()) < 0.1

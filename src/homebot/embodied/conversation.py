@@ -57,6 +57,9 @@ class Conversation:
         self._make_recogniser = recogniser
         self._recogniser: AnswerRecognizer | None = None
         self._overheard: list[np.ndarray] = []  #: what the microphone gave since the last word
+        #: spoken since the last listen: the microphone was emptied of the robot's own
+        #: voice as it stopped, and what came after is an answer to it
+        self._spoke = False
 
     def say(self, text: str) -> bool:
         """Speak ``text`` aloud; False when the body has no speaker or no voice."""
@@ -70,6 +73,12 @@ class Conversation:
             self.events.record("robot.unspoken", text=text)
             return False
         speaker.play(resample(samples, SAMPLE_RATE, speaker.rate), text=text)
+        # What the microphone heard so far is the robot's own voice. What comes after is
+        # kept for the next listen: an answer may begin before the robot listens (it looks
+        # round for whom it asked first).
+        with contextlib.suppress(PartMissing):
+            self.body.microphone().read()
+        self._spoke = True
         return True
 
     def ask(self, question: str, state: str) -> str | None:
@@ -119,7 +128,9 @@ class Conversation:
             recogniser = self._ears()
         except (PartMissing, ImportError, SpeechError):
             return Hearing(None, "no_microphone", state)
-        microphone.read()  # what was heard before the question (the robot's own voice)
+        if not self._spoke:
+            microphone.read()  # what was heard before: no answer to anything asked
+        self._spoke = False
         chunks: list[np.ndarray] = []
         waited = 0.0
         ticks = max(1, round(_LISTEN_STEP / self.body.tick_period))

@@ -11,6 +11,11 @@ Whether an open doorway lets the robot through is geometry (``way_through``):
 a leaf left half open, a coat rack beside the jamb or someone standing in the
 doorway are all returns, and the robot fits through when some straight way
 across the doorway keeps its radius from every one of them and from the jambs.
+
+A leaf left barely ajar keeps the robot out as a shut one does, but the beams
+pass its gap, so the doorway reads open. It is told from someone standing there
+by its shape (``leaf_barely_ajar``): a straight line anchored at a jamb, where a
+person is a body or a pair of legs, a few tenths of a metre across.
 """
 
 from __future__ import annotations
@@ -22,7 +27,7 @@ import numpy as np
 from homebot.geometry import Pose, rays_cross_line
 from homebot.robot import LaserScan
 
-__all__ = ["WayThrough", "door_seen_open", "way_through"]
+__all__ = ["WayThrough", "door_seen_open", "leaf_barely_ajar", "way_through"]
 
 _JAMB = 0.08  #: metres inside each jamb where beams are not counted
 _PAST_THE_LINE = 0.1  #: metres past the wall's middle line: a beam went through
@@ -43,6 +48,15 @@ _SLANTS = np.radians(np.arange(-60.0, 61.0, 5.0))  #: ways through, from straigh
 _OFFSET_STEP = 0.02  #: metres between the ways through tried along the doorway
 _WALL_STEP = 0.02  #: metres between the points standing for the wall beside the doorway
 _PREFER_STRAIGHT = 0.02  #: metres of room given up per radian of slant and metre off centre
+# A leaf barely ajar: returns on a straight line from a jamb into the doorway's swing.
+_LEAF_FROM_HINGE = (0.1, 0.9)  #: its returns' distances from the hinge, in door widths
+_LEAF_FIT = 0.03  #: metres from the line through the hinge a leaf's returns lie within
+_LEAF_RETURNS = 6  #: returns on that line at least
+_LEAF_SHARE = 0.7  #: of the returns in the swing, the share on that line at least
+_LEAF_SEEN = 0.35  #: door widths of the leaf its returns span at least, unbroken ...
+_LEAF_ANCHOR = 0.25  #: ... from this many metres of the hinge at most (a jamb may hide it)
+_LEAF_GAP = 0.1  #: metres between neighbouring returns along a leaf at most (legs leave more)
+_LEAF_TIP_ROOM = 0.05  #: metres beyond the robot's width the leaf's tip must leave
 
 
 def door_seen_open(scan: LaserScan, pose: Pose, centre: tuple[float, float],
@@ -81,6 +95,49 @@ def door_seen_open(scan: LaserScan, pose: Pose, centre: tuple[float, float],
     face = float(np.percentile(at_the_door, 75))
     standing_out = at_the_door < face - _BODY
     return bool(np.count_nonzero(standing_out) >= _SHUT)
+
+
+def leaf_barely_ajar(points: np.ndarray, centre: tuple[float, float],
+                     normal: tuple[float, float], width: float, radius: float) -> bool:
+    """Whether the returns ``points`` ((n, 2), on the map) show a door leaf standing
+    barely ajar across the doorway: a straight line from one jamb, turned so little from
+    the wall that its tip leaves the other jamb less room than the robot's width (a disc
+    of ``radius``) needs. Someone standing in the doorway is no straight line from a
+    jamb; a leaf swung well open leaves room at its tip.
+
+    Args:
+        centre: the middle of the doorway on the map; ``normal`` a unit vector across
+            the wall there; ``width`` the doorway's, metres.
+    """
+    n = np.asarray(normal, dtype=float) / float(np.hypot(*normal))
+    relative_to_centre = np.asarray(points, dtype=float).reshape(-1, 2) - np.asarray(centre)
+    for side in (1.0, -1.0):
+        # the hinge at one jamb, the doorway running from it towards the other
+        towards = side * np.array([n[1], -n[0]])
+        relative = relative_to_centre + towards * width / 2
+        distance = np.hypot(relative[:, 0], relative[:, 1])
+        swing = (distance >= _LEAF_FROM_HINGE[0] * width) & \
+            (distance <= _LEAF_FROM_HINGE[1] * width) & (relative @ towards > 0)
+        if np.count_nonzero(swing) < _LEAF_RETURNS:
+            continue
+        inside = relative[swing]
+        angle = float(np.median(np.arctan2(inside @ n, inside @ towards)))
+        direction = np.cos(angle) * towards + np.sin(angle) * n
+        off_the_line = np.abs(inside @ np.array([-direction[1], direction[0]]))
+        on_the_line = off_the_line <= _LEAF_FIT
+        if np.count_nonzero(on_the_line) < _LEAF_RETURNS or \
+                float(np.mean(on_the_line)) < _LEAF_SHARE:
+            continue
+        # one unbroken run from by the hinge: a pair of legs in line leaves a gap
+        along = np.sort(inside[on_the_line] @ direction)
+        breaks = np.flatnonzero(np.diff(along) > _LEAF_GAP)
+        run_end = along[breaks[0]] if len(breaks) else along[-1]
+        if along[0] > _LEAF_ANCHOR or run_end - along[0] < _LEAF_SEEN * width:
+            continue
+        tip_to_jamb = 2 * width * np.sin(abs(angle) / 2)
+        if tip_to_jamb < 2 * radius + _LEAF_TIP_ROOM:
+            return True
+    return False
 
 
 @dataclass(frozen=True, slots=True)

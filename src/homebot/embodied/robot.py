@@ -30,7 +30,7 @@ from shapely.geometry import Point as ShapelyPoint
 
 from homebot.cancel import CancelToken
 from homebot.embodied.conversation import Conversation
-from homebot.embodied.doors import WayThrough, door_seen_open, way_through
+from homebot.embodied.doors import WayThrough, door_seen_open, leaf_barely_ajar, way_through
 from homebot.embodied.following import FollowEnd, Following, FollowParameters, shortened
 from homebot.embodied.guiding import Guiding
 from homebot.embodied.looking import TableLook
@@ -503,6 +503,12 @@ class BodyRobot(Robot):
                                   model.width)
         if seen is False and self._person_near(model.position, model.width / 2) is not None:
             return True  # the laser cannot tell a leaf from someone filling the doorway
+        if seen is True and self._way_through(door) is None and leaf_barely_ajar(
+                self._scan_on_map(), model.position, normal, model.width, self.body.radius) \
+                and self._person_near(model.position, model.width) is None:
+            # A leaf left barely ajar: the beams pass its gap, the robot cannot. It is to be
+            # opened, as a shut door is; nobody stands there to step aside.
+            return False
         return seen
 
     def say(self, text: str) -> None:

@@ -4,8 +4,9 @@ Two forms of the same geometry, built once per world and shared between runs:
 a fine raster (2 cm), for ray casting, and exact
 shapely shapes, for judging collisions. Door states change which door
 openings are filled, and where a door left ajar (``opening`` in the world file)
-has its leaf: shut in the doorway, or standing at its angle while open; the
-raster is kept per set of shut doors.
+has its leaf: shut in the doorway, standing at its angle while open, or swung
+back flat against the wall once someone opened the door wide; the raster is kept
+per set of shut doors and of leaves swung back.
 """
 
 from __future__ import annotations
@@ -36,8 +37,10 @@ class TrueGeometry:
     _walls: BaseGeometry = field(init=False)
     _door_leaves: dict[str, BaseGeometry] = field(init=False)
     _open_leaves: dict[str, BaseGeometry] = field(init=False)
-    _images: dict[frozenset[str], np.ndarray] = field(init=False, default_factory=dict)
-    _solids: dict[frozenset[str], BaseGeometry] = field(init=False, default_factory=dict)
+    _images: dict[tuple[frozenset[str], frozenset[str]], np.ndarray] = field(
+        init=False, default_factory=dict)
+    _solids: dict[tuple[frozenset[str], frozenset[str]], BaseGeometry] = field(
+        init=False, default_factory=dict)
 
     @classmethod
     def of(cls, world: World) -> TrueGeometry:
@@ -67,28 +70,34 @@ class TrueGeometry:
         self._open_leaves = {name: leaf for name in world.doors
                              if (leaf := world.door_leaf(name)) is not None}
 
-    def solid_image(self, shut_doors: frozenset[str]) -> np.ndarray:
-        """The raster with these doors shut: 1 where solid, 0 where free (uint8, row = y)."""
-        if shut_doors not in self._images:
+    def solid_image(self, shut_doors: frozenset[str],
+                    swung_back: frozenset[str] = frozenset()) -> np.ndarray:
+        """The raster with these doors shut and these leaves swung back flat against the
+        wall (no longer standing ajar): 1 where solid, 0 where free (uint8, row = y)."""
+        key = (shut_doors, swung_back)
+        if key not in self._images:
             occupied = self.raster.occupied.ravel().copy()
             for door in shut_doors:
                 occupied[self.raster.door_passages[door]] = True
             for door, leaf in self._open_leaves.items():
-                if door not in shut_doors:
+                if door not in shut_doors and door not in swung_back:
                     occupied[self._cells_under(leaf)] = True
-            self._images[shut_doors] = occupied.reshape(self.raster.shape).astype(np.uint8)
-        return self._images[shut_doors]
+            self._images[key] = occupied.reshape(self.raster.shape).astype(np.uint8)
+        return self._images[key]
 
-    def solids(self, shut_doors: frozenset[str]) -> BaseGeometry:
-        """Walls, furniture and the leaves of the shut doors, as one prepared shape."""
-        if shut_doors not in self._solids:
+    def solids(self, shut_doors: frozenset[str],
+               swung_back: frozenset[str] = frozenset()) -> BaseGeometry:
+        """Walls, furniture, the leaves of the shut doors and those standing ajar (not
+        ``swung_back``), as one prepared shape."""
+        key = (shut_doors, swung_back)
+        if key not in self._solids:
             leaves = [self._door_leaves[door] for door in sorted(shut_doors)] + [
                 leaf for door, leaf in sorted(self._open_leaves.items())
-                if door not in shut_doors]
+                if door not in shut_doors and door not in swung_back]
             solid = shapely.union_all([self._walls, *leaves])
             shapely.prepare(solid)
-            self._solids[shut_doors] = solid
-        return self._solids[shut_doors]
+            self._solids[key] = solid
+        return self._solids[key]
 
     def _cells_under(self, shape: BaseGeometry) -> np.ndarray:
         """Flat indices of the raster cells whose centres lie within ``shape`` grown by half
@@ -108,6 +117,8 @@ class TrueGeometry:
         flat: np.ndarray = (row_index[inside] * columns + column_index[inside]).astype(np.intp)
         return flat
 
-    def clearance(self, x: float, y: float, shut_doors: frozenset[str]) -> float:
-        """Exact distance from a point to the nearest wall, furniture or shut door."""
-        return float(shapely.distance(self.solids(shut_doors), Point(x, y)))
+    def clearance(self, x: float, y: float, shut_doors: frozenset[str],
+                  swung_back: frozenset[str] = frozenset()) -> float:
+        """Exact distance from a point to the nearest wall, furniture, shut door or leaf
+        standing ajar."""
+        return float(shapely.distance(self.solids(shut_doors, swung_back), Point(x, y)))

@@ -212,7 +212,7 @@ class PeopleHearing:
         if door is not None and "open" in text:
             if sim.door_state[door] is DoorState.LOCKED:
                 return False
-            sim.door_state[door] = DoorState.OPEN
+            sim.open_wide(door)
             sim.events.record("sim.person", person=person, did="opened", door=door)
             return True
         ahead = _GO_AHEAD.search(text)

@@ -112,16 +112,18 @@ class LaserSimulator:
         self._beam_angles = self.angle_min + self.angle_increment * np.arange(model.beams)
         # Distances along a beam at which the raster is sampled, in cells.
         self._steps = np.arange(1, int(model.range_max / TRUTH_RESOLUTION) + 2, dtype=np.float32)
-        self._free_runs: dict[frozenset[str], np.ndarray] = {}
+        self._free_runs: dict[tuple[frozenset[str], frozenset[str]], np.ndarray] = {}
 
     def scan(self, stamp: float, robot: tuple[float, float, float],
-             shut_doors: frozenset[str], legs: Sequence[tuple[float, float]]) -> LaserScan:
-        """A sweep from the robot's true pose, with these doors shut and these leg centres."""
+             shut_doors: frozenset[str], legs: Sequence[tuple[float, float]],
+             swung_back: frozenset[str] = frozenset()) -> LaserScan:
+        """A sweep from the robot's true pose, with these doors shut, these leaves swung
+        back against the wall and these leg centres."""
         x, y, theta = robot
         origin_x, origin_y = Pose(x, y, theta).apply(self.mount.x, self.mount.y)
         angles = theta + self.mount.theta + self._beam_angles
         directions = np.column_stack((np.cos(angles), np.sin(angles)))
-        ranges = self._march((origin_x, origin_y), directions, shut_doors)
+        ranges = self._march((origin_x, origin_y), directions, shut_doors, swung_back)
         if legs:
             ranges = np.minimum(ranges, _circle_hits((origin_x, origin_y), directions,
                                                      np.asarray(legs, dtype=float), LEG_RADIUS))
@@ -130,17 +132,18 @@ class LaserSimulator:
                          self.model.range_max, ranges, self.mount)
 
     def _march(self, origin: tuple[float, float], directions: np.ndarray,
-               shut_doors: frozenset[str]) -> np.ndarray:
+               shut_doors: frozenset[str], swung_back: frozenset[str]) -> np.ndarray:
         """The first solid sample along each beam, sampled every raster cell, then refined."""
-        solid = self.geometry.solid_image(shut_doors)
-        if shut_doors not in self._free_runs:
-            self._free_runs[shut_doors] = _free_runs(solid)
+        solid = self.geometry.solid_image(shut_doors, swung_back)
+        key = (shut_doors, swung_back)
+        if key not in self._free_runs:
+            self._free_runs[key] = _free_runs(solid)
         raster = self.geometry.raster
         column0 = np.float32((origin[0] - raster.origin[0]) / TRUTH_RESOLUTION - 0.5)
         row0 = np.float32((origin[1] - raster.origin[1]) / TRUTH_RESOLUTION - 0.5)
         cos, sin = directions.astype(np.float32).T
         hits: np.ndarray = _march_beams(
-            solid, self._free_runs[shut_doors], column0, row0, np.ascontiguousarray(cos),
+            solid, self._free_runs[key], column0, row0, np.ascontiguousarray(cos),
             np.ascontiguousarray(sin), self._steps, np.ascontiguousarray(directions),
             origin[0], origin[1], raster.origin[0], raster.origin[1], TRUTH_RESOLUTION,
             self.model.range_max, _BISECTIONS)

@@ -130,6 +130,9 @@ class Simulation:
         self.furniture = [p.name for p in world.placements.values()
                           if p.model.kind is PlacementKind.FURNITURE]
         self.door_state = {name: door.state for name, door in world.doors.items()}
+        #: doors someone opened wide: a leaf the world file left ajar now lies back flat
+        #: against the wall
+        self.leaves_swung_back: set[str] = set()
         self.people = {name: _PersonState(person, person.position, person.room)
                        for name, person in world.people.items()}
         start = world.robot.pose
@@ -225,6 +228,12 @@ class Simulation:
                                         "object_moved_during_task")
 
     # ------------------------------------------------------------ truth queries
+
+    def open_wide(self, door: str) -> None:
+        """Someone opens ``door`` all the way: no longer shut, and a leaf left ajar swung
+        back against the wall."""
+        self.door_state[door] = DoorState.OPEN
+        self.leaves_swung_back.add(door)
 
     def closed_doors(self) -> frozenset[str]:
         """Doors that are shut or locked, or that someone stands in."""
