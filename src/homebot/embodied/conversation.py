@@ -57,9 +57,9 @@ class Conversation:
         self._make_recogniser = recogniser
         self._recogniser: AnswerRecognizer | None = None
         self._overheard: list[np.ndarray] = []  #: what the microphone gave since the last word
-        #: spoken since the last listen: the microphone was emptied of the robot's own
-        #: voice as it stopped, and what came after is an answer to it
-        self._spoke = False
+        #: when the robot last stopped speaking, if it has not listened since: what the
+        #: microphone heard after that may be an answer begun before it listened
+        self._stopped_speaking: float | None = None
 
     def say(self, text: str) -> bool:
         """Speak ``text`` aloud; False when the body has no speaker or no voice."""
@@ -73,12 +73,7 @@ class Conversation:
             self.events.record("robot.unspoken", text=text)
             return False
         speaker.play(resample(samples, SAMPLE_RATE, speaker.rate), text=text)
-        # What the microphone heard so far is the robot's own voice. What comes after is
-        # kept for the next listen: an answer may begin before the robot listens (it looks
-        # round for whom it asked first).
-        with contextlib.suppress(PartMissing):
-            self.body.microphone().read()
-        self._spoke = True
+        self._stopped_speaking = self.body.now()
         return True
 
     def ask(self, question: str, state: str) -> str | None:
@@ -128,10 +123,16 @@ class Conversation:
             recogniser = self._ears()
         except (PartMissing, ImportError, SpeechError):
             return Hearing(None, "no_microphone", state)
-        if not self._spoke:
-            microphone.read()  # what was heard before: no answer to anything asked
-        self._spoke = False
-        chunks: list[np.ndarray] = []
+        # What was heard before is the robot's own voice, and no answer to it; but what
+        # came after the robot stopped speaking may be one begun while it looked round for
+        # whom it asked, and is kept.
+        before = microphone.read()
+        since = 0.0 if self._stopped_speaking is None else \
+            self.body.now() - self._stopped_speaking
+        self._stopped_speaking = None
+        kept = min(round(min(since, _WAIT) * microphone.rate), before.size)
+        chunks: list[np.ndarray] = [resample(before[before.size - kept:], microphone.rate,
+                                             SAMPLE_RATE)] if kept > 0 else []
         waited = 0.0
         ticks = max(1, round(_LISTEN_STEP / self.body.tick_period))
         while waited < _WAIT + _LONGEST_ANSWER:
