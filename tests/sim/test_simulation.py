@@ -201,3 +201,35 @@ def test_objects_put_on_a_surface_stand_apart_on_it(apartment: World,
         assert table.footprint.covers(ShapelyPoint(spot))
     gaps = [math.dist(a, b) for i, a in enumerate(spots) for b in spots[i + 1:]]
     assert min(gaps) > 0.12
+
+
+_DINING_OFF_A_CORRIDOR = """
+name: dining_beside_a_kitchen
+rooms:
+  - {name: corridor, polygon: [[0, 3], [8, 3], [8, 4], [0, 4]]}
+  - {name: kitchen, polygon: [[0, 0], [3.5, 0], [3.5, 3], [0, 3]]}
+  - {name: dining room, polygon: [[3.5, 0], [7, 0], [7, 3], [3.5, 3]]}
+doors:
+  - {name: kitchen door, rooms: [kitchen, corridor], position: [2.8, 3], width: 0.8}
+  - {name: dining room door, rooms: [dining room, corridor], position: [4.2, 3], width: 0.8}
+placements:
+  - {name: sideboard, category: storage, room: dining room, center: [3.75, 1.3],
+     size: [0.45, 1.2]}
+  - {name: dining table, category: table, room: dining room, center: [5.7, 1.3],
+     size: [1.4, 0.9]}
+people:
+  - {name: Mei, room: dining room, position: [4.5, 2.3]}
+robot:
+  pose: [4.07, 2.58, -0.91]
+"""
+
+
+def test_someone_asked_aside_steps_aside_in_their_own_room() -> None:
+    # Just inside the dining-room door (as in benchmarks/flats/flat_narrow): the open floor
+    # behind the kitchen wall is no spot to step to; the walk there runs round through the
+    # doorway the robot stands in, and she stood still, asked four times.
+    world = World.from_yaml_text(_DINING_OFF_A_CORRIDOR)
+    simulation = Simulation(world, seed=1, navigator=Navigator(world))
+    spot = simulation.spot_aside(simulation.people["Mei"].position)
+    assert spot is not None and world.room_at(*spot) == "dining room"
+    assert math.dist(spot, simulation.robot_pose[:2]) >= 1.0

@@ -263,8 +263,9 @@ class Simulation:
         """Where a person at ``position`` steps to get out of the robot's way: the
         nearby spot with the most room round it, as people step into open floor, and to
         the side of the way the robot comes from, not further along it: neither on the
-        line from the robot through them nor on the one it faces along (None: no free
-        spot within reach)."""
+        line from the robot through them nor on the one it faces along, and in the room
+        they stand in: a spot behind a wall is a walk round through a doorway, maybe the
+        one the robot stands in (None: no free spot within reach)."""
         grid, clearance = self.navigator.grid, self.navigator.clearance()
         x, y, heading = self.robot_pose
         robot = (x, y)
@@ -275,13 +276,15 @@ class Simulation:
         faced = (x + (away + _ALONG_THE_WAY) * math.cos(heading),
                  y + (away + _ALONG_THE_WAY) * math.sin(heading))
         way = MultiLineString([[robot, ahead], [robot, faced]])
+        room = self.world.room_at(*position)
         best: tuple[float, tuple[float, float]] | None = None
         for reach in _STEP_ASIDE:
             for turn in range(_ASIDE_DIRECTIONS):
                 angle = 2 * math.pi * turn / _ASIDE_DIRECTIONS
                 spot = (position[0] + reach * math.cos(angle),
                         position[1] + reach * math.sin(angle))
-                if self.world.room_at(*spot) is None or self.distance_to(spot) < _CLEAR_OF_ROBOT \
+                if room is None or self.world.room_at(*spot) != room \
+                        or self.distance_to(spot) < _CLEAR_OF_ROBOT \
                         or way.distance(ShapelyPoint(spot)) < _CLEAR_OF_THE_WAY:
                     continue
                 cell = grid.cell_of(*spot)
