@@ -128,6 +128,7 @@ class World:
         if self._problems:
             raise WorldError(problem_listing(self._problems))
         self._check_holdings()
+        self._check_swings()
 
     # ------------------------------------------------------------------ loading
 
@@ -525,11 +526,21 @@ class World:
                 message = (f"the {obj.name} ({obj.category}) is on the {obj.placement}, which "
                            f"holds {', '.join(holds)}: a tidy-up would move it; if it belongs "
                            f"there, add {obj.category} to the {obj.placement}'s holds")
-                if self._document is not None:
-                    self.warnings.append(locate(self._document, ["objects", index, "placement"],
-                                                message, self._origin))
-                else:
-                    self.warnings.append(f"{self.source}: objects.{index}.placement: {message}")
+                self._warn(["objects", index, "placement"], message)
+
+    def _check_swings(self) -> None:
+        """Warn of a placement whose approach spot a door's leaf sweeps over (``swings``)."""
+        from homebot.world.swings import approaches_in_swings
+
+        for index, message in approaches_in_swings(self):
+            self._warn(["placements", index, "center"], message)
+
+    def _warn(self, location: list[str | int], message: str) -> None:
+        if self._document is not None:
+            self.warnings.append(locate(self._document, location, message, self._origin))
+        else:
+            where = ".".join(str(step) for step in location)
+            self.warnings.append(f"{self.source}: {where}: {message}")
 
     def _check_people(self) -> None:
         for index, person in enumerate(self.model.people):
