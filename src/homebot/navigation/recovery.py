@@ -20,7 +20,6 @@ and furniture is preferred wherever one exists.
 
 from __future__ import annotations
 
-import itertools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -29,6 +28,7 @@ import numpy as np
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import cKDTree
+from shapely.geometry import LineString
 
 from homebot.errors import NavigationError
 from homebot.geometry import Pose, from_frame, wrap_angle, wrap_angles
@@ -562,12 +562,9 @@ def _run(action: NavigateToPose, steps: int, stop: Callable[[], bool] | None
 def _densified(path: tuple[tuple[float, float], ...], step: float
                ) -> list[tuple[float, float]]:
     """The points of ``path`` with points put between them at most ``step`` metres apart."""
-    points = list(path[:1])
-    for start, end in itertools.pairwise(path):
-        pieces = max(1, math.ceil(math.dist(start, end) / step))
-        points += [(start[0] + (end[0] - start[0]) * k / pieces,
-                    start[1] + (end[1] - start[1]) * k / pieces) for k in range(1, pieces + 1)]
-    return points
+    if len(path) < 2:
+        return list(path)
+    return [(x, y) for x, y in LineString(path).segmentize(step).coords]
 
 
 def _point_along(path: tuple[tuple[float, float], ...], here: tuple[float, float],
