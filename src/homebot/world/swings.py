@@ -29,14 +29,11 @@ def door_swing(world: World, door: str) -> Polygon | None:
     model = world.doors[door]
     if model.opening is None:
         return None
-    cx, cy = model.position
-    into = world.point_before_door(door, model.swings_into or model.rooms[0], 1.0)
-    nx, ny = into.x - cx, into.y - cy
-    tx, ty = world.door_hinge_direction(door)
-    hinge = (cx + tx * model.width / 2, cy + ty * model.width / 2)
-    arc = [(hinge[0] + model.width * (-tx * math.cos(angle) + nx * math.sin(angle)),
-            hinge[1] + model.width * (-ty * math.cos(angle) + ny * math.sin(angle)))
-           for angle in np.linspace(0.0, math.radians(model.opening), _ARC_STEPS + 1)]
+    hinge, _ = world.door_leaf_turned(door, 0.0)
+    arc = []
+    for angle in np.linspace(0.0, math.radians(model.opening), _ARC_STEPS + 1):
+        _, (dx, dy) = world.door_leaf_turned(door, float(angle))
+        arc.append((hinge[0] + model.width * dx, hinge[1] + model.width * dy))
     swing: Polygon = Polygon([hinge, *arc]).buffer(_LEAF_HALF_THICKNESS)
     return swing
 

@@ -393,20 +393,25 @@ class World:
         model = self.doors[door]
         if model.opening is None:
             return None
-        cx, cy = model.position
-        into = self.point_before_door(door, model.swings_into or model.rooms[0], 1.0)
-        nx, ny = into.x - cx, into.y - cy
-        tx, ty = self.door_hinge_direction(door)
-        half = model.width / 2
-        hx, hy = cx + tx * half, cy + ty * half
-        # shut, the leaf points from the hinge to the far jamb; it turns towards the room
-        angle = math.radians(model.opening)
-        dx = -tx * math.cos(angle) + nx * math.sin(angle)
-        dy = -ty * math.cos(angle) + ny * math.sin(angle)
+        (hx, hy), (dx, dy) = self.door_leaf_turned(door, math.radians(model.opening))
         leaf: BaseGeometry = LineString([(hx, hy), (hx + dx * model.width,
                                                      hy + dy * model.width)]).buffer(
             _LEAF_THICKNESS / 2, cap_style="flat")
         return leaf
+
+    def door_leaf_turned(self, door: str, angle: float
+                         ) -> tuple[tuple[float, float], tuple[float, float]]:
+        """The hinge of ``door``'s leaf and the unit direction the leaf points in when
+        turned ``angle`` radians from shut, towards the room it swings into (shut, it
+        points from the hinge to the far jamb)."""
+        model = self.doors[door]
+        cx, cy = model.position
+        into = self.point_before_door(door, model.swings_into or model.rooms[0], 1.0)
+        nx, ny = into.x - cx, into.y - cy
+        tx, ty = self.door_hinge_direction(door)
+        hinge = (cx + tx * model.width / 2, cy + ty * model.width / 2)
+        return hinge, (-tx * math.cos(angle) + nx * math.sin(angle),
+                       -ty * math.cos(angle) + ny * math.sin(angle))
 
     def _build_placements(self) -> dict[str, Placement]:
         footprints = {
