@@ -26,6 +26,7 @@ __all__ = [
     "ObjectEstimate",
     "Recogniser",
     "TabletopPerception",
+    "fits",
     "match_positions",
     "training_examples",
 ]
@@ -33,6 +34,8 @@ __all__ = [
 #: a frame and the objects truly in it: (object name, bottom centre in the base frame)
 LabelledFrame = tuple[RgbdFrame, Sequence[tuple[str, tuple[float, float, float]]]]
 _MATCH = 0.05  #: metres within which a segment is the object it is matched to
+_OVERSIZE = 1.3  #: a cluster this many times bigger than what it looks most like is not it
+_SIZE_SLACK = 0.03  #: metres on top of that: noise, a stray edge pixel
 
 
 @dataclass(frozen=True, slots=True)
@@ -69,6 +72,15 @@ def box_heading(top: np.ndarray, extent: Sequence[float]) -> float | None:
         abs(first - y_side) + abs(second - x_side)
     heading = angle if first_is_x else angle + math.pi / 2
     return math.atan2(math.sin(2 * heading), math.cos(2 * heading)) / 2
+
+
+def fits(entry: CatalogueEntry, height: float, major: float) -> bool:
+    """Whether a cluster ``height`` tall whose footprint spreads ``major`` along its longer
+    axis (metres) could be ``entry`` standing upright: neither more than ``_OVERSIZE`` times
+    the object's height or footprint's diagonal, and ``_SIZE_SLACK`` more."""
+    x, y, z = entry.extent
+    return (height <= _OVERSIZE * z + _SIZE_SLACK
+            and major <= _OVERSIZE * math.hypot(x, y) + _SIZE_SLACK)
 
 
 def match_positions(estimated: Sequence[Sequence[float]], truth: Sequence[Sequence[float]],
@@ -174,6 +186,8 @@ class TabletopPerception:
                 segments, features, self.recogniser.predict(features), strict=True):
             entry = self.recogniser.catalogue.get(label)
             height, major = float(row[0]), float(row[1])
+            if entry is not None and not fits(entry, height, major):
+                continue  # nothing it knows is that big: a person lying there, a blanket
             rgb = np.median(segment.colours, axis=0)
             estimates.append(ObjectEstimate(
                 label or "object", entry.category if entry else "object", confidence,

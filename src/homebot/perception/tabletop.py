@@ -8,7 +8,8 @@ group is one object candidate with its features (extent, colour, shape cues)
 and a position: the centre of its top face, which the camera looks down on.
 
 Small pure functions in Open3D's style (numpy in, numpy out, no hidden state):
-``plane_hypothesis``, ``segment_plane``, ``cluster``, ``segment_tabletop``, ``cluster_features``.
+``plane_hypothesis``, ``segment_plane``, ``cluster``, ``split_by_colour``, ``segment_tabletop``,
+``cluster_features``.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.cluster.vq import kmeans2
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 from scipy.spatial import ConvexHull, QhullError, cKDTree
@@ -34,6 +36,7 @@ __all__ = [
     "row_spacing",
     "segment_plane",
     "segment_tabletop",
+    "split_by_colour",
 ]
 
 _FLOOR_CLEARANCE = 0.2  #: metres: a support plane lies higher than this (not the floor)
@@ -47,6 +50,14 @@ _SPHERE_MISFIT = 0.004  #: metres (rms) within which points lie on a sphere
 _SPHERE_REST = 0.3  #: a resting sphere's centre is its radius above the plane, within this share
 _SPHERE_LARGEST = 0.2  #: metres: no ball on a table is bigger
 _MIN_POINTS = 12  #: smaller groups are noise
+#: radians between the two colours (as RGB vectors, whose direction light does not change)
+#: a group must show, each in a part of its own, before it is split into two objects ...
+_HUE_SPLIT = 0.1
+_SPLIT_CONTRAST = 3.0  #: ... and this many times the spread of colours within each part
+_SPLIT_SHARE = 0.08  #: each part holds at least this share of the group's points
+_DARK = 60.0  #: colours shorter than this (of 441) are too noisy to tell hues apart
+_SPLITS = 3  #: a group is split at most this many times over (four objects in one)
+_KMEANS_SEED = 0
 _VOXEL = 0.006  #: metres: object points are thinned to one per voxel before clustering
 _ROWS_JOINED = 1.4  #: a point joins neighbours this many row spacings away ...
 _MAX_REACH = 0.04  #: ... but never farther than this (metres)
@@ -277,9 +288,60 @@ def segment_tabletop(frame: RgbdFrame, rng: np.random.Generator, *,
     labels = cluster(points[chosen], _CLUSTER_DISTANCE, _MIN_POINTS, reach)
     segments = []
     for label in range(int(labels.max(initial=-1)) + 1):
-        members = chosen[labels == label]
-        segments.append(Segment(points[members], colours[members], heights[members]))
+        in_group = labels == label
+        for part in split_by_colour(points[chosen][in_group], colours[chosen][in_group],
+                                    reach[in_group]):
+            members = chosen[in_group][part]
+            segments.append(Segment(points[members], colours[members], heights[members]))
     return Tabletop(plane, tuple(segments))
+
+
+def split_by_colour(points: np.ndarray, colours: np.ndarray, reach: np.ndarray,
+                    depth: int = _SPLITS) -> list[np.ndarray]:
+    """The objects in one Euclidean group, as index arrays into it: two objects that touch
+    (a banana leaning on a cup) are one group, but each has its own colour.
+
+    The colours' directions (light changes a colour's length, not its direction) are
+    split in two by k-means; the group is split when the two hues lie ``_HUE_SPLIT`` apart
+    and ``_SPLIT_CONTRAST`` times the spread within each (a single colour's noise, split in
+    two, is never that far apart), and each part holds ``_SPLIT_SHARE`` of the points. Each
+    part is clustered again by distance (a stray pixel of the other hue drops out) and
+    split again, down to ``depth`` times."""
+    whole = [np.arange(len(points))]
+    if depth <= 0 or len(points) < 2 * _MIN_POINTS:
+        return whole
+    values = colours.astype(np.float64)
+    length = np.linalg.norm(values, axis=1)
+    bright = length >= _DARK
+    if np.count_nonzero(bright) < 2 * _MIN_POINTS:
+        return whole
+    hues = values[bright] / length[bright, None]
+    # two hues _HUE_SPLIT apart, the lesser holding _SPLIT_SHARE, spread the whole this far
+    # about its mean at least: most groups, of one colour, stop here, before the k-means
+    least = _HUE_SPLIT * math.sqrt(_SPLIT_SHARE * (1 - _SPLIT_SHARE))
+    if float(np.sqrt(np.mean(np.sum((hues - hues.mean(axis=0)) ** 2, axis=1)))) < least:
+        return whole
+    # its own fixed draws: a split leaves the caller's RANSAC draws as they were
+    centres, assigned = kmeans2(hues, 2, minit="++", seed=_KMEANS_SEED)
+    counts = np.bincount(assigned, minlength=2)
+    if counts.min() < max(_MIN_POINTS, _SPLIT_SHARE * len(hues)):
+        return whole
+    unit = centres / np.linalg.norm(centres, axis=1, keepdims=True)
+    apart = float(np.arccos(np.clip(unit[0] @ unit[1], -1.0, 1.0)))
+    spread = float(np.sqrt(np.mean(np.sum((hues - centres[assigned]) ** 2, axis=1))))
+    if apart < _HUE_SPLIT or apart < _SPLIT_CONTRAST * spread:
+        return whole
+    # every point, the dark ones too, goes with the nearer hue
+    nearer = np.argmax(values @ unit.T, axis=1)
+    parts: list[np.ndarray] = []
+    for side in (0, 1):
+        members = np.flatnonzero(nearer == side)
+        labels = cluster(points[members], _CLUSTER_DISTANCE, _MIN_POINTS, reach[members])
+        for label in range(int(labels.max(initial=-1)) + 1):
+            piece = members[labels == label]
+            parts.extend(piece[sub] for sub in split_by_colour(
+                points[piece], colours[piece], reach[piece], depth - 1))
+    return parts or whole
 
 
 def _voxel_thin(points: np.ndarray, size: float) -> np.ndarray:
