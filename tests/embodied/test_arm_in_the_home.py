@@ -98,6 +98,11 @@ def test_out_of_reach_the_robot_steps_beside_the_nearest_free_side_of_the_surfac
     assert all(world.footprint_problem(stand.x, stand.y) is None for stand in stands)
     assert [math.dist((s.x, s.y), (9.3, 9.75)) for s in stands] == sorted(
         math.dist((s.x, s.y), (9.3, 9.75)) for s in stands)
+    # The kitchen cabinet (y 3.35-3.95) stands 5 cm from the kitchen's wall at y = 4, the
+    # corridor beyond it: from there the robot looked at the wall and saw no sponge
+    sponge = (7.81, 3.73)
+    stands = robot._stands_before(sponge)
+    assert stands and all(world.room_at(stand.x, stand.y) == "kitchen" for stand in stands)
 
 
 def test_the_arms_scene_puts_objects_where_perception_saw_them() -> None:

@@ -292,14 +292,16 @@ class ArmedBodyRobot(BodyRobot):
         """Poses beside the surface under ``point``, facing it, nearest to it first.
 
         At most one per side of the surface: the free spot just off the side nearest
-        ``point`` (a side against a wall or other furniture may offer none).
+        ``point``, in the surface's room (a side against a wall or other furniture may
+        offer none).
         """
         seen = Point(point)
         found = [(p.footprint.distance(seen), p) for p in self.world.placements.values()
                  if p.footprint.covers(seen)]
         if not found:
             return []
-        ring = min(found, key=lambda pair: pair[0])[1].footprint.exterior
+        surface = min(found, key=lambda pair: pair[0])[1]
+        ring = surface.footprint.exterior
         turn = 1.0 if ring.is_ccw else -1.0  # the outward normal is right of a ccw ring
         stands: list[tuple[float, Pose]] = []
         for start, end in itertools.pairwise(ring.coords):
@@ -310,7 +312,10 @@ class ArmedBodyRobot(BodyRobot):
             for along in np.append(np.arange(0.0, side.length, _STAND_STEP), side.length):
                 edge = side.interpolate(float(along))
                 x, y = edge.x + nx * _STAND_OFF, edge.y + ny * _STAND_OFF
-                if self.world.footprint_problem(x, y) is None:
+                # in the surface's own room: beyond the wall a surface stands against the
+                # robot would look at the wall (the kitchen cabinet from the corridor)
+                if self.world.footprint_problem(x, y) is None and \
+                        self.world.room_at(x, y) == surface.room:
                     spots.append((math.dist((x, y), point), x, y))
             if spots:
                 distance, x, y = min(spots)
