@@ -34,8 +34,8 @@ __all__ = [
 #: a frame and the objects truly in it: (object name, bottom centre in the base frame)
 LabelledFrame = tuple[RgbdFrame, Sequence[tuple[str, tuple[float, float, float]]]]
 _MATCH = 0.05  #: metres within which a segment is the object it is matched to
-_OVERSIZE = 1.3  #: a cluster this many times bigger than what it looks most like is not it
-_SIZE_SLACK = 0.03  #: metres on top of that: noise, a stray edge pixel
+_OVERSIZE = 1.5  #: a cluster this many times bigger than what it looks most like is not it
+_SIZE_SLACK = 0.05  #: metres on top of that: noise, a stray edge pixel
 
 
 @dataclass(frozen=True, slots=True)
