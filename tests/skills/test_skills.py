@@ -106,6 +106,25 @@ def test_give_looks_first_and_a_person_gone_elsewhere_is_searched_for(
     assert run.simulation.object_location["cola"] == "person:Maria"
 
 
+def test_an_object_that_falls_from_the_hand_held_out_is_not_given(
+        run: Run, monkeypatch: pytest.MonkeyPatch) -> None:
+    # A fork slipped out of the embodied robot's fingers as it held it out; nobody pulled,
+    # so it never let go, yet its hand was empty, and it said "done" (apartment seed 17)
+    assert _do(run, "pick", object="cola")
+    assert _do(run, "navigate", to="Maria")
+    simulation = run.simulation
+
+    def fumbled(hand: str, person: str) -> bool:
+        simulation.hands[hand] = None
+        simulation.object_location["cola"] = "floor:kitchen"
+        return False
+
+    monkeypatch.setattr(run.robot, "hand_over", fumbled)
+    outcome = _do(run, "give", person="Maria")
+    assert outcome.status is Status.FAILED and outcome.error is ErrorCode.NOT_DELIVERED
+    assert "fell" in outcome.message and run.context.beliefs.holding["left"] is None
+
+
 def test_give_drives_again_to_a_person_seen_farther_off_after_the_first_approach(
         apartment: World, apartment_navigator: Navigator,
         monkeypatch: pytest.MonkeyPatch) -> None:

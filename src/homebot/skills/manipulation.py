@@ -134,7 +134,8 @@ class Place(Skill):
 class Give(Skill):
     """Hand what the robot holds to a person (``operator``, a name, or the person last found).
 
-    Monitor: the hand is empty afterwards (the person took it).
+    Monitor: the hand is empty afterwards, and the robot let go to the person (an empty
+    hand it never opened for them dropped the object: not delivered).
     """
 
     name = "give"
@@ -156,8 +157,9 @@ class Give(Skill):
         if moved is not None:
             return moved
         speak(context, here_is(person, str(label)))
-        context.robot.hand_over(hand, person)
-        return Outcome.finished(f"offered it to {person}", hand=hand, person=person, object=label)
+        given = context.robot.hand_over(hand, person)
+        return Outcome.finished(f"offered it to {person}", hand=hand, person=person, object=label,
+                                given=given)
 
     def assume(self, context: SkillContext, args: Mapping[str, Any], finished: Outcome) -> None:
         context.beliefs.let_go(finished.data["hand"], f"person:{finished.data['person']}")
@@ -165,6 +167,13 @@ class Give(Skill):
     def monitor(self, context: SkillContext, args: Mapping[str, Any],
                 finished: Outcome) -> Outcome:
         hand = finished.data["hand"]
+        if context.robot.held(hand) is None and not finished.data["given"]:
+            # the hand is empty, but the robot never let go to them: it fell (a retry has
+            # nothing to give)
+            context.beliefs.let_go(hand, None)
+            return Outcome.failed(ErrorCode.NOT_DELIVERED,
+                                   f"the {finished.data['object']} fell from my hand",
+                                   person=finished.data["person"])
         if context.robot.held(hand) is None:
             context.beliefs.let_go(hand, f"person:{finished.data['person']}")
             return Outcome.verified(f"{finished.data['person']} has the {finished.data['object']}",
