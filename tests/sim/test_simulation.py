@@ -233,23 +233,3 @@ def test_someone_asked_aside_steps_aside_in_their_own_room() -> None:
     spot = simulation.spot_aside(simulation.people["Mei"].position)
     assert spot is not None and world.room_at(*spot) == "dining room"
     assert math.dist(spot, simulation.robot_pose[:2]) >= 1.0
-
-
-def test_someone_asked_aside_in_a_narrow_hall_steps_through_the_door_beside_them() -> None:
-    # flat_split's upper hall, 1.2 m wide: no spot in it is off the robot's way, but the
-    # bedroom door is a step away
-    world = World.from_yaml_text("""
-name: upper_hall
-rooms:
-  - {name: upper hall, polygon: [[6, 2], [10, 2], [10, 3.2], [6, 3.2]]}
-  - {name: bedroom, polygon: [[6, 3.2], [10, 3.2], [10, 7], [6, 7]]}
-doors:
-  - {name: bedroom door, rooms: [bedroom, upper hall], position: [6.8, 3.2], width: 0.8}
-people:
-  - {name: Elif, room: upper hall, position: [7.6, 2.6]}
-robot:
-  pose: [8.5, 2.6, 3.14]
-""")
-    simulation = Simulation(world, seed=1, navigator=Navigator(world))
-    spot = simulation.spot_aside(simulation.people["Elif"].position)
-    assert spot is not None and world.room_at(*spot) == "bedroom"

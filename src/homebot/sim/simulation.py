@@ -11,7 +11,7 @@ import math
 import random
 from dataclasses import dataclass
 
-from shapely.geometry import LineString, MultiLineString
+from shapely.geometry import MultiLineString
 from shapely.geometry import Point as ShapelyPoint
 
 from homebot.clock import Clock
@@ -35,9 +35,6 @@ HAND_PREFIX = "hand:"  #: object location held in a robot hand, e.g. ``hand:left
 PERSON_PREFIX = "person:"  #: object location given to a person, e.g. ``person:Alex``
 _STEP_ASIDE = (0.8, 1.2, 1.6, 2.0)  #: metres a person letting the robot by may step
 _ASIDE_DIRECTIONS = 16
-_ASIDE_WALK = 4.0  #: metres walked to a spot aside at most
-_PASSING_ROBOT = 0.6  #: metres from the robot's centre a walk aside keeps (a body and a step)
-_PASSING_SLACK = 0.05  #: metres a walk aside may come nearer the robot than it started
 _CLEAR_OF_ROBOT = 1.0  #: metres from the robot's centre a person stepping aside keeps
 _ALONG_THE_WAY = 2.5  #: metres past the person that the robot's way is taken to go on
 _CLEAR_OF_THE_WAY = 0.9  #: metres a person stepping aside keeps from that way
@@ -266,10 +263,9 @@ class Simulation:
         """Where a person at ``position`` steps to get out of the robot's way: the
         nearby spot with the most room round it, as people step into open floor, and to
         the side of the way the robot comes from, not further along it: neither on the
-        line from the robot through them nor on the one it faces along, and a short walk
-        away that does not pass the robot: a spot behind a wall reached round through the
-        doorway the robot stands in, or behind the robot in a narrow hall, is none; one
-        through a door beside them is (None: no free spot within reach)."""
+        line from the robot through them nor on the one it faces along, and in the room
+        they stand in: a spot behind a wall is a walk round through a doorway, maybe the
+        one the robot stands in (None: no free spot within reach)."""
         grid, clearance = self.navigator.grid, self.navigator.clearance()
         x, y, heading = self.robot_pose
         robot = (x, y)
@@ -280,29 +276,24 @@ class Simulation:
         faced = (x + (away + _ALONG_THE_WAY) * math.cos(heading),
                  y + (away + _ALONG_THE_WAY) * math.sin(heading))
         way = MultiLineString([[robot, ahead], [robot, faced]])
-        spots: list[tuple[float, tuple[float, float]]] = []
+        room = self.world.room_at(*position)
+        best: tuple[float, tuple[float, float]] | None = None
         for reach in _STEP_ASIDE:
             for turn in range(_ASIDE_DIRECTIONS):
                 angle = 2 * math.pi * turn / _ASIDE_DIRECTIONS
                 spot = (position[0] + reach * math.cos(angle),
                         position[1] + reach * math.sin(angle))
-                if self.world.room_at(*spot) is None \
+                if room is None or self.world.room_at(*spot) != room \
                         or self.distance_to(spot) < _CLEAR_OF_ROBOT \
                         or way.distance(ShapelyPoint(spot)) < _CLEAR_OF_THE_WAY:
                     continue
                 cell = grid.cell_of(*spot)
                 if grid.blocked[cell]:
                     continue
-                spots.append((min(float(clearance[cell]), 1.0) - 0.2 * reach, spot))
-        for _, spot in sorted(spots, reverse=True):
-            plan = self.navigator.plan(position, spot)
-            if plan is None or plan.length > _ASIDE_WALK:
-                continue
-            # not squeezing past the robot (nearer to it on the way than they stand)
-            if len(plan.waypoints) < 2 or LineString(plan.waypoints).distance(
-                    ShapelyPoint(robot)) >= min(away, _PASSING_ROBOT) - _PASSING_SLACK:
-                return spot
-        return None
+                score = min(float(clearance[cell]), 1.0) - 0.2 * reach
+                if best is None or score > best[0]:
+                    best = (score, spot)
+        return best[1] if best else None
 
     def free_floor_near(self, point: tuple[float, float]) -> tuple[float, float]:
         """The free floor nearest ``point`` in its room (a room's middle may lie under its
