@@ -309,8 +309,7 @@ class BodyRobot(Robot):
     def _way_through(self, door: str) -> WayThrough | None:
         """The widest straight way through ``door`` past what the laser sees now."""
         model = self.world.doors[door]
-        x, y = self.world.point_before_door(door, model.rooms[0], 1.0).xy()
-        normal = (x - model.position[0], y - model.position[1])
+        normal = self.world.door_normal(door)
         # what the laser sees, and the furniture the map has (out of view round a jamb)
         near = ShapelyPoint(model.position).buffer(_FURNITURE_NEAR_DOOR)
         outlines = [np.asarray(placement.footprint.exterior.segmentize(_OUTLINE_STEP).coords)
@@ -490,8 +489,7 @@ class BodyRobot(Robot):
         here = self.pose()
         if model is None or math.dist(here.xy(), model.position) > _SEES_THE_DOOR:
             return None
-        x, y = self.world.point_before_door(door, model.rooms[0], 1.0).xy()
-        normal = (x - model.position[0], y - model.position[1])
+        normal = self.world.door_normal(door)
         self.body.tick()  # a fresh sweep: the door may have moved since the last one
         seen = door_seen_open(self.body.scan(), self.pose(), model.position, normal,
                               model.width)

@@ -510,8 +510,7 @@ class RecoveringNavigation:
         rooms: set[str | None] = {world.room_at(here.x, here.y)}
         across_the_line = self.body.radius + world.model.wall_thickness / 2
         for name, door in world.doors.items():
-            inside = world.point_before_door(name, door.rooms[0], 1.0)
-            nx, ny = inside.x - door.position[0], inside.y - door.position[1]
+            nx, ny = world.door_normal(name)
             dx, dy = here.x - door.position[0], here.y - door.position[1]
             if abs(dx * nx + dy * ny) < across_the_line and \
                     abs(dx * ny - dy * nx) < door.width / 2:

@@ -245,6 +245,13 @@ class World:
             nx, ny = -nx, -ny
         return Pose(x + nx * distance, y + ny * distance, math.atan2(-ny, -nx))
 
+    def door_normal(self, door: str, room: str | None = None) -> tuple[float, float]:
+        """The unit vector across ``door``'s wall pointing into ``room`` (default the
+        first of the door's rooms), as ``point_before_door`` steps along it."""
+        model = self.doors[door]
+        into = self.point_before_door(door, room or model.rooms[0], 1.0)
+        return into.x - model.position[0], into.y - model.position[1]
+
     def plural_of(self, category: str) -> str:
         """The plural of an object category (its declared plural, else ``category + s``)."""
         declared = self.categories.get(category)
@@ -406,8 +413,7 @@ class World:
         points from the hinge to the far jamb)."""
         model = self.doors[door]
         cx, cy = model.position
-        into = self.point_before_door(door, model.swings_into or model.rooms[0], 1.0)
-        nx, ny = into.x - cx, into.y - cy
+        nx, ny = self.door_normal(door, model.swings_into)
         tx, ty = self.door_hinge_direction(door)
         hinge = (cx + tx * model.width / 2, cy + ty * model.width / 2)
         return hinge, (-tx * math.cos(angle) + nx * math.sin(angle),
