@@ -167,14 +167,15 @@ class Give(Skill):
     def monitor(self, context: SkillContext, args: Mapping[str, Any],
                 finished: Outcome) -> Outcome:
         hand = finished.data["hand"]
-        if context.robot.held(hand) is None and not finished.data["given"]:
+        empty = context.robot.held(hand) is None
+        if empty and not finished.data["given"]:
             # the hand is empty, but the robot never let go to them: it fell (a retry has
             # nothing to give)
             context.beliefs.let_go(hand, None)
             return Outcome.failed(ErrorCode.NOT_DELIVERED,
                                    f"the {finished.data['object']} fell from my hand",
                                    person=finished.data["person"])
-        if context.robot.held(hand) is None:
+        if empty:
             context.beliefs.let_go(hand, f"person:{finished.data['person']}")
             return Outcome.verified(f"{finished.data['person']} has the {finished.data['object']}",
                                     person=finished.data["person"])
