@@ -204,7 +204,7 @@ class SimBody(Body):
         if self._scan is None or self._scan.stamp != self.now():
             self._scan = self.laser.scan(self.now(), self.sim.robot_pose,
                                          self.sim.closed_doors(), self.people.legs(),
-                                         frozenset(self.sim.leaves_swung_back))
+                                         self.sim.leaves_swung_back)
             components = self.components
             if components is not None and components.state.get("laser", "running") != "running":
                 # a laser that is off or crashed sees nothing: no beam returns
@@ -390,7 +390,7 @@ class SimBody(Body):
         """What the robot's footprint at (x, y), grown by ``margin``, would touch, or None."""
         radius = self.radius + margin
         if self.geometry.clearance(x, y, self.sim.closed_doors(),
-                                   frozenset(self.sim.leaves_swung_back)) < radius:
+                                   self.sim.leaves_swung_back) < radius:
             return "wall or furniture"
         for name, leg in self.people.named_legs():
             if math.dist((x, y), leg) < radius + FOOT_RADIUS:

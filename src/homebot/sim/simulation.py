@@ -132,7 +132,7 @@ class Simulation:
         self.door_state = {name: door.state for name, door in world.doors.items()}
         #: doors someone opened wide: a leaf the world file left ajar now lies back flat
         #: against the wall
-        self.leaves_swung_back: set[str] = set()
+        self.leaves_swung_back: frozenset[str] = frozenset()
         self.people = {name: _PersonState(person, person.position, person.room)
                        for name, person in world.people.items()}
         start = world.robot.pose
@@ -233,7 +233,7 @@ class Simulation:
         """Someone opens ``door`` all the way: no longer shut, and a leaf left ajar swung
         back against the wall."""
         self.door_state[door] = DoorState.OPEN
-        self.leaves_swung_back.add(door)
+        self.leaves_swung_back |= {door}
 
     def closed_doors(self) -> frozenset[str]:
         """Doors that are shut or locked, or that someone stands in."""
