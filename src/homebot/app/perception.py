@@ -5,8 +5,8 @@ The recogniser of ``homebot.perception`` learns from labelled frames; here the
 simulator renders them (``homebot.sim.tabletop``): generated table-top scenes of
 the world's catalogue objects, segmented by the same pipeline the robot runs.
 A trained recogniser is kept per catalogue for the life of the process, so the
-runs of one benchmark train once; a household's face memory is also kept on disk
-(``homebot.app.cache``).
+runs of one benchmark train once, and on disk (``homebot.app.cache``) for the next
+process, as is a household's face memory.
 """
 
 from __future__ import annotations
@@ -17,11 +17,17 @@ import math
 import os
 import pickle
 from collections.abc import Iterator, Mapping
+from pathlib import Path
 
 import numpy as np
 
 import homebot.perception.faces as faces_module
+import homebot.perception.recognition as recognition_module
+import homebot.perception.tabletop as perception_tabletop_module
+import homebot.robot.camera as robot_camera_module
+import homebot.sim.camera as sim_camera_module
 import homebot.sim.faces as sim_faces_module
+import homebot.sim.tabletop as sim_tabletop_module
 from homebot import progress
 from homebot.app.cache import cache_directory, cache_key
 from homebot.perception.faces import FaceDetector, FaceMemory, Window
@@ -59,7 +65,24 @@ def trained_recogniser(catalogue: Mapping[str, CatalogueEntry], seed: int = 0) -
 
 @functools.lru_cache(maxsize=8)
 def _trained(items: tuple[tuple[str, CatalogueEntry], ...], seed: int) -> Recogniser:
-    catalogue = dict(items)
+    """The trained recogniser, from the disk cache when this code trained it before
+    (rendering and segmenting its views takes seconds of CPU in every new process)."""
+    key = cache_key((items, seed, _VIEWS_PER_OBJECT, _OBJECTS_PER_SCENE),
+                    (recognition_module, perception_tabletop_module, sim_tabletop_module,
+                     sim_camera_module, robot_camera_module))
+    cached = cache_directory() / f"recogniser-{key}.pickle"
+    try:
+        loaded = pickle.loads(cached.read_bytes())
+        if isinstance(loaded, Recogniser):
+            return loaded
+    except (OSError, pickle.UnpicklingError, EOFError, AttributeError):
+        pass
+    recogniser = _train(dict(items), seed)
+    _keep(cached, recogniser)
+    return recogniser
+
+
+def _train(catalogue: dict[str, CatalogueEntry], seed: int) -> Recogniser:
     rng = np.random.default_rng([seed, 1515])
     mean_objects = sum(_OBJECTS_PER_SCENE) / 2 - 0.5
     scenes = math.ceil(_VIEWS_PER_OBJECT * len(catalogue) / mean_objects)
@@ -147,13 +170,18 @@ def _taught(names: tuple[str, ...]) -> FaceMemory:
                         for _ in range(_ENROLMENT_VIEWS)] for name in names}
         with progress.task(f"enrolling {len(names)} people"):
             memory.enrol_people(views)
+    _keep(cached, memory)
+    return memory
+
+
+def _keep(cached: Path, model: object) -> None:
+    """Pickle ``model`` to ``cached`` for the next process."""
     try:
         cached.parent.mkdir(parents=True, exist_ok=True)
         # written whole, then renamed: another process may be reading it meanwhile
         partial = cached.with_suffix(f".{os.getpid()}.partial")
-        partial.write_bytes(pickle.dumps(memory))
+        partial.write_bytes(pickle.dumps(model))
         os.replace(partial, cached)
     except OSError:
         pass  # a read-only home: train again next time
-    return memory
 
