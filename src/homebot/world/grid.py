@@ -122,7 +122,7 @@ def _within(line: BaseGeometry, grid_x: np.ndarray, grid_y: np.ndarray, reach: f
     Exact distances are taken only for the cells inside the line's buffer grown by a cell,
     which holds every cell within reach: a whole-grid distance costs seconds at the
     simulator's 2 cm."""
-    band = line.buffer(reach + resolution)
+    band: BaseGeometry = line.buffer(reach + resolution)
     if near is not None:
         band = band.intersection(near.buffer(resolution))
     candidates = _contains(band, grid_x, grid_y)
