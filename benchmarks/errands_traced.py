@@ -30,7 +30,8 @@ def main(world_name: str, tasks: int, seed: int) -> None:
         report = ran.report
         why = "" if ran.verified else (f"{report.reason!r} said {report.speech[-1:]} truth: "
                                        f"{'done' if ran.done else 'not done'}")
-        print(index, errand.kind.value, "OK" if ran.verified else "FAIL",
+        outcome = "OK" if ran.verified else "IMPOSSIBLE" if ran.impossible else "FAIL"
+        print(index, errand.kind.value, outcome,
               f"{report.sim_time:.1f} s", f"{ran.wall:.1f} s wall", why, flush=True)
     print(json.dumps(result.to_dict()))
 

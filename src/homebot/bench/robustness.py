@@ -47,6 +47,10 @@ class ModeResult:
     verified: int = 0
     told_why: int = 0
     failed: int = 0
+    #: errands made impossible by the disturbances (the object to fetch taken out of the
+    #: home), and of those, how many the robot refused without claiming success
+    impossible: int = 0
+    impossible_refused: int = 0
     sim_times: list[float] = field(default_factory=list)
     wall_times: list[float] = field(default_factory=list)
     #: per errand kind: [tasks, verified done]
@@ -60,6 +64,9 @@ class ModeResult:
         return {
             "mode": self.mode, "tasks": self.tasks, "delivered": self.delivered,
             "verified_delivery_rate": round(self.verified / max(self.tasks, 1), 4),
+            "impossible": self.impossible, "impossible_refused": self.impossible_refused,
+            "verified_of_possible_rate": round(
+                self.verified / max(self.tasks - self.impossible, 1), 4),
             "delivery_rate": round(self.delivered / max(self.tasks, 1), 4),
             "failed": self.failed, "failed_and_told_why": self.told_why,
             "median_sim_time_s": round(statistics.median(self.sim_times or [0.0]), 1),
@@ -91,6 +98,9 @@ class ModeResult:
             tally = self.by_disturbance.setdefault(what, [0, 0])
             tally[0] += 1
             tally[1] += errand_run.verified
+        if errand_run.impossible:
+            self.impossible += 1
+            self.impossible_refused += not report.success
         if not report.success:
             self.failed += 1
             self.told_why += any(text.startswith("I am sorry") for text in report.speech)
@@ -137,6 +147,14 @@ class ErrandRun:
     def verified(self) -> bool:
         """Done by the truth and reported done by the robot."""
         return self.done and self.report.success
+
+    @property
+    def impossible(self) -> bool:
+        """The object to fetch was taken out of the home before the run began: no robot
+        could deliver it, and the right outcome is to say so."""
+        return self.errand.kind is ErrandKind.FETCH and any(
+            event.kind == "sim.disturbance" and event.data.get("what") == "object_missing"
+            and event.data.get("object") == self.errand.obj for event in self.events)
 
 
 def run_errand(world: World, errand: Errand, run_seed: int, *, level: float = 1.0,
@@ -196,11 +214,14 @@ def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, A
     if console is not None:
         table = Table(title=f"Errands ({args.errands}), {args.tasks} tasks, disturbances "
                             f"x{args.level}, {args.fidelity} robot")
-        for column in ("mode", "verified delivery", "delivered", "failed", "told why",
-                       "median sim time", "median wall time"):
+        for column in ("mode", "verified delivery", "of the possible", "impossible, refused",
+                       "delivered", "failed", "told why", "median sim time",
+                       "median wall time"):
             table.add_column(column)
         for result in results:
             table.add_row(result["mode"], f"{100 * result['verified_delivery_rate']:.1f} %",
+                          f"{100 * result['verified_of_possible_rate']:.1f} %",
+                          f"{result['impossible_refused']}/{result['impossible']}",
                           str(result["delivered"]), str(result["failed"]),
                           str(result["failed_and_told_why"]),
                           f"{result['median_sim_time_s']} s", f"{result['median_wall_ms']} ms")
