@@ -289,3 +289,34 @@ def test_making_way_just_past_a_doorway_never_goes_back_through_it() -> None:
     assert world.room_at(*simulation.robot_pose[:2]) == "dining room"
     assert simulation.robot_pose[1] < 3.0 - 0.3  # never into the doorway either
     assert simulation.collisions == []
+
+
+class _SqueezeThroughHer(RecoveringNavigation):
+    """A narrow way that always seems to open once the robot has waited, straight
+    through the person who stays in the doorway (it never leads anywhere)."""
+
+    def plan_wide(self, here: Pose, target: Pose, avoid_doors: frozenset[str],
+                  obstacles: np.ndarray, squeeze: bool = False,
+                  extended: np.ndarray | None = None,
+                  ) -> tuple[tuple[float, float], ...] | None:
+        wide = super().plan_wide(here, target, avoid_doors, obstacles, False, extended)
+        if wide is not None or not squeeze:
+            return wide
+        return here.xy(), _INSIDE_BATHROOM, target.xy()
+
+
+def test_narrow_ways_that_bring_the_robot_no_nearer_do_not_restart_its_patience(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    # Before, every narrow way tried restarted the wait: the robot stood behind her until
+    # the goal's whole budget ran out, and was never blocked long enough to ask her.
+    simulation, body = _sim(apartment, apartment_navigator)
+    body.teleport(_HALL)
+    simulation.move_person("Maria", _INSIDE_BATHROOM)
+    policy = RecoveryPolicy(patience=6.0, make_way_after=2.0, stuck_after=2.0)
+    navigation = _SqueezeThroughHer(body, apartment_navigator, MotionSearchPlanner(),
+                                    lambda: _truth(simulation), policy)
+    attempt = navigation.drive(_AT_THE_SINK)
+    assert attempt.reason is StopReason.BLOCKED
+    assert attempt.replans >= 2  # the narrow way was tried
+    assert attempt.duration < 3 * policy.patience
+    assert simulation.collisions == []

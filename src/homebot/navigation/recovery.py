@@ -344,13 +344,14 @@ class RecoveringNavigation:
         obstacles = np.zeros((0, 2))
         extended = np.zeros(0, dtype=bool)
         while body.now() < deadline:
+            # Narrow ways tried meanwhile count as waiting too, unless they got it nearer.
+            if waiting_since is not None and body.now() - waiting_since >= policy.patience:
+                reason = StopReason.BLOCKED
+                break
             if path is None:
                 if waiting_since is None:
                     waiting_since = body.now()
                     waiting_from = math.dist(self.localise().xy(), target.xy())
-                elif body.now() - waiting_since >= policy.patience:
-                    reason = StopReason.BLOCKED
-                    break
                 waits += 1
                 if body.now() - max(waiting_since, made_way_at) >= policy.make_way_after:
                     made_way_at = body.now()
