@@ -68,8 +68,16 @@ _SIDE_BY_SIDE = 0.9
 #: may be them after all: seen past someone's shoulder, or in another light)
 _DROPPED_FOR = 4.0
 _TRAIL_STEP = 0.15  #: metres between the points kept of the way the person walked
+#: metres between two points of the trail beyond which the robot may not fit along the
+#: straight line between them (the person was hidden in between)
+_TRAIL_GAP = 0.5
 _ON_THE_TRAIL = 1.0  #: metres from their trail within which the robot drives along it
 _DOORWAY_REACH = 0.6  #: metres either side of a doorway where the robot's way is squared
+#: metres either side of a doorway's middle, across its wall, within which the robot
+#: stands in its frame
+_IN_THE_FRAME = 0.3
+#: metres off a doorway's axis within which the robot in front of it drives straight through
+_ON_THE_AXIS = 0.1
 _STILL_BEFORE_LOOKING = 0.5  #: seconds a person stands still before the robot reads their arms
 #: metres from the person beyond which the head camera sees their arms whole (nearer, a
 #: hand held out reads as anything)
@@ -486,8 +494,29 @@ class Following:
         elif target.still_since is None:
             target.still_since = now
         target.position, target.velocity, target.seen_at = track.position, track.velocity, now
-        if not target.trail or math.dist(target.trail[-1], track.position) >= _TRAIL_STEP:
+        if not target.trail:
             target.trail.append(track.position)
+        elif math.dist(target.trail[-1], track.position) >= _TRAIL_STEP:
+            target.trail.extend(self._bridged(target.trail[-1], track.position))
+
+    def _bridged(self, last: tuple[float, float], seen: tuple[float, float]
+                 ) -> list[tuple[float, float]]:
+        """The trail's points from ``last`` on to ``seen``, where the person was found
+        again after being hidden: the straight line between them where the robot fits
+        along it, else the map's way round (a door frame or a corner stands between
+        them; the straight line led the robot into the jamb)."""
+        if math.dist(last, seen) <= _TRAIL_GAP or \
+                self._in_sight(last, seen, self.body.radius + _PASSING):
+            return [seen]
+        plan = self.navigator.plan(last, seen)
+        if plan is None:
+            return [seen]
+        way = [(float(x), float(y)) for x, y in plan.waypoints]
+        way[-1] = seen
+        steps = max(1, math.ceil(polyline_length(way) / _TRAIL_STEP))
+        points = [found[0] for index in range(1, steps)
+                  if (found := point_along(way, index * _TRAIL_STEP)) is not None]
+        return [*points, seen]
 
     def _predicted(self, target: _Target, now: float) -> tuple[float, float]:
         ahead = min(self.parameters.prediction, now - target.seen_at)
@@ -565,7 +594,12 @@ class Following:
                 nearest = next((int(index) for index in near[::-1]
                                 if self._in_sight(here, walked[int(index)])), nearest)
                 del walked[:nearest]
-                path = [here, *self._off_the_walls(walked[1:])]
+                # on to the point after the nearest, or to the nearest first where the
+                # straight way to the one after it is blocked (a trail that jumps on past
+                # a door frame, where the person was found again)
+                ahead = walked[1:] if len(walked) < 2 or self._in_sight(here, walked[1]) \
+                    else walked
+                path = [here, *self._off_the_walls(ahead)]
                 if aim != target.position:
                     plan = self.navigator.plan(path[-1], aim)
                     path.extend(plan.waypoints[1:] if plan is not None else [aim])
@@ -582,14 +616,16 @@ class Following:
             return [here, aim]
         return [tuple(point) for point in plan.waypoints]  # type: ignore[misc]
 
-    def _in_sight(self, start: tuple[float, float], end: tuple[float, float]) -> bool:
-        """Whether the robot's body fits along the straight line between two points, by
-        the map's walls and furniture."""
+    def _in_sight(self, start: tuple[float, float], end: tuple[float, float],
+                  clearance: float | None = None) -> bool:
+        """Whether the robot's body (or a disc of ``clearance`` metres) fits along the
+        straight line between two points, by the map's walls and furniture."""
         navigator = self.navigator
+        needed = self.body.radius if clearance is None else clearance
         steps = max(1, math.ceil(math.dist(start, end) / navigator.grid.resolution))
         return all(navigator.clearance_at(start[0] + t * (end[0] - start[0]),
                                           start[1] + t * (end[1] - start[1]))
-                   >= self.body.radius for t in np.linspace(0.0, 1.0, steps + 1))
+                   >= needed for t in np.linspace(0.0, 1.0, steps + 1))
 
     def _off_the_walls(self, points: list[tuple[float, float]]) -> list[tuple[float, float]]:
         """The points of a person's trail moved off the map's walls and furniture to where
@@ -618,14 +654,19 @@ class Following:
         after it, leads the robot into the jamb). The robot stops short of the person
         only on a path that ends at them (``_DoorwayPath`` marks one that does not)."""
         world = self.world
+        leaving = self._out_of_doorway(path)
+        if leaving is not None:
+            return leaving
         crossings = []
         for name, door in world.doors.items():
             inside = [index for index, point in enumerate(path)
                       if math.dist(point, door.position) <= _DOORWAY_REACH]
-            if not inside or inside[0] == 0:
+            if not inside:
                 continue
             first, last = inside[0], inside[-1]
-            before = world.room_at(*path[first - 1])
+            # the robot itself near the doorway: its side of the wall is where it stands
+            before = world.room_at(*path[first - 1]) if first > 0 else \
+                self._side_of(name, path[0])
             after = world.room_at(*path[min(last + 1, len(path) - 1)])
             if before is not None and after is not None and before != after and \
                     before in door.rooms and after in door.rooms:
@@ -635,7 +676,51 @@ class Following:
         first, name, before, after = min(crossings)
         square = [world.point_before_door(name, room, _DOORWAY_REACH).xy()
                   for room in (before, after)]
-        return _DoorwayPath([*path[:first], square[0], world.doors[name].position, square[1]])
+        middle = world.doors[name].position
+        if first == 0:
+            # from beside the doorway: onto its axis first, as far out as the robot stands
+            # (unless it stands on it already)
+            offset = (path[0][0] - middle[0], path[0][1] - middle[1])
+            normal = world.door_normal(name)
+            across = offset[0] * normal[0] + offset[1] * normal[1]
+            along = abs(offset[0] * normal[1] - offset[1] * normal[0])
+            out = math.copysign(max(abs(across), _IN_THE_FRAME), across)
+            axis = (middle[0] + out * normal[0], middle[1] + out * normal[1])
+            start = [path[0]] if along <= _ON_THE_AXIS else [path[0], axis]
+            return _DoorwayPath([*start, middle, square[1]])
+        return _DoorwayPath([*path[:first], square[0], middle, square[1]])
+
+    def _side_of(self, door: str, point: tuple[float, float]) -> str:
+        """The room of ``door``'s two on whose side of its wall ``point`` lies."""
+        model = self.world.doors[door]
+        normal = self.world.door_normal(door)
+        across = (point[0] - model.position[0]) * normal[0] + \
+            (point[1] - model.position[1]) * normal[1]
+        return model.rooms[0] if across >= 0.0 else model.rooms[1]
+
+    def _out_of_doorway(self, path: list[tuple[float, float]]) -> _DoorwayPath | None:
+        """Where the robot stands in a doorway's frame: straight out of it, to the point
+        ``_DOORWAY_REACH`` in front of it on the side ``path`` leaves it by (from inside
+        the frame the way on to the person turns at a slant into the jamb); None when the
+        robot stands in no doorway, or the person stands just out of it."""
+        here = path[0]
+        for name, door in self.world.doors.items():
+            normal = self.world.door_normal(name)
+            offset = (here[0] - door.position[0], here[1] - door.position[1])
+            across = offset[0] * normal[0] + offset[1] * normal[1]
+            along = abs(offset[0] * normal[1] - offset[1] * normal[0])
+            if abs(across) > _IN_THE_FRAME or along > door.width / 2:
+                continue
+            out = next((point for point in path[1:]
+                        if math.dist(point, door.position) > _DOORWAY_REACH), path[-1])
+            side = 1.0 if (out[0] - door.position[0]) * normal[0] + \
+                (out[1] - door.position[1]) * normal[1] >= 0.0 else -1.0
+            beyond = (door.position[0] + side * _DOORWAY_REACH * normal[0],
+                      door.position[1] + side * _DOORWAY_REACH * normal[1])
+            if math.dist(beyond, path[-1]) < self.parameters.distance:
+                return None  # the person stands just out there: come up to them
+            return _DoorwayPath([here, beyond])
+        return None
 
     def _command(self, pose: Pose, aim: tuple[float, float],
                  path: list[tuple[float, float]], seen: bool) -> Twist:
