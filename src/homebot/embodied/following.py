@@ -64,9 +64,13 @@ _SURELY_SOMEONE_ELSE = 1.5
 _IN_THE_WAY = 0.4
 #: metres between two people within which the camera cannot tell which is which
 _SIDE_BY_SIDE = 0.9
-#: seconds a track dropped for showing other clothes is not taken for the person again (it
-#: may be them after all: seen past someone's shoulder, or in another light)
+#: seconds a track dropped for showing other clothes is not taken for the person again;
+#: after, only when the camera sees their clothes on it (it may be them after all: seen
+#: past someone's shoulder, or in another light)
 _DROPPED_FOR = 4.0
+#: metres from where a walking person lost was heading within which a candidate standing
+#: still may be them (they stopped, at a corner or a door); farther, only the camera tells
+_STOPPED_NEAR = 1.5
 _TRAIL_STEP = 0.15  #: metres between the points kept of the way the person walked
 #: metres between two points of the trail beyond which the robot may not fit along the
 #: straight line between them (the person was hidden in between)
@@ -91,6 +95,7 @@ _STALLED = 2.5  #: ... within so many seconds, or it is stalled ...
 _DETOUR = 4.0  #: ... and plans round what it sees for so long
 _PURSUIT_TURN = 2.0  #: rad/s of turn per radian off that point
 _TURN_ON_THE_SPOT = 0.9  #: radians off it beyond which the robot turns before driving
+_DOORWAY_TURN = 0.3  #: ... and on a way square through a doorway
 _PURSUIT_SLOWING = 1.5  #: m/s per metre still to go (slowing to a stop at the end)
 _PURSUIT_CLEAR = 0.05  #: metres beside the footprint the strip ahead must be free
 _PURSUIT_STOPPING = 1.0  #: seconds of driving ahead that must be free
@@ -419,18 +424,31 @@ class Following:
                       and track.seen >= now - 1e-9
                       and math.dist(track.position, predicted) <= gate]
         for chosen in sorted(candidates, key=lambda track: math.dist(track.position, predicted)):
-            if chosen.id in target.others:
-                # taken for someone else while the robot followed a track that had slipped
-                # onto them: only the camera, seeing the person's clothes, can tell
+            if self._needs_clothes(target, chosen, predicted):
+                # only the camera, seeing the person's clothes, can tell
                 if not self._wears_same(pose, target, chosen.position):
                     continue
             elif self._wears_other(pose, target, chosen.position):
                 target.others.add(chosen.id)
                 continue
             target.track_id, target.mismatches = chosen.id, 0
+            target.still_since = None  # how long someone stands is their own track's
             self._take(target, chosen, now)
             return True
         return False
+
+    def _needs_clothes(self, target: _Target, track: Track,
+                       predicted: tuple[float, float]) -> bool:
+        """Whether ``track`` is taken for the person lost only when the camera sees their
+        clothes on it: it was taken for someone else while the robot followed a track
+        that had slipped onto them, or it was dropped for showing other clothes, or it
+        stands still far from where the person, walking, was heading (someone standing
+        there all along: a passer-by at the end of their crossing)."""
+        if track.id in target.others or track.id in target.dropped:
+            return True
+        walking = math.hypot(*target.velocity) >= self.parameters.still_speed
+        still = math.hypot(*track.velocity) < self.parameters.still_speed
+        return walking and still and math.dist(track.position, predicted) > _STOPPED_NEAR
 
     def _wears_other(self, pose: Pose, target: _Target, where: tuple[float, float]) -> bool:
         """Whether the camera sees nobody at ``where``, or someone dressed unlike the
@@ -679,14 +697,16 @@ class Following:
         middle = world.doors[name].position
         if first == 0:
             # from beside the doorway: onto its axis first, as far out as the robot stands
-            # (unless it stands on it already)
+            # (unless it stands on it already, or fits straight into the doorway)
             offset = (path[0][0] - middle[0], path[0][1] - middle[1])
             normal = world.door_normal(name)
             across = offset[0] * normal[0] + offset[1] * normal[1]
             along = abs(offset[0] * normal[1] - offset[1] * normal[0])
             out = math.copysign(max(abs(across), _IN_THE_FRAME), across)
             axis = (middle[0] + out * normal[0], middle[1] + out * normal[1])
-            start = [path[0]] if along <= _ON_THE_AXIS else [path[0], axis]
+            straight = along <= _ON_THE_AXIS or \
+                self._in_sight(path[0], middle, self.body.radius + _PURSUIT_CLEAR)
+            start = [path[0]] if straight else [path[0], axis]
             return _DoorwayPath([*start, middle, square[1]])
         return _DoorwayPath([*path[:first], square[0], middle, square[1]])
 
@@ -755,7 +775,8 @@ class Following:
         error = wrap_angle(math.atan2(target[1] - pose.y, target[0] - pose.x) - pose.theta)
         limits = body.limits
         turn = max(-limits.angular, min(limits.angular, _PURSUIT_TURN * error))
-        if abs(error) > _TURN_ON_THE_SPOT:
+        # square through a doorway: an arc into it meets the jamb
+        if abs(error) > (_DOORWAY_TURN if isinstance(path, _DoorwayPath) else _TURN_ON_THE_SPOT):
             return Twist(0.0, 0.0, turn)
         speed = min(limits.linear, _PURSUIT_SLOWING * remaining) * math.cos(error)
         ahead = body.radius + _PURSUIT_CLEAR + speed * _PURSUIT_STOPPING
