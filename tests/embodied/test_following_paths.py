@@ -106,3 +106,16 @@ def test_someone_standing_far_from_where_the_lost_person_walked_needs_their_clot
     target.dropped[7] = -100.0
     assert follower._needs_clothes(
         target, _track((3.4, 5.8), velocity=(0.4, 0.0), number=7), heading)
+
+
+def test_a_follower_heading_into_a_wall_beside_its_way_turns_rather_than_crawl(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    # Follow Me seed 262's kind: the robot came out of a doorway heading across the
+    # corridor, the person walked on along it; the straight strip ahead met the far wall,
+    # and the local controller crawled at 0.1 m/s. The way along the corridor is free.
+    here = Pose(8.0, 5.5, 2.3)
+    follower = _follower(apartment, apartment_navigator, here)
+    follower.body.tick()
+    twist = follower._pursue(here, [here.xy(), (7.5, 5.5), (6.5, 5.5)])
+    assert twist is not None
+    assert twist.vx == 0.0 and twist.wz > 0.3  # turns left, towards the corridor's way

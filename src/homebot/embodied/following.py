@@ -96,6 +96,9 @@ _DETOUR = 4.0  #: ... and plans round what it sees for so long
 _PURSUIT_TURN = 2.0  #: rad/s of turn per radian off that point
 _TURN_ON_THE_SPOT = 0.9  #: radians off it beyond which the robot turns before driving
 _DOORWAY_TURN = 0.3  #: ... and on a way square through a doorway
+#: radians off that point beyond which a robot whose heading is blocked, but not its way
+#: to the point, turns on the spot rather than leave the drive to the local controller
+_TURN_FREELY = 0.15
 _PURSUIT_SLOWING = 1.5  #: m/s per metre still to go (slowing to a stop at the end)
 _PURSUIT_CLEAR = 0.05  #: metres beside the footprint the strip ahead must be free
 _PURSUIT_STOPPING = 1.0  #: seconds of driving ahead that must be free
@@ -765,8 +768,9 @@ class Following:
     def _pursue(self, pose: Pose, path: list[tuple[float, float]]) -> Twist | None:
         """Pure pursuit of a point a short way along ``path`` (which runs where the person
         walked, or square through a doorway): turn on the spot towards it when it lies
-        well off the heading, else drive at it, slowing near the path's end. None when
-        something stands in the strip the base would drive through (the local controller
+        well off the heading, else drive at it, slowing near the path's end; where the strip
+        the base would drive through is blocked but the strip towards that point is
+        free, turn on the spot. None when something stands in both (the local controller
         then steers round it)."""
         body = self.body
         found = point_along(path, _PURSUIT)
@@ -781,11 +785,17 @@ class Following:
         speed = min(limits.linear, _PURSUIT_SLOWING * remaining) * math.cos(error)
         ahead = body.radius + _PURSUIT_CLEAR + speed * _PURSUIT_STOPPING
         points = body.scan().points()
-        if len(points):
-            blocked = (points[:, 0] > 0.0) & (points[:, 0] < ahead) & \
-                (np.abs(points[:, 1]) < body.radius + _PURSUIT_CLEAR)
-            if blocked.any():
-                return None
+        width = body.radius + _PURSUIT_CLEAR
+        if len(points) and _in_strip(points, ahead, width):
+            # the heading is blocked but the way to the point steered for is free (a wall
+            # beside a turn, the robot's arc too wide): turn towards it first
+            cos, sin = math.cos(error), math.sin(error)
+            towards = np.column_stack((points[:, 0] * cos + points[:, 1] * sin,
+                                       points[:, 1] * cos - points[:, 0] * sin))
+            reach = min(ahead, math.dist(pose.xy(), target) + width)
+            if abs(error) > _TURN_FREELY and not _in_strip(towards, reach, width):
+                return Twist(0.0, 0.0, turn)
+            return None
         return Twist(speed, 0.0, turn)
 
     def _stop_base(self) -> None:
@@ -795,6 +805,13 @@ class Following:
             if body.odometry().twist.is_zero():
                 break
             body.tick()
+
+
+def _in_strip(points: np.ndarray, length: float, half_width: float) -> bool:
+    """Whether any of ``points`` (n, 2), in the robot's frame, lies in the strip
+    ``length`` metres straight ahead of it and ``half_width`` either side."""
+    return bool(((points[:, 0] > 0.0) & (points[:, 0] < length) &
+                 (np.abs(points[:, 1]) < half_width)).any())
 
 
 class _DoorwayPath(list[tuple[float, float]]):
