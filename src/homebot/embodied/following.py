@@ -701,10 +701,8 @@ class Following:
         if first == 0:
             # from beside the doorway: onto its axis first, as far out as the robot stands
             # (unless it stands on it already, or fits straight into the doorway)
-            offset = (path[0][0] - middle[0], path[0][1] - middle[1])
             normal = world.door_normal(name)
-            across = offset[0] * normal[0] + offset[1] * normal[1]
-            along = abs(offset[0] * normal[1] - offset[1] * normal[0])
+            across, along = self._off_door(name, path[0])
             out = math.copysign(max(abs(across), _IN_THE_FRAME), across)
             axis = (middle[0] + out * normal[0], middle[1] + out * normal[1])
             straight = along <= _ON_THE_AXIS or \
@@ -715,11 +713,17 @@ class Following:
 
     def _side_of(self, door: str, point: tuple[float, float]) -> str:
         """The room of ``door``'s two on whose side of its wall ``point`` lies."""
-        model = self.world.doors[door]
+        rooms = self.world.doors[door].rooms
+        return rooms[0] if self._off_door(door, point)[0] >= 0.0 else rooms[1]
+
+    def _off_door(self, door: str, point: tuple[float, float]) -> tuple[float, float]:
+        """How far ``point`` lies from ``door``'s middle across its wall (signed, positive
+        into the door's first room) and along it (unsigned), metres."""
+        x, y = self.world.doors[door].position
         normal = self.world.door_normal(door)
-        across = (point[0] - model.position[0]) * normal[0] + \
-            (point[1] - model.position[1]) * normal[1]
-        return model.rooms[0] if across >= 0.0 else model.rooms[1]
+        offset = (point[0] - x, point[1] - y)
+        return (offset[0] * normal[0] + offset[1] * normal[1],
+                abs(offset[0] * normal[1] - offset[1] * normal[0]))
 
     def _out_of_doorway(self, path: list[tuple[float, float]]) -> _DoorwayPath | None:
         """Where the robot stands in a doorway's frame: straight out of it, to the point
@@ -728,16 +732,13 @@ class Following:
         robot stands in no doorway, or the person stands just out of it."""
         here = path[0]
         for name, door in self.world.doors.items():
-            normal = self.world.door_normal(name)
-            offset = (here[0] - door.position[0], here[1] - door.position[1])
-            across = offset[0] * normal[0] + offset[1] * normal[1]
-            along = abs(offset[0] * normal[1] - offset[1] * normal[0])
+            across, along = self._off_door(name, here)
             if abs(across) > _IN_THE_FRAME or along > door.width / 2:
                 continue
             out = next((point for point in path[1:]
                         if math.dist(point, door.position) > _DOORWAY_REACH), path[-1])
-            side = 1.0 if (out[0] - door.position[0]) * normal[0] + \
-                (out[1] - door.position[1]) * normal[1] >= 0.0 else -1.0
+            side = 1.0 if self._off_door(name, out)[0] >= 0.0 else -1.0
+            normal = self.world.door_normal(name)
             beyond = (door.position[0] + side * _DOORWAY_REACH * normal[0],
                       door.position[1] + side * _DOORWAY_REACH * normal[1])
             if math.dist(beyond, path[-1]) < self.parameters.distance:
