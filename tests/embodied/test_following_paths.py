@@ -1,5 +1,6 @@
-"""The way a follower drives where a doorway stands between it and the person
-(``homebot.embodied.following``): fast checks on the path alone, no episode run."""
+"""How a follower drives where a doorway or a wall stands between it and the person, and
+whom it takes for them once they were lost (``homebot.embodied.following``): fast checks
+on the follower's choices alone, no episode run."""
 
 from __future__ import annotations
 

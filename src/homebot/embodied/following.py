@@ -5,8 +5,11 @@ The robot keeps the person it follows as one track of its leg tracker
 detections). It drives along the way the person walked (their trail: free floor, and
 through doorways where people go), steering by pure pursuit a short way ahead and stopping
 ``FollowParameters.distance`` short of them; each doorway on the way is crossed square (a
-point in front of it, its middle, a point beyond). Where something stands in the strip the
-base would drive through, the local controller steers round it; where the person's way is
+point in front of it, its middle, a point beyond), a robot standing in a doorway's frame
+leaves it straight before turning, and where the person was hidden and found again past a
+door frame, the trail's gap is bridged by the map's way round. Where something stands in
+the strip the base would drive through, the robot turns towards its way on when that is
+free, else the local controller steers round it; where the person's way is
 too tight for the robot (someone seated beside it), the robot plans round what the laser
 sees that the map lacks.
 
