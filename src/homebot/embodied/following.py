@@ -15,18 +15,19 @@ sees that the map lacks.
 
 Someone crossing between the robot and the person, a corner or a door frame hides the
 person. The tracker coasts the track for a while; when it ends, the robot re-identifies
-the person among the tracks that start near where the person was heading. A track that
-was seen at the same time as the person, somewhere else, is someone else, and is taken
-for them again only when the camera sees their clothes. The head camera keeps the person
-in view: what they wear (the colour of their top, as ``PeopleLook.clothes_at`` reads it)
-is learnt at the start and checked every ``FollowParameters.check_every`` seconds, so a
-track that slipped onto someone else (two people passing close, the tracker's legs
-swapped) is dropped for a while, and a candidate in other clothes is not taken. The
-camera is not asked while someone nearer stands in its line of sight, or someone stands
-right beside the person. Faces are no help here: the person walks ahead, their back to
-the robot. Not found again, the robot keeps to where the person was heading; after
-``FollowParameters.give_up`` seconds it reports the person lost. Stalled by someone
-standing on its way, the robot asks them, once, to let it through.
+the person among the tracks that start near where the person was heading. A track that was
+seen at the same time as the person, somewhere else, is someone else, and is taken for
+them again only when the camera sees their clothes; so is a track once dropped for other
+clothes, and someone standing still far from where the walking person was heading. The
+head camera keeps the person in view: what they wear (the colour of their top, as
+``PeopleLook.clothes_at`` reads it) is learnt at the start and checked every
+``FollowParameters.check_every`` seconds, so a track that slipped onto someone else (two
+people passing close, the tracker's legs swapped) is dropped for a while, and a candidate
+in other clothes is not taken. The camera is not asked while someone nearer stands in its
+line of sight, or someone stands right beside the person. Faces are no help here: the
+person walks ahead, their back to the robot. Not found again, the robot keeps to where the
+person was heading; after ``FollowParameters.give_up`` seconds it reports the person lost.
+Stalled by someone standing on its way, the robot asks them, once, to let it through.
 
 Following ends when the person says "stop" (the microphone, heard in the ``stop``
 state), shows the stop gesture (when the robot can read gestures), stands still in the
