@@ -5,25 +5,29 @@ The robot keeps the person it follows as one track of its leg tracker
 detections). It drives along the way the person walked (their trail: free floor, and
 through doorways where people go), steering by pure pursuit a short way ahead and stopping
 ``FollowParameters.distance`` short of them; each doorway on the way is crossed square (a
-point in front of it, its middle, a point beyond). Where something stands in the strip the
-base would drive through, the local controller steers round it; where the person's way is
+point in front of it, its middle, a point beyond), a robot standing in a doorway's frame
+leaves it straight before turning, and where the person was hidden and found again past a
+door frame, the trail's gap is bridged by the map's way round. Where something stands in
+the strip the base would drive through, the robot turns towards its way on when that is
+free, else the local controller steers round it; where the person's way is
 too tight for the robot (someone seated beside it), the robot plans round what the laser
 sees that the map lacks.
 
 Someone crossing between the robot and the person, a corner or a door frame hides the
 person. The tracker coasts the track for a while; when it ends, the robot re-identifies
-the person among the tracks that start near where the person was heading. A track that
-was seen at the same time as the person, somewhere else, is someone else, and is taken
-for them again only when the camera sees their clothes. The head camera keeps the person
-in view: what they wear (the colour of their top, as ``PeopleLook.clothes_at`` reads it)
-is learnt at the start and checked every ``FollowParameters.check_every`` seconds, so a
-track that slipped onto someone else (two people passing close, the tracker's legs
-swapped) is dropped for a while, and a candidate in other clothes is not taken. The
-camera is not asked while someone nearer stands in its line of sight, or someone stands
-right beside the person. Faces are no help here: the person walks ahead, their back to
-the robot. Not found again, the robot keeps to where the person was heading; after
-``FollowParameters.give_up`` seconds it reports the person lost. Stalled by someone
-standing on its way, the robot asks them, once, to let it through.
+the person among the tracks that start near where the person was heading. A track that was
+seen at the same time as the person, somewhere else, is someone else, and is taken for
+them again only when the camera sees their clothes; so is a track once dropped for other
+clothes, and someone standing still far from where the walking person was heading. The
+head camera keeps the person in view: what they wear (the colour of their top, as
+``PeopleLook.clothes_at`` reads it) is learnt at the start and checked every
+``FollowParameters.check_every`` seconds, so a track that slipped onto someone else (two
+people passing close, the tracker's legs swapped) is dropped for a while, and a candidate
+in other clothes is not taken. The camera is not asked while someone nearer stands in its
+line of sight, or someone stands right beside the person. Faces are no help here: the
+person walks ahead, their back to the robot. Not found again, the robot keeps to where the
+person was heading; after ``FollowParameters.give_up`` seconds it reports the person lost.
+Stalled by someone standing on its way, the robot asks them, once, to let it through.
 
 Following ends when the person says "stop" (the microphone, heard in the ``stop``
 state), shows the stop gesture (when the robot can read gestures), stands still in the
@@ -64,12 +68,24 @@ _SURELY_SOMEONE_ELSE = 1.5
 _IN_THE_WAY = 0.4
 #: metres between two people within which the camera cannot tell which is which
 _SIDE_BY_SIDE = 0.9
-#: seconds a track dropped for showing other clothes is not taken for the person again (it
-#: may be them after all: seen past someone's shoulder, or in another light)
+#: seconds a track dropped for showing other clothes is not taken for the person again;
+#: after, only when the camera sees their clothes on it (it may be them after all: seen
+#: past someone's shoulder, or in another light)
 _DROPPED_FOR = 4.0
+#: metres from where a walking person lost was heading within which a candidate standing
+#: still may be them (they stopped, at a corner or a door); farther, only the camera tells
+_STOPPED_NEAR = 1.5
 _TRAIL_STEP = 0.15  #: metres between the points kept of the way the person walked
+#: metres between two points of the trail beyond which the robot may not fit along the
+#: straight line between them (the person was hidden in between)
+_TRAIL_GAP = 0.5
 _ON_THE_TRAIL = 1.0  #: metres from their trail within which the robot drives along it
 _DOORWAY_REACH = 0.6  #: metres either side of a doorway where the robot's way is squared
+#: metres either side of a doorway's middle, across its wall, within which the robot
+#: stands in its frame
+_IN_THE_FRAME = 0.3
+#: metres off a doorway's axis within which the robot in front of it drives straight through
+_ON_THE_AXIS = 0.1
 _STILL_BEFORE_LOOKING = 0.5  #: seconds a person stands still before the robot reads their arms
 #: metres from the person beyond which the head camera sees their arms whole (nearer, a
 #: hand held out reads as anything)
@@ -83,6 +99,10 @@ _STALLED = 2.5  #: ... within so many seconds, or it is stalled ...
 _DETOUR = 4.0  #: ... and plans round what it sees for so long
 _PURSUIT_TURN = 2.0  #: rad/s of turn per radian off that point
 _TURN_ON_THE_SPOT = 0.9  #: radians off it beyond which the robot turns before driving
+_DOORWAY_TURN = 0.3  #: ... and on a way square through a doorway
+#: radians off that point beyond which a robot whose heading is blocked, but not its way
+#: to the point, turns on the spot rather than leave the drive to the local controller
+_TURN_FREELY = 0.15
 _PURSUIT_SLOWING = 1.5  #: m/s per metre still to go (slowing to a stop at the end)
 _PURSUIT_CLEAR = 0.05  #: metres beside the footprint the strip ahead must be free
 _PURSUIT_STOPPING = 1.0  #: seconds of driving ahead that must be free
@@ -411,18 +431,31 @@ class Following:
                       and track.seen >= now - 1e-9
                       and math.dist(track.position, predicted) <= gate]
         for chosen in sorted(candidates, key=lambda track: math.dist(track.position, predicted)):
-            if chosen.id in target.others:
-                # taken for someone else while the robot followed a track that had slipped
-                # onto them: only the camera, seeing the person's clothes, can tell
+            if self._needs_clothes(target, chosen, predicted):
+                # only the camera, seeing the person's clothes, can tell
                 if not self._wears_same(pose, target, chosen.position):
                     continue
             elif self._wears_other(pose, target, chosen.position):
                 target.others.add(chosen.id)
                 continue
             target.track_id, target.mismatches = chosen.id, 0
+            target.still_since = None  # how long someone stands is their own track's
             self._take(target, chosen, now)
             return True
         return False
+
+    def _needs_clothes(self, target: _Target, track: Track,
+                       predicted: tuple[float, float]) -> bool:
+        """Whether ``track`` is taken for the person lost only when the camera sees their
+        clothes on it: it was taken for someone else while the robot followed a track
+        that had slipped onto them, or it was dropped for showing other clothes, or it
+        stands still far from where the person, walking, was heading (someone standing
+        there all along: a passer-by at the end of their crossing)."""
+        if track.id in target.others or track.id in target.dropped:
+            return True
+        walking = math.hypot(*target.velocity) >= self.parameters.still_speed
+        still = math.hypot(*track.velocity) < self.parameters.still_speed
+        return walking and still and math.dist(track.position, predicted) > _STOPPED_NEAR
 
     def _wears_other(self, pose: Pose, target: _Target, where: tuple[float, float]) -> bool:
         """Whether the camera sees nobody at ``where``, or someone dressed unlike the
@@ -486,8 +519,29 @@ class Following:
         elif target.still_since is None:
             target.still_since = now
         target.position, target.velocity, target.seen_at = track.position, track.velocity, now
-        if not target.trail or math.dist(target.trail[-1], track.position) >= _TRAIL_STEP:
+        if not target.trail:
             target.trail.append(track.position)
+        elif math.dist(target.trail[-1], track.position) >= _TRAIL_STEP:
+            target.trail.extend(self._bridged(target.trail[-1], track.position))
+
+    def _bridged(self, last: tuple[float, float], seen: tuple[float, float]
+                 ) -> list[tuple[float, float]]:
+        """The trail's points from ``last`` on to ``seen``, where the person was found
+        again after being hidden: the straight line between them where the robot fits
+        along it, else the map's way round (a door frame or a corner stands between
+        them; the straight line led the robot into the jamb)."""
+        if math.dist(last, seen) <= _TRAIL_GAP or \
+                self._in_sight(last, seen, self.body.radius + _PASSING):
+            return [seen]
+        plan = self.navigator.plan(last, seen)
+        if plan is None:
+            return [seen]
+        way = [(float(x), float(y)) for x, y in plan.waypoints]
+        way[-1] = seen
+        steps = max(1, math.ceil(polyline_length(way) / _TRAIL_STEP))
+        points = [found[0] for index in range(1, steps)
+                  if (found := point_along(way, index * _TRAIL_STEP)) is not None]
+        return [*points, seen]
 
     def _predicted(self, target: _Target, now: float) -> tuple[float, float]:
         ahead = min(self.parameters.prediction, now - target.seen_at)
@@ -565,7 +619,12 @@ class Following:
                 nearest = next((int(index) for index in near[::-1]
                                 if self._in_sight(here, walked[int(index)])), nearest)
                 del walked[:nearest]
-                path = [here, *self._off_the_walls(walked[1:])]
+                # on to the point after the nearest, or to the nearest first where the
+                # straight way to the one after it is blocked (a trail that jumps on past
+                # a door frame, where the person was found again)
+                ahead = walked[1:] if len(walked) < 2 or self._in_sight(here, walked[1]) \
+                    else walked
+                path = [here, *self._off_the_walls(ahead)]
                 if aim != target.position:
                     plan = self.navigator.plan(path[-1], aim)
                     path.extend(plan.waypoints[1:] if plan is not None else [aim])
@@ -582,14 +641,16 @@ class Following:
             return [here, aim]
         return [tuple(point) for point in plan.waypoints]  # type: ignore[misc]
 
-    def _in_sight(self, start: tuple[float, float], end: tuple[float, float]) -> bool:
-        """Whether the robot's body fits along the straight line between two points, by
-        the map's walls and furniture."""
+    def _in_sight(self, start: tuple[float, float], end: tuple[float, float],
+                  clearance: float | None = None) -> bool:
+        """Whether the robot's body (or a disc of ``clearance`` metres) fits along the
+        straight line between two points, by the map's walls and furniture."""
         navigator = self.navigator
+        needed = self.body.radius if clearance is None else clearance
         steps = max(1, math.ceil(math.dist(start, end) / navigator.grid.resolution))
         return all(navigator.clearance_at(start[0] + t * (end[0] - start[0]),
                                           start[1] + t * (end[1] - start[1]))
-                   >= self.body.radius for t in np.linspace(0.0, 1.0, steps + 1))
+                   >= needed for t in np.linspace(0.0, 1.0, steps + 1))
 
     def _off_the_walls(self, points: list[tuple[float, float]]) -> list[tuple[float, float]]:
         """The points of a person's trail moved off the map's walls and furniture to where
@@ -618,14 +679,19 @@ class Following:
         after it, leads the robot into the jamb). The robot stops short of the person
         only on a path that ends at them (``_DoorwayPath`` marks one that does not)."""
         world = self.world
+        leaving = self._out_of_doorway(path)
+        if leaving is not None:
+            return leaving
         crossings = []
         for name, door in world.doors.items():
             inside = [index for index, point in enumerate(path)
                       if math.dist(point, door.position) <= _DOORWAY_REACH]
-            if not inside or inside[0] == 0:
+            if not inside:
                 continue
             first, last = inside[0], inside[-1]
-            before = world.room_at(*path[first - 1])
+            # the robot itself near the doorway: its side of the wall is where it stands
+            before = world.room_at(*path[first - 1]) if first > 0 else \
+                self._side_of(name, path[0])
             after = world.room_at(*path[min(last + 1, len(path) - 1)])
             if before is not None and after is not None and before != after and \
                     before in door.rooms and after in door.rooms:
@@ -635,7 +701,54 @@ class Following:
         first, name, before, after = min(crossings)
         square = [world.point_before_door(name, room, _DOORWAY_REACH).xy()
                   for room in (before, after)]
-        return _DoorwayPath([*path[:first], square[0], world.doors[name].position, square[1]])
+        middle = world.doors[name].position
+        if first == 0:
+            # from beside the doorway: onto its axis first, as far out as the robot stands
+            # (unless it stands on it already, or fits straight into the doorway)
+            normal = world.door_normal(name)
+            across, along = self._off_door(name, path[0])
+            out = math.copysign(max(abs(across), _IN_THE_FRAME), across)
+            axis = (middle[0] + out * normal[0], middle[1] + out * normal[1])
+            straight = along <= _ON_THE_AXIS or \
+                self._in_sight(path[0], middle, self.body.radius + _PURSUIT_CLEAR)
+            start = [path[0]] if straight else [path[0], axis]
+            return _DoorwayPath([*start, middle, square[1]])
+        return _DoorwayPath([*path[:first], square[0], middle, square[1]])
+
+    def _side_of(self, door: str, point: tuple[float, float]) -> str:
+        """The room of ``door``'s two on whose side of its wall ``point`` lies."""
+        rooms = self.world.doors[door].rooms
+        return rooms[0] if self._off_door(door, point)[0] >= 0.0 else rooms[1]
+
+    def _off_door(self, door: str, point: tuple[float, float]) -> tuple[float, float]:
+        """How far ``point`` lies from ``door``'s middle across its wall (signed, positive
+        into the door's first room) and along it (unsigned), metres."""
+        x, y = self.world.doors[door].position
+        normal = self.world.door_normal(door)
+        offset = (point[0] - x, point[1] - y)
+        return (offset[0] * normal[0] + offset[1] * normal[1],
+                abs(offset[0] * normal[1] - offset[1] * normal[0]))
+
+    def _out_of_doorway(self, path: list[tuple[float, float]]) -> _DoorwayPath | None:
+        """Where the robot stands in a doorway's frame: straight out of it, to the point
+        ``_DOORWAY_REACH`` in front of it on the side ``path`` leaves it by (from inside
+        the frame the way on to the person turns at a slant into the jamb); None when the
+        robot stands in no doorway, or the person stands just out of it."""
+        here = path[0]
+        for name, door in self.world.doors.items():
+            across, along = self._off_door(name, here)
+            if abs(across) > _IN_THE_FRAME or along > door.width / 2:
+                continue
+            out = next((point for point in path[1:]
+                        if math.dist(point, door.position) > _DOORWAY_REACH), path[-1])
+            side = 1.0 if self._off_door(name, out)[0] >= 0.0 else -1.0
+            normal = self.world.door_normal(name)
+            beyond = (door.position[0] + side * _DOORWAY_REACH * normal[0],
+                      door.position[1] + side * _DOORWAY_REACH * normal[1])
+            if math.dist(beyond, path[-1]) < self.parameters.distance:
+                return None  # the person stands just out there: come up to them
+            return _DoorwayPath([here, beyond])
+        return None
 
     def _command(self, pose: Pose, aim: tuple[float, float],
                  path: list[tuple[float, float]], seen: bool) -> Twist:
@@ -660,8 +773,9 @@ class Following:
     def _pursue(self, pose: Pose, path: list[tuple[float, float]]) -> Twist | None:
         """Pure pursuit of a point a short way along ``path`` (which runs where the person
         walked, or square through a doorway): turn on the spot towards it when it lies
-        well off the heading, else drive at it, slowing near the path's end. None when
-        something stands in the strip the base would drive through (the local controller
+        well off the heading, else drive at it, slowing near the path's end; where the strip
+        the base would drive through is blocked but the strip towards that point is
+        free, turn on the spot. None when something stands in both (the local controller
         then steers round it)."""
         body = self.body
         found = point_along(path, _PURSUIT)
@@ -670,16 +784,23 @@ class Following:
         error = wrap_angle(math.atan2(target[1] - pose.y, target[0] - pose.x) - pose.theta)
         limits = body.limits
         turn = max(-limits.angular, min(limits.angular, _PURSUIT_TURN * error))
-        if abs(error) > _TURN_ON_THE_SPOT:
+        # square through a doorway: an arc into it meets the jamb
+        if abs(error) > (_DOORWAY_TURN if isinstance(path, _DoorwayPath) else _TURN_ON_THE_SPOT):
             return Twist(0.0, 0.0, turn)
         speed = min(limits.linear, _PURSUIT_SLOWING * remaining) * math.cos(error)
         ahead = body.radius + _PURSUIT_CLEAR + speed * _PURSUIT_STOPPING
         points = body.scan().points()
-        if len(points):
-            blocked = (points[:, 0] > 0.0) & (points[:, 0] < ahead) & \
-                (np.abs(points[:, 1]) < body.radius + _PURSUIT_CLEAR)
-            if blocked.any():
-                return None
+        width = body.radius + _PURSUIT_CLEAR
+        if len(points) and _in_strip(points, ahead, width):
+            # the heading is blocked but the way to the point steered for is free (a wall
+            # beside a turn, the robot's arc too wide): turn towards it first
+            cos, sin = math.cos(error), math.sin(error)
+            towards = np.column_stack((points[:, 0] * cos + points[:, 1] * sin,
+                                       points[:, 1] * cos - points[:, 0] * sin))
+            reach = min(ahead, math.dist(pose.xy(), target) + width)
+            if abs(error) > _TURN_FREELY and not _in_strip(towards, reach, width):
+                return Twist(0.0, 0.0, turn)
+            return None
         return Twist(speed, 0.0, turn)
 
     def _stop_base(self) -> None:
@@ -689,6 +810,13 @@ class Following:
             if body.odometry().twist.is_zero():
                 break
             body.tick()
+
+
+def _in_strip(points: np.ndarray, length: float, half_width: float) -> bool:
+    """Whether any of ``points`` (n, 2), in the robot's frame, lies in the strip
+    ``length`` metres straight ahead of it and ``half_width`` either side."""
+    return bool(((points[:, 0] > 0.0) & (points[:, 0] < length) &
+                 (np.abs(points[:, 1]) < half_width)).any())
 
 
 class _DoorwayPath(list[tuple[float, float]]):
