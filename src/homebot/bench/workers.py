@@ -1,0 +1,282 @@
+"""Seeded tasks run on many worker processes: a local pool, or a running Dask cluster.
+
+A benchmark or a sweep hands ``run_tasks`` a module-level function and a list of picklable
+task units (one seeded task each); it gets back one ``TaskOutcome`` per unit, in the units'
+order, whatever order the workers finished them in. A task's result depends only on its unit
+(its seed is the benchmark's seed and the task's index), so the outcomes are the same for 1,
+2 or N workers, apart from timings and which worker ran what.
+
+The scheduling is Dask distributed's (the ``cluster`` extra): a ``LocalCluster`` of
+``workers`` single-threaded processes on loopback, or the scheduler at ``--cluster
+ADDRESS``. Dask was chosen over Ray for its light footprint on a small machine (pure Python
+over tornado, a scheduler in this process, no object store or raylet) and for its plain
+``dask scheduler`` / ``dask worker`` commands for a cluster. Without the extra, ``--workers``
+falls back to the standard library's ``ProcessPoolExecutor`` and says so.
+
+Faults: a task whose worker dies (killed, out of memory) is run once more on another worker;
+when that worker dies too, the outcome is an error (``attempts`` 2), never a gap. A task that
+raises is an error at once (it would raise again). The process pool cannot tell which of the
+tasks in flight killed a worker, since the whole pool breaks: it retries every one of them.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib.util
+import logging
+import os
+import socket
+import sys
+import uuid
+from collections.abc import Callable, Iterator, Sequence
+from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from concurrent.futures.process import BrokenProcessPool
+from contextlib import contextmanager
+from dataclasses import dataclass
+from multiprocessing import get_context
+from typing import Any, Generic, TypeVar
+
+from homebot.bench.arguments import count
+from homebot.errors import BenchmarkError
+from homebot.progress import task
+
+__all__ = ["ATTEMPTS", "TaskOutcome", "WorkerOptions", "add_worker_options", "cores",
+           "engine_installed", "run_tasks", "worker_options"]
+
+_Unit = TypeVar("_Unit")
+_Value = TypeVar("_Value")
+
+#: A task is run at most this often: once, and once more when its worker died.
+ATTEMPTS = 2
+
+
+def cores() -> int:
+    """The cores this process may run on (the default number of workers)."""
+    return len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else (
+        os.cpu_count() or 1)
+
+
+def engine_installed() -> bool:
+    """Whether Dask distributed (the ``cluster`` extra) is installed, found without importing."""
+    return importlib.util.find_spec("distributed") is not None
+
+
+@dataclass(frozen=True)
+class WorkerOptions:
+    """Where tasks run: ``workers`` local processes, or the Dask scheduler at ``cluster``."""
+
+    workers: int = 1
+    cluster: str | None = None
+
+
+def add_worker_options(parser: argparse.ArgumentParser) -> None:
+    """``--workers N`` and ``--cluster ADDRESS``."""
+    parser.add_argument("--workers", type=count("--workers", 1, 1024), default=None,
+                        metavar="N",
+                        help=f"worker processes on this machine (default: its cores, {cores()} "
+                             "here); 1 runs the tasks in this process, one after another")
+    parser.add_argument("--cluster", default=None, metavar="ADDRESS",
+                        help="run the tasks on the Dask scheduler at ADDRESS (e.g. "
+                             "tcp://127.0.0.1:8786) instead of local workers (cluster extra)")
+
+
+def worker_options(args: argparse.Namespace) -> WorkerOptions:
+    """The options ``add_worker_options`` parsed (``--workers`` defaults to the cores)."""
+    workers = args.workers if args.workers is not None else cores()
+    return WorkerOptions(workers=workers, cluster=args.cluster)
+
+
+@dataclass(frozen=True)
+class TaskOutcome(Generic[_Value]):
+    """What became of one task: its value, or why there is none."""
+
+    index: int  #: the unit's place in the list given to ``run_tasks``
+    value: _Value | None  #: what the task returned (None on an error)
+    error: str | None = None  #: "Type: message" of an exception, or the workers it killed
+    attempts: int = 1  #: 2 when its first worker died and it ran again
+    worker: str = ""  #: host:pid of the process that ran it last (differs from run to run)
+
+    @property
+    def retried(self) -> bool:
+        return self.attempts > 1
+
+
+@dataclass(frozen=True)
+class _Attempt(Generic[_Value]):
+    value: _Value | None
+    error: str | None
+    worker: str
+
+
+def _attempt(function: Callable[[_Unit], _Value], unit: _Unit) -> _Attempt[_Value]:
+    """Run one task where it was sent; its exception becomes an error, not a lost worker."""
+    worker = f"{socket.gethostname()}:{os.getpid()}"
+    try:
+        return _Attempt(function(unit), None, worker)
+    except Exception as error:  # a task's own failure is its outcome; the others go on
+        return _Attempt(None, f"{type(error).__name__}: {error}", worker)
+
+
+def _outcome(index: int, attempt: _Attempt[_Value], attempts: int) -> TaskOutcome[_Value]:
+    return TaskOutcome(index, attempt.value, attempt.error, attempts, attempt.worker)
+
+
+def _lost(index: int, attempts: int, why: str) -> TaskOutcome[Any]:
+    return TaskOutcome(index, None, f"worker lost: {why} (tried {attempts} times)", attempts)
+
+
+def run_tasks(function: Callable[[_Unit], _Value], units: Sequence[_Unit],
+              options: WorkerOptions, description: str = "tasks") -> list[TaskOutcome[_Value]]:
+    """Every unit's outcome of ``function`` (a module-level function, so workers can import
+    it), in the units' order."""
+    outcomes: dict[int, TaskOutcome[_Value]] = {}
+    with task(description, len(units)) as under_way:
+        for outcome in _engine(options, len(units))(function, units):
+            outcomes[outcome.index] = outcome
+            under_way.advance()
+    return [outcomes[index] for index in range(len(units))]
+
+
+_Engine = Callable[[Callable[[Any], Any], Sequence[Any]], Iterator[TaskOutcome[Any]]]
+
+
+def _engine(options: WorkerOptions, tasks: int) -> _Engine:
+    if options.cluster is not None:
+        if not engine_installed():
+            raise BenchmarkError("--cluster needs the 'cluster' extra (Dask distributed): "
+                                 "pip install 'homebot[cluster]'")
+        address = options.cluster
+        return lambda function, units: _on_dask(function, units, address=address)
+    workers = min(options.workers, tasks)
+    if workers <= 1:
+        return _in_this_process
+    if not engine_installed():
+        print(f"the 'cluster' extra (Dask distributed) is not installed: running on "
+              f"{workers} processes of the standard library's process pool instead "
+              "(pip install 'homebot[cluster]' for clusters)", file=sys.stderr)
+        return lambda function, units: _on_process_pool(function, units, workers)
+    return lambda function, units: _on_dask(function, units, workers=workers)
+
+
+def _in_this_process(function: Callable[[_Unit], _Value], units: Sequence[_Unit]
+                     ) -> Iterator[TaskOutcome[_Value]]:
+    for index, unit in enumerate(units):
+        yield _outcome(index, _attempt(function, unit), 1)
+
+
+def _on_process_pool(function: Callable[[_Unit], _Value], units: Sequence[_Unit],
+                     workers: int) -> Iterator[TaskOutcome[_Value]]:
+    """At most ``workers`` tasks in flight, so a broken pool retries no more than that."""
+    waiting = list(reversed(range(len(units))))
+    attempts = dict.fromkeys(range(len(units)), 0)
+    # spawn: the parent may hold threads (a progress display), which fork would copy locked
+    pool = ProcessPoolExecutor(workers, mp_context=get_context("spawn"))
+    in_flight: dict[Future[_Attempt[_Value]], int] = {}
+    try:
+        while waiting or in_flight:
+            while waiting and len(in_flight) < workers:
+                index = waiting.pop()
+                attempts[index] += 1
+                in_flight[pool.submit(_attempt, function, units[index])] = index
+            done, _ = wait(in_flight, return_when=FIRST_COMPLETED)
+            broken = False
+            for future in done:
+                index = in_flight.pop(future)
+                try:
+                    yield _outcome(index, future.result(), attempts[index])
+                except BrokenProcessPool:
+                    broken = True
+                    if attempts[index] >= ATTEMPTS:
+                        yield _lost(index, attempts[index], "a process of the pool died")
+                    else:
+                        waiting.append(index)
+            if broken:  # every task still in flight failed with it: run them again
+                for future, index in in_flight.items():
+                    future.cancel()
+                    waiting.append(index)
+                in_flight.clear()
+                pool.shutdown(wait=True, cancel_futures=True)
+                print("a worker process died: its pool is started again, and the tasks it "
+                      "had in flight run once more", file=sys.stderr)
+                pool = ProcessPoolExecutor(workers, mp_context=get_context("spawn"))
+    finally:
+        pool.shutdown(wait=True, cancel_futures=True)
+
+
+@contextmanager
+def _dask_client(workers: int | None, address: str | None) -> Iterator[Any]:
+    """A Dask client of a new local cluster (``workers``), or of the one at ``address``."""
+    import dask
+    from distributed import Client, LocalCluster
+
+    # A task whose worker dies fails at once (our retry runs it on another worker), and a
+    # worker holds only the task it runs, so a death involves no queued task beside it.
+    settings = {"distributed.scheduler.allowed-failures": 0,
+                "distributed.scheduler.worker-saturation": 1.0}
+    with dask.config.set(settings):
+        if address is None:
+            with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                              host="127.0.0.1", dashboard_address="127.0.0.1:0",
+                              silence_logs=logging.CRITICAL) as cluster, \
+                    Client(cluster) as client:
+                yield client
+            return
+        try:
+            client = Client(address, timeout=10)
+        except (OSError, TimeoutError, ValueError) as error:
+            raise BenchmarkError(f"--cluster {address}: no Dask scheduler answers there "
+                                 f"({error}); start one with 'dask scheduler' and its "
+                                 "workers with 'dask worker ADDRESS'") from None
+        with client:
+            _check_scheduler(client, address)
+            yield client
+
+
+def _scheduler_settings(dask_scheduler: Any) -> tuple[int, float]:
+    return dask_scheduler.allowed_failures, dask_scheduler.WORKER_SATURATION
+
+
+def _check_scheduler(client: Any, address: str) -> None:
+    """Say when a running scheduler retries lost tasks itself (then ``attempts`` counts only
+    homebot's own retry), and wait until it has a worker."""
+    allowed, _ = client.run_on_scheduler(_scheduler_settings)
+    if allowed:
+        print(f"--cluster {address}: its scheduler reruns a task whose worker died up to "
+              f"{allowed} times itself before homebot's one retry; start it with "
+              "DASK_DISTRIBUTED__SCHEDULER__ALLOWED_FAILURES=0 for exact attempts",
+              file=sys.stderr)
+    client.wait_for_workers(1, timeout=60)
+
+
+def _on_dask(function: Callable[[_Unit], _Value], units: Sequence[_Unit], *,
+             workers: int | None = None, address: str | None = None
+             ) -> Iterator[TaskOutcome[_Value]]:
+    from distributed import as_completed
+    from distributed.scheduler import KilledWorker
+
+    with _dask_client(workers, address) as client:
+        # one batch: the scheduler sees every task at once and queues them (saturation)
+        name = f"homebot-task-{uuid.uuid4().hex}"  # unique on a cluster shared with others
+        futures = client.map(_attempt, [function] * len(units), units, pure=False,
+                             key=[(name, index) for index in range(len(units))])
+        index_of = {future.key: index for index, future in enumerate(futures)}
+        attempts = dict.fromkeys(range(len(units)), 1)
+        completed = as_completed(futures)
+        for future in completed:
+            index = index_of[future.key]
+            try:
+                attempt = future.result()
+            except KilledWorker as error:
+                if attempts[index] >= ATTEMPTS:
+                    yield _lost(index, attempts[index], f"its worker died ({error.task})")
+                else:
+                    attempts[index] += 1
+                    print(f"task {index} lost its worker; it runs once more on another",
+                          file=sys.stderr)
+                    retry = client.submit(_attempt, function, units[index], pure=False,
+                                          key=(f"{name}-again", index))
+                    index_of[retry.key] = index
+                    completed.add(retry)
+            else:
+                yield _outcome(index, attempt, attempts[index])
+            future.release()
