@@ -41,7 +41,7 @@ from homebot.errors import BenchmarkError
 from homebot.progress import task
 
 __all__ = ["ATTEMPTS", "TaskOutcome", "WorkerOptions", "add_worker_options", "cores",
-           "engine_installed", "run_tasks", "worker_options"]
+           "each_outcome", "engine_installed", "run_tasks", "worker_options"]
 
 _Unit = TypeVar("_Unit")
 _Value = TypeVar("_Value")
@@ -125,15 +125,24 @@ def _lost(index: int, attempts: int, why: str) -> TaskOutcome[Any]:
     return TaskOutcome(index, None, f"worker lost: {why} (tried {attempts} times)", attempts)
 
 
-def run_tasks(function: Callable[[_Unit], _Value], units: Sequence[_Unit],
-              options: WorkerOptions, description: str = "tasks") -> list[TaskOutcome[_Value]]:
+def each_outcome(function: Callable[[_Unit], _Value], units: Sequence[_Unit],
+                 options: WorkerOptions, description: str = "tasks"
+                 ) -> Iterator[TaskOutcome[_Value]]:
     """Every unit's outcome of ``function`` (a module-level function, so workers can import
-    it), in the units' order."""
-    outcomes: dict[int, TaskOutcome[_Value]] = {}
+    it), as each task finishes."""
+    if not units:
+        return
     with task(description, len(units)) as under_way:
         for outcome in _engine(options, len(units))(function, units):
-            outcomes[outcome.index] = outcome
+            yield outcome
             under_way.advance()
+
+
+def run_tasks(function: Callable[[_Unit], _Value], units: Sequence[_Unit],
+              options: WorkerOptions, description: str = "tasks") -> list[TaskOutcome[_Value]]:
+    """Every unit's outcome of ``function``, in the units' order."""
+    outcomes = {outcome.index: outcome
+                for outcome in each_outcome(function, units, options, description)}
     return [outcomes[index] for index in range(len(units))]
 
 
