@@ -40,7 +40,7 @@ from homebot.bench.arguments import count
 from homebot.errors import BenchmarkError
 from homebot.progress import task
 
-__all__ = ["ATTEMPTS", "TaskOutcome", "WorkerOptions", "add_worker_options", "cores",
+__all__ = ["ATTEMPTS", "CONNECT_SECONDS", "TaskOutcome", "WorkerOptions", "add_worker_options", "cores",
            "each_outcome", "engine_installed", "run_tasks", "worker_options"]
 
 _Unit = TypeVar("_Unit")
@@ -48,6 +48,8 @@ _Value = TypeVar("_Value")
 
 #: A task is run at most this often: once, and once more when its worker died.
 ATTEMPTS = 2
+#: Seconds ``--cluster`` waits for its scheduler to answer.
+CONNECT_SECONDS = 10.0
 
 
 def cores() -> int:
@@ -231,7 +233,7 @@ def _dask_client(workers: int | None, address: str | None) -> Iterator[Any]:
                 yield client
             return
         try:
-            client = Client(address, timeout=10)
+            client = Client(address, timeout=CONNECT_SECONDS)
         except (OSError, TimeoutError, ValueError) as error:
             raise BenchmarkError(f"--cluster {address}: no Dask scheduler answers there "
                                  f"({error}); start one with 'dask scheduler' and its "
@@ -260,19 +262,27 @@ def _check_scheduler(client: Any, address: str) -> None:
 def _on_dask(function: Callable[[_Unit], _Value], units: Sequence[_Unit], *,
              workers: int | None = None, address: str | None = None
              ) -> Iterator[TaskOutcome[_Value]]:
+    """Many tasks go to the scheduler in one batch, which queues them and hands each worker
+    one at a time; a few tasks, and every retry, are sent only when a worker is free, so a
+    worker that dies takes no other task down with it."""
     from distributed import as_completed
     from distributed.scheduler import KilledWorker
 
     with _dask_client(workers, address) as client:
-        # one batch: the scheduler sees every task at once and queues them (saturation)
+        threads = max(sum(client.nthreads().values()), 1)
         name = f"homebot-task-{uuid.uuid4().hex}"  # unique on a cluster shared with others
-        futures = client.map(_attempt, [function] * len(units), units, pure=False,
-                             key=[(name, index) for index in range(len(units))])
+        first = len(units) if len(units) > 2 * threads else min(threads, len(units))
+        futures = client.map(_attempt, [function] * first, units[:first], pure=False,
+                             key=[(name, index) for index in range(first)])
         index_of = {future.key: index for index, future in enumerate(futures)}
         attempts = dict.fromkeys(range(len(units)), 1)
+        unsent = list(reversed(range(first, len(units))))
+        again: list[int] = []
+        outstanding = first
         completed = as_completed(futures)
         for future in completed:
-            index = index_of[future.key]
+            outstanding -= 1
+            index = index_of.pop(future.key)
             try:
                 attempt = future.result()
             except KilledWorker as error:
@@ -280,12 +290,16 @@ def _on_dask(function: Callable[[_Unit], _Value], units: Sequence[_Unit], *,
                     yield _lost(index, attempts[index], f"its worker died ({error.task})")
                 else:
                     attempts[index] += 1
+                    again.append(index)
                     print(f"task {index} lost its worker; it runs once more on another",
                           file=sys.stderr)
-                    retry = client.submit(_attempt, function, units[index], pure=False,
-                                          key=(f"{name}-again", index))
-                    index_of[retry.key] = index
-                    completed.add(retry)
             else:
                 yield _outcome(index, attempt, attempts[index])
             future.release()
+            while (again or unsent) and outstanding < threads:
+                index = again.pop(0) if again else unsent.pop()
+                key = (f"{name}-again", index) if attempts[index] > 1 else (name, index)
+                sent = client.submit(_attempt, function, units[index], pure=False, key=key)
+                index_of[sent.key] = index
+                completed.add(sent)
+                outstanding += 1
