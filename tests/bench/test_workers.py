@@ -63,7 +63,7 @@ def test_a_killed_dask_worker_loses_only_its_task_retried_once(tmp_path: Path) -
     outcomes = run_tasks(die_at, [(str(tmp_path), n) for n in range(8)], WorkerOptions(2))
     _check_killed_workers(outcomes)
     assert [outcome.index for outcome in outcomes] == list(range(8))
-    assert str(os.getpid()) not in {outcome.worker.rsplit(":", 1)[1] for outcome in outcomes}
+    assert str(os.getpid()) not in {outcome.worker.rsplit(":", 1)[-1] for outcome in outcomes}
     # one task per worker at a time: the deaths involved no other task
     assert [outcome.attempts for index, outcome in enumerate(outcomes)
             if index not in (2, 5)] == [1] * 6
@@ -79,6 +79,21 @@ def test_without_dask_the_process_pool_runs_them_and_says_so(
     # the pool breaks whole: the tasks in flight beside a death ran again, no more
     _check_killed_workers(outcomes)
     assert sum(outcome.attempts > 1 for outcome in outcomes) <= 2 + 2
+
+
+def test_many_short_tasks_go_in_batches_of_a_few_per_thread() -> None:
+    assert workers.batch_size(8, 2) == 1  # a few tasks: one by one
+    assert workers.batch_size(320, 2) == 10
+    assert workers.batch_size(1_000_000, 2) == workers.MAX_BATCH
+
+
+@needs_dask
+def test_batches_come_back_whole_and_in_order() -> None:
+    outcomes = run_tasks(refuse_three, list(range(200)), WorkerOptions(2))
+    assert [outcome.value for outcome in outcomes] == [None if n == 3 else n
+                                                       for n in range(200)]
+    assert outcomes[3].error == "ValueError: three is refused"
+    assert len({outcome.worker for outcome in outcomes}) == 2
 
 
 def test_a_cluster_without_dask_is_refused_with_the_install_line(

@@ -40,14 +40,17 @@ from homebot.bench.arguments import count
 from homebot.errors import BenchmarkError
 from homebot.progress import task
 
-__all__ = ["ATTEMPTS", "CONNECT_SECONDS", "TaskOutcome", "WorkerOptions", "add_worker_options", "cores",
-           "each_outcome", "engine_installed", "run_tasks", "worker_options"]
+__all__ = ["ATTEMPTS", "CONNECT_SECONDS", "MAX_BATCH", "TaskOutcome", "WorkerOptions",
+           "add_worker_options", "batch_size", "cores", "each_outcome", "engine_installed",
+           "run_tasks", "worker_options"]
 
 _Unit = TypeVar("_Unit")
 _Value = TypeVar("_Value")
 
 #: A task is run at most this often: once, and once more when its worker died.
 ATTEMPTS = 2
+#: At most this many tasks go to a Dask worker together (``batch_size``).
+MAX_BATCH = 50
 #: Seconds ``--cluster`` waits for its scheduler to answer.
 CONNECT_SECONDS = 10.0
 
@@ -192,19 +195,22 @@ def _on_process_pool(function: Callable[[_Unit], _Value], units: Sequence[_Unit]
             done, _ = wait(in_flight, return_when=FIRST_COMPLETED)
             broken = False
             for future in done:
-                index = in_flight.pop(future)
-                try:
-                    yield _outcome(index, future.result(), attempts[index])
-                except BrokenProcessPool:
+                error = future.exception()
+                if isinstance(error, BrokenProcessPool):
                     broken = True
+                    continue
+                index = in_flight.pop(future)
+                if error is None:
+                    yield _outcome(index, future.result(), attempts[index])
+                else:  # the unit or its value could not be pickled
+                    yield TaskOutcome(index, None, f"{type(error).__name__}: {error}",
+                                      attempts[index])
+            if broken:  # a process died: the pool broke whole, and every task still in it
+                for index in in_flight.values():  # failed with it
                     if attempts[index] >= ATTEMPTS:
                         yield _lost(index, attempts[index], "a process of the pool died")
                     else:
                         waiting.append(index)
-            if broken:  # every task still in flight failed with it: run them again
-                for future, index in in_flight.items():
-                    future.cancel()
-                    waiting.append(index)
                 in_flight.clear()
                 pool.shutdown(wait=True, cancel_futures=True)
                 print("a worker process died: its pool is started again, and the tasks it "
@@ -259,47 +265,64 @@ def _check_scheduler(client: Any, address: str) -> None:
     client.wait_for_workers(1, timeout=60)
 
 
+def batch_size(tasks: int, threads: int) -> int:
+    """Tasks per batch sent to a Dask worker: 16 batches a thread or more (the workers stay
+    evenly busy), at most ``MAX_BATCH`` tasks (a lost worker loses little). A batch spares a
+    short task the scheduler's few milliseconds each: a symbolic errand takes about 4 ms."""
+    return max(1, min(MAX_BATCH, tasks // (16 * max(threads, 1))))
+
+
+def _attempt_batch(function: Callable[[_Unit], _Value], units: Sequence[_Unit]
+                   ) -> list[_Attempt[_Value]]:
+    return [_attempt(function, unit) for unit in units]
+
+
 def _on_dask(function: Callable[[_Unit], _Value], units: Sequence[_Unit], *,
              workers: int | None = None, address: str | None = None
              ) -> Iterator[TaskOutcome[_Value]]:
-    """Many tasks go to the scheduler in one batch, which queues them and hands each worker
-    one at a time; a few tasks, and every retry, are sent only when a worker is free, so a
-    worker that dies takes no other task down with it."""
+    """Many tasks go to the scheduler in one go, in batches, which it queues and hands each
+    worker one at a time; a few tasks, and every retry, are sent only when a worker is free,
+    so a worker that dies takes no other batch down with it. The tasks of a lost batch run
+    again one by one."""
     from distributed import as_completed
     from distributed.scheduler import KilledWorker
 
     with _dask_client(workers, address) as client:
         threads = max(sum(client.nthreads().values()), 1)
-        name = f"homebot-task-{uuid.uuid4().hex}"  # unique on a cluster shared with others
-        first = len(units) if len(units) > 2 * threads else min(threads, len(units))
-        futures = client.map(_attempt, [function] * first, units[:first], pure=False,
-                             key=[(name, index) for index in range(first)])
-        index_of = {future.key: index for index, future in enumerate(futures)}
+        size = batch_size(len(units), threads)
+        batches = [tuple(range(start, min(start + size, len(units))))
+                   for start in range(0, len(units), size)]
+        name = f"homebot-tasks-{uuid.uuid4().hex}"  # unique on a cluster shared with others
+        first = len(batches) if len(batches) > 2 * threads else min(threads, len(batches))
+        futures = client.map(_attempt_batch, [function] * first,
+                             [[units[index] for index in batch] for batch in batches[:first]],
+                             pure=False, key=[(name, number) for number in range(first)])
+        batch_of = {future.key: batch for future, batch in zip(futures, batches, strict=False)}
         attempts = dict.fromkeys(range(len(units)), 1)
-        unsent = list(reversed(range(first, len(units))))
-        again: list[int] = []
-        outstanding = first
+        unsent = [((name, number), batches[number])
+                  for number in reversed(range(first, len(batches)))]
+        again: list[tuple[tuple[str, int], tuple[int, ...]]] = []
         completed = as_completed(futures)
         for future in completed:
-            outstanding -= 1
-            index = index_of.pop(future.key)
+            batch = batch_of.pop(future.key)
             try:
-                attempt = future.result()
+                found = future.result()
             except KilledWorker as error:
-                if attempts[index] >= ATTEMPTS:
-                    yield _lost(index, attempts[index], f"its worker died ({error.task})")
-                else:
-                    attempts[index] += 1
-                    again.append(index)
-                    print(f"task {index} lost its worker; it runs once more on another",
-                          file=sys.stderr)
+                for index in batch:
+                    if attempts[index] >= ATTEMPTS:
+                        yield _lost(index, attempts[index], f"its worker died ({error.task})")
+                    else:
+                        attempts[index] += 1
+                        again.append(((f"{name}-again", index), (index,)))
+                print(f"tasks {batch[0]}-{batch[-1]} lost their worker; they run once more "
+                      "on another", file=sys.stderr)
             else:
-                yield _outcome(index, attempt, attempts[index])
+                for index, attempt in zip(batch, found, strict=True):
+                    yield _outcome(index, attempt, attempts[index])
             future.release()
-            while (again or unsent) and outstanding < threads:
-                index = again.pop(0) if again else unsent.pop()
-                key = (f"{name}-again", index) if attempts[index] > 1 else (name, index)
-                sent = client.submit(_attempt, function, units[index], pure=False, key=key)
-                index_of[sent.key] = index
+            while (again or unsent) and len(batch_of) < threads:
+                key, batch = again.pop(0) if again else unsent.pop()
+                sent = client.submit(_attempt_batch, function, [units[i] for i in batch],
+                                     pure=False, key=key)
+                batch_of[sent.key] = batch
                 completed.add(sent)
-                outstanding += 1
