@@ -120,3 +120,8 @@ def test_a_table_of_something_else_is_not_overwritten(
     assert "its columns are not a sweep table's" in capsys.readouterr().err
     assert (out / TABLE).read_text(encoding="utf-8") == "name,score\nmine,1\n"
     assert COLUMNS[0] == "benchmark"
+
+
+def test_a_missing_spec_is_one_line(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["bench", "sweep", str(tmp_path / "none.yaml")]) == 2
+    assert "none.yaml: cannot read it (no such file); check the path" in capsys.readouterr().err

@@ -108,6 +108,6 @@ def test_a_cluster_without_dask_is_refused_with_the_install_line(
 def test_a_cluster_address_where_no_scheduler_answers_is_one_clear_error(
         monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.setattr(workers, "CONNECT_SECONDS", 1.0)
-    with pytest.raises(BenchmarkError, match="--cluster tcp://127.0.0.1:9: no Dask scheduler "
-                                             "answers there"):
+    with pytest.raises(BenchmarkError, match=r"--cluster tcp://127\.0\.0\.1:9: no Dask "
+                                             r"scheduler answers there"):
         run_tasks(square, [1, 2], WorkerOptions(cluster="tcp://127.0.0.1:9"))

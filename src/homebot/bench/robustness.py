@@ -116,7 +116,6 @@ class ModeResult:
             self.told_why += outcome.told_why
 
 
-
 def _hands(events: list[Event]) -> tuple[tuple[str, int, int], ...]:
     """Grasps, hand-overs and receptions the embodied robot tried (its own log) and what
     the truth made of them (the simulator's log): a grasp lifted the object, a hand-over

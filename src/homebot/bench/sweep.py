@@ -224,7 +224,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, Any]:
     """Run (or resume) the sweep, draw its plots and print its cells; returns the figures."""
     out = args.out if args.out is not None else args.spec.with_suffix("")
-    result = run_sweep(args.spec, out, worker_options(args))
+    try:
+        result = run_sweep(args.spec, out, worker_options(args))
+    except KeyboardInterrupt:  # Ctrl-C: a stop, not a crash; the finished rows are kept
+        print(f"sweep stopped: {len(read_table(out / TABLE))} finished rows are in "
+              f"{out / TABLE}; run the same command again to go on", file=sys.stderr)
+        raise SystemExit(130) from None
     plots = draw(result, out)
     cells = cell_figures(result.rows)
     if console is not None:
