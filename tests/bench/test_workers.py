@@ -59,7 +59,9 @@ def _check_killed_workers(outcomes: list[workers.TaskOutcome[int]]) -> None:
 
 
 @needs_dask
-def test_a_killed_dask_worker_loses_only_its_task_retried_once(tmp_path: Path) -> None:
+def test_a_killed_dask_worker_loses_only_its_task_retried_once(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    monkeypatch.setattr(workers, "MAX_BATCH", 1)  # as long tasks go: one at a time
     outcomes = run_tasks(die_at, [(str(tmp_path), n) for n in range(8)], WorkerOptions(2))
     _check_killed_workers(outcomes)
     assert [outcome.index for outcome in outcomes] == list(range(8))
@@ -78,13 +80,24 @@ def test_without_dask_the_process_pool_runs_them_and_says_so(
            "of the standard library's process pool" in capsys.readouterr().err
     # the pool breaks whole: the tasks in flight beside a death ran again, no more
     _check_killed_workers(outcomes)
-    assert sum(outcome.attempts > 1 for outcome in outcomes) <= 2 + 2
+    assert sum(outcome.attempts > 1 for outcome in outcomes) <= 2 * 2
 
 
-def test_many_short_tasks_go_in_batches_of_a_few_per_thread() -> None:
-    assert workers.batch_size(8, 2) == 1  # a few tasks: one by one
-    assert workers.batch_size(320, 2) == 10
-    assert workers.batch_size(1_000_000, 2) == workers.MAX_BATCH
+@needs_dask
+def test_a_lost_batch_runs_again_task_by_task(tmp_path: Path) -> None:
+    """Short tasks go in batches: a death loses its batch, whose tasks run again alone."""
+    units = [(str(tmp_path), n) for n in range(40) if n not in (2, 5)] + [(str(tmp_path), 2)]
+    outcomes = run_tasks(die_at, units, WorkerOptions(2))
+    assert [outcome.value for outcome in outcomes] == [unit[1] for unit in units]
+    retried = [outcome for outcome in outcomes if outcome.retried]
+    assert outcomes[-1] in retried and all(outcome.error is None for outcome in retried)
+
+
+def test_short_tasks_go_in_batches_and_long_ones_alone() -> None:
+    assert workers.batch_size([]) == 1  # nothing known yet
+    assert workers.batch_size([3.0, 0.05, 0.05]) == int(workers.BATCH_SECONDS / 0.05)
+    assert workers.batch_size([15.0, 14.0]) == 1
+    assert workers.batch_size([1e-9]) == workers.MAX_BATCH
 
 
 @needs_dask

@@ -26,7 +26,9 @@ import importlib.util
 import logging
 import os
 import socket
+import statistics
 import sys
+import time
 import uuid
 from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
@@ -40,17 +42,18 @@ from homebot.bench.arguments import count
 from homebot.errors import BenchmarkError
 from homebot.progress import task
 
-__all__ = ["ATTEMPTS", "CONNECT_SECONDS", "MAX_BATCH", "TaskOutcome", "WorkerOptions",
-           "add_worker_options", "batch_size", "cores", "each_outcome", "engine_installed",
-           "run_tasks", "worker_options"]
+__all__ = ["ATTEMPTS", "BATCH_SECONDS", "CONNECT_SECONDS", "MAX_BATCH", "TaskOutcome",
+           "WorkerOptions", "add_worker_options", "batch_size", "cores", "each_outcome",
+           "engine_installed", "run_tasks", "worker_options"]
 
 _Unit = TypeVar("_Unit")
 _Value = TypeVar("_Value")
 
 #: A task is run at most this often: once, and once more when its worker died.
 ATTEMPTS = 2
-#: At most this many tasks go to a Dask worker together (``batch_size``).
-MAX_BATCH = 50
+#: Seconds of work sent to a Dask worker at a time, and at most this many tasks together.
+BATCH_SECONDS = 0.5
+MAX_BATCH = 100
 #: Seconds ``--cluster`` waits for its scheduler to answer.
 CONNECT_SECONDS = 10.0
 
@@ -111,15 +114,19 @@ class _Attempt(Generic[_Value]):
     value: _Value | None
     error: str | None
     worker: str
+    seconds: float = 0.0  #: wall time, for sizing batches (never in the results)
 
 
 def _attempt(function: Callable[[_Unit], _Value], unit: _Unit) -> _Attempt[_Value]:
     """Run one task where it was sent; its exception becomes an error, not a lost worker."""
     worker = f"{socket.gethostname()}:{os.getpid()}"
+    started = time.perf_counter()
     try:
-        return _Attempt(function(unit), None, worker)
+        value = function(unit)
     except Exception as error:  # a task's own failure is its outcome; the others go on
-        return _Attempt(None, f"{type(error).__name__}: {error}", worker)
+        return _Attempt(None, f"{type(error).__name__}: {error}", worker,
+                        time.perf_counter() - started)
+    return _Attempt(value, None, worker, time.perf_counter() - started)
 
 
 def _outcome(index: int, attempt: _Attempt[_Value], attempts: int) -> TaskOutcome[_Value]:
@@ -180,18 +187,28 @@ def _in_this_process(function: Callable[[_Unit], _Value], units: Sequence[_Unit]
 
 def _on_process_pool(function: Callable[[_Unit], _Value], units: Sequence[_Unit],
                      workers: int) -> Iterator[TaskOutcome[_Value]]:
-    """At most ``workers`` tasks in flight, so a broken pool retries no more than that."""
+    """At most ``workers`` tasks in flight. A process that dies breaks the pool whole and
+    every task in flight with it; those run again one at a time in a new pool, so a second
+    death is its own task's."""
     waiting = list(reversed(range(len(units))))
+    suspects: list[int] = []
     attempts = dict.fromkeys(range(len(units)), 0)
     # spawn: the parent may hold threads (a progress display), which fork would copy locked
     pool = ProcessPoolExecutor(workers, mp_context=get_context("spawn"))
     in_flight: dict[Future[_Attempt[_Value]], int] = {}
+
+    def send(index: int) -> None:
+        attempts[index] += 1
+        in_flight[pool.submit(_attempt, function, units[index])] = index
+
     try:
-        while waiting or in_flight:
-            while waiting and len(in_flight) < workers:
-                index = waiting.pop()
-                attempts[index] += 1
-                in_flight[pool.submit(_attempt, function, units[index])] = index
+        while waiting or suspects or in_flight:
+            if suspects:
+                if not in_flight:
+                    send(suspects.pop())
+            else:
+                while waiting and len(in_flight) < workers:
+                    send(waiting.pop())
             done, _ = wait(in_flight, return_when=FIRST_COMPLETED)
             broken = False
             for future in done:
@@ -205,16 +222,16 @@ def _on_process_pool(function: Callable[[_Unit], _Value], units: Sequence[_Unit]
                 else:  # the unit or its value could not be pickled
                     yield TaskOutcome(index, None, f"{type(error).__name__}: {error}",
                                       attempts[index])
-            if broken:  # a process died: the pool broke whole, and every task still in it
-                for index in in_flight.values():  # failed with it
+            if broken:
+                for index in in_flight.values():
                     if attempts[index] >= ATTEMPTS:
-                        yield _lost(index, attempts[index], "a process of the pool died")
+                        yield _lost(index, attempts[index], "its process died")
                     else:
-                        waiting.append(index)
+                        suspects.append(index)
                 in_flight.clear()
                 pool.shutdown(wait=True, cancel_futures=True)
-                print("a worker process died: its pool is started again, and the tasks it "
-                      "had in flight run once more", file=sys.stderr)
+                print("a worker process died: the tasks it had in flight run once more, one "
+                      "at a time", file=sys.stderr)
                 pool = ProcessPoolExecutor(workers, mp_context=get_context("spawn"))
     finally:
         pool.shutdown(wait=True, cancel_futures=True)
@@ -265,11 +282,15 @@ def _check_scheduler(client: Any, address: str) -> None:
     client.wait_for_workers(1, timeout=60)
 
 
-def batch_size(tasks: int, threads: int) -> int:
-    """Tasks per batch sent to a Dask worker: 16 batches a thread or more (the workers stay
-    evenly busy), at most ``MAX_BATCH`` tasks (a lost worker loses little). A batch spares a
-    short task the scheduler's few milliseconds each: a symbolic errand takes about 4 ms."""
-    return max(1, min(MAX_BATCH, tasks // (16 * max(threads, 1))))
+def batch_size(seconds: Sequence[float]) -> int:
+    """How many tasks to send a Dask worker together, from the seconds the tasks so far took:
+    about ``BATCH_SECONDS`` of work (at most ``MAX_BATCH`` tasks), one until any is known.
+    A batch spares a short task the scheduler's milliseconds (a symbolic errand takes about
+    4 ms); a task as long as a batch goes alone, so a worker that dies loses only its task."""
+    if not seconds:
+        return 1
+    typical = statistics.median(seconds)
+    return max(1, min(MAX_BATCH, int(BATCH_SECONDS / max(typical, 1e-6))))
 
 
 def _attempt_batch(function: Callable[[_Unit], _Value], units: Sequence[_Unit]
@@ -280,29 +301,37 @@ def _attempt_batch(function: Callable[[_Unit], _Value], units: Sequence[_Unit]
 def _on_dask(function: Callable[[_Unit], _Value], units: Sequence[_Unit], *,
              workers: int | None = None, address: str | None = None
              ) -> Iterator[TaskOutcome[_Value]]:
-    """Many tasks go to the scheduler in one go, in batches, which it queues and hands each
-    worker one at a time; a few tasks, and every retry, are sent only when a worker is free,
-    so a worker that dies takes no other batch down with it. The tasks of a lost batch run
-    again one by one."""
+    """One batch per worker thread at a time, the next sent as one comes back (``batch_size``
+    from the tasks' times so far), so a worker that dies takes no other batch down with it.
+    The tasks of a lost batch run again one by one, each once."""
     from distributed import as_completed
     from distributed.scheduler import KilledWorker
 
     with _dask_client(workers, address) as client:
         threads = max(sum(client.nthreads().values()), 1)
-        size = batch_size(len(units), threads)
-        batches = [tuple(range(start, min(start + size, len(units))))
-                   for start in range(0, len(units), size)]
         name = f"homebot-tasks-{uuid.uuid4().hex}"  # unique on a cluster shared with others
-        first = len(batches) if len(batches) > 2 * threads else min(threads, len(batches))
-        futures = client.map(_attempt_batch, [function] * first,
-                             [[units[index] for index in batch] for batch in batches[:first]],
-                             pure=False, key=[(name, number) for number in range(first)])
-        batch_of = {future.key: batch for future, batch in zip(futures, batches, strict=False)}
         attempts = dict.fromkeys(range(len(units)), 1)
-        unsent = [((name, number), batches[number])
-                  for number in reversed(range(first, len(batches)))]
-        again: list[tuple[tuple[str, int], tuple[int, ...]]] = []
-        completed = as_completed(futures)
+        unsent = list(reversed(range(len(units))))
+        again: list[int] = []
+        seconds: list[float] = []
+        batch_of: dict[Any, tuple[int, ...]] = {}
+        completed = as_completed()
+
+        def send() -> None:
+            while (again or unsent) and len(batch_of) < threads:
+                if again:
+                    batch: tuple[int, ...] = (again.pop(0),)
+                    key = (f"{name}-again", batch[0])
+                else:
+                    size = min(batch_size(seconds[-64:]), len(unsent))
+                    batch = tuple(unsent.pop() for _ in range(size))
+                    key = (name, batch[0])
+                sent = client.submit(_attempt_batch, function, [units[i] for i in batch],
+                                     pure=False, key=key)
+                batch_of[sent.key] = batch
+                completed.add(sent)
+
+        send()
         for future in completed:
             batch = batch_of.pop(future.key)
             try:
@@ -313,16 +342,12 @@ def _on_dask(function: Callable[[_Unit], _Value], units: Sequence[_Unit], *,
                         yield _lost(index, attempts[index], f"its worker died ({error.task})")
                     else:
                         attempts[index] += 1
-                        again.append(((f"{name}-again", index), (index,)))
+                        again.append(index)
                 print(f"tasks {batch[0]}-{batch[-1]} lost their worker; they run once more "
                       "on another", file=sys.stderr)
             else:
                 for index, attempt in zip(batch, found, strict=True):
+                    seconds.append(attempt.seconds)
                     yield _outcome(index, attempt, attempts[index])
             future.release()
-            while (again or unsent) and len(batch_of) < threads:
-                key, batch = again.pop(0) if again else unsent.pop()
-                sent = client.submit(_attempt_batch, function, [units[i] for i in batch],
-                                     pure=False, key=key)
-                batch_of[sent.key] = batch
-                completed.add(sent)
+            send()
