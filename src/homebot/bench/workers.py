@@ -13,10 +13,14 @@ over tornado, a scheduler in this process, no object store or raylet) and for it
 ``dask scheduler`` / ``dask worker`` commands for a cluster. Without the extra, ``--workers``
 falls back to the standard library's ``ProcessPoolExecutor`` and says so.
 
-Faults: a task whose worker dies (killed, out of memory) is run once more on another worker;
-when that worker dies too, the outcome is an error (``attempts`` 2), never a gap. A task that
-raises is an error at once (it would raise again). The process pool cannot tell which of the
-tasks in flight killed a worker, since the whole pool breaks: it retries every one of them.
+Short tasks go to a Dask worker in batches of about ``BATCH_SECONDS`` of work (``batch_size``);
+a long task goes alone.
+
+Faults: the tasks whose worker dies (killed, out of memory: its task, or its batch of short
+ones) run once more, one by one, on another worker; a task whose worker dies again is an error
+(``attempts`` 2), never a gap. A task that raises is an error at once (it would raise again).
+The process pool breaks whole when a process dies, so it cannot tell which task in flight
+killed it: it runs each of them again, alone.
 """
 
 from __future__ import annotations
