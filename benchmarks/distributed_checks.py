@@ -98,7 +98,8 @@ def cluster(spec: Path) -> None:
     work = Path(tempfile.mkdtemp(prefix="homebot-cluster-"))
     scheduler_file = work / "scheduler.json"
     environment = os.environ | {"DASK_DISTRIBUTED__SCHEDULER__ALLOWED_FAILURES": "0",
-                                "DASK_DISTRIBUTED__SCHEDULER__WORKER_SATURATION": "1.0"}
+                                "DASK_DISTRIBUTED__SCHEDULER__WORKER_SATURATION": "1.0",
+                                "DASK_DISTRIBUTED__WORKER__PROFILE__ENABLED": "False"}
     scheduler = subprocess.Popen([str(BIN / "dask"), "scheduler", "--host", "127.0.0.1",
                                   "--port", "0", "--dashboard-address", "127.0.0.1:0",
                                   "--scheduler-file", str(scheduler_file)],

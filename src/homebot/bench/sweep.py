@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import argparse
 import csv
+import io
 import os
 import sys
 from collections.abc import Iterable, Mapping, Sequence
@@ -109,11 +110,13 @@ def read_table(path: Path) -> list[_Row]:
     if not path.exists():
         return []
     try:
-        with path.open(newline="", encoding="utf-8") as handle:
-            lines = list(csv.reader(handle))
+        text = path.read_text(encoding="utf-8")
+        lines = list(csv.reader(io.StringIO(text, newline="")))
     except (OSError, UnicodeDecodeError, csv.Error) as error:
         raise BenchmarkError(f"{path}: cannot be read as a sweep table ({error}); move it "
                              "away or choose another --out") from None
+    if lines and not text.endswith("\n"):  # its last row was being written at the stop
+        lines.pop()
     if not lines:
         return []
     if tuple(lines[0]) != COLUMNS:
@@ -214,7 +217,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     # checked when read (a missing file is one line then), so the command line parses alone
     parser.add_argument("spec", type=Path, metavar="SPEC.yaml",
                         help="the sweep spec: benchmarks, worlds, levels, seeds, fidelities, "
-                             "tasks (see the docs' Benchmarks at scale)")
+                             "tasks (docs: many cores and machines)")
     parser.add_argument("--out", type=Path, default=None, metavar="DIR",
                         help="the folder of the table (tasks.csv) and plots; a sweep there is "
                              "resumed (default: the spec's name beside it)")

@@ -248,9 +248,11 @@ def _dask_client(workers: int | None, address: str | None) -> Iterator[Any]:
     from distributed import Client, LocalCluster
 
     # A task whose worker dies fails at once (our retry runs it on another worker), and a
-    # worker holds only the task it runs, so a death involves no queued task beside it.
+    # worker holds only the task it runs, so a death involves no queued task beside it. The
+    # workers' statistical profiler (a stack sample every 10 ms) cost a quarter of their CPU.
     settings = {"distributed.scheduler.allowed-failures": 0,
-                "distributed.scheduler.worker-saturation": 1.0}
+                "distributed.scheduler.worker-saturation": 1.0,
+                "distributed.worker.profile.enabled": False}
     with dask.config.set(settings):
         if address is None:
             with LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
