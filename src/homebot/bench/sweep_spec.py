@@ -29,10 +29,7 @@ from homebot.world import shipped_world_names
 from homebot.world.loading import validate_document
 from homebot.yamlfile import load_yaml_document
 
-__all__ = ["SWEPT_BENCHMARKS", "Cell", "SweepSpec", "load_sweep_spec", "resolved_world"]
-
-#: The benchmarks whose tasks a sweep can run (each task a picklable unit).
-SWEPT_BENCHMARKS = ("robustness",)
+__all__ = ["MAX_SWEEP_TASKS", "Cell", "SweepSpec", "load_sweep_spec", "resolved_world"]
 
 #: At most this many tasks in one sweep: a spec with a typo in a list stays a mistake.
 MAX_SWEEP_TASKS = 1_000_000
@@ -46,6 +43,7 @@ class SweepSpec(BaseModel):
 
     model_config = ConfigDict(extra="forbid", frozen=True)
 
+    # the benchmarks whose tasks are picklable units (homebot.bench.robustness.ErrandTask)
     benchmarks: list[Literal["robustness"]] = Field(
         default=["robustness"], min_length=1, description="the benchmarks swept: robustness")
     worlds: list[str] = Field(min_length=1, description="shipped world names or YAML files")
@@ -105,17 +103,17 @@ def load_sweep_spec(path: Path) -> SweepSpec:
 def resolved_world(spec_path: Path, world: str) -> str:
     """How a worker finds a world of the spec: a file (beside the spec, when its path is
     relative) by its absolute path, else a shipped world by name."""
-    candidate = path_beside(spec_path, world)
+    candidate = _path_beside(spec_path, world)
     return str(candidate.resolve()) if candidate.is_file() else world
 
 
-def path_beside(spec_path: Path, name: str) -> Path:
+def _path_beside(spec_path: Path, name: str) -> Path:
     """``name`` as a path, relative ones taken from the spec's folder."""
     return Path(name) if Path(name).is_absolute() else spec_path.parent / name
 
 
 def _check_world(path: Path, line: int | None, world: str) -> None:
-    if path_beside(path, world).is_file() or world in shipped_world_names():
+    if _path_beside(path, world).is_file() or world in shipped_world_names():
         return
     raise BenchmarkError(f"sweep spec {path}: line {line}: worlds: no world '{world}' (neither "
                          f"shipped nor a file beside the spec); give a YAML file or one of: "

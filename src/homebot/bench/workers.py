@@ -46,9 +46,9 @@ from homebot.bench.arguments import count
 from homebot.errors import BenchmarkError
 from homebot.progress import task
 
-__all__ = ["ATTEMPTS", "BATCH_SECONDS", "CONNECT_SECONDS", "MAX_BATCH", "TaskOutcome",
-           "WorkerOptions", "add_worker_options", "batch_size", "cores", "each_outcome",
-           "engine_installed", "run_tasks", "worker_options"]
+__all__ = ["ATTEMPTS", "BATCH_SECONDS", "CONNECT_SECONDS", "MAX_BATCH", "WORKERS_SECONDS",
+           "TaskOutcome", "WorkerOptions", "add_worker_options", "batch_size", "cores",
+           "each_outcome", "engine_installed", "run_tasks", "worker_options"]
 
 _Unit = TypeVar("_Unit")
 _Value = TypeVar("_Value")
@@ -58,8 +58,9 @@ ATTEMPTS = 2
 #: Seconds of work sent to a Dask worker at a time, and at most this many tasks together.
 BATCH_SECONDS = 0.5
 MAX_BATCH = 100
-#: Seconds ``--cluster`` waits for its scheduler to answer.
+#: Seconds ``--cluster`` waits for its scheduler to answer, and then for a worker.
 CONNECT_SECONDS = 10.0
+WORKERS_SECONDS = 60.0
 
 
 def cores() -> int:
@@ -272,20 +273,26 @@ def _dask_client(workers: int | None, address: str | None) -> Iterator[Any]:
             yield client
 
 
-def _scheduler_settings(dask_scheduler: Any) -> tuple[int, float]:
-    return dask_scheduler.allowed_failures, dask_scheduler.WORKER_SATURATION
+def _allowed_failures(dask_scheduler: Any) -> int:
+    allowed: int = dask_scheduler.allowed_failures
+    return allowed
 
 
 def _check_scheduler(client: Any, address: str) -> None:
     """Say when a running scheduler retries lost tasks itself (then ``attempts`` counts only
     homebot's own retry), and wait until it has a worker."""
-    allowed, _ = client.run_on_scheduler(_scheduler_settings)
+    allowed = client.run_on_scheduler(_allowed_failures)
     if allowed:
         print(f"--cluster {address}: its scheduler reruns a task whose worker died up to "
               f"{allowed} times itself before homebot's one retry; start it with "
               "DASK_DISTRIBUTED__SCHEDULER__ALLOWED_FAILURES=0 for exact attempts",
               file=sys.stderr)
-    client.wait_for_workers(1, timeout=60)
+    try:
+        client.wait_for_workers(1, timeout=WORKERS_SECONDS)
+    except TimeoutError:
+        raise BenchmarkError(f"--cluster {address}: the scheduler has had no worker for "
+                             f"{WORKERS_SECONDS:g} s; start some with 'dask worker "
+                             f"{address}'") from None
 
 
 def batch_size(seconds: Sequence[float]) -> int:
