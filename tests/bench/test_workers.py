@@ -124,3 +124,19 @@ def test_a_cluster_address_where_no_scheduler_answers_is_one_clear_error(
     with pytest.raises(BenchmarkError, match=r"--cluster tcp://127\.0\.0\.1:9: no Dask "
                                              r"scheduler answers there"):
         run_tasks(square, [1, 2], WorkerOptions(cluster="tcp://127.0.0.1:9"))
+
+
+@needs_dask
+def test_a_running_cluster_runs_them_and_says_when_its_scheduler_retries_itself(
+        capsys: pytest.CaptureFixture[str]) -> None:
+    from distributed import LocalCluster
+
+    # in-process workers (threads): the cluster's address is what is tested, not its processes
+    with LocalCluster(n_workers=1, threads_per_worker=2, processes=False, protocol="tcp",
+                      host="127.0.0.1",
+                      dashboard_address="127.0.0.1:0") as cluster:
+        outcomes = run_tasks(refuse_three, list(range(6)),
+                             WorkerOptions(cluster=cluster.scheduler_address))
+    assert [outcome.value for outcome in outcomes] == [0, 1, 2, None, 4, 5]
+    assert "its scheduler reruns a task whose worker died up to 3 times itself" in \
+        capsys.readouterr().err
