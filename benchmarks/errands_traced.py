@@ -26,7 +26,7 @@ def main(world_name: str, tasks: int, seed: int) -> None:
     for index, errand in enumerate(errand_set(world, tasks, seed)):
         ran = run_errand(world, errand, seed * 100_003 + index, navigator=navigator,
                          fidelity=Fidelity.EMBODIED)
-        result.add(ran, hands=True)
+        result.add(ran.outcome(hands=True))
         report = ran.report
         why = "" if ran.verified else (f"{report.reason!r} said {report.speech[-1:]} truth: "
                                        f"{'done' if ran.done else 'not done'}")

@@ -34,7 +34,7 @@ TINY: dict[str, tuple[list[str], set[str], set[str]]] = {
             {"table1", "tidy", "execution"}),
     "inference": (["--worlds", "1", "--requests", "1"], {"worlds", "requests"}, set()),
     "gpsr": (["--commands", "1"], {"commands", "success_rate", "judged_by"}, set()),
-    "robustness": (["--tasks", "1"], {"tasks", "modes"}, set()),
+    "robustness": (["--tasks", "1", "--workers", "1"], {"tasks", "modes"}, set()),
     "fetch": (["--tasks", "1"], {"tasks", "figures"}, {"warm_speedup_in_this_run"}),
     "startup": (["--runs", "1"], {"runs", "figures", "load_average_before_after"},
                 {"homebot --help", "parse, cold (no names kept)"}),

@@ -27,8 +27,8 @@ def test_a_fetch_whose_object_was_taken_out_of_the_home_is_impossible_and_refuse
     there = _fetch_run(apartment, apartment_navigator, missing=0.0)
     assert not there.impossible and there.verified
     result = ModeResult("monitored + recovery")
-    result.add(gone)
-    result.add(there)
+    result.add(gone.outcome())
+    result.add(there.outcome())
     figures = result.to_dict()
     assert figures["verified_delivery_rate"] == 0.5
     assert figures["verified_of_possible_rate"] == 1.0

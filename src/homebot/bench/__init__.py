@@ -26,6 +26,7 @@ EXTRA_MODULES: dict[str, tuple[str, ...]] = {
     "speech": ("pocketsphinx", "espeakng_loader", "jiwer"),
     "ros": ("cyclonedds", "rosbags"),
     "web": ("fastapi", "uvicorn"),
+    "cluster": ("distributed",),
 }
 
 

@@ -22,7 +22,7 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
 __all__ = ["INSTALL", "htn_figure", "localisation_figure", "navigation_figure", "require",
-           "robustness_figure", "save", "speech_figure"]
+           "robustness_figure", "save", "speech_figure", "sweep_figure"]
 
 INSTALL = "pip install 'homebot[plots]'"
 _DPI = 110
@@ -231,4 +231,35 @@ def htn_figure(tidy: Sequence[Mapping[str, Any]]) -> Figure:
     axes.minorticks_off()
     axes.grid(True, alpha=0.3)
     axes.legend(fontsize="small")
+    return figure
+
+
+def sweep_figure(cells: Sequence[Mapping[str, Any]]) -> Figure:
+    """A sweep's verified share against the disturbance level: one panel per benchmark and
+    fidelity, one line per world and mode, the mean over the seeds with their range.
+
+    Args:
+        cells: ``homebot.bench.sweep.cell_figures``: per cell and mode, ``level`` and
+            ``verified_rate`` with the cell's names.
+    """
+    panels = list(dict.fromkeys((cell["benchmark"], cell["fidelity"]) for cell in cells))
+    figure, axes_list = _figure(len(panels), width=6.5)
+    for axes, (benchmark, fidelity) in zip(axes_list, panels, strict=True):
+        rates: dict[tuple[str, str], dict[float, list[float]]] = {}
+        for cell in cells:
+            if (cell["benchmark"], cell["fidelity"]) == (benchmark, fidelity):
+                line = rates.setdefault((cell["world"], cell["mode"]), {})
+                line.setdefault(float(cell["level"]), []).append(100 * cell["verified_rate"])
+        for (world, mode), by_level in rates.items():
+            levels = sorted(by_level)
+            means = np.array([np.mean(by_level[level]) for level in levels])
+            low = means - np.array([min(by_level[level]) for level in levels])
+            high = np.array([max(by_level[level]) for level in levels]) - means
+            axes.errorbar(levels, means, yerr=[low, high], marker="o", capsize=3,
+                          label=f"{world}, {mode}")
+        axes.set(title=f"{benchmark} ({fidelity}): verified by the truth",
+                 xlabel="disturbance level", ylabel="verified (%), mean and range over seeds")
+        axes.set_ylim(0, 105)
+        axes.grid(True, alpha=0.3)
+        axes.legend(fontsize="small")
     return figure

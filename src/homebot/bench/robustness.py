@@ -4,6 +4,12 @@
 ``--errands everyday`` (the default) mixes in taking an object from a person's hand and
 putting it away, and asking someone a question and telling the operator the answer
 (``homebot.trials.errands``). The referee is the simulator's truth.
+
+Each run of one errand in one mode is an ``ErrandTask``: a picklable unit that a worker
+process turns into an ``ErrandOutcome`` (``run_errand_task``), so ``--workers`` and
+``--cluster`` spread the runs over processes and machines (``homebot.bench.workers``). Its
+seed is the benchmark's seed and the errand's index, so the figures do not depend on which
+worker ran what, nor on how many there were.
 """
 
 from __future__ import annotations
@@ -12,6 +18,8 @@ import argparse
 import statistics
 import time
 from dataclasses import dataclass, field
+from functools import lru_cache
+from pathlib import Path
 from typing import Any
 
 from rich.console import Console
@@ -25,16 +33,26 @@ from homebot.bench.arguments import (
     disturbance_level,
     seed,
 )
+from homebot.bench.workers import (
+    TaskOutcome,
+    WorkerOptions,
+    add_worker_options,
+    run_tasks,
+    worker_options,
+)
 from homebot.events import Event
 from homebot.executive import RunReport
 from homebot.navigation import Navigator
-from homebot.progress import track
 from homebot.trials.errands import Errand, ErrandKind, errands
 from homebot.trials.fetch import fetch_tasks
 from homebot.world import World
 
-__all__ = ["ErrandRun", "ModeResult", "add_arguments", "compare_modes", "errand_set",
-           "run", "run_errand"]
+__all__ = ["MODES", "ErrandOutcome", "ErrandRun", "ErrandTask", "ModeResult", "add_arguments",
+           "compare_modes", "errand_set", "errand_tasks", "run", "run_errand", "run_errand_task",
+           "world_reference"]
+
+#: The execution modes compared: name, and whether monitoring and recovery are on.
+MODES: tuple[tuple[str, bool], ...] = (("monitored + recovery", True), ("plain sequence", False))
 
 
 @dataclass
@@ -59,9 +77,12 @@ class ModeResult:
     hands: dict[str, list[int]] = field(default_factory=dict)
     #: per disturbance that struck a task (the simulator's log; "none"): [tasks, verified]
     by_disturbance: dict[str, list[int]] = field(default_factory=dict)
+    #: tasks that gave no outcome (they raised, or killed their workers twice): why
+    errors: list[str] = field(default_factory=list)
 
     def to_dict(self) -> dict[str, Any]:
-        return {
+        errors = {"task_errors": self.errors} if self.errors else {}
+        return errors | {
             "mode": self.mode, "tasks": self.tasks, "delivered": self.delivered,
             "verified_delivery_rate": round(self.verified / max(self.tasks, 1), 4),
             "impossible": self.impossible, "impossible_refused": self.impossible_refused,
@@ -79,50 +100,45 @@ class ModeResult:
                                for what, (tasks, verified) in sorted(self.by_disturbance.items())},
         }
 
-    def add(self, errand_run: ErrandRun, *, hands: bool = False) -> None:
-        """Count one errand run in (and, with ``hands``, the hands in the loop)."""
-        report = errand_run.report
+    def add(self, outcome: ErrandOutcome) -> None:
+        """Count one errand's outcome in."""
         self.tasks += 1
-        self.wall_times.append(errand_run.wall)
-        self.sim_times.append(report.sim_time)
-        self.delivered += errand_run.done
-        self.verified += errand_run.verified
-        if hands:
-            self.count_hands(errand_run.events)
-        counts = self.by_kind.setdefault(str(errand_run.errand.kind), [0, 0])
-        counts[0] += 1
-        counts[1] += errand_run.verified
-        struck = {str(event.data.get("what")) for event in errand_run.events
-                  if event.kind == "sim.disturbance"}
-        for what in struck or {"none"}:
-            tally = self.by_disturbance.setdefault(what, [0, 0])
-            tally[0] += 1
-            tally[1] += errand_run.verified
-        if errand_run.impossible:
-            self.impossible += 1
-            self.impossible_refused += not report.success
-        if not report.success:
-            self.failed += 1
-            self.told_why += any(text.startswith("I am sorry") for text in report.speech)
-
-    def count_hands(self, events: list[Event]) -> None:
-        """Grasps, hand-overs and receptions the embodied robot tried (its own log) and
-        what the truth made of them (the simulator's log): a grasp lifted the object, a
-        hand-over left it with a person, a person let go of what they put in the hand."""
-        kinds = [(event.kind, event.data) for event in events]
-        pairs = {
-            "grasp": (sum(k == "robot.pick" and d.get("outcome") != "unreachable"
-                          for k, d in kinds),
-                      sum(k == "sim.arm" and d.get("what") == "lifted" for k, d in kinds)),
-            "hand_over": (sum(k == "robot.hand_over" for k, _ in kinds),
-                          sum(k == "sim.person" and d.get("did") == "took" for k, d in kinds)),
-            "receive": (sum(k == "robot.receive" for k, _ in kinds),
-                        sum(k == "sim.person" and d.get("did") == "let go" for k, d in kinds)),
-        }
-        for what, (tried, done) in pairs.items():
+        self.wall_times.append(outcome.wall)
+        self.sim_times.append(outcome.sim_time)
+        self.delivered += outcome.done
+        self.verified += outcome.verified
+        for what, tried, done in outcome.hands:
             counts = self.hands.setdefault(what, [0, 0])
             counts[0] += tried
             counts[1] += done
+        counts = self.by_kind.setdefault(outcome.kind, [0, 0])
+        counts[0] += 1
+        counts[1] += outcome.verified
+        for what in outcome.struck or ("none",):
+            tally = self.by_disturbance.setdefault(what, [0, 0])
+            tally[0] += 1
+            tally[1] += outcome.verified
+        if outcome.impossible:
+            self.impossible += 1
+            self.impossible_refused += not outcome.success
+        if not outcome.success:
+            self.failed += 1
+            self.told_why += outcome.told_why
+
+
+def _hands(events: list[Event]) -> tuple[tuple[str, int, int], ...]:
+    """Grasps, hand-overs and receptions the embodied robot tried (its own log) and what
+    the truth made of them (the simulator's log): a grasp lifted the object, a hand-over
+    left it with a person, a person let go of what they put in the hand."""
+    kinds = [(event.kind, event.data) for event in events]
+    return (
+        ("grasp", sum(k == "robot.pick" and d.get("outcome") != "unreachable" for k, d in kinds),
+         sum(k == "sim.arm" and d.get("what") == "lifted" for k, d in kinds)),
+        ("hand_over", sum(k == "robot.hand_over" for k, _ in kinds),
+         sum(k == "sim.person" and d.get("did") == "took" for k, d in kinds)),
+        ("receive", sum(k == "robot.receive" for k, _ in kinds),
+         sum(k == "sim.person" and d.get("did") == "let go" for k, d in kinds)),
+    )
 
 
 def errand_set(world: World, tasks: int, seed: int, mix: str = "everyday") -> list[Errand]:
@@ -156,6 +172,37 @@ class ErrandRun:
             event.kind == "sim.disturbance" and event.data.get("what") == "object_missing"
             and event.data.get("object") == self.errand.obj for event in self.events)
 
+    def outcome(self, *, hands: bool = False) -> ErrandOutcome:
+        """What the figures need of this run (with ``hands``: the hands in the loop)."""
+        report = self.report
+        struck = {str(event.data.get("what")) for event in self.events
+                  if event.kind == "sim.disturbance"}
+        return ErrandOutcome(
+            kind=str(self.errand.kind), done=self.done, success=report.success,
+            sim_time=report.sim_time, wall=self.wall, struck=tuple(sorted(struck)),
+            told_why=any(text.startswith("I am sorry") for text in report.speech),
+            impossible=self.impossible, hands=_hands(self.events) if hands else ())
+
+
+@dataclass(frozen=True)
+class ErrandOutcome:
+    """One errand run as the figures count it: small and picklable, sent back by a worker."""
+
+    kind: str  #: the errand's kind (``ErrandKind``)
+    done: bool  #: by the truth
+    success: bool  #: the robot's own report
+    sim_time: float  #: simulated seconds the run took
+    wall: float  #: seconds of wall time (a timing: differs from run to run)
+    struck: tuple[str, ...]  #: the disturbances that struck it, sorted (the simulator's log)
+    told_why: bool  #: a failure the robot explained ("I am sorry ...")
+    impossible: bool = False  #: the object to fetch was gone before the run (``ErrandRun``)
+    hands: tuple[tuple[str, int, int], ...] = ()  #: (what, tried, done by the truth)
+
+    @property
+    def verified(self) -> bool:
+        """Done by the truth and reported done by the robot."""
+        return self.done and self.success
+
 
 def run_errand(world: World, errand: Errand, run_seed: int, *, level: float = 1.0,
                monitoring: bool = True, navigator: Navigator | None = None,
@@ -173,22 +220,90 @@ def run_errand(world: World, errand: Errand, run_seed: int, *, level: float = 1.
                      run.simulation.events.events)
 
 
-def compare_modes(world: World, tasks: int, seed: int, level: float = 1.0,
-                  fidelity: Fidelity = Fidelity.SYMBOLIC,
-                  mix: str = "everyday") -> list[ModeResult]:
-    """Run the same seeded errands with monitoring and recovery, and as a plain sequence."""
-    navigator = Navigator(world)
-    results = []
-    for mode, monitoring in (("monitored + recovery", True), ("plain sequence", False)):
-        result = ModeResult(mode)
-        for index, errand in enumerate(track(errand_set(world, tasks, seed, mix),
-                                             f"errands, {mode}")):
-            result.add(run_errand(world, errand, seed * 100_003 + index, level=level,
-                                  monitoring=monitoring, navigator=navigator,
-                                  fidelity=fidelity),
-                       hands=fidelity is Fidelity.EMBODIED)
-        results.append(result)
-    return results
+def world_reference(path_or_name: str | Path) -> str:
+    """How a worker finds a world: a file by its absolute path, a shipped world by name (a
+    worker on another machine has the same shipped worlds, wherever it installed them)."""
+    candidate = Path(path_or_name)
+    if candidate.suffix or candidate.exists():
+        return str(candidate.resolve())
+    return str(path_or_name)
+
+
+@dataclass(frozen=True)
+class ErrandTask:
+    """One errand of a seeded set, run in one mode: the unit a worker runs."""
+
+    world: str  #: ``world_reference`` of the world
+    mix: str  #: ``fetch`` or ``everyday`` (``errand_set``)
+    tasks: int  #: the size of the seeded set the errand is drawn from
+    seed: int  #: the benchmark's seed
+    index: int  #: the errand's place in the set
+    level: float = 1.0  #: the disturbance level
+    monitoring: bool = True  #: monitoring and recovery on, or a plain sequence
+    fidelity: Fidelity = Fidelity.SYMBOLIC
+
+    @property
+    def run_seed(self) -> int:
+        """The run's seed: from the benchmark's seed and the task's index alone."""
+        return self.seed * 100_003 + self.index
+
+
+def errand_tasks(world: str, tasks: int, seed: int, level: float = 1.0,
+                 fidelity: Fidelity = Fidelity.SYMBOLIC, mix: str = "everyday"
+                 ) -> list[ErrandTask]:
+    """Every errand of the set in every mode (``MODES``), mode by mode."""
+    return [ErrandTask(world, mix, tasks, seed, index, level, monitoring, fidelity)
+            for _, monitoring in MODES for index in range(tasks)]
+
+
+@lru_cache(maxsize=8)
+def _arena(world: str, tasks: int, seed: int, mix: str
+           ) -> tuple[World, Navigator, list[Errand]]:
+    """A worker's world, navigator and errand set, made once per process and set."""
+    loaded = _WORLDS.get(world) or World.load(world)
+    return loaded, Navigator(loaded), errand_set(loaded, tasks, seed, mix)
+
+
+#: Worlds already loaded in this process, by ``world_reference``: a caller's own ``World``
+#: is used as it is when its tasks run here.
+_WORLDS: dict[str, World] = {}
+
+
+def run_errand_task(unit: ErrandTask) -> ErrandOutcome:
+    """Run one errand task (in whichever process it was sent to) and referee it."""
+    world, navigator, errand_list = _arena(unit.world, unit.tasks, unit.seed, unit.mix)
+    ran = run_errand(world, errand_list[unit.index], unit.run_seed, level=unit.level,
+                     monitoring=unit.monitoring, navigator=navigator, fidelity=unit.fidelity)
+    return ran.outcome(hands=unit.fidelity is Fidelity.EMBODIED)
+
+
+def mode_results(units: list[ErrandTask], outcomes: list[TaskOutcome[ErrandOutcome]]
+                 ) -> list[ModeResult]:
+    """The modes' figures from the outcomes of ``units`` (in the units' order)."""
+    results = {monitoring: ModeResult(mode) for mode, monitoring in MODES}
+    for unit, outcome in zip(units, outcomes, strict=True):
+        result = results[unit.monitoring]
+        if outcome.value is None:
+            result.errors.append(f"task {unit.index}: {outcome.error}")
+        else:
+            result.add(outcome.value)
+    return [results[monitoring] for _, monitoring in MODES]
+
+
+def compare_modes(world: World | str, tasks: int, seed: int, level: float = 1.0,
+                  fidelity: Fidelity = Fidelity.SYMBOLIC, mix: str = "everyday",
+                  workers: WorkerOptions | None = None) -> list[ModeResult]:
+    """Run the same seeded errands with monitoring and recovery, and as a plain sequence
+    (on ``workers``: by default one after another in this process)."""
+    if isinstance(world, World):
+        reference = world_reference(world.source)
+        _WORLDS[reference] = world
+    else:
+        reference = world_reference(world)
+    units = errand_tasks(reference, tasks, seed, level, fidelity, mix)
+    outcomes = run_tasks(run_errand_task, units, workers or WorkerOptions(),
+                         "errands, both modes")
+    return mode_results(units, outcomes)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -202,15 +317,17 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="everyday: fetch, take from a person, ask and tell (the default); "
                              "fetch: fetch-and-deliver only")
     add_fidelity_option(parser)
+    add_worker_options(parser)
     add_plot_option(parser, "each mode's verified deliveries by the disturbance that struck")
 
 
 def run(args: argparse.Namespace, console: Console | None = None) -> dict[str, Any]:
     """Compare the modes and print a table; returns the figures."""
-    world = World.load(args.world)
-    results = [result.to_dict() for result in compare_modes(world, args.tasks, args.seed,
-                                                            args.level, args.fidelity,
-                                                            args.errands)]
+    world = World.load(args.world)  # a bad world is refused before any worker starts
+    _WORLDS[world_reference(args.world)] = world
+    results = [result.to_dict() for result in compare_modes(
+        world_reference(args.world), args.tasks, args.seed, args.level, args.fidelity,
+        args.errands, worker_options(args))]
     if console is not None:
         table = Table(title=f"Errands ({args.errands}), {args.tasks} tasks, disturbances "
                             f"x{args.level}, {args.fidelity} robot")

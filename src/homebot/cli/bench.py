@@ -27,10 +27,24 @@ def register(subparsers: Any) -> None:
     bench_parsers = lazy_subparsers(parser, dest="benchmark", metavar="NAME")
     for entry in BENCHMARKS:
         bench_parsers.add_lazy(entry.name, entry.help, _register_one(entry))
+    bench_parsers.add_lazy("sweep", _SWEEP_HELP, _register_sweep)
     every = bench_parsers.add_parser("all", help="every benchmark with its default settings")
     _add_json(every)
     every.set_defaults(handler=_run_all)
     parser.set_defaults(handler=lambda args: _missing())
+
+
+_SWEEP_HELP = ("a grid of benchmark runs (benchmark x world x disturbance level x seed x "
+               "fidelity) on many workers, as one resumable table with plots")
+
+
+def _register_sweep(subparsers: LazySubcommands) -> None:
+    from homebot.bench import sweep
+
+    parser = subparsers.add_parser("sweep", help=_SWEEP_HELP, description=_SWEEP_HELP)
+    _add_json(parser)
+    sweep.add_arguments(parser)
+    parser.set_defaults(handler=lambda args: _print(sweep.run(args, _console(args)), args))
 
 
 def _add_json(parser: argparse.ArgumentParser) -> None:
