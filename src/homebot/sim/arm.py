@@ -27,6 +27,7 @@ __all__ = [
     "ARM_JOINTS",
     "ArmSimulation",
     "Contact",
+    "DoorLeaf",
     "ObjectBody",
     "SurfaceBox",
     "default_arm_model",
@@ -119,6 +120,41 @@ class ObjectBody:
 
 
 @dataclass(frozen=True, slots=True)
+class DoorLeaf:
+    """A shut door's leaf on its hinge, with a lever handle on each face (map frame).
+
+    ``hinge`` is the hinge axis's foot; ``yaw`` the direction from the hinge to the latch
+    edge while shut; the leaf turns about the hinge by positive angles when ``swing`` is
+    +1 (counter-clockwise seen from above), negative ones when -1. ``handles`` are the
+    levers' centres (x, y, z); each lever turns down about the leaf's normal from its
+    latch-side end. While latched the leaf cannot turn; pressing a lever down past
+    ``DOOR_UNLATCH`` releases the latch unless the door is ``locked``.
+    """
+
+    name: str
+    hinge: tuple[float, float]
+    yaw: float
+    length: float  #: metres from the hinge to the latch edge
+    thickness: float
+    height: float
+    handles: tuple[tuple[float, float, float], ...]
+    handle_size: tuple[float, float, float]  #: the lever's length, depth and height
+    swing: float = 1.0
+    locked: bool = False
+    friction: float = 1.0  #: the hinge's dry friction (N·m)
+    damping: float = 2.0  #: the hinge's damping (N·m·s/rad)
+
+
+DOOR_UNLATCH = 0.3  #: radians a lever is pressed down to draw the latch
+_DOOR_RANGE = 1.9  #: radians a leaf turns at most
+_LATCH_PLAY = 0.003  #: radians a latched leaf rattles in its frame
+_LEVER_TRAVEL = 0.6  #: radians a lever goes down at most
+_LEVER_SPRING = 1.5  #: N·m/rad: the spring that brings a lever back up
+_LEVER_PIVOT_IN = 0.01  #: metres in from the lever's latch-side end to its pivot
+_DOOR_STEP = 0.01  #: seconds of physics between checks of the latches
+
+
+@dataclass(frozen=True, slots=True)
 class Contact:
     """Two bodies touching, and the normal force between them (newtons)."""
 
@@ -140,6 +176,7 @@ class ArmSimulation:
         torso: the torso lift's start height.
         held: an object to start in the gripper with its pose relative to the grasp site
             (``relative_to_grasp``), e.g. when the scene is rebuilt at another placement.
+        doors: shut doors' leaves on their hinges, latched.
         grip: the gripper's command (width, force) when it differs from ``gripper``, the
             fingers' start width: a hand closed on an object keeps squeezing it.
     """
@@ -149,7 +186,8 @@ class ArmSimulation:
                  model_path: Path | None = None, arm: Sequence[float] = HOME,
                  torso: float = 0.2, gripper: float = MAX_GRIPPER_WIDTH,
                  held: tuple[ObjectBody, np.ndarray] | None = None,
-                 grip: tuple[float, float | None] | None = None) -> None:
+                 grip: tuple[float, float | None] | None = None,
+                 doors: Sequence[DoorLeaf] = ()) -> None:
         import mujoco
 
         self._mj = mujoco
@@ -179,9 +217,21 @@ class ArmSimulation:
                           condim=4 if obj.shape == "box" else 6, priority=1,
                           contype=_WORLD_CONTYPE, conaffinity=_WORLD_CONAFFINITY,
                           rgba=list(obj.rgba))
+        self.doors = {door.name: door for door in doors}
+        for door in doors:
+            _add_door(mujoco, spec, door)
         self.model = spec.compile()
         self.data = mujoco.MjData(self.model)
         m = self.model
+        #: per door: the hinge's qpos address, its levers' qpos addresses, latched or not
+        self._door_hinge = {name: int(m.jnt_qposadr[m.joint(f"door:{name}").id])
+                            for name in self.doors}
+        self._levers = {name: [int(m.jnt_qposadr[m.joint(f"door:{name}:lever{k}").id])
+                               for k in range(len(door.handles))]
+                        for name, door in self.doors.items()}
+        self.latched = {name: True for name in self.doors}
+        for name in self.doors:
+            self._latch(name, True)
         self._arm_qpos = np.array([m.jnt_qposadr[m.joint(n).id] for n in ARM_JOINTS])
         self._arm_dof = np.array([m.jnt_dofadr[m.joint(n).id] for n in ARM_JOINTS])
         self._arm_act = np.array([m.actuator(n).id for n in ARM_JOINTS])
@@ -256,10 +306,53 @@ class ArmSimulation:
         self.data.qvel[velocity:velocity + 6] = 0.0
         self._mj.mj_forward(self.model, self.data)
 
-    def step(self, seconds: float) -> None:
-        """Let ``seconds`` of simulated time pass."""
-        steps = max(1, round(seconds / self.model.opt.timestep))
-        self._mj.mj_step(self.model, self.data, nstep=steps)
+    def step(self, seconds: float, *, base: tuple[float, float, float] | None = None) -> None:
+        """Let ``seconds`` of simulated time pass; the base moves on to ``base`` meanwhile
+        (in small jumps: it is kinematic), if given. A door's latch follows its levers."""
+        if not self.doors and base is None:
+            steps = max(1, round(seconds / self.model.opt.timestep))
+            self._mj.mj_step(self.model, self.data, nstep=steps)
+            return
+        chunks = max(1, round(seconds / _DOOR_STEP))
+        start = np.array(self.base)
+        turn = 0.0 if base is None else float(np.angle(np.exp(1j * (base[2] - start[2]))))
+        for chunk in range(1, chunks + 1):
+            if base is not None:
+                share = chunk / chunks
+                self.set_base((float(start[0] + share * (base[0] - start[0])),
+                               float(start[1] + share * (base[1] - start[1])),
+                               float(start[2] + share * turn)))
+            steps = max(1, round(seconds / chunks / self.model.opt.timestep))
+            self._mj.mj_step(self.model, self.data, nstep=steps)
+            for name in self.doors:
+                self._follow_latch(name)
+
+    # ------------------------------------------------------------ doors
+
+    def door_angle(self, name: str) -> float:
+        """Ground truth: how far the door's leaf has turned from shut (radians, ≥ 0)."""
+        return abs(float(self.data.qpos[self._door_hinge[name]]))
+
+    def lever_angle(self, name: str) -> float:
+        """Ground truth: how far the door's most pressed lever is down (radians, ≥ 0)."""
+        return max(-float(self.data.qpos[a]) for a in self._levers[name])
+
+    def _follow_latch(self, name: str) -> None:
+        """Pressed far enough, the lever draws the latch (not of a locked door); let go
+        with the leaf shut, the latch snaps back in."""
+        door = self.doors[name]
+        if self.latched[name] and not door.locked and self.lever_angle(name) >= DOOR_UNLATCH:
+            self._latch(name, False)
+        elif not self.latched[name] and self.door_angle(name) < _LATCH_PLAY and \
+                self.lever_angle(name) < DOOR_UNLATCH / 3:
+            self._latch(name, True)
+
+    def _latch(self, name: str, latched: bool) -> None:
+        joint = self.model.joint(f"door:{name}").id
+        reach = _LATCH_PLAY if latched else _DOOR_RANGE
+        swing = self.doors[name].swing
+        self.model.jnt_range[joint] = (0.0, reach) if swing > 0 else (-reach, 0.0)
+        self.latched[name] = latched
 
     # ------------------------------------------------------------ measurements
 
@@ -309,6 +402,22 @@ class ArmSimulation:
 
     def object_rotation(self, name: str) -> np.ndarray:
         return np.array(self.data.xmat[self.model.body(name).id]).reshape(3, 3)
+
+    def door_touches(self, name: str) -> set[str]:
+        """Ground truth: the robot's bodies (but the fingers) touching the door's leaf."""
+        m, d = self.model, self.data
+        door = {m.body(f"door:{name}").id, *(m.body(f"door:{name}:lever{k}").id
+                                             for k in range(len(self.doors[name].handles)))}
+        fingers = {m.body(n).id for n in ("left_finger", "right_finger", "gripper")}
+        touching = set()
+        for index in range(d.ncon):
+            contact = d.contact[index]
+            a, b = int(m.geom_bodyid[contact.geom1]), int(m.geom_bodyid[contact.geom2])
+            other = b if a in door else a if b in door else -1
+            if other >= 0 and other not in door and other not in fingers and \
+                    int(m.body_rootid[other]) == int(m.body("base").id):
+                touching.add(m.body(other).name)
+        return touching
 
     def contacts(self) -> list[Contact]:
         """Every contact in the scene, by body, with its normal force."""
@@ -360,3 +469,34 @@ class ArmSimulation:
         self.data.qpos[address:address + 3] = position
         self.data.qpos[address + 3:address + 7] = quat
         self._mj.mj_forward(self.model, self.data)
+
+
+def _add_door(mujoco: Any, spec: Any, door: DoorLeaf) -> None:
+    """The leaf on its hinge and the levers on their pivots, into ``spec``."""
+    body = spec.worldbody.add_body(name=f"door:{door.name}", pos=[*door.hinge, 0.0],
+                                   quat=list(quaternion_from_yaw(door.yaw)))
+    body.add_joint(name=f"door:{door.name}", type=mujoco.mjtJoint.mjJNT_HINGE, axis=[0, 0, 1],
+                   range=[0.0, _DOOR_RANGE] if door.swing > 0 else [-_DOOR_RANGE, 0.0],
+                   frictionloss=door.friction, damping=door.damping, armature=0.1)
+    body.add_geom(name=f"door:{door.name}", type=mujoco.mjtGeom.mjGEOM_BOX,
+                  size=[door.length / 2, door.thickness / 2, door.height / 2],
+                  pos=[door.length / 2, 0.0, door.height / 2], mass=12.0,
+                  contype=_WORLD_CONTYPE, conaffinity=_WORLD_CONAFFINITY,
+                  rgba=[0.75, 0.66, 0.52, 1.0])
+    c, s = np.cos(door.yaw), np.sin(door.yaw)
+    length, depth, height = door.handle_size
+    for k, (x, y, z) in enumerate(door.handles):
+        dx, dy = x - door.hinge[0], y - door.hinge[1]
+        local = (c * dx + s * dy, -s * dx + c * dy)
+        pivot = local[0] + length / 2 - _LEVER_PIVOT_IN
+        lever = body.add_body(name=f"door:{door.name}:lever{k}", pos=[pivot, local[1], z])
+        # about the leaf's normal; negative turns the lever's free end (towards the hinge) down
+        lever.add_joint(name=f"door:{door.name}:lever{k}", type=mujoco.mjtJoint.mjJNT_HINGE,
+                        axis=[0, 1, 0], range=[-_LEVER_TRAVEL, 0.0], stiffness=_LEVER_SPRING,
+                        damping=0.05, armature=0.002)
+        lever.add_geom(name=f"door:{door.name}:lever{k}", type=mujoco.mjtGeom.mjGEOM_BOX,
+                       size=[length / 2, depth / 2, height / 2],
+                       pos=[-(length / 2 - _LEVER_PIVOT_IN), 0.0, 0.0], mass=0.2,
+                       friction=[1.5, 0.02, 0.002], condim=4,
+                       contype=_WORLD_CONTYPE, conaffinity=_WORLD_CONAFFINITY,
+                       rgba=[0.69, 0.69, 0.71, 1.0])
