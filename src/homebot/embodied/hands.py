@@ -1,6 +1,7 @@
 """``ArmedBodyRobot``: the embodied robot whose grasps and releases run its arm in physics.
 
-A grasp plans a grasp and an arm motion (``homebot.manipulation``), moves the arm, closes
+Shut doors are opened with the arm (``homebot.embodied.door_opening``). A grasp plans a
+grasp and an arm motion (``homebot.manipulation``), moves the arm, closes
 the gripper and lifts; whether the object is then in the hand is what the gripper and the
 wrist sense, and what the simulator's physics made of the grasp, never a die. An object
 more than 0.95 m away, or out of reach from where the robot stands, is reached after a step
@@ -24,6 +25,7 @@ from typing import Any
 import numpy as np
 from shapely.geometry import LineString, Point
 
+from homebot.embodied.door_opening import DoorOpening
 from homebot.embodied.robot import BodyRobot
 from homebot.geometry import Pose
 from homebot.manipulation.control import ArmControl, PlaceOutcome
@@ -83,13 +85,15 @@ class ArmedBodyRobot(BodyRobot):
         *args: as ``BodyRobot``.
         arm: picking and placing over the same body, locating objects by ``seen``.
         seen: the memory of where objects were seen, which this robot keeps.
+        doors: opens shut doors with the arm (None: the robot asks someone to).
         **kwargs: as ``BodyRobot``.
 
     Raises:
         ValueError: the arm locates objects some other way than by ``seen``.
     """
 
-    def __init__(self, *args: Any, arm: ArmControl, seen: SeenObjects, **kwargs: Any) -> None:
+    def __init__(self, *args: Any, arm: ArmControl, seen: SeenObjects,
+                 doors: DoorOpening | None = None, **kwargs: Any) -> None:
         if arm.locate is not seen:
             raise ValueError("the arm must locate objects by the robot's SeenObjects: "
                              "build it with ArmControl(body, world, seen)")
@@ -100,6 +104,26 @@ class ArmedBodyRobot(BodyRobot):
         self._handles = 0  #: the robot's own handles for what it was handed
         #: where perception last saw each object: (placement, map position, heading)
         self.seen = seen.places
+        self.doors = doors
+
+    def open_door(self, door: str) -> bool:
+        """Open a shut ``door`` the robot stands before with the arm (Cosero §4.2:
+        ``homebot.embodied.door_opening``) when the hand is free; whether it is open is
+        then what the laser sees. An attempt that fails leaves the door to whoever the
+        robot asks."""
+        seen = self.door_is_open(door)
+        if seen is True:
+            return True
+        if seen is None or self.doors is None or self._holding or \
+                self.arm.holding is not None:
+            return False
+        attempt = self.doors.open(door, self.pose())
+        self.localise()
+        opened = self.door_is_open(door) is True
+        self.events.record("robot.open_door", door=door, opened=opened,
+                           reason=attempt.reason, seconds=round(attempt.seconds, 2),
+                           degrees=round(attempt.believed_degrees, 1))
+        return opened
 
     def perceive_objects(self, placement: str) -> list[Detection]:
         detections = super().perceive_objects(placement)

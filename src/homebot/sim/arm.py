@@ -151,7 +151,9 @@ _LATCH_PLAY = 0.003  #: radians a latched leaf rattles in its frame
 _LEVER_TRAVEL = 0.6  #: radians a lever goes down at most
 _LEVER_SPRING = 1.5  #: N·m/rad: the spring that brings a lever back up
 _LEVER_PIVOT_IN = 0.01  #: metres in from the lever's latch-side end to its pivot
-_DOOR_STEP = 0.01  #: seconds of physics between checks of the latches
+_UNDER_DOOR = 0.01  #: metres between a leaf and the floor
+_LATCH_EVERY = 3  #: physics steps between checks of the latches
+_BASE_JOINTS = ("base_x", "base_y", "base_yaw")
 
 
 @dataclass(frozen=True, slots=True)
@@ -220,6 +222,8 @@ class ArmSimulation:
         self.doors = {door.name: door for door in doors}
         for door in doors:
             _add_door(mujoco, spec, door)
+        if doors:
+            _drive_base(mujoco, spec)
         self.model = spec.compile()
         self.data = mujoco.MjData(self.model)
         m = self.model
@@ -251,6 +255,11 @@ class ArmSimulation:
         self._grasp_to_palm = float(m.site_pos[self._grasp_site][0] - m.geom_pos[palm][0] -
                                     m.geom_size[palm][0])
         self._base_mocap = int(m.body_mocapid[m.body("base").id])
+        #: the base's joints (x, y, yaw) where it is driven (a door in the scene), else None
+        self._base_joints = None if self._base_mocap >= 0 else (
+            np.array([m.jnt_qposadr[m.joint(n).id] for n in _BASE_JOINTS]),
+            np.array([m.jnt_dofadr[m.joint(n).id] for n in _BASE_JOINTS]))
+        self._base_velocity = np.zeros(3)
         self.set_base(base)
         self.data.qpos[self._arm_qpos] = arm
         self.data.qpos[self._torso_q] = torso
@@ -267,9 +276,13 @@ class ArmSimulation:
 
     def set_base(self, pose: tuple[float, float, float]) -> None:
         """Put the (kinematic) base at ``pose`` (x, y, heading) on the map."""
-        self.data.mocap_pos[self._base_mocap] = [pose[0], pose[1], 0.0]
-        self.data.mocap_quat[self._base_mocap] = quaternion_from_yaw(pose[2])
         self.base = pose
+        if self._base_joints is None:
+            self.data.mocap_pos[self._base_mocap] = [pose[0], pose[1], 0.0]
+            self.data.mocap_quat[self._base_mocap] = quaternion_from_yaw(pose[2])
+            return
+        self.data.qpos[self._base_joints[0]] = pose
+        self.data.qvel[self._base_joints[1]] = self._base_velocity
 
     def command(self, arm: Sequence[float], *, torso: float | None = None,
                 torques: Sequence[float] | None = None) -> None:
@@ -308,24 +321,35 @@ class ArmSimulation:
 
     def step(self, seconds: float, *, base: tuple[float, float, float] | None = None) -> None:
         """Let ``seconds`` of simulated time pass; the base moves on to ``base`` meanwhile
-        (in small jumps: it is kinematic), if given. A door's latch follows its levers."""
+        (driven at the velocity that takes it there), if given. A door's latch follows
+        its levers."""
         if not self.doors and base is None:
             steps = max(1, round(seconds / self.model.opt.timestep))
             self._mj.mj_step(self.model, self.data, nstep=steps)
             return
-        chunks = max(1, round(seconds / _DOOR_STEP))
+        steps = max(1, round(seconds / self.model.opt.timestep))
+        dt = self.model.opt.timestep
         start = np.array(self.base)
-        turn = 0.0 if base is None else float(np.angle(np.exp(1j * (base[2] - start[2]))))
-        for chunk in range(1, chunks + 1):
+        velocity = np.zeros(3)
+        if base is not None:
+            turn = float(np.angle(np.exp(1j * (base[2] - start[2]))))
+            velocity = np.array([base[0] - start[0], base[1] - start[1], turn]) / (steps * dt)
+        # A driven base moves at its velocity, so what the hand holds feels it move (a
+        # mocap base would jump, and friction would not carry a held handle along).
+        self._base_velocity = velocity if self._base_joints is not None else np.zeros(3)
+        for step in range(1, steps + 1):
+            self._mj.mj_step(self.model, self.data)
             if base is not None:
-                share = chunk / chunks
-                self.set_base((float(start[0] + share * (base[0] - start[0])),
-                               float(start[1] + share * (base[1] - start[1])),
-                               float(start[2] + share * turn)))
-            steps = max(1, round(seconds / chunks / self.model.opt.timestep))
-            self._mj.mj_step(self.model, self.data, nstep=steps)
-            for name in self.doors:
-                self._follow_latch(name)
+                pose = start + velocity * step * dt
+                self.set_base((float(pose[0]), float(pose[1]), float(pose[2])))
+            elif self._base_joints is not None:
+                self.set_base(self.base)  # at rest: held where it is
+            if step % _LATCH_EVERY == 0 or step == steps:
+                for name in self.doors:
+                    self._follow_latch(name)
+        self._base_velocity = np.zeros(3)
+        if base is not None:
+            self.set_base(base)
 
     # ------------------------------------------------------------ doors
 
@@ -479,8 +503,8 @@ def _add_door(mujoco: Any, spec: Any, door: DoorLeaf) -> None:
                    range=[0.0, _DOOR_RANGE] if door.swing > 0 else [-_DOOR_RANGE, 0.0],
                    frictionloss=door.friction, damping=door.damping, armature=0.1)
     body.add_geom(name=f"door:{door.name}", type=mujoco.mjtGeom.mjGEOM_BOX,
-                  size=[door.length / 2, door.thickness / 2, door.height / 2],
-                  pos=[door.length / 2, 0.0, door.height / 2], mass=12.0,
+                  size=[door.length / 2, door.thickness / 2, (door.height - _UNDER_DOOR) / 2],
+                  pos=[door.length / 2, 0.0, (door.height + _UNDER_DOOR) / 2], mass=12.0,
                   contype=_WORLD_CONTYPE, conaffinity=_WORLD_CONAFFINITY,
                   rgba=[0.75, 0.66, 0.52, 1.0])
     c, s = np.cos(door.yaw), np.sin(door.yaw)
@@ -489,7 +513,8 @@ def _add_door(mujoco: Any, spec: Any, door: DoorLeaf) -> None:
         dx, dy = x - door.hinge[0], y - door.hinge[1]
         local = (c * dx + s * dy, -s * dx + c * dy)
         pivot = local[0] + length / 2 - _LEVER_PIVOT_IN
-        lever = body.add_body(name=f"door:{door.name}:lever{k}", pos=[pivot, local[1], z])
+        lever = body.add_body(name=f"door:{door.name}:lever{k}", pos=[pivot, local[1], z],
+                              gravcomp=1.0)  # its spring holds it level
         # about the leaf's normal; negative turns the lever's free end (towards the hinge) down
         lever.add_joint(name=f"door:{door.name}:lever{k}", type=mujoco.mjtJoint.mjJNT_HINGE,
                         axis=[0, 1, 0], range=[-_LEVER_TRAVEL, 0.0], stiffness=_LEVER_SPRING,
@@ -500,3 +525,18 @@ def _add_door(mujoco: Any, spec: Any, door: DoorLeaf) -> None:
                        friction=[1.5, 0.02, 0.002], condim=4,
                        contype=_WORLD_CONTYPE, conaffinity=_WORLD_CONAFFINITY,
                        rgba=[0.69, 0.69, 0.71, 1.0])
+
+
+def _drive_base(mujoco: Any, spec: Any) -> None:
+    """The mocap base turned into a body on three joints (x, y, yaw) that ``step`` drives
+    kinematically; heavy (armature), so what the arm does hardly moves it."""
+    base = spec.body("base")
+    base.mocap = False
+    heavy = 1.0e4
+    base.add_joint(name="base_x", type=mujoco.mjtJoint.mjJNT_SLIDE, axis=[1, 0, 0],
+                   armature=heavy)
+    base.add_joint(name="base_y", type=mujoco.mjtJoint.mjJNT_SLIDE, axis=[0, 1, 0],
+                   armature=heavy)
+    base.add_joint(name="base_yaw", type=mujoco.mjtJoint.mjJNT_HINGE, axis=[0, 0, 1],
+                   armature=heavy)
+    spec.add_exclude(bodyname1="world", bodyname2="base")
