@@ -33,13 +33,7 @@ import numpy as np
 from homebot.geometry import Pose, wrap_angle
 from homebot.manipulation.grasps import IK_SEEDS
 from homebot.manipulation.ik import rotation_error, solve_ik
-from homebot.manipulation.interaction import (
-    Command,
-    DoorMotion,
-    DoorPhase,
-    to_base,
-    to_odometry,
-)
+from homebot.manipulation.interaction import DoorMotion, DoorPhase, to_base, to_odometry
 from homebot.manipulation.pick import GRIP_FORCE, TUCKED, current_configuration, follow
 from homebot.manipulation.scene import Obstacle, PlanningScene
 from homebot.navigation.straight import drive_straight
@@ -70,20 +64,17 @@ _PRESS_SECONDS = 0.8
 _PULL_SPEED = 0.05  #: m/s the handle's target goes round the hinge
 _PULL_LEAD = 0.02  #: metres the handle's target leads the hand by at most
 _BASE_SPEED = 0.06  #: m/s the base backs away at most while the hand holds the handle
-_BASE_TURN = 0.0  #: rad/s the base turns at most while the hand holds the handle
-#: per second, on how much nearer (metres) and further aside (radians) than at the start
-#: the handle's target is
-_BASE_GAIN = 1.5
+_BASE_GAIN = 1.5  #: per second, on how much nearer than at the start the handle's target is
 _OPEN_ENOUGH = 1.45  #: radians the robot opens the door to (it counts past 1.2 as open)
 _TIME_LIMIT = 25.0  #: seconds of pulling before the robot gives up
+_MOVED = 0.2  #: radians the hand must have come round (a hand slipping along a lever held
+#: shut comes round some way too) for the door not to count as held shut
 _STALL = (2.0, 0.03)  #: seconds within which the door must turn this many radians
 _JOINT_STEP = 0.08  #: radians the arm's command may lead its joints by in one tick
 _DRAW_BACK_SECONDS = 1.6  #: the hand draws back off the handle and rises over it
 _LIFT_OFF = 0.25  #: metres the hand rises before it is tucked
-_TURN_TOLERANCE = 0.03
-_UP = np.array([0.0, 0.0, 1.0])
-_FREE_YAW: np.ndarray | None = None
-_POSTURE_GAIN = 0.2  #: of the way back to the posture, per tick, in the null space  #: radians: the base's final heading this close will do
+_TURN_TOLERANCE = 0.03  #: radians: the base's final heading this close will do
+_POSTURE_GAIN = 0.2  #: of the way back to the posture, per tick, in the null space
 
 
 @dataclass(frozen=True)
@@ -165,12 +156,16 @@ class DoorOpening:
             return "I cannot get to the handle"
         pose = _triple(body.odometry().pose)
         hand = to_base(pose, grasp)
-        rotation = _grasp_rotation(to_base(pose, grasp - door.normal3)[:2] - hand[:2])
+        # The wrist rolled the way that leaves it travel to turn towards the hinge (the
+        # fingers are alike: up and down are the same grasp).
+        hinge_left = float(to_base(pose, np.array([*door.hinge, 0.0]))[1]) > float(hand[1])
+        rotation = _grasp_rotation(to_base(pose, grasp - door.normal3)[:2] - hand[:2],
+                                   1.0 if hinge_left else -1.0)
         scene = PlanningScene(body.arm().description(), (0.0, 0.0, 0.0),
                               [door.leaf_obstacle(pose)])
         approach = rotation[:, 0]
-        before = solve_ik(scene, hand - _PRE_GRASP * approach, rotation,
-                          [*_HANDLE_SEEDS, *IK_SEEDS])
+        seeds = list(_HANDLE_SEEDS if hinge_left else _HANDLE_SEEDS[::-1])
+        before = solve_ik(scene, hand - _PRE_GRASP * approach, rotation, [*seeds, *IK_SEEDS])
         if before is None:
             return "my hand cannot reach the handle"
         at = solve_ik(scene, hand, rotation, [before], posture=before)
@@ -231,37 +226,32 @@ class DoorOpening:
             pose = _triple(body.odometry().pose)
             hand, _ = scene.grasp_frame(current_configuration(body))
             command = motion.update(dt, pose, hand)
-            body.command_velocity(_backing(command, motion.home))
-            # compliant in yaw (Cosero §4.2): the lever turns between the fingers' pads
-            self._step_towards(scene, command.hand_position, command.hand_rotation,
-                               free=_FREE_YAW)
+            body.command_velocity(_backing(command.hand_position, motion.home))
+            self._step_towards(scene, command.hand_position, command.hand_rotation)
             body.tick()
             empty = empty + 1 if body.gripper().state().width < _HOLDING else 0
-            if empty * dt >= _EMPTY_FOR:
-                return "the handle slipped from my fingers", motion.angle
+            if empty * dt >= _EMPTY_FOR:  # pulled out of the fingers; by a door that held?
+                return ("the door does not move: it may be locked" if motion.angle < _MOVED
+                        else "the handle slipped from my fingers"), motion.angle
             if motion.phase is DoorPhase.OPEN:
                 return None, motion.angle
             if motion.angle > progress[1] + _STALL[1]:
                 progress = (body.now(), motion.angle)
             elif body.now() - progress[0] > _STALL[0]:
-                return ("the door does not move: it may be locked" if motion.angle < 0.1 else
-                        "the door stopped turning"), motion.angle
+                return ("the door does not move: it may be locked" if motion.angle < _MOVED
+                        else "the door stopped turning"), motion.angle
             if body.now() - began > _TIME_LIMIT:
                 return "the door took too long to open", motion.angle
 
     def _step_towards(self, scene: PlanningScene, position: np.ndarray,
-                      rotation: np.ndarray, *, free: np.ndarray | None = None) -> None:
+                      rotation: np.ndarray) -> None:
         """Command the joints a step from where they are towards the hand pose (base
         frame): from the measured joints, so what pushes the hand off its target moves
-        the next target too, and the arm yields to it. About the ``free`` axis (base
-        frame) the hand is not held at all: it turns as what it holds turns it."""
+        the next target too, and the arm yields to it (the joints' servos are springs)."""
         q = current_configuration(self.body)
         scene.set(q)
         here, turn = scene.site()
-        twist = rotation_error(turn, rotation)
-        if free is not None:
-            twist = twist - float(twist @ free) * free
-        error = np.concatenate((position - here, twist))
+        error = np.concatenate((position - here, rotation_error(turn, rotation)))
         jacobian = scene.jacobian()
         jacobian[:, 0] = 0.0  # the torso stays
         inverse = jacobian.T @ np.linalg.inv(jacobian @ jacobian.T + 1e-3 * np.eye(6))
@@ -373,23 +363,21 @@ class _DoorInOdometry:
                         math.atan2(float(along[1]), float(along[0])))
 
 
-def _grasp_rotation(towards: np.ndarray) -> np.ndarray:
+def _grasp_rotation(towards: np.ndarray, up: float) -> np.ndarray:
     """The hand's rotation (base frame) pointing horizontally along ``towards`` (2,),
-    fingers closing up and down (on a lever)."""
+    fingers closing up and down (on a lever); its y axis up (``up`` 1) or down (-1)."""
     x = np.array([towards[0], towards[1], 0.0])
     x /= np.linalg.norm(x)
-    y = np.array([0.0, 0.0, 1.0])
+    y = np.array([0.0, 0.0, up])
     return np.column_stack((x, y, np.cross(x, y)))
 
 
-def _backing(command: Command, home: np.ndarray) -> Twist:
-    """Cosero's way (§4.2): the base backs away as the handle's target comes nearer than
-    where the hand took it, slowly (the fingers hold the lever by friction), and turns
-    with the door (``DoorMotion``'s turn), so the hand keeps square to the leaf without
-    its wrist running out of travel; the arm follows the handle between."""
-    nearer = float(home[0] - command.hand_position[0])
-    turn = max(-_BASE_TURN, min(_BASE_TURN, command.base.wz))
-    return Twist(-min(_BASE_SPEED, max(0.0, _BASE_GAIN * nearer)), 0.0, turn)
+def _backing(target: np.ndarray, home: np.ndarray) -> Twist:
+    """Cosero's way (§4.2): the base backs away, straight, as the handle's target (base
+    frame) comes nearer than ``home``, where the hand took it; slowly, since the fingers
+    hold the lever by friction. The arm follows the handle to the side."""
+    nearer = float(home[0] - target[0])
+    return Twist(-min(_BASE_SPEED, max(0.0, _BASE_GAIN * nearer)), 0.0, 0.0)
 
 
 def _triple(pose: Pose) -> tuple[float, float, float]:
