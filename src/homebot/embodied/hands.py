@@ -105,21 +105,25 @@ class ArmedBodyRobot(BodyRobot):
         #: where perception last saw each object: (placement, map position, heading)
         self.seen = seen.places
         self.doors = doors
+        #: doors the arm failed to open: not tried again (someone is asked instead)
+        self._doors_failed: set[str] = set()
 
     def open_door(self, door: str) -> bool:
         """Open a shut ``door`` the robot stands before with the arm (Cosero §4.2:
         ``homebot.embodied.door_opening``) when the hand is free; whether it is open is
         then what the laser sees. An attempt that fails leaves the door to whoever the
-        robot asks."""
+        robot asks; the arm does not try that door again."""
         seen = self.door_is_open(door)
         if seen is True:
             return True
         if seen is None or self.doors is None or self._holding or \
-                self.arm.holding is not None:
+                self.arm.holding is not None or door in self._doors_failed:
             return False
         attempt = self.doors.open(door, self.pose())
         self.localise()
         opened = self.door_is_open(door) is True
+        if not opened:
+            self._doors_failed.add(door)
         self.events.record("robot.open_door", door=door, opened=opened,
                            reason=attempt.reason, seconds=round(attempt.seconds, 2),
                            degrees=round(attempt.believed_degrees, 1))
