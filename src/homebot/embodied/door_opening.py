@@ -6,17 +6,20 @@ hinge in the depth points (``homebot.perception.door_leaf``); which way the leaf
 comes from its map (the world file's ``swings_into``, else the door's first room). It
 then works in its odometry frame, which drifts little over the metre this takes:
 
-1. steps to where the handle is straight in front of it, at a comfortable reach;
+1. steps before the handle, at a comfortable reach, a little towards the hinge (the handle
+   comes round towards that side as the door opens);
 2. brings the open hand to the handle, fingers above and below the lever, and closes them
    (the gripper's width says whether it holds something);
-3. presses the lever down, which draws the latch;
+3. presses the lever down round its pivot (the handle's end nearest the latch), turning
+   the hand with it, which draws the latch;
 4. pulls the door round the hinge it saw (``homebot.manipulation.interaction.DoorMotion``):
    each tick the hand's target is set on the circle through where the hand truly is, and
    the arm follows it from its measured joints, so it yields to the force the hinge gives
-   and the door's true circle prevails over the robot's estimate; the base backs away and
-   turns to keep the hand in front of it;
-5. lets go once it believes the door is open by ``_OPEN_ENOUGH``, draws the arm in, and
-   leaves the check to the laser.
+   and the door's true circle prevails over the robot's estimate; the base backs away,
+   straight, as the handle comes nearer (Cosero's way), and the arm follows it aside;
+5. lets go once it believes the door is open by ``_OPEN_ENOUGH`` (or the lever slipped
+   from its fingers), draws the hand back and up, tucks the arm, and leaves the check to
+   the laser.
 
 A leaf that does not turn (locked, or held), a lost handle, a hand that cannot reach, or
 a door that opens away from the robot (its arm cannot push a leaf past the doorway it
