@@ -29,6 +29,7 @@ cannot yet enter) end the attempt with a reason, and the caller asks someone ins
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -68,7 +69,21 @@ _PULL_SPEED = 0.05  #: m/s the handle's target goes round the hinge
 _PULL_LEAD = 0.02  #: metres the handle's target leads the hand by at most
 _BASE_SPEED = 0.06  #: m/s the base backs away at most while the hand holds the handle
 _BASE_GAIN = 1.5  #: per second, on how much nearer than at the start the handle's target is
-_OPEN_ENOUGH = 1.45  #: radians the robot opens the door to (it counts past 1.2 as open)
+_AJAR = 0.7  #: radians the hand pulls the leaf round by the lever before it lets go
+#: radians the leaf must stand ajar for the hand to come round its edge (the lever may slip
+#: from the fingers before ``_AJAR``)
+_PUSH_FROM = 0.4
+_PUSH_GOAL = 1.65  #: radians round the hinge the hand pushes the leaf's back face to
+_BEHIND = 0.2  #: radians behind the believed leaf where the hand comes in to push it
+_DRAW_BACK = 0.12  #: metres the hand draws back off the lever it lets go of
+_FRONT = 0.2  #: radians before the believed leaf where the hand goes out past its edge
+_EDGE_CLEAR = 0.12  #: metres beyond the leaf's free edge the hand goes round it
+_IN_FROM_EDGE = 0.1  #: metres in from the free edge where the hand pushes the leaf
+_PUSH_SPEED = 0.08  #: m/s the pushing hand goes round the hinge
+_PUSH_LEAD = 0.1  #: radians the pushing hand's target leads the hand by at most
+_EDGE_AHEAD = 0.65  #: metres before the base where the hand goes round the leaf's edge
+_PUSH_AHEAD = 0.55  #: metres before the base the pushing hand stays (the base backs)
+_PUSH_LIMIT = 15.0  #: seconds of pushing before the robot stops
 _TIME_LIMIT = 25.0  #: seconds of pulling before the robot gives up
 _MOVED = 0.2  #: radians the hand must have come round (a hand slipping along a lever held
 #: shut comes round some way too) for the door not to count as held shut
@@ -141,7 +156,14 @@ class DoorOpening:
             self._let_go()
             return DoorAttempt(reason, self.body.now() - began)
         reason, believed = self._pull(door_frame)
-        self._let_go()
+        if believed < _PUSH_FROM:  # the leaf did not come round far enough to get behind it
+            self._let_go()
+            return DoorAttempt(reason or "the door stopped turning", self.body.now() - began,
+                               math.degrees(believed))
+        # Ajar: the lever would slip from the fingers as the leaf's face turns away, so the
+        # hand lets go, comes round the leaf's free edge and pushes its far face round.
+        reason, believed = self._push(door_frame, believed)
+        self._withdraw(door_frame)
         return DoorAttempt(reason, self.body.now() - began, math.degrees(believed))
 
     # ------------------------------------------------------------ the handle
@@ -219,7 +241,7 @@ class DoorOpening:
         hinge = door.hinge - _LEAF_HALF_THICKNESS * door.normal
         motion = DoorMotion((float(hinge[0]), float(hinge[1])),
                             _triple(body.odometry().pose), hand, rotation,
-                            goal=_OPEN_ENOUGH, speed=_PULL_SPEED, lead=_PULL_LEAD,
+                            goal=_AJAR, speed=_PULL_SPEED, lead=_PULL_LEAD,
                             keep_radius=True)
         dt = body.tick_period
         began = body.now()
@@ -245,6 +267,126 @@ class DoorOpening:
                         else "the door stopped turning"), motion.angle
             if body.now() - began > _TIME_LIMIT:
                 return "the door took too long to open", motion.angle
+
+    # ------------------------------------------------------------ the push
+
+    def _push(self, door: _DoorInOdometry, believed: float) -> tuple[str | None, float]:
+        """Let go of the lever of a leaf ajar by about ``believed`` radians, bring the hand
+        round the leaf's free edge to behind its far face, and push the leaf round the hinge
+        to ``_PUSH_GOAL`` while the base backs away; (None, angle) once there, else why not.
+
+        The hand comes in well behind where the robot believes the leaf is, and meets it on
+        the way round wherever it truly stands: pushing needs no grip, only a face."""
+        body = self.body
+        scene = PlanningScene(body.arm().description(), (0.0, 0.0, 0.0))
+        hinge = door.hinge - _LEAF_HALF_THICKNESS * door.normal
+        leaf = door.leaf_geometry(hinge)
+        hand, grip = scene.grasp_frame(current_configuration(body))
+        up = 1.0 if float(grip[2, 1]) > 0 else -1.0  # the fingers stay as they were
+        height = float(to_odometry(_triple(body.odometry().pose), hand)[2])
+        body.command_velocity(Twist())
+        body.gripper().command(_HAND_OPEN)
+        body.tick(max(1, round(0.4 / body.tick_period)))
+        # off the lever, straight back, and turned to point along the leaf to the hinge
+        back = hand - _DRAW_BACK * grip[:, 0]
+        self._move_hand(scene, lambda f: (hand + f * (back - hand), grip), 0.8)
+        body.gripper().command(0.0)
+        pose = _triple(body.odometry().pose)
+        self._move_hand(scene, lambda f: (back, _pushing_rotation(pose, leaf, believed, up)),
+                        1.0)
+        start = max(believed - _BEHIND, _PUSH_FROM - 0.2)
+        outer = leaf.length + _EDGE_CLEAR
+        inner = leaf.length - _IN_FROM_EDGE
+        # the base steps along its heading to bring the leaf's edge within easy reach
+        pose = _triple(body.odometry().pose)
+        ahead = float(to_base(pose, leaf.point(outer, start, height))[0])
+        self._step_base(ahead - _EDGE_AHEAD)
+        # beyond the free edge on the robot's side, round it, and in behind the far face
+        round_edge = np.linspace(believed + _FRONT, start, 4)
+        path = [(outer, float(angle)) for angle in round_edge] + [(inner, start)]
+        for (radius, angle), seconds in zip(path, (1.5, 0.8, 0.8, 0.8, 1.2), strict=True):
+            here = scene.grasp_frame(current_configuration(body))[0]
+            self._move_hand_to(scene, here, radius, angle, leaf, height, up, seconds)
+        # round the hinge, pushing the far face wherever the leaf is met
+        dt = body.tick_period
+        began = body.now()
+        commanded = start
+        angle = start
+        while True:
+            pose = _triple(body.odometry().pose)
+            hand = scene.grasp_frame(current_configuration(body))[0]
+            angle = leaf.angle_of(to_odometry(pose, hand)[:2])
+            commanded = min(commanded + _PUSH_SPEED / inner * dt, angle + _PUSH_LEAD,
+                            _PUSH_GOAL)
+            target = to_base(pose, leaf.point(inner, commanded, height))
+            ahead = float(target[0])
+            body.command_velocity(Twist(-min(_BASE_SPEED, max(0.0, _BASE_GAIN * (
+                _PUSH_AHEAD - ahead))), 0.0, 0.0))
+            self._step_towards(scene, target, _pushing_rotation(pose, leaf, commanded, up))
+            body.tick()
+            if angle >= _PUSH_GOAL - 0.05:
+                body.command_velocity(Twist())
+                return None, angle
+            if body.now() - began > _PUSH_LIMIT:
+                body.command_velocity(Twist())
+                return "the door took too long to open", angle
+
+    def _step_base(self, distance: float) -> None:
+        """Drive the base ``distance`` along its heading (backwards if negative)."""
+        body = self.body
+        start = body.odometry().pose
+        heading = np.array([math.cos(start.theta), math.sin(start.theta)])
+        for _ in range(int(10.0 / body.tick_period)):
+            done = float((np.array(body.odometry().pose.xy()) - start.xy()) @ heading)
+            left = distance - done
+            if abs(left) < 0.01:
+                break
+            body.command_velocity(Twist(math.copysign(min(0.15, 1.5 * abs(left)), left),
+                                        0.0, 0.0))
+            body.tick()
+        body.command_velocity(Twist())
+        body.tick()
+
+    def _move_hand_to(self, scene: PlanningScene, start: np.ndarray, radius: float,
+                      angle: float, leaf: _Leaf, height: float, up: float,
+                      seconds: float) -> None:
+        """Move the hand in a straight line (base frame, the base standing) from ``start``
+        to ``radius`` from the hinge at ``angle`` round it, pointing towards the hinge."""
+        pose = _triple(self.body.odometry().pose)
+        end = to_base(pose, leaf.point(radius, angle, height))
+        rotation = _pushing_rotation(pose, leaf, angle, up)
+        self._move_hand(scene, lambda f: (start + f * (end - start), rotation), seconds)
+
+    def _move_hand(self, scene: PlanningScene,
+                   along: Callable[[float], tuple[np.ndarray, np.ndarray]],
+                   seconds: float) -> None:
+        """Step the hand along ``along`` (a fraction of the way: position and rotation, base
+        frame) over ``seconds``, then let it settle."""
+        ticks = max(1, round(seconds / self.body.tick_period))
+        for k in range(1, ticks + 1):
+            position, rotation = along(k / ticks)
+            self._step_towards(scene, position, rotation)
+            self.body.tick()
+        for _ in range(max(1, round(0.3 / self.body.tick_period))):
+            self._step_towards(scene, *along(1.0))
+            self.body.tick()
+
+    def _withdraw(self, door: _DoorInOdometry) -> None:
+        """Draw the hand out from behind the leaf, past its edge, and tuck the arm."""
+        body = self.body
+        body.command_velocity(Twist())
+        scene = PlanningScene(body.arm().description(), (0.0, 0.0, 0.0))
+        hinge = door.hinge - _LEAF_HALF_THICKNESS * door.normal
+        leaf = door.leaf_geometry(hinge)
+        pose = _triple(body.odometry().pose)
+        hand, rotation = scene.grasp_frame(current_configuration(body))
+        at = to_odometry(pose, hand)
+        angle = leaf.angle_of(at[:2])
+        out = to_base(pose, leaf.point(leaf.length + _EDGE_CLEAR, angle - 0.1, float(at[2])))
+        self._move_hand(scene, lambda f: (hand + f * (out - hand), rotation), 1.2)
+        self._move_hand(scene, lambda f: (out + np.array([0.0, 0.0, _LIFT_OFF * f]), rotation),
+                        0.8)
+        follow(body, [current_configuration(body), TUCKED])
 
     def _step_towards(self, scene: PlanningScene, position: np.ndarray,
                       rotation: np.ndarray) -> None:
@@ -355,6 +497,12 @@ class _DoorInOdometry:
     def normal3(self) -> np.ndarray:
         return np.array([self.normal[0], self.normal[1], 0.0])
 
+    def leaf_geometry(self, hinge: np.ndarray) -> _Leaf:
+        """The leaf turning round ``hinge`` (its axis, odometry frame)."""
+        along = self.latch - self.hinge
+        length = float(np.linalg.norm(along))
+        return _Leaf(hinge, along / length, self.normal, length)
+
     def leaf_obstacle(self, pose: tuple[float, float, float]) -> Obstacle:
         """The leaf as a box in the planning scene of a base at ``pose`` (odometry)."""
         middle = to_base(pose, np.array([*(self.hinge + self.latch) / 2, 1.0]))
@@ -364,6 +512,40 @@ class _DoorInOdometry:
         return Obstacle("door leaf", "box", (width, 0.04, 2.0),
                         (float(middle[0]), float(middle[1]), 1.0),
                         math.atan2(float(along[1]), float(along[0])))
+
+
+@dataclass(frozen=True)
+class _Leaf:
+    """The leaf round its hinge (odometry frame): shut it points along ``along``; opening
+    turns it towards ``normal`` (the robot's side)."""
+
+    hinge: np.ndarray  #: (2,)
+    along: np.ndarray  #: (2,) unit
+    normal: np.ndarray  #: (2,) unit
+    length: float
+
+    def direction(self, angle: float) -> np.ndarray:
+        """(2,) unit: from the hinge along the leaf opened by ``angle``."""
+        return math.cos(angle) * self.along + math.sin(angle) * self.normal
+
+    def point(self, radius: float, angle: float, height: float) -> np.ndarray:
+        """(3,) the point ``radius`` from the hinge, ``angle`` round it, at ``height``."""
+        return np.array([*(self.hinge + radius * self.direction(angle)), height])
+
+    def angle_of(self, point: np.ndarray) -> float:
+        """How far round the hinge, from shut, the (2,) ``point`` lies."""
+        offset = point - self.hinge
+        return math.atan2(float(offset @ self.normal), float(offset @ self.along))
+
+
+def _pushing_rotation(pose: tuple[float, float, float], leaf: _Leaf, angle: float,
+                      up: float) -> np.ndarray:
+    """The pushing hand's rotation (base frame): pointing along the leaf towards the
+    hinge, so the wrist stays out past the free edge and the hand's flat side meets the
+    leaf's face."""
+    towards = -leaf.direction(angle)
+    local = to_base(pose, np.array([*towards, 0.0])) - to_base(pose, np.zeros(3))
+    return _grasp_rotation(local[:2], up)
 
 
 def _grasp_rotation(towards: np.ndarray, up: float) -> np.ndarray:
