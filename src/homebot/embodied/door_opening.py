@@ -78,12 +78,19 @@ _BEHIND = 0.2  #: radians behind the believed leaf where the hand comes in to pu
 _DRAW_BACK = 0.12  #: metres the hand draws back off the lever it lets go of
 _FRONT = 0.2  #: radians before the believed leaf where the hand goes out past its edge
 _EDGE_CLEAR = 0.12  #: metres beyond the leaf's free edge the hand goes round it
-_IN_FROM_EDGE = 0.1  #: metres in from the free edge where the hand pushes the leaf
+_HAND_TILT = 0.35  #: radians the pushing hand turns off the leaf's face
+_IN_FROM_EDGE = 0.08  #: metres in from the free edge where the hand pushes the leaf
 _PUSH_SPEED = 0.08  #: m/s the pushing hand goes round the hinge
 _PUSH_LEAD = 0.1  #: radians the pushing hand's target leads the hand by at most
 _EDGE_AHEAD = 0.65  #: metres before the base where the hand goes round the leaf's edge
 _PUSH_AHEAD = 0.55  #: metres before the base the pushing hand stays (the base backs)
 _PUSH_LIMIT = 15.0  #: seconds of pushing before the robot stops
+_NUDGE = 0.08  #: radians the hand pushes a leaf that swings away round by its lever
+_AWAY_STAND = 0.42  #: metres from a leaf that swings away to the base's middle, pushing it
+_AWAY_RADIUS = 0.42  #: metres from the hinge where the fingertips push a leaf away
+_AWAY_BEHIND = 0.25  #: radians before the leaf's face where the fingertips come in
+_AWAY_LEAD = 0.2  #: radians the fingertips' target leads the hand by at most
+_AWAY_GOAL = 1.4  #: radians round the hinge the fingertips push a leaf away to
 _TIME_LIMIT = 25.0  #: seconds of pulling before the robot gives up
 _MOVED = 0.2  #: radians the hand must have come round (a hand slipping along a lever held
 #: shut comes round some way too) for the door not to count as held shut
@@ -138,9 +145,7 @@ class DoorOpening:
         began = self.body.now()
         model = self.world.doors[door]
         here = self.world.room_at(estimate.x, estimate.y)
-        swings_into = model.swings_into or model.rooms[0]
-        if here is not None and here != swings_into:
-            return DoorAttempt("it opens away from me, and my arm cannot push it open", 0.0)
+        away = here is not None and here != (model.swings_into or model.rooms[0])
         start = self.body.odometry().pose
         seen = self.look()
         if seen is None:
@@ -155,6 +160,10 @@ class DoorOpening:
         if reason is not None:
             self._let_go()
             return DoorAttempt(reason, self.body.now() - began)
+        if away:
+            reason, believed = self._push_away(door_frame)
+            self._let_go()
+            return DoorAttempt(reason, self.body.now() - began, math.degrees(believed))
         reason, believed = self._pull(door_frame)
         if believed < _PUSH_FROM:  # the leaf did not come round far enough to get behind it
             self._let_go()
@@ -308,28 +317,86 @@ class DoorOpening:
             here = scene.grasp_frame(current_configuration(body))[0]
             self._move_hand_to(scene, here, radius, angle, leaf, height, up, seconds)
         # round the hinge, pushing the far face wherever the leaf is met
+        return self._sweep(scene, leaf, inner, start, height,
+                           lambda pose, angle: _pushing_rotation(pose, leaf, angle, up),
+                           lead=_PUSH_LEAD, goal=_PUSH_GOAL, backing=True)
+
+    def _sweep(self, scene: PlanningScene, leaf: _Leaf, radius: float, start: float,
+               height: float,
+               rotation: Callable[[tuple[float, float, float], float], np.ndarray], *,
+               lead: float, goal: float, backing: bool) -> tuple[str | None, float]:
+        """Push the leaf's face round the hinge with the hand, ``radius`` from it, from
+        ``start`` (radians round, where the hand stands clear of the face) to ``goal``;
+        the target leads the hand by ``lead`` at most, so the hand presses on the face
+        it meets and yields where the leaf holds. ``backing``: the base backs away to keep
+        the hand ``_PUSH_AHEAD`` before it. (None, angle) once there, else why not."""
+        body = self.body
         dt = body.tick_period
         began = body.now()
-        commanded = start
-        angle = start
+        commanded = angle = start
         while True:
             pose = _triple(body.odometry().pose)
             hand = scene.grasp_frame(current_configuration(body))[0]
             angle = leaf.angle_of(to_odometry(pose, hand)[:2])
-            commanded = min(commanded + _PUSH_SPEED / inner * dt, angle + _PUSH_LEAD,
-                            _PUSH_GOAL)
-            target = to_base(pose, leaf.point(inner, commanded, height))
-            ahead = float(target[0])
-            body.command_velocity(Twist(-min(_BASE_SPEED, max(0.0, _BASE_GAIN * (
-                _PUSH_AHEAD - ahead))), 0.0, 0.0))
-            self._step_towards(scene, target, _pushing_rotation(pose, leaf, commanded, up))
+            commanded = min(commanded + _PUSH_SPEED / radius * dt, angle + lead, goal)
+            target = to_base(pose, leaf.point(radius, commanded, height))
+            if backing:
+                body.command_velocity(Twist(-min(_BASE_SPEED, max(0.0, _BASE_GAIN * (
+                    _PUSH_AHEAD - float(target[0])))), 0.0, 0.0))
+            self._step_towards(scene, target, rotation(pose, commanded))
             body.tick()
-            if angle >= _PUSH_GOAL - 0.05:
+            if angle >= goal - 0.05:
                 body.command_velocity(Twist())
                 return None, angle
             if body.now() - began > _PUSH_LIMIT:
                 body.command_velocity(Twist())
                 return "the door took too long to open", angle
+
+    def _push_away(self, door: _DoorInOdometry) -> tuple[str | None, float]:
+        """Open a leaf that swings away from the robot, its lever pressed in the hand:
+        push the lever a little round the hinge (the latch stays drawn once the leaf has
+        left its frame), let go, step up to the doorway and push the leaf's near face
+        round with the fingertips; (None, angle) once there, else why not."""
+        body = self.body
+        scene = PlanningScene(body.arm().description(), (0.0, 0.0, 0.0))
+        hinge = door.hinge - _LEAF_HALF_THICKNESS * door.normal
+        leaf = door.leaf_geometry(hinge, away=True)
+        pose = _triple(body.odometry().pose)
+        hand, grip = scene.grasp_frame(current_configuration(body))
+        at = to_odometry(pose, hand)
+        radius = float(np.linalg.norm(at[:2] - leaf.hinge))
+        first = leaf.angle_of(at[:2])  # the hand holds the lever before the face
+
+        def nudged(f: float) -> tuple[np.ndarray, np.ndarray]:
+            return to_base(pose, leaf.point(radius, first + f * _NUDGE, float(at[2]))), grip
+
+        self._move_hand(scene, nudged, 1.2)
+        moved = leaf.angle_of(to_odometry(_triple(body.odometry().pose), scene.grasp_frame(
+            current_configuration(body))[0])[:2]) - first
+        if moved < _NUDGE / 3:
+            return "the door does not move: it may be locked", moved
+        if body.gripper().state().width < _HOLDING:
+            return "the handle slipped from my fingers", moved
+        body.gripper().command(_HAND_OPEN)
+        body.tick(max(1, round(0.4 / body.tick_period)))
+        hand, grip = scene.grasp_frame(current_configuration(body))
+        back = hand - _DRAW_BACK * grip[:, 0]
+        self._move_hand(scene, lambda f: (hand + f * (back - hand), grip), 0.8)
+        body.gripper().command(0.0)
+        # up to the doorway: the base's middle _AWAY_STAND before the leaf's shut line
+        pose = _triple(body.odometry().pose)
+        self._step_base(float((np.array(pose[:2]) - door.hinge) @ door.normal) - _AWAY_STAND)
+        up = 1.0 if float(grip[2, 1]) > 0 else -1.0
+        start = moved - _AWAY_BEHIND
+        height = float(at[2])
+        here = scene.grasp_frame(current_configuration(body))[0]
+        pose = _triple(body.odometry().pose)
+        end = to_base(pose, leaf.point(_AWAY_RADIUS, start, height))
+        towards = _into_face(pose, leaf, start, up)
+        self._move_hand(scene, lambda f: (here + f * (end - here), towards), 1.5)
+        return self._sweep(scene, leaf, _AWAY_RADIUS, start, height,
+                           lambda pose, angle: _into_face(pose, leaf, angle, up),
+                           lead=_AWAY_LEAD, goal=_AWAY_GOAL, backing=False)
 
     def _step_base(self, distance: float) -> None:
         """Drive the base ``distance`` along its heading (backwards if negative)."""
@@ -497,11 +564,12 @@ class _DoorInOdometry:
     def normal3(self) -> np.ndarray:
         return np.array([self.normal[0], self.normal[1], 0.0])
 
-    def leaf_geometry(self, hinge: np.ndarray) -> _Leaf:
-        """The leaf turning round ``hinge`` (its axis, odometry frame)."""
+    def leaf_geometry(self, hinge: np.ndarray, *, away: bool = False) -> _Leaf:
+        """The leaf turning round ``hinge`` (its axis, odometry frame), towards the robot
+        or ``away`` from it."""
         along = self.latch - self.hinge
         length = float(np.linalg.norm(along))
-        return _Leaf(hinge, along / length, self.normal, length)
+        return _Leaf(hinge, along / length, -self.normal if away else self.normal, length)
 
     def leaf_obstacle(self, pose: tuple[float, float, float]) -> Obstacle:
         """The leaf as a box in the planning scene of a base at ``pose`` (odometry)."""
@@ -532,6 +600,11 @@ class _Leaf:
         """(3,) the point ``radius`` from the hinge, ``angle`` round it, at ``height``."""
         return np.array([*(self.hinge + radius * self.direction(angle)), height])
 
+    def face_normal(self, angle: float) -> np.ndarray:
+        """(2,) unit: the outward normal of the face that leads the way round (the one a
+        hand pushes to open the leaf further)."""
+        return math.sin(angle) * self.along - math.cos(angle) * self.normal
+
     def angle_of(self, point: np.ndarray) -> float:
         """How far round the hinge, from shut, the (2,) ``point`` lies."""
         offset = point - self.hinge
@@ -542,9 +615,20 @@ def _pushing_rotation(pose: tuple[float, float, float], leaf: _Leaf, angle: floa
                       up: float) -> np.ndarray:
     """The pushing hand's rotation (base frame): pointing along the leaf towards the
     hinge, so the wrist stays out past the free edge and the hand's flat side meets the
-    leaf's face."""
-    towards = -leaf.direction(angle)
+    leaf's face; turned ``_HAND_TILT`` off the face, so the forearm comes round the
+    edge from the robot's side without crossing the leaf."""
+    towards = -math.cos(_HAND_TILT) * leaf.direction(angle) + \
+        math.sin(_HAND_TILT) * leaf.face_normal(angle)
     local = to_base(pose, np.array([*towards, 0.0])) - to_base(pose, np.zeros(3))
+    return _grasp_rotation(local[:2], up)
+
+
+def _into_face(pose: tuple[float, float, float], leaf: _Leaf, angle: float,
+               up: float) -> np.ndarray:
+    """The hand's rotation (base frame) pointing into the leaf's face that leads the way
+    round (the one the hand pushes), the leaf opened by ``angle``."""
+    local = to_base(pose, np.array([*(-leaf.face_normal(angle)), 0.0])) - \
+        to_base(pose, np.zeros(3))
     return _grasp_rotation(local[:2], up)
 
 

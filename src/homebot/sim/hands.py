@@ -457,14 +457,15 @@ class SimHands:
 
     def _doors_follow_physics(self) -> None:
         """A leaf swung past ``DOOR_SWUNG_OPEN`` makes its door open in the truth (it then
-        lets the robot through); the robot's body (not its hand) touching a leaf is a
-        collision."""
+        lets the robot through), its leaf no longer where the world file stands an open one
+        but out of the doorway (``Simulation.open_wide``: the truth knows no leaf
+        angles between); the robot's body (not its hand) touching a leaf is a collision."""
         assert self._driver is not None
         sim, truth = self._driver.sim, self.simulation
         for name in sim.doors:
             if truth.door_state.get(name) is DoorState.CLOSED and \
                     sim.door_angle(name) >= DOOR_SWUNG_OPEN:
-                truth.door_state[name] = DoorState.OPEN
+                truth.open_wide(name)
                 truth.events.record("sim.door", door=name, what="swung open",
                                     degrees=round(float(np.degrees(sim.door_angle(name))), 1))
             touching = sim.door_touches(name)
