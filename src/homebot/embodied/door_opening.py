@@ -11,19 +11,27 @@ then works in its odometry frame, which drifts little over the metre this takes:
 2. brings the open hand to the handle, fingers above and below the lever, and closes them
    (the gripper's width says whether it holds something);
 3. presses the lever down round its pivot (the handle's end nearest the latch), turning
-   the hand with it, which draws the latch;
-4. pulls the door round the hinge it saw (``homebot.manipulation.interaction.DoorMotion``):
-   each tick the hand's target is set on the circle through where the hand truly is, and
-   the arm follows it from its measured joints, so it yields to the force the hinge gives
-   and the door's true circle prevails over the robot's estimate; the base backs away,
-   straight, as the handle comes nearer (Cosero's way), and the arm follows it aside;
-5. lets go once it believes the door is open by ``_OPEN_ENOUGH`` (or the lever slipped
-   from its fingers), draws the hand back and up, tucks the arm, and leaves the check to
-   the laser.
+   the hand with it, which draws the latch.
 
-A leaf that does not turn (locked, or held), a lost handle, a hand that cannot reach, or
-a door that opens away from the robot (its arm cannot push a leaf past the doorway it
-cannot yet enter) end the attempt with a reason, and the caller asks someone instead.
+A leaf that swings towards the robot is then
+4. pulled ajar round the hinge it saw (``homebot.manipulation.interaction.DoorMotion``, to
+   ``_AJAR``): each tick the hand's target is set on the circle through where the hand
+   truly is, and the arm follows it from its measured joints, so it yields to the force
+   the hinge gives and the door's true circle prevails over the robot's estimate; the base
+   backs away, straight, as the handle comes nearer (Cosero's way);
+5. let go: pulled further, the leaf's face turns away from a robot on the latch side and
+   the lever slips from fingers that hold it by friction alone. The hand draws back, goes
+   out past the leaf's free edge, round it, and in behind the far face, well behind where
+   the robot believes the leaf is; then it sweeps round the hinge, meets the face wherever
+   the leaf truly stands and pushes it to ``_PUSH_GOAL`` while the base backs away.
+
+A leaf that swings away from the robot is instead
+4. nudged out of its frame by the pressed lever (the latch stays drawn once it has left);
+5. let go; the base steps up to the doorway and the fingertips push the near face round.
+
+Last, the hand draws back out of the doorway and up, the arm tucks, and the laser says
+whether the door is open. A leaf that does not turn (locked, or held), a lost handle or a
+hand that cannot reach end the attempt with a reason, and the caller asks someone instead.
 """
 
 from __future__ import annotations
@@ -65,7 +73,7 @@ _HOLDING = 0.006  #: metres: fingers closer than this hold nothing
 _EMPTY_FOR = 0.15  #: seconds the fingers must stand closed for the handle to be lost
 _PRESS_ANGLE = 0.55  #: radians the hand turns a lever down (its stop may end it sooner)
 _PRESS_SECONDS = 0.8
-_PULL_SPEED = 0.05  #: m/s the handle's target goes round the hinge
+_PULL_SPEED = 0.07  #: m/s the handle's target goes round the hinge
 _PULL_LEAD = 0.02  #: metres the handle's target leads the hand by at most
 _BASE_SPEED = 0.06  #: m/s the base backs away at most while the hand holds the handle
 _BASE_GAIN = 1.5  #: per second, on how much nearer than at the start the handle's target is
@@ -80,7 +88,7 @@ _FRONT = 0.2  #: radians before the believed leaf where the hand goes out past i
 _EDGE_CLEAR = 0.12  #: metres beyond the leaf's free edge the hand goes round it
 _HAND_TILT = 0.35  #: radians the pushing hand turns off the leaf's face
 _IN_FROM_EDGE = 0.08  #: metres in from the free edge where the hand pushes the leaf
-_PUSH_SPEED = 0.08  #: m/s the pushing hand goes round the hinge
+_PUSH_SPEED = 0.12  #: m/s the pushing hand goes round the hinge
 _PUSH_LEAD = 0.1  #: radians the pushing hand's target leads the hand by at most
 _EDGE_AHEAD = 0.65  #: metres before the base where the hand goes round the leaf's edge
 _PUSH_AHEAD = 0.55  #: metres before the base the pushing hand stays (the base backs)
@@ -98,6 +106,8 @@ _STALL = (2.0, 0.03)  #: seconds within which the door must turn this many radia
 _JOINT_STEP = 0.08  #: radians the arm's command may lead its joints by in one tick
 _DRAW_BACK_SECONDS = 1.6  #: the hand draws back off the handle and rises over it
 _LIFT_OFF = 0.25  #: metres the hand rises before it is tucked
+#: metres to the side of the base within which it steps straight (back) to a point
+_ALONG_ENOUGH = 0.06
 _TURN_TOLERANCE = 0.03  #: radians: the base's final heading this close will do
 _POSTURE_GAIN = 0.2  #: of the way back to the posture, per tick, in the null space
 
@@ -503,8 +513,11 @@ class DoorOpening:
             return body.odometry().pose
 
         here = odometry()
+        local = to_base(_triple(here), np.array([point[0], point[1], 0.0]))
         if math.dist(here.xy(), point) > 0.03:
-            if body.drive is DriveKind.OMNIDIRECTIONAL:
+            if abs(float(local[1])) < _ALONG_ENOUGH:  # ahead or behind: no turning round
+                self._step_base(float(local[0]))
+            elif body.drive is DriveKind.OMNIDIRECTIONAL:
                 self._slide_to(point)
             elif not drive_straight(body, odometry, here.xy(), point):
                 return False
