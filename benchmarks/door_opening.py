@@ -67,7 +67,7 @@ rooms:
   - {{name: study, polygon: [[0, 3], [4, 3], [4, 6], [0, 6]]}}
 doors:
   - {{name: study door, rooms: [hall, study], position: [{door_x}, 3], width: {width},
-     state: closed, opening: 90, hinge: {hinge}}}
+     state: closed, opening: 90, hinge: {hinge}, swings_into: {into}}}
 placements:
   - {{name: desk, category: table, room: study, center: [{desk_x}, 5.55], size: [1.2, 0.7]}}
 objects:
@@ -81,14 +81,15 @@ robot:
 
 def _fetch(seed: int) -> dict[str, object]:
     """A two-room flat drawn from ``seed`` (a 0.8 or 0.9 m door somewhere along the wall,
-    hinged on either side, its leaf swinging into the hall where the robot starts; a desk in
-    the study; Ada in the hall, who will not open doors): fetch the cola from the desk to
-    Ada. Verified only when the truth has the cola in Ada's hands."""
+    hinged on either side, its leaf swinging into the hall where the robot starts or into
+    the study; a desk in the study; Ada in the hall, who will not open doors): fetch the
+    cola from the desk to Ada. Verified only when the truth has the cola in Ada's hands."""
     rng = random.Random(seed)
     door_x = rng.uniform(1.0, 3.0)
     world = World.from_yaml_text(_FLAT.format(
         door_x=round(door_x, 2), width=rng.choice((0.8, 0.9)),
-        hinge=rng.choice(("east", "west")), desk_x=round(rng.uniform(1.0, 3.0), 2),
+        hinge=rng.choice(("east", "west")), into=rng.choice(("hall", "study")),
+        desk_x=round(rng.uniform(1.0, 3.0), 2),
         ada_x=round(rng.uniform(0.6, 3.4), 2), robot_x=round(rng.uniform(1.0, 3.0), 2)))
     run = build_run(RunSettings(world=world, seed=seed, fidelity=Fidelity.EMBODIED,
                                 time_limit=300.0))
@@ -102,6 +103,7 @@ def _fetch(seed: int) -> dict[str, object]:
     attempts = [e.data for e in sim.events.events if e.kind == "robot.open_door"]
     return {"seed": seed, "door_x": round(door_x, 2),
             "hinge": world.doors["study door"].hinge,
+            "swings_into": world.doors["study door"].swings_into,
             "width": world.doors["study door"].width,
             "verified": sim.object_location["cola"] == PERSON_PREFIX + "Ada",
             "reported": report.success, "reason": report.reason,

@@ -57,6 +57,9 @@ __all__ = ["DoorAttempt", "DoorOpening"]
 
 _PANS = (-0.45, 0.0, 0.45)  #: radians the head turns to take in the whole leaf
 _TILT = 0.25  #: radians the head looks down at the door
+_SETTLE = 0.5  #: seconds the base stands still before the robot looks
+_BEFORE = 0.6  #: metres before the door's middle from where the robot looks at it
+_BEFORE_TOLERANCE = 0.15  #: metres or radians off that pose the robot looks from as it is
 _MAP_AGREES = 0.35  #: metres between the seen door's middle and the map's
 _REACH = 0.75  #: metres in front of the base where the hand takes the handle
 _TOWARDS_HINGE = 0.3  #: metres the robot stands aside from the handle, towards the hinge
@@ -140,8 +143,11 @@ class DoorOpening:
     # ------------------------------------------------------------ looking
 
     def look(self) -> SeenDoor | None:
-        """The door before the robot, from three head pans merged (base frame)."""
+        """The door before the robot, from three head pans merged (base frame), the base
+        at rest (views taken as it rolls on do not line up)."""
         body = self.body
+        body.command_velocity(Twist())
+        body.tick(max(1, round(_SETTLE / body.tick_period)))
         clouds = []
         for pan in _PANS:
             body.point_head(pan, _TILT)
@@ -154,18 +160,31 @@ class DoorOpening:
         """Open ``door``, which the robot stands before (``estimate``: its pose on the map)."""
         began = self.body.now()
         model = self.world.doors[door]
-        here = self.world.room_at(estimate.x, estimate.y)
-        away = here is not None and here != (model.swings_into or model.rooms[0])
+        # the side of the door the robot is on: its room's, else the nearer
+        side = min(model.rooms, key=lambda room: (
+            self.world.room_at(estimate.x, estimate.y) != room,
+            math.dist(estimate.xy(), self.world.point_before_door(door, room, _BEFORE).xy())))
+        away = side != (model.swings_into or model.rooms[0])
+        # Face the door from straight before it, where the leaf fills the head camera's
+        # views (navigation may leave the robot beside the door, or turned away).
         start = self.body.odometry().pose
-        seen = self.look()
+        on_map = _map_to_odometry(estimate, start, model.position)
+        before = self.world.point_before_door(door, side, _BEFORE)
+        if math.dist(estimate.xy(), before.xy()) > _BEFORE_TOLERANCE or \
+                abs(wrap_angle(before.theta - estimate.theta)) > _BEFORE_TOLERANCE:
+            spot = _map_to_odometry(estimate, start, before.xy())
+            self._drive_to((float(spot[0]), float(spot[1])),
+                           start.theta + wrap_angle(before.theta - estimate.theta))
+        looked_from = self.body.odometry().pose
+        seen = self.look() or self.look()  # a second look, should people have been in the way
         if seen is None:
             return DoorAttempt("I do not see its leaf and handle", self.body.now() - began)
-        middle = to_odometry(_triple(start), np.array([*(seen.hinge + seen.latch) / 2, 0.0]))
-        on_map = _map_to_odometry(estimate, start, model.position)
+        middle = to_odometry(_triple(looked_from),
+                             np.array([*(seen.hinge + seen.latch) / 2, 0.0]))
         if math.dist(middle[:2], on_map) > _MAP_AGREES:
             return DoorAttempt("the door I see is not where my map has it",
                                self.body.now() - began)
-        door_frame = _DoorInOdometry.of(seen, _triple(start))
+        door_frame = _DoorInOdometry.of(seen, _triple(looked_from))
         reason = self._take_handle(door_frame)
         if reason is not None:
             self._let_go()
