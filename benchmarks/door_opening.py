@@ -73,9 +73,9 @@ placements:
 objects:
   - {{name: cola, category: drink, placement: desk}}
 people:
-  - {{name: Ada, room: hall, position: [{ada_x}, 0.8], cooperative: false}}
+  - {{name: Ada, room: hall, position: [{ada_x}, 0.6], cooperative: false}}
 robot:
-  pose: [{robot_x}, 1.2, 1.5708]
+  pose: [{robot_x}, 1.6, 1.5708]
 """
 
 

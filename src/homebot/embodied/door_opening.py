@@ -156,20 +156,25 @@ class DoorOpening:
         body.point_head(0.0, 0.0)
         return perceive_door(np.concatenate(clouds), self.rng)
 
+    def looking_pose(self, door: str, estimate: Pose) -> Pose:
+        """Where (on the map) the robot looks at ``door`` from: straight before it, facing
+        it, on the side the robot is (``estimate``: its pose on the map)."""
+        room_here = self.world.room_at(estimate.x, estimate.y)
+        return min((self.world.point_before_door(door, room, _BEFORE)
+                    for room in self.world.doors[door].rooms),
+                   key=lambda before: (self.world.room_at(before.x, before.y) != room_here,
+                                       math.dist(estimate.xy(), before.xy())))
+
     def open(self, door: str, estimate: Pose) -> DoorAttempt:
         """Open ``door``, which the robot stands before (``estimate``: its pose on the map)."""
         began = self.body.now()
         model = self.world.doors[door]
-        # the side of the door the robot is on: its room's, else the nearer
-        side = min(model.rooms, key=lambda room: (
-            self.world.room_at(estimate.x, estimate.y) != room,
-            math.dist(estimate.xy(), self.world.point_before_door(door, room, _BEFORE).xy())))
-        away = side != (model.swings_into or model.rooms[0])
+        before = self.looking_pose(door, estimate)
+        away = self.world.room_at(before.x, before.y) != (model.swings_into or model.rooms[0])
         # Face the door from straight before it, where the leaf fills the head camera's
         # views (navigation may leave the robot beside the door, or turned away).
         start = self.body.odometry().pose
         on_map = _map_to_odometry(estimate, start, model.position)
-        before = self.world.point_before_door(door, side, _BEFORE)
         if math.dist(estimate.xy(), before.xy()) > _BEFORE_TOLERANCE or \
                 abs(wrap_angle(before.theta - estimate.theta)) > _BEFORE_TOLERANCE:
             spot = _map_to_odometry(estimate, start, before.xy())

@@ -49,6 +49,8 @@ _BIN_CATEGORIES = ("bin", "trash", "trash can", "waste bin")
 _PULL = 3.0  #: newtons more at the wrist than when held out: the person pulls
 _PUT_IN = 0.8  #: newtons of change at the wrist: something was pushed into the palm
 _FELT = 0.15  #: seconds a force must last to count (not a bump)
+#: metres from where the robot looks at a shut door beyond which it drives up to it first
+_WALK_UP = 0.35
 _WAIT_FOR_TAKER = 8.0  #: seconds the robot holds an object out before keeping it
 _WAIT_FOR_GIVER = 6.0  #: seconds the robot holds its open hand out before closing it
 
@@ -119,6 +121,12 @@ class ArmedBodyRobot(BodyRobot):
         if seen is None or self.doors is None or self._holding or \
                 self.arm.holding is not None or door in self._doors_failed:
             return False
+        # Up to the door first, on this side of it, by navigation: a door seen shut from
+        # afar (the way's start) is no door to reach for from there.
+        before = self.doors.looking_pose(door, self.pose())
+        if math.dist(self.pose().xy(), before.xy()) > _WALK_UP:
+            self.move_to(before, frozenset({door}))
+            self.localise()
         attempt = self.doors.open(door, self.pose())
         self.localise()
         opened = self.door_is_open(door) is True
