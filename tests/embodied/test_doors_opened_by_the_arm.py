@@ -1,6 +1,7 @@
 """Shut doors opened by the embodied robot's arm (embodied/door_opening.py), through its
 body only: the leaf, handle and hinge from the head camera, which way it swings from the
-map; the lever pressed, the door pulled round its hinge in physics. The simulator alone
+map; the lever pressed, the leaf pulled ajar and pushed round from behind, or pushed away,
+in physics. The simulator alone
 opens the door in its truth, once the leaf has truly swung open; a door the arm cannot
 open leaves a reason and the asking to the executive. The truth is read only to judge.
 """
