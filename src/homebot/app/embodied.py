@@ -33,6 +33,7 @@ __all__ = ["embodied_robot", "embodied_robot_in", "follow_me_episode"]
 
 # Seed stream of the robot's own filter, apart from the simulation's and the body's.
 _LOCALISATION_STREAM = 303
+_DOOR_STREAM = 505  #: the door perception's RANSAC
 _FACE_HALF_ANGLE = 0.25  #: radians off the head's axis within which a face is the one looked at
 
 
@@ -102,13 +103,15 @@ def embodied_robot(body: Body, world: World, navigator: Navigator, *, seed: int,
         robot = BodyRobot(body, world, navigator, localisation, MotionSearchPlanner(),
                           events, looking=looking)
     else:
+        from homebot.embodied.door_opening import DoorOpening
         from homebot.embodied.hands import ArmedBodyRobot, SeenObjects
         from homebot.manipulation.control import ArmControl
 
         seen = SeenObjects(world)
         arm = ArmControl(body, world, seen, seed=seed)
+        doors = DoorOpening(body, world, np.random.default_rng([seed, _DOOR_STREAM]))
         robot = ArmedBodyRobot(body, world, navigator, localisation, MotionSearchPlanner(),
-                               events, looking=looking, arm=arm, seen=seen)
+                               events, looking=looking, arm=arm, seen=seen, doors=doors)
     # faces: the household is known by face; "my name is ..." enrols the head camera's
     # views of someone new in front
     robot.acquaintances = Acquaintances(lambda: household_faces(world))

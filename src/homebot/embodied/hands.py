@@ -1,6 +1,7 @@
 """``ArmedBodyRobot``: the embodied robot whose grasps and releases run its arm in physics.
 
-A grasp plans a grasp and an arm motion (``homebot.manipulation``), moves the arm, closes
+Shut doors are opened with the arm (``homebot.embodied.door_opening``). A grasp plans a
+grasp and an arm motion (``homebot.manipulation``), moves the arm, closes
 the gripper and lifts; whether the object is then in the hand is what the gripper and the
 wrist sense, and what the simulator's physics made of the grasp, never a die. An object
 more than 0.95 m away, or out of reach from where the robot stands, is reached after a step
@@ -24,6 +25,7 @@ from typing import Any
 import numpy as np
 from shapely.geometry import LineString, Point
 
+from homebot.embodied.door_opening import DoorOpening
 from homebot.embodied.robot import BodyRobot
 from homebot.geometry import Pose
 from homebot.manipulation.control import ArmControl, PlaceOutcome
@@ -47,6 +49,8 @@ _BIN_CATEGORIES = ("bin", "trash", "trash can", "waste bin")
 _PULL = 3.0  #: newtons more at the wrist than when held out: the person pulls
 _PUT_IN = 0.8  #: newtons of change at the wrist: something was pushed into the palm
 _FELT = 0.15  #: seconds a force must last to count (not a bump)
+#: metres from where the robot looks at a shut door beyond which it drives up to it first
+_WALK_UP = 0.35
 _WAIT_FOR_TAKER = 8.0  #: seconds the robot holds an object out before keeping it
 _WAIT_FOR_GIVER = 6.0  #: seconds the robot holds its open hand out before closing it
 
@@ -83,13 +87,15 @@ class ArmedBodyRobot(BodyRobot):
         *args: as ``BodyRobot``.
         arm: picking and placing over the same body, locating objects by ``seen``.
         seen: the memory of where objects were seen, which this robot keeps.
+        doors: opens shut doors with the arm (None: the robot asks someone to).
         **kwargs: as ``BodyRobot``.
 
     Raises:
         ValueError: the arm locates objects some other way than by ``seen``.
     """
 
-    def __init__(self, *args: Any, arm: ArmControl, seen: SeenObjects, **kwargs: Any) -> None:
+    def __init__(self, *args: Any, arm: ArmControl, seen: SeenObjects,
+                 doors: DoorOpening | None = None, **kwargs: Any) -> None:
         if arm.locate is not seen:
             raise ValueError("the arm must locate objects by the robot's SeenObjects: "
                              "build it with ArmControl(body, world, seen)")
@@ -100,6 +106,36 @@ class ArmedBodyRobot(BodyRobot):
         self._handles = 0  #: the robot's own handles for what it was handed
         #: where perception last saw each object: (placement, map position, heading)
         self.seen = seen.places
+        self.doors = doors
+        #: doors the arm failed to open: not tried again (someone is asked instead)
+        self._doors_failed: set[str] = set()
+
+    def open_door(self, door: str) -> bool:
+        """Open a shut ``door`` the robot stands before with the arm (Cosero §4.2:
+        ``homebot.embodied.door_opening``) when the hand is free; whether it is open is
+        then what the laser sees. An attempt that fails leaves the door to whoever the
+        robot asks; the arm does not try that door again."""
+        seen = self.door_is_open(door)
+        if seen is True:
+            return True
+        if seen is None or self.doors is None or self._holding or \
+                self.arm.holding is not None or door in self._doors_failed:
+            return False
+        # Up to the door first, on this side of it, by navigation: a door seen shut from
+        # afar (the way's start) is no door to reach for from there.
+        before = self.doors.looking_pose(door, self.pose())
+        if math.dist(self.pose().xy(), before.xy()) > _WALK_UP:
+            self.move_to(before, frozenset({door}))
+            self.localise()
+        attempt = self.doors.open(door, self.pose())
+        self.localise()
+        opened = self.door_is_open(door) is True
+        if not opened:
+            self._doors_failed.add(door)
+        self.events.record("robot.open_door", door=door, opened=opened,
+                           reason=attempt.reason, seconds=round(attempt.seconds, 2),
+                           degrees=round(attempt.believed_degrees, 1))
+        return opened
 
     def perceive_objects(self, placement: str) -> list[Detection]:
         detections = super().perceive_objects(placement)

@@ -6,7 +6,7 @@ import numpy as np
 
 from homebot.manipulation.scene import PlanningScene
 
-__all__ = ["solve_ik"]
+__all__ = ["rotation_error", "solve_ik"]
 
 _DAMPING = 0.05
 _POSITION_TOLERANCE = 0.004  #: metres
@@ -17,7 +17,7 @@ _TORSO_WEIGHT = 0.5
 _POSTURE_GAIN = 0.2  #: how strongly the null space pulls towards the preferred posture
 
 
-def _rotation_error(current: np.ndarray, target: np.ndarray) -> np.ndarray:
+def rotation_error(current: np.ndarray, target: np.ndarray) -> np.ndarray:
     """The small rotation (axis × angle) taking ``current`` to ``target``."""
     a, b = current, target  # columns: the frames' axes; sum of a_i × b_i, written out
     error: np.ndarray = 0.5 * np.array([
@@ -54,7 +54,7 @@ def solve_ik(scene: PlanningScene, position: np.ndarray, rotation: np.ndarray,
         for _ in range(iterations):
             scene.set(q)
             here, turn = scene.site()
-            error = np.concatenate((position - here, _rotation_error(turn, rotation)))
+            error = np.concatenate((position - here, rotation_error(turn, rotation)))
             if float(error[:3] @ error[:3]) < _POSITION_TOLERANCE ** 2 and \
                     float(error[3:] @ error[3:]) < _ANGLE_TOLERANCE ** 2:
                 found: np.ndarray = q

@@ -391,8 +391,9 @@ class DoorMotion:
                  hand_position: np.ndarray, hand_rotation: np.ndarray, *,
                  goal: float = 1.2, speed: float = 0.15, lead: float = 0.06,
                  base_gain: float = 2.0, base_speed: float = 0.3,
-                 turn_gain: float = 1.0) -> None:
+                 turn_gain: float = 1.0, keep_radius: bool = False) -> None:
         self.hinge = np.asarray(hinge, dtype=float)
+        self.keep_radius = keep_radius
         self.home = np.asarray(hand_position, dtype=float).copy()  #: base frame
         self.rotation = np.asarray(hand_rotation, dtype=float)
         self.goal, self.speed, self.lead = goal, speed, lead
@@ -446,6 +447,8 @@ class DoorMotion:
         if self.phase in (DoorPhase.OPEN, DoorPhase.CLOSED):
             self.commanded = self.angle if self.phase is DoorPhase.CLOSED else self.commanded
         turned = self.start_bearing + self.turn * self.commanded
+        if self.keep_radius:  # the hand slid along what it holds: back to where it took it
+            radius = self.radius
         target = np.array([self.hinge[0] + radius * math.cos(turned),
                            self.hinge[1] + radius * math.sin(turned), float(hand[2])])
         target[2] = float(to_odometry(pose, self.home)[2])

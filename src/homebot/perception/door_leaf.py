@@ -46,6 +46,7 @@ class SeenDoor:
         latch: (2,) the other (handle-side) edge's foot.
         handle: (3,) the handle's centre.
         width: metres between the two edges.
+        handle_end: (3,) the handle's point nearest the latch edge: where a lever turns.
         points: how many depth points lay on the leaf.
     """
 
@@ -55,6 +56,7 @@ class SeenDoor:
     handle: np.ndarray
     width: float
     points: int
+    handle_end: np.ndarray
 
     @property
     def along(self) -> np.ndarray:
@@ -150,11 +152,15 @@ def _door_on(points: np.ndarray, leaf_band: np.ndarray,
             continue  # a protrusion mid-leaf is no handle to open by
         handle = handle_points.mean(axis=0)
         latch_at, hinge_at = (ends[0], ends[1]) if to_low < to_high else (ends[1], ends[0])
+        coordinates = handle_points @ along
+        end = handle_points[int(np.argmin(coordinates) if latch_at < hinge_at
+                                else np.argmax(coordinates))]
         foot = -offset * normal[:2]  # the plane's point nearest the robot
         return SeenDoor(normal=normal[:2].copy(),
                         hinge=foot + hinge_at * along[:2],
                         latch=foot + latch_at * along[:2],
                         handle=handle,
                         width=width,
-                        points=int(on_leaf.sum()))
+                        points=int(on_leaf.sum()),
+                        handle_end=end.copy())
     return None

@@ -27,6 +27,7 @@ __all__ = [
     "ARM_JOINTS",
     "ArmSimulation",
     "Contact",
+    "DoorLeaf",
     "ObjectBody",
     "SurfaceBox",
     "default_arm_model",
@@ -119,6 +120,43 @@ class ObjectBody:
 
 
 @dataclass(frozen=True, slots=True)
+class DoorLeaf:
+    """A shut door's leaf on its hinge, with a lever handle on each face (map frame).
+
+    ``hinge`` is the hinge axis's foot; ``yaw`` the direction from the hinge to the latch
+    edge while shut; the leaf turns about the hinge by positive angles when ``swing`` is
+    +1 (counter-clockwise seen from above), negative ones when -1. ``handles`` are the
+    levers' centres (x, y, z); each lever turns down about the leaf's normal from its
+    latch-side end. While latched the leaf cannot turn; pressing a lever down past
+    ``DOOR_UNLATCH`` releases the latch unless the door is ``locked``.
+    """
+
+    name: str
+    hinge: tuple[float, float]
+    yaw: float
+    length: float  #: metres from the hinge to the latch edge
+    thickness: float
+    height: float
+    handles: tuple[tuple[float, float, float], ...]
+    handle_size: tuple[float, float, float]  #: the lever's length, depth and height
+    swing: float = 1.0
+    locked: bool = False
+    friction: float = 1.0  #: the hinge's dry friction (N·m)
+    damping: float = 2.0  #: the hinge's damping (N·m·s/rad)
+
+
+DOOR_UNLATCH = 0.3  #: radians a lever is pressed down to draw the latch
+_DOOR_RANGE = 1.9  #: radians a leaf turns at most
+_LATCH_PLAY = 0.003  #: radians a latched leaf rattles in its frame
+_LEVER_TRAVEL = 0.6  #: radians a lever goes down at most
+_LEVER_SPRING = 1.5  #: N·m/rad: the spring that brings a lever back up
+_LEVER_PIVOT_IN = 0.01  #: metres in from the lever's latch-side end to its pivot
+_UNDER_DOOR = 0.01  #: metres between a leaf and the floor
+_LATCH_EVERY = 3  #: physics steps between checks of the latches
+_BASE_JOINTS = ("base_x", "base_y", "base_yaw")
+
+
+@dataclass(frozen=True, slots=True)
 class Contact:
     """Two bodies touching, and the normal force between them (newtons)."""
 
@@ -140,6 +178,7 @@ class ArmSimulation:
         torso: the torso lift's start height.
         held: an object to start in the gripper with its pose relative to the grasp site
             (``relative_to_grasp``), e.g. when the scene is rebuilt at another placement.
+        doors: shut doors' leaves on their hinges, latched.
         grip: the gripper's command (width, force) when it differs from ``gripper``, the
             fingers' start width: a hand closed on an object keeps squeezing it.
     """
@@ -149,7 +188,8 @@ class ArmSimulation:
                  model_path: Path | None = None, arm: Sequence[float] = HOME,
                  torso: float = 0.2, gripper: float = MAX_GRIPPER_WIDTH,
                  held: tuple[ObjectBody, np.ndarray] | None = None,
-                 grip: tuple[float, float | None] | None = None) -> None:
+                 grip: tuple[float, float | None] | None = None,
+                 doors: Sequence[DoorLeaf] = ()) -> None:
         import mujoco
 
         self._mj = mujoco
@@ -179,9 +219,23 @@ class ArmSimulation:
                           condim=4 if obj.shape == "box" else 6, priority=1,
                           contype=_WORLD_CONTYPE, conaffinity=_WORLD_CONAFFINITY,
                           rgba=list(obj.rgba))
+        self.doors = {door.name: door for door in doors}
+        for door in doors:
+            _add_door(mujoco, spec, door)
+        if doors:
+            _drive_base(mujoco, spec)
         self.model = spec.compile()
         self.data = mujoco.MjData(self.model)
         m = self.model
+        #: per door: the hinge's qpos address, its levers' qpos addresses, latched or not
+        self._door_hinge = {name: int(m.jnt_qposadr[m.joint(f"door:{name}").id])
+                            for name in self.doors}
+        self._levers = {name: [int(m.jnt_qposadr[m.joint(f"door:{name}:lever{k}").id])
+                               for k in range(len(door.handles))]
+                        for name, door in self.doors.items()}
+        self.latched = {name: True for name in self.doors}
+        for name in self.doors:
+            self._latch(name, True)
         self._arm_qpos = np.array([m.jnt_qposadr[m.joint(n).id] for n in ARM_JOINTS])
         self._arm_dof = np.array([m.jnt_dofadr[m.joint(n).id] for n in ARM_JOINTS])
         self._arm_act = np.array([m.actuator(n).id for n in ARM_JOINTS])
@@ -201,6 +255,11 @@ class ArmSimulation:
         self._grasp_to_palm = float(m.site_pos[self._grasp_site][0] - m.geom_pos[palm][0] -
                                     m.geom_size[palm][0])
         self._base_mocap = int(m.body_mocapid[m.body("base").id])
+        #: the base's joints (x, y, yaw) where it is driven (a door in the scene), else None
+        self._base_joints = None if self._base_mocap >= 0 else (
+            np.array([m.jnt_qposadr[m.joint(n).id] for n in _BASE_JOINTS]),
+            np.array([m.jnt_dofadr[m.joint(n).id] for n in _BASE_JOINTS]))
+        self._base_velocity = np.zeros(3)
         self.set_base(base)
         self.data.qpos[self._arm_qpos] = arm
         self.data.qpos[self._torso_q] = torso
@@ -217,9 +276,13 @@ class ArmSimulation:
 
     def set_base(self, pose: tuple[float, float, float]) -> None:
         """Put the (kinematic) base at ``pose`` (x, y, heading) on the map."""
-        self.data.mocap_pos[self._base_mocap] = [pose[0], pose[1], 0.0]
-        self.data.mocap_quat[self._base_mocap] = quaternion_from_yaw(pose[2])
         self.base = pose
+        if self._base_joints is None:
+            self.data.mocap_pos[self._base_mocap] = [pose[0], pose[1], 0.0]
+            self.data.mocap_quat[self._base_mocap] = quaternion_from_yaw(pose[2])
+            return
+        self.data.qpos[self._base_joints[0]] = pose
+        self.data.qvel[self._base_joints[1]] = self._base_velocity
 
     def command(self, arm: Sequence[float], *, torso: float | None = None,
                 torques: Sequence[float] | None = None) -> None:
@@ -256,10 +319,64 @@ class ArmSimulation:
         self.data.qvel[velocity:velocity + 6] = 0.0
         self._mj.mj_forward(self.model, self.data)
 
-    def step(self, seconds: float) -> None:
-        """Let ``seconds`` of simulated time pass."""
+    def step(self, seconds: float, *, base: tuple[float, float, float] | None = None) -> None:
+        """Let ``seconds`` of simulated time pass; the base moves on to ``base`` meanwhile
+        (driven at the velocity that takes it there), if given. A door's latch follows
+        its levers."""
+        if not self.doors and base is None:
+            steps = max(1, round(seconds / self.model.opt.timestep))
+            self._mj.mj_step(self.model, self.data, nstep=steps)
+            return
         steps = max(1, round(seconds / self.model.opt.timestep))
-        self._mj.mj_step(self.model, self.data, nstep=steps)
+        dt = self.model.opt.timestep
+        start = np.array(self.base)
+        velocity = np.zeros(3)
+        if base is not None:
+            turn = float(np.angle(np.exp(1j * (base[2] - start[2]))))
+            velocity = np.array([base[0] - start[0], base[1] - start[1], turn]) / (steps * dt)
+        # A driven base moves at its velocity, so what the hand holds feels it move (a
+        # mocap base would jump, and friction would not carry a held handle along).
+        self._base_velocity = velocity if self._base_joints is not None else np.zeros(3)
+        for step in range(1, steps + 1):
+            self._mj.mj_step(self.model, self.data)
+            if base is not None:
+                pose = start + velocity * step * dt
+                self.set_base((float(pose[0]), float(pose[1]), float(pose[2])))
+            elif self._base_joints is not None:
+                self.set_base(self.base)  # at rest: held where it is
+            if step % _LATCH_EVERY == 0 or step == steps:
+                for name in self.doors:
+                    self._follow_latch(name)
+        self._base_velocity = np.zeros(3)
+        if base is not None:
+            self.set_base(base)
+
+    # ------------------------------------------------------------ doors
+
+    def door_angle(self, name: str) -> float:
+        """Ground truth: how far the door's leaf has turned from shut (radians, ≥ 0)."""
+        return abs(float(self.data.qpos[self._door_hinge[name]]))
+
+    def lever_angle(self, name: str) -> float:
+        """Ground truth: how far the door's most pressed lever is down (radians, ≥ 0)."""
+        return max(-float(self.data.qpos[a]) for a in self._levers[name])
+
+    def _follow_latch(self, name: str) -> None:
+        """Pressed far enough, the lever draws the latch (not of a locked door); let go
+        with the leaf shut, the latch snaps back in."""
+        door = self.doors[name]
+        if self.latched[name] and not door.locked and self.lever_angle(name) >= DOOR_UNLATCH:
+            self._latch(name, False)
+        elif not self.latched[name] and self.door_angle(name) < _LATCH_PLAY and \
+                self.lever_angle(name) < DOOR_UNLATCH / 3:
+            self._latch(name, True)
+
+    def _latch(self, name: str, latched: bool) -> None:
+        joint = self.model.joint(f"door:{name}").id
+        reach = _LATCH_PLAY if latched else _DOOR_RANGE
+        swing = self.doors[name].swing
+        self.model.jnt_range[joint] = (0.0, reach) if swing > 0 else (-reach, 0.0)
+        self.latched[name] = latched
 
     # ------------------------------------------------------------ measurements
 
@@ -309,6 +426,22 @@ class ArmSimulation:
 
     def object_rotation(self, name: str) -> np.ndarray:
         return np.array(self.data.xmat[self.model.body(name).id]).reshape(3, 3)
+
+    def door_touches(self, name: str) -> set[str]:
+        """Ground truth: the robot's bodies (but the fingers) touching the door's leaf."""
+        m, d = self.model, self.data
+        door = {m.body(f"door:{name}").id, *(m.body(f"door:{name}:lever{k}").id
+                                             for k in range(len(self.doors[name].handles)))}
+        fingers = {m.body(n).id for n in ("left_finger", "right_finger", "gripper")}
+        touching = set()
+        for index in range(d.ncon):
+            contact = d.contact[index]
+            a, b = int(m.geom_bodyid[contact.geom1]), int(m.geom_bodyid[contact.geom2])
+            other = b if a in door else a if b in door else -1
+            if other >= 0 and other not in door and other not in fingers and \
+                    int(m.body_rootid[other]) == int(m.body("base").id):
+                touching.add(m.body(other).name)
+        return touching
 
     def contacts(self) -> list[Contact]:
         """Every contact in the scene, by body, with its normal force."""
@@ -360,3 +493,50 @@ class ArmSimulation:
         self.data.qpos[address:address + 3] = position
         self.data.qpos[address + 3:address + 7] = quat
         self._mj.mj_forward(self.model, self.data)
+
+
+def _add_door(mujoco: Any, spec: Any, door: DoorLeaf) -> None:
+    """The leaf on its hinge and the levers on their pivots, into ``spec``."""
+    body = spec.worldbody.add_body(name=f"door:{door.name}", pos=[*door.hinge, 0.0],
+                                   quat=list(quaternion_from_yaw(door.yaw)))
+    body.add_joint(name=f"door:{door.name}", type=mujoco.mjtJoint.mjJNT_HINGE, axis=[0, 0, 1],
+                   range=[0.0, _DOOR_RANGE] if door.swing > 0 else [-_DOOR_RANGE, 0.0],
+                   frictionloss=door.friction, damping=door.damping, armature=0.1)
+    body.add_geom(name=f"door:{door.name}", type=mujoco.mjtGeom.mjGEOM_BOX,
+                  size=[door.length / 2, door.thickness / 2, (door.height - _UNDER_DOOR) / 2],
+                  pos=[door.length / 2, 0.0, (door.height + _UNDER_DOOR) / 2], mass=12.0,
+                  contype=_WORLD_CONTYPE, conaffinity=_WORLD_CONAFFINITY,
+                  rgba=[0.75, 0.66, 0.52, 1.0])
+    c, s = np.cos(door.yaw), np.sin(door.yaw)
+    length, depth, height = door.handle_size
+    for k, (x, y, z) in enumerate(door.handles):
+        dx, dy = x - door.hinge[0], y - door.hinge[1]
+        local = (c * dx + s * dy, -s * dx + c * dy)
+        pivot = local[0] + length / 2 - _LEVER_PIVOT_IN
+        lever = body.add_body(name=f"door:{door.name}:lever{k}", pos=[pivot, local[1], z],
+                              gravcomp=1.0)  # its spring holds it level
+        # about the leaf's normal; negative turns the lever's free end (towards the hinge) down
+        lever.add_joint(name=f"door:{door.name}:lever{k}", type=mujoco.mjtJoint.mjJNT_HINGE,
+                        axis=[0, 1, 0], range=[-_LEVER_TRAVEL, 0.0], stiffness=_LEVER_SPRING,
+                        damping=0.05, armature=0.002)
+        lever.add_geom(name=f"door:{door.name}:lever{k}", type=mujoco.mjtGeom.mjGEOM_BOX,
+                       size=[length / 2, depth / 2, height / 2],
+                       pos=[-(length / 2 - _LEVER_PIVOT_IN), 0.0, 0.0], mass=0.2,
+                       friction=[1.5, 0.02, 0.002], condim=4,
+                       contype=_WORLD_CONTYPE, conaffinity=_WORLD_CONAFFINITY,
+                       rgba=[0.69, 0.69, 0.71, 1.0])
+
+
+def _drive_base(mujoco: Any, spec: Any) -> None:
+    """The mocap base turned into a body on three joints (x, y, yaw) that ``step`` drives
+    kinematically; heavy (armature), so what the arm does hardly moves it."""
+    base = spec.body("base")
+    base.mocap = False
+    heavy = 1.0e4
+    base.add_joint(name="base_x", type=mujoco.mjtJoint.mjJNT_SLIDE, axis=[1, 0, 0],
+                   armature=heavy)
+    base.add_joint(name="base_y", type=mujoco.mjtJoint.mjJNT_SLIDE, axis=[0, 1, 0],
+                   armature=heavy)
+    base.add_joint(name="base_yaw", type=mujoco.mjtJoint.mjJNT_HINGE, axis=[0, 0, 1],
+                   armature=heavy)
+    spec.add_exclude(bodyname1="world", bodyname2="base")

@@ -21,15 +21,20 @@ from homebot.sim.arm import (
     HOME,
     MAX_GRIPPER_WIDTH,
     ArmSimulation,
+    DoorLeaf,
     ObjectBody,
     SurfaceBox,
 )
-from homebot.sim.camera import object_yaw
+from homebot.sim.camera import door_solids, object_yaw
 from homebot.sim.hearing import PeopleHearing
 from homebot.sim.simulation import HAND_PREFIX, PERSON_PREFIX
-from homebot.world import World, catalogue_entry, surface_height
+from homebot.world import DoorState, World, catalogue_entry, surface_height
 
-__all__ = ["PAYLOAD", "ArmDriver", "SimHands", "object_body", "world_scene"]
+__all__ = ["DOOR_SWUNG_OPEN", "PAYLOAD", "ArmDriver", "SimHands", "door_leaf", "object_body",
+           "world_scene"]
+
+#: radians a leaf the arm swings must turn for the door to count as open (passable)
+DOOR_SWUNG_OPEN = 1.2
 
 PAYLOAD = 1.5  #: kilograms the arm is rated to lift
 #: friction of an object's surface, by catalogue shape (rounder things roll and slip more)
@@ -116,6 +121,28 @@ def object_body(world: World, name: str, position: tuple[float, float], base: fl
                       _FRICTION.get(shape, 0.7), rgba, position, base, yaw)
 
 
+def door_leaf(world: World, door: str, *, locked: bool = False) -> DoorLeaf:
+    """The shut ``door``'s leaf as physics has it: where the camera draws it
+    (``door_solids``), hinged on the world's jamb (``World.door_hinge_direction``),
+    turning into the room the world file says it swings into (its first room unless
+    ``swings_into`` says)."""
+    leaf, *handles = door_solids(world, door)
+    model = world.doors[door]
+    hinge_x, hinge_y = world.door_hinge_direction(door)
+    half = model.width / 2
+    hinge = (model.position[0] + hinge_x * half, model.position[1] + hinge_y * half)
+    into = world.point_before_door(door, model.swings_into or model.rooms[0], 1.0)
+    normal = (into.x - model.position[0], into.y - model.position[1])
+    # turning the hinge-to-latch direction counter-clockwise moves it along its left normal
+    left = (hinge_y, -hinge_x)  # the left normal of (-hinge_x, -hinge_y)
+    swing = 1.0 if left[0] * normal[0] + left[1] * normal[1] > 0 else -1.0
+    return DoorLeaf(door, hinge, leaf.yaw, model.width - (model.width - leaf.extent[0]) / 2,
+                    leaf.extent[1], leaf.extent[2],
+                    tuple((h.x, h.y, h.z + h.extent[2] / 2) for h in handles),
+                    (handles[0].extent[0], handles[0].extent[1], handles[0].extent[2]),
+                    swing, locked)
+
+
 def world_scene(world: World, placements: Iterable[str],
                 positions: Mapping[str, tuple[str, tuple[float, float]]], seed: int = 0,
                 headings: Mapping[str, float] | None = None
@@ -152,6 +179,9 @@ _SETTLE_STEP = 0.1
 _PERSON_REACH = 0.9  #: metres from where a person stands to a hand they reach into
 _OPEN_ENOUGH = 0.05  #: metres between the fingers for a person to put something in
 _STILL = 0.2  #: rad/s over the joints: the arm has stopped moving
+_DOOR_REACH = 1.5  #: metres from the robot to a shut door's middle for its leaf to be in the scene
+#: metres the base may drive, a door's leaf in the scene, before the scene is built anew
+_DOOR_WORK = 1.2
 
 
 class SimHands:
@@ -159,9 +189,13 @@ class SimHands:
     step with the simulation's truth.
 
     The scene is built on first use at the robot's true pose, from the surfaces within
-    reach and the objects the truth has on them. It steps with the body's ticks while the
-    base stands still; when the base moves, physics pauses (the arm and what it holds ride
-    along) and the next use rebuilds the scene where the robot then stands. After every
+    reach and the objects the truth has on them, and the leaves of the shut doors near it
+    (``door_leaf``). It steps with the body's ticks while the base stands still; when the
+    base moves, physics pauses (the arm and what it holds ride along) and the next use
+    rebuilds the scene where the robot then stands; but with a door's leaf in the scene,
+    physics goes on with the base driven, within ``_DOOR_WORK`` of where it was built (the
+    hand may hold the door's handle). A leaf swung open past ``DOOR_SWUNG_OPEN`` opens the
+    door in the truth. After every
     step the truth follows physics: an object lifted between both fingers is in a hand,
     an object that came to rest on a surface is on that placement, one on the floor is on
     the floor of its room.
@@ -186,6 +220,8 @@ class SimHands:
         self._held_out = 0.0
         self._driver: ArmDriver | None = None
         self._base: tuple[float, float, float] | None = None
+        self._built_at: tuple[float, float, float] | None = None
+        self._touching_doors: set[str] = set()  #: leaves the robot's body touches now
         self._arm: tuple[float, ...] = HOME
         self._torso = 0.2
         self._gripper = MAX_GRIPPER_WIDTH
@@ -202,20 +238,38 @@ class SimHands:
     def driver(self) -> ArmDriver:
         """The arm's drivers where the robot stands now (built when it has moved)."""
         pose = tuple(self.simulation.robot_pose)
+        if self._driver is not None and pose != self._base and self._at_the_door(pose):
+            self._driver.sim.set_base((float(pose[0]), float(pose[1]), float(pose[2])))
+            self._base = (float(pose[0]), float(pose[1]), float(pose[2]))
         if self._driver is None or pose != self._base:
             self._build((float(pose[0]), float(pose[1]), float(pose[2])))
         assert self._driver is not None
         return self._driver
 
+    def _at_the_door(self, pose: tuple[float, ...]) -> bool:
+        """Whether the scene has a door's leaf and the base is still by where the scene
+        was built: physics goes on with the base driven (the hand may hold a handle)."""
+        return self._driver is not None and bool(self._driver.sim.doors) and \
+            self._built_at is not None and \
+            float(np.hypot(pose[0] - self._built_at[0], pose[1] - self._built_at[1])) < \
+            _DOOR_WORK
+
     def advance(self, seconds: float) -> None:
         """Physics for ``seconds`` while the base stands where the scene was built."""
         if self._driver is None:
             return
-        if tuple(self.simulation.robot_pose) != self._base:
-            self._leave()
-            return
+        pose = tuple(float(v) for v in self.simulation.robot_pose)
+        moving_to: tuple[float, float, float] | None = None
+        if pose != self._base:
+            if not self._at_the_door(pose):
+                self._leave()
+                return
+            moving_to = (pose[0], pose[1], pose[2])
         if self._handing is None and self._giving() is not None:
-            self._build(self._base)  # the person's object comes into the scene, in their hand
+            where = moving_to or self._base
+            assert where is not None
+            self._build(where)  # the person's object comes into the scene, in their hand
+            moving_to = None
         assert self._driver is not None
         sim = self._driver.sim
         handing = self._handing
@@ -225,7 +279,10 @@ class SimHands:
             sim.hold_at_grasp(handing)
             sim.push(handing, -sim.objects[handing].mass * sim.model.opt.gravity)
         pulled = self._pull(seconds)
-        sim.step(seconds)
+        sim.step(seconds, base=moving_to)
+        if moving_to is not None:
+            self._base = moving_to
+        self._doors_follow_physics()
         if handing is not None and sim.touching_fingers(handing) == 2:
             sim.push(handing, (0.0, 0.0, 0.0))
             self._let_go_into_hand(handing)
@@ -285,10 +342,17 @@ class SimHands:
         giving = self._giving()
         handed = [giving[1]] if giving is not None and held is None else []
         objects += [object_body(world, name, pose[:2], 0.0) for name in handed]
+        # Shut doors near the robot: their leaves on their hinges, latched (a door the arm
+        # left ajar short of open fell shut: the truth keeps it shut).
+        doors = [door_leaf(world, name, locked=state is DoorState.LOCKED)
+                 for name, state in sorted(truth.door_state.items())
+                 if state is not DoorState.OPEN and
+                 _point(pose[:2]).distance(_point(world.doors[name].position)) < _DOOR_REACH]
         sim = ArmSimulation(base=pose, surfaces=surfaces, objects=objects,
                             model_path=self.model_path, arm=self._arm, torso=self._torso,
                             gripper=self._gripper if held or handed else MAX_GRIPPER_WIDTH,
-                            held=held, grip=self._grip if held or handed else None)
+                            held=held, grip=self._grip if held or handed else None,
+                            doors=doors)
         self._handing = handed[0] if handed else None
         self._giver = giving[0] if handed and giving is not None else None
         if self._handing is not None:
@@ -297,6 +361,7 @@ class SimHands:
                                 object=self._handing)
         self._driver = ArmDriver(sim, self.tick_period, start=truth.clock.now())
         self._base = pose
+        self._built_at = pose
         self._gone = set()
 
     # ------------------------------------------------------------ people handing over
@@ -389,6 +454,30 @@ class SimHands:
         self._take_away(name)
 
     # ------------------------------------------------------------ truth follows physics
+
+    def _doors_follow_physics(self) -> None:
+        """A leaf swung past ``DOOR_SWUNG_OPEN`` makes its door open in the truth (it then
+        lets the robot through), its leaf no longer where the world file stands an open one
+        but out of the doorway (``Simulation.open_wide``: the truth knows no leaf
+        angles between); the robot's body (not its hand) touching a leaf is a collision."""
+        assert self._driver is not None
+        sim, truth = self._driver.sim, self.simulation
+        for name in sim.doors:
+            if truth.door_state.get(name) is DoorState.CLOSED and \
+                    sim.door_angle(name) >= DOOR_SWUNG_OPEN:
+                truth.open_wide(name)
+                truth.events.record("sim.door", door=name, what="swung open",
+                                    degrees=round(float(np.degrees(sim.door_angle(name))), 1))
+            touching = sim.door_touches(name)
+            touched_before = name in self._touching_doors
+            self._touching_doors.discard(name)
+            if touching:
+                self._touching_doors.add(name)
+            if touching and not touched_before:  # one touch is one collision
+                x, y, _ = sim.base
+                truth.collisions.append({"time": round(truth.clock.now(), 3),
+                                         "with": f"door {name}", "by": sorted(touching),
+                                         "at": [round(x, 3), round(y, 3)]})
 
     def _follow_physics(self, final: bool = False) -> None:
         assert self._driver is not None
