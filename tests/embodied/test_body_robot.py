@@ -111,6 +111,23 @@ def test_a_door_ahead_that_someone_stands_in_is_what_stops_the_robot(
     assert run.simulation.collisions == []
 
 
+def test_someone_asked_out_of_a_doorway_gets_out_and_the_robot_passes(
+        apartment: World, apartment_navigator: Navigator) -> None:
+    # Before, the robot waited right before the doorway: she could not come its way, and
+    # asked four times she never moved.
+    from homebot.robot import HelpRequest
+    run = _run(apartment, apartment_navigator)
+    run.simulation.place_person_in_doorway("bedroom door", "Maria")
+    bed = apartment.placements["bed"].approach
+    blocked = run.robot.move_to(bed)
+    assert not blocked.reached and blocked.door == "bedroom door"
+    assert run.robot.request("Maria", HelpRequest.STEP_ASIDE, "bedroom door")
+    report = run.robot.move_to(bed)
+    assert report.reached, report
+    assert math.dist(run.simulation.robot_pose[:2], bed.xy()) < 0.3
+    assert run.simulation.collisions == []
+
+
 def test_the_robot_comes_up_to_someone_far_off_before_asking_them_to_step_aside(
         apartment: World, apartment_navigator: Navigator) -> None:
     from homebot.embodied import BodyRobot

@@ -55,6 +55,7 @@ from homebot.robot import (
     PersonPercept,
     RgbdFrame,
     Robot,
+    Twist,
 )
 from homebot.world import PlacementKind, World
 
@@ -76,6 +77,8 @@ _FURNITURE_NEAR_DOOR = 1.5  #: metres from a door within which the map's furnitu
 _OUTLINE_STEP = 0.02  #: metres between the points taken along a furniture's outline
 _CLOSE_TO_THE_DOOR = 1.3  #: metres from a door's middle: near enough to look at it and pass
 _NEAR_THE_DOOR = 0.5  #: metres: a door's leaf on the spot before it, this near will do
+_WATCH_DOORWAY = 6.0  #: seconds the robot watches a doorway someone stands in before it asks
+_WATCH_EVERY = 0.5  #: seconds between its looks at the doorway meanwhile
 _ON_THE_WAY = 0.1  #: metres from a way's entry where the robot may start along it
 _GOAL_TOLERANCE = 0.15  #: metres: a leg ends this close to its end point
 _HEADING_TOLERANCE = 0.2  #: radians: the final turn ends this close to the goal's heading
@@ -197,15 +200,22 @@ class BodyRobot(Robot):
                 # Stopped short: a door still ahead that is shut, or that the laser sees
                 # someone (or something) stand in, is what keeps the robot out.
                 ahead = self._door_ahead_blocked(legs[index:])
-                if ahead is not None:
+                if ahead is not None and ahead[1] is Blocker.PERSON and \
+                        ahead[0] == leg.door and self._doorway_clears(leg.door, avoid_doors):
+                    report = MoveReport(True, self.pose(), report.distance)  # on through it
+                elif ahead is not None:
                     door, blocker, person = ahead
                     self.events.record("robot.blocked", door=door, blocker=blocker.value)
                     return MoveReport(False, self.pose(), travelled, blocker, door, person,
                                       tuple(passed))
-                return MoveReport(False, self.pose(), travelled, report.blocker, report.door,
-                                  report.person, tuple(passed))
+                else:
+                    return MoveReport(False, self.pose(), travelled, report.blocker,
+                                      report.door, report.person, tuple(passed))
             if leg.door is not None:
                 blocked = self._door_blocker(leg.door)
+                if blocked is not None and blocked[0] is Blocker.PERSON and \
+                        self._doorway_clears(leg.door, avoid_doors):
+                    blocked = None
                 if blocked is not None:
                     self._record_view()
                     self.events.record("robot.blocked", door=leg.door, blocker=blocked[0].value)
@@ -319,6 +329,22 @@ class BodyRobot(Robot):
         points = np.concatenate([self._scan_on_map(), *outlines])
         return way_through(points, model.position, normal, model.width,
                            self.world.model.wall_thickness, self.body.radius)
+
+    def _doorway_clears(self, door: str, avoid_doors: frozenset[str]) -> bool:
+        """Someone standing in ``door`` may be passing through, or stepping out of it
+        (asked to let the robot by, they may have to come the robot's way, and cannot
+        while it stands before the doorway): step out of their way (``make_way``), and
+        watch the doorway a few seconds; whether a way through opened. Asking again at
+        once would only stop them where they stand."""
+        navigation = self.navigation
+        seen = navigation.memory.observe(self.body.now(), self.pose(), self.body.scan())
+        navigation.make_way(self.pose(), seen, avoid_doors)
+        self.body.command_velocity(Twist())
+        for _ in range(round(_WATCH_DOORWAY / _WATCH_EVERY)):
+            self.body.tick(max(1, round(_WATCH_EVERY / self.body.tick_period)))
+            if self._way_through(door) is not None:
+                return True
+        return False
 
     def _door_ahead_blocked(self, legs: list[_Leg]
                             ) -> tuple[str, Blocker, str | None] | None:
