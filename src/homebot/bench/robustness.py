@@ -36,6 +36,9 @@ from homebot.world import World
 __all__ = ["ErrandRun", "ModeResult", "add_arguments", "compare_modes", "errand_set",
            "run", "run_errand"]
 
+#: the embodied robot's pick outcomes (its ``robot.pick`` log) where the hand never closed
+_HAND_NOT_CLOSED = frozenset({"unreachable", "tried_all"})
+
 
 @dataclass
 class ModeResult:
@@ -101,7 +104,9 @@ class ModeResult:
         hand-over left it with a person, a person let go of what they put in the hand."""
         kinds = [(event.kind, event.data) for event in events]
         pairs = {
-            "grasp": (sum(k == "robot.pick" and d.get("outcome") != "unreachable"
+            # a pick that never closed the hand (out of reach, or every grasp found had
+            # failed before) is no grasp
+            "grasp": (sum(k == "robot.pick" and d.get("outcome") not in _HAND_NOT_CLOSED
                           for k, d in kinds),
                       sum(k == "sim.arm" and d.get("what") == "lifted" for k, d in kinds)),
             "hand_over": (sum(k == "robot.hand_over" for k, _ in kinds),
