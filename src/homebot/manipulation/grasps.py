@@ -157,8 +157,9 @@ def grasp_candidates(obj: ObjectGeometry, robot: np.ndarray) -> list[GraspCandid
     if obj.round:
         for angle, penalty in _ROUND_TOP_CLOSINGS:
             c, s = math.cos(angle), math.sin(angle)
+            # the wider extent: a cluster's round outline is seldom quite round
             closings.append((np.array([c * towards[0] - s * towards[1],
-                                       s * towards[0] + c * towards[1]]), obj.extents[1],
+                                       s * towards[0] + c * towards[1]]), obj.extents[0],
                              penalty))
     else:
         closings = [(obj.axes[1], obj.extents[1], 0.0), (obj.axes[0], obj.extents[0], 0.1)]
