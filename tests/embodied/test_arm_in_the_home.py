@@ -30,15 +30,19 @@ def _locate(sim: Simulation, body: SimBody) -> object:
     return locate
 
 
-def _at_the_coffee_table() -> tuple[Simulation, SimBody, ArmControl, Pose]:
-    """The apartment's robot with its arm, standing at the coffee table."""
+def _standing_at(placement: str) -> tuple[Simulation, SimBody, ArmControl, Pose]:
+    """The apartment's robot with its arm, standing at ``placement``."""
     world = World.load("apartment")
     sim = Simulation(world, navigator=Navigator(world), seed=1)
     body = SimBody(sim)
     control = ArmControl(body, world, _locate(sim, body), seed=1)  # type: ignore[arg-type]
-    stand = world.placements["coffee table"].approach
+    stand = world.placements[placement].approach
     body.teleport(stand)
     return sim, body, control, stand
+
+
+def _at_the_coffee_table() -> tuple[Simulation, SimBody, ArmControl, Pose]:
+    return _standing_at("coffee table")
 
 
 def test_a_pick_puts_the_object_in_a_hand_and_a_place_puts_it_back_on_the_table() -> None:
@@ -193,17 +197,6 @@ def test_a_flat_thing_put_in_the_hand_is_let_fall_the_last_centimetres_onto_the_
     assert sim.object_location["fork"] == "coffee table"
 
 
-def _at_the_dishwasher() -> tuple[Simulation, SimBody, ArmControl, Pose]:
-    """The apartment's robot with its arm, standing at the dishwasher (plate, bowl, fork)."""
-    world = World.load("apartment")
-    sim = Simulation(world, navigator=Navigator(world), seed=1)
-    body = SimBody(sim)
-    control = ArmControl(body, world, _locate(sim, body), seed=1)  # type: ignore[arg-type]
-    stand = world.placements["dishwasher"].approach
-    body.teleport(stand)
-    return sim, body, control, stand
-
-
 def _across_the_view(stand: Pose, at: tuple[float, float], metres: float) -> tuple[float, float]:
     """``at`` moved ``metres`` across the line of sight from ``stand``: where perception puts
     an object whose near part something in front of it hides."""
@@ -215,7 +208,7 @@ def test_a_plate_seen_off_across_the_view_is_grasped_the_other_way_after_a_miss(
     # A plate leaves the open fingers 2 cm each side: closing across the view, where
     # perception was off by 5 cm, the fingers miss it; the next pick does not repeat that
     # grasp but closes along the view, where the error does not matter, and holds it.
-    sim, body, control, stand = _at_the_dishwasher()
+    sim, body, control, stand = _standing_at("dishwasher")
     seen = _across_the_view(stand, sim.position_on("plate", "dishwasher"), 0.05)
     first = control.pick("plate", stand, seen)
     assert not first and sim.hands["left"] is None  # the truth: not in the hand
@@ -234,7 +227,7 @@ def test_grasps_that_keep_failing_are_never_repeated_and_then_not_tried_at_all()
     from homebot.manipulation.control import GRASPS_TRIED
     from homebot.manipulation.pick import PickOutcome
 
-    sim, _, control, stand = _at_the_dishwasher()
+    sim, _, control, stand = _standing_at("dishwasher")
     seen = _across_the_view(stand, sim.position_on("plate", "dishwasher"), 0.12)
     outcomes = [control.pick("plate", stand, seen).outcome for _ in range(GRASPS_TRIED + 1)]
     tried = control.failed_grasps["plate"]
