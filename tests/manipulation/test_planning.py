@@ -143,3 +143,19 @@ def test_grasps_like_failed_ones_are_not_selected() -> None:
     assert second is not None and not second.candidate.resembles(first.candidate)
     everything = grasp_candidates(geometry, np.zeros(2))
     assert select_grasp(scene, geometry, TUCKED, avoid=everything) is None
+
+
+def test_a_flat_object_gets_no_side_grasp_that_would_hold_only_its_top_edge() -> None:
+    # A side grasp's fingers cannot go lower than 4.7 cm beside an object (the hand would
+    # meet the table): a 5 cm cup would hang from its top edge and tip out once the hand
+    # turned to hold it out. A can of 12 cm is still taken from the side.
+    robot = np.zeros(2)
+    cup = ObjectGeometry.from_shape("cup", "cylinder", (0.156, 0.156, 0.049), (0.5, 0.0),
+                                    0.0, 0.75)
+    assert {c.kind for c in grasp_candidates(cup, robot)} == {"top"}
+    gadget = ObjectGeometry.from_shape("gadget", "box", (0.08, 0.15, 0.04), (0.5, 0.0), 0.0,
+                                       0.75)
+    assert {c.kind for c in grasp_candidates(gadget, robot)} == {"top"}
+    can = ObjectGeometry.from_shape("can", "cylinder", (0.07, 0.07, 0.12), (0.5, 0.0), 0.0,
+                                    0.75)
+    assert "side" in {c.kind for c in grasp_candidates(can, robot)}

@@ -8,11 +8,13 @@ a principal axis; side grasps approach vertically elongated ones horizontally fr
 robot's side. Candidates are ranked by efficiency and robustness criteria (the kind that
 suits the object's proportions, an approach from the robot's side, a grasp near the centre
 of mass, a comfortable width), then checked in rank order for kinematic feasibility (IK of
-pre-grasp and grasp) and collisions, as Cosero does. A round object's top grasps close
-across the line of sight, along it and on the diagonals between: a wide round thing (a
-plate) leaves the fingers a centimetre or two to spare, so a grasp aimed where perception
-was off along its closing axis misses, and one across another axis may not. Grasps like
-one that already failed (``GraspCandidate.resembles``) can be left out of the choice.
+pre-grasp and grasp) and collisions, as Cosero does. A flat object gets no side grasp: the
+fingers, which cannot go lower beside it, would hold its top edge only. A round object's
+top grasps close across the line of sight, along it and on the diagonals between: a wide
+round thing (a plate) leaves the fingers a centimetre or two to spare, so a grasp aimed
+where perception was off along its closing axis misses, and one across another axis may
+not. Grasps like one that already failed (``GraspCandidate.resembles``) can be left out of
+the choice.
 """
 
 from __future__ import annotations
@@ -188,6 +190,10 @@ def grasp_candidates(obj: ObjectGeometry, robot: np.ndarray) -> list[GraspCandid
             for sign in (1.0, -1.0):
                 # approaching along one axis closes across the other
                 directions.append((sign * obj.axes[index], obj.extents[1 - index]))
+    # Lower than the hand can go beside it, a flat thing would be held by its top edge
+    # alone, and it tips out of the fingers once the hand turns (held out to a person).
+    if obj.height < z - obj.base + _FINGER_HALF_HEIGHT:
+        directions = []
     for direction, width in directions:
         facing = float(direction @ towards)
         if facing < 0.3 or width + 0.01 > MAX_WIDTH:
