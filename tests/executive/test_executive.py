@@ -126,6 +126,25 @@ def test_slipped_grasp_is_retried(apartment: World, apartment_navigator: Navigat
     assert "retrying" in statuses and statuses[-1] == "verified"
 
 
+def test_a_grasp_the_robot_will_not_try_again_is_not_retried_by_recovery(
+        apartment: World, apartment_navigator: Navigator,
+        monkeypatch: pytest.MonkeyPatch) -> None:
+    # The robot's own word: every grasp it found failed. Neither the skill's retries nor
+    # the slipped-grasp protocol send it back to the same refusal.
+    run = _run(apartment, apartment_navigator)
+    tries: list[str] = []
+
+    def grasp(detection: object, hand: str) -> str:
+        tries.append(hand)
+        return "I tried every grasp of the cola I could find, and it kept slipping"
+
+    monkeypatch.setattr(run.robot, "grasp", grasp)
+    report = run.run(_bring("cola", "fridge"))
+    assert not report.success and len(tries) == 1
+    assert report.steps[-1].skill == "pick" and report.steps[-1].error == "not_grasped"
+    assert not any("slipping. Let me try again" in line for line in report.speech)
+
+
 def test_without_monitoring_a_slip_goes_unnoticed(apartment: World,
                                                   apartment_navigator: Navigator) -> None:
     run = _run(apartment, apartment_navigator, disturbances=DisturbanceModel(grasp_slip=1.0),

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import itertools
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -107,3 +108,54 @@ def test_a_grasp_is_selected_only_where_the_arm_reaches_without_collision() -> N
     far = ObjectGeometry.from_shape("far", "cylinder", (0.07, 0.07, 0.12), (1.6, 0.0), 0.0,
                                     0.75)
     assert select_grasp(_scene(), far, TUCKED) is None
+
+
+def test_a_round_objects_top_grasps_close_across_then_along_the_line_of_sight() -> None:
+    # seen diagonally from the robot, whatever heading the map gives the plate
+    plate = ObjectGeometry.from_shape("plate", "cylinder", (0.16, 0.16, 0.05), (0.5, 0.5),
+                                      0.3, 0.75)
+    sight = np.array([1.0, 1.0]) / math.sqrt(2)
+    tops = [c for c in grasp_candidates(plate, np.zeros(2)) if c.kind == "top"]
+    axes: list[np.ndarray] = []
+    for candidate in tops:  # each closing line once, in rank order
+        if all(abs(candidate.rotation[:2, 1] @ seen) < 0.99 for seen in axes):
+            axes.append(candidate.rotation[:2, 1])
+    assert len(axes) == 4
+    assert abs(axes[0] @ sight) < 0.01  # across the view first
+    assert abs(axes[1] @ sight) > 0.99  # then along it
+    # the two wrist rolls of one closing line are one grasp; another line is another
+    first, same, other = tops[0], next(c for c in tops[1:] if abs(
+        c.rotation[:2, 1] @ axes[0]) > 0.99), next(c for c in tops if abs(
+            c.rotation[:2, 1] @ axes[1]) > 0.99)
+    assert first.resembles(same) and not first.resembles(other)
+    moved = plate.center + np.array([0.05, 0.0])
+    assert not first.resembles(replace(first, position=np.array([*moved, first.position[2]])))
+
+
+def test_grasps_like_failed_ones_are_not_selected() -> None:
+    can = Obstacle("can", "cylinder", (0.07, 0.07, 0.12), (0.6, 0.0, 0.81))
+    scene = _scene(can)
+    geometry = ObjectGeometry.from_shape("can", "cylinder", (0.07, 0.07, 0.12), (0.6, 0.0),
+                                         0.0, 0.75)
+    first = select_grasp(scene, geometry, TUCKED)
+    assert first is not None
+    second = select_grasp(scene, geometry, TUCKED, avoid=[first.candidate])
+    assert second is not None and not second.candidate.resembles(first.candidate)
+    everything = grasp_candidates(geometry, np.zeros(2))
+    assert select_grasp(scene, geometry, TUCKED, avoid=everything) is None
+
+
+def test_a_flat_object_gets_no_side_grasp_that_would_hold_only_its_top_edge() -> None:
+    # A side grasp's fingers cannot go lower than 4.7 cm beside an object (the hand would
+    # meet the table): a 5 cm cup would hang from its top edge and tip out once the hand
+    # turned to hold it out. A can of 12 cm is still taken from the side.
+    robot = np.zeros(2)
+    cup = ObjectGeometry.from_shape("cup", "cylinder", (0.156, 0.156, 0.049), (0.5, 0.0),
+                                    0.0, 0.75)
+    assert {c.kind for c in grasp_candidates(cup, robot)} == {"top"}
+    gadget = ObjectGeometry.from_shape("gadget", "box", (0.08, 0.15, 0.04), (0.5, 0.0), 0.0,
+                                       0.75)
+    assert {c.kind for c in grasp_candidates(gadget, robot)} == {"top"}
+    can = ObjectGeometry.from_shape("can", "cylinder", (0.07, 0.07, 0.12), (0.5, 0.0), 0.0,
+                                    0.75)
+    assert "side" in {c.kind for c in grasp_candidates(can, robot)}

@@ -67,16 +67,22 @@ def test_pick_aborts_when_the_hand_is_empty(apartment: World,
     assert run.context.beliefs.free_hand() == "left"
 
 
-def test_pick_says_why_when_the_arm_did_not_even_try(
+def test_pick_says_why_when_the_arm_did_not_even_try_and_does_not_try_it_again(
         apartment: World, apartment_navigator: Navigator,
         monkeypatch: pytest.MonkeyPatch) -> None:
-    run = build_run(RunSettings(
-        world=apartment, navigator=apartment_navigator, retries={"pick": 0}))
-    reason = "I cannot reach the cola from where I can stand"
-    monkeypatch.setattr(run.robot, "grasp", lambda detection, hand: reason)
+    run = build_run(RunSettings(world=apartment, navigator=apartment_navigator))
+    reason = "I tried every grasp of the cola I could find, and it kept slipping"
+    tries: list[str] = []
+
+    def grasp(detection: object, hand: str) -> str:
+        tries.append(hand)
+        return reason
+
+    monkeypatch.setattr(run.robot, "grasp", grasp)
     outcome = skill_named("pick").run(run.context, {"object": "cola"})
-    assert outcome.status is Status.ABORTED and outcome.error is ErrorCode.NOT_GRASPED
+    assert outcome.status is Status.FAILED and outcome.error is ErrorCode.NOT_GRASPED
     assert outcome.message == reason  # not "closed my hand", nor "slipped"
+    assert len(tries) == 1  # the same refusal again is no new attempt
     assert run.context.beliefs.free_hand() == "left"
     assert run.simulation.object_location["cola"] == "fridge"
 

@@ -54,6 +54,9 @@ __all__ = ["MODES", "ErrandOutcome", "ErrandRun", "ErrandTask", "ModeResult", "a
 #: The execution modes compared: name, and whether monitoring and recovery are on.
 MODES: tuple[tuple[str, bool], ...] = (("monitored + recovery", True), ("plain sequence", False))
 
+#: the embodied robot's pick outcomes (its ``robot.pick`` log) where the hand never closed
+_HAND_NOT_CLOSED = frozenset({"unreachable", "tried_all"})
+
 
 @dataclass
 class ModeResult:
@@ -132,7 +135,10 @@ def _hands(events: list[Event]) -> tuple[tuple[str, int, int], ...]:
     left it with a person, a person let go of what they put in the hand."""
     kinds = [(event.kind, event.data) for event in events]
     return (
-        ("grasp", sum(k == "robot.pick" and d.get("outcome") != "unreachable" for k, d in kinds),
+        # a pick that never closed the hand (out of reach, or every grasp found had failed
+        # before) is no grasp
+        ("grasp", sum(k == "robot.pick" and d.get("outcome") not in _HAND_NOT_CLOSED
+                      for k, d in kinds),
          sum(k == "sim.arm" and d.get("what") == "lifted" for k, d in kinds)),
         ("hand_over", sum(k == "robot.hand_over" for k, _ in kinds),
          sum(k == "sim.person" and d.get("did") == "took" for k, d in kinds)),

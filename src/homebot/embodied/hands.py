@@ -39,12 +39,16 @@ _STAND_OFF = 0.4  #: metres from a surface's edge where the robot stands to reac
 _STANDS_TRIED = 2  #: sides of the surface the robot steps to before it gives up
 _COMFORTABLE_REACH = 0.95  #: metres from the base's centre to an object the arm grasps well
 _STAND_STEP = 0.05  #: metres between the spots along a side that are tried
+_ANOTHER_STAND = 0.3  #: metres from here for a stand to be another after failed grasps
 #: why the arm did not even close the hand, as the robot says it
 _NOT_TRIED = {
     PickOutcome.UNREACHABLE: "I cannot reach the {} from where I can stand",
     PickOutcome.NO_PATH: "my arm finds no free way to the {}",
     PickOutcome.TOO_HEAVY: "the {} is too heavy for my arm",
+    PickOutcome.TRIED_ALL: "I tried every grasp of the {} I could find, and it kept slipping",
 }
+#: what the arm may do better from another spot beside the surface
+_STEP_ASIDE = (PickOutcome.UNREACHABLE, PickOutcome.TRIED_ALL)
 _BIN_CATEGORIES = ("bin", "trash", "trash can", "waste bin")
 _PULL = 3.0  #: newtons more at the wrist than when held out: the person pulls
 _PUT_IN = 0.8  #: newtons of change at the wrist: something was pushed into the palm
@@ -152,14 +156,23 @@ class ArmedBodyRobot(BodyRobot):
         here = self.pose()
         far = detection.position is not None and math.dist(
             (here.x, here.y), detection.position) > _COMFORTABLE_REACH
+        if self.arm.tried_out(detection.label):  # nothing new to try: no step, no reach
+            result = PickResult(PickOutcome.TRIED_ALL, detail="given up")
+            self.events.record("robot.pick", object=detection.label,
+                               outcome=result.outcome.value, detail=result.detail, planning=0.0)
+            return _NOT_TRIED[result.outcome].format(detection.label)
         # At the edge of its reach the arm grasps at full stretch, and a grasp off by a
         # centimetre slips: the robot first steps nearer. Out of reach from here, too, it
-        # steps to the sides of the surface nearest the object.
+        # steps to the sides of the surface nearest the object, and so it does when every
+        # grasp found from here failed before: from another side it sees the object anew
+        # (what hid part of it may not) and reaches it another way.
         result = PickResult(PickOutcome.UNREACHABLE, detail="too far to grasp well") if far \
             else self.arm.pick(detection.label, here, detection.position, detection.mass)
         where = detection.position or self.arm.locate(detection.label)
-        stands = iter(self._stands_before(where[:2])
-                      if where is not None and result.outcome is PickOutcome.UNREACHABLE else ())
+        stands = iter([stand for stand in self._stands_before(where[:2])
+                       if result.outcome is PickOutcome.UNREACHABLE or
+                       math.dist(stand.xy(), here.xy()) > _ANOTHER_STAND]
+                      if where is not None and result.outcome in _STEP_ASIDE else [])
         if far:  # from here, too, if no step brings it nearer
             stands = itertools.chain(stands, (here,))
         for stand in itertools.islice(stands, _STANDS_TRIED):
@@ -168,7 +181,7 @@ class ArmedBodyRobot(BodyRobot):
             detection = self._look_again(detection)
             result = self.arm.pick(detection.label, self.pose(), detection.position,
                                    detection.mass)
-            if result.outcome is not PickOutcome.UNREACHABLE:
+            if result.outcome not in _STEP_ASIDE:
                 break
         self.events.record("robot.pick", object=detection.label, outcome=result.outcome.value,
                            detail=result.detail,

@@ -14,7 +14,7 @@ from collections.abc import Callable, Collection, Mapping
 from typing import Any
 
 from homebot.robot import HelpRequest
-from homebot.skills import ErrorCode, Outcome, SkillContext, speak
+from homebot.skills import ErrorCode, Outcome, SkillContext, Status, speak
 from homebot.skills.perception import looked_everywhere
 from homebot.skills.places import people_in_view, resolve_target
 from homebot.skills.wording import be, is_plural
@@ -162,7 +162,11 @@ def _object_not_found(context: SkillContext, skill: str, args: Mapping[str, Any]
 
 def _slipped(context: SkillContext, skill: str, args: Mapping[str, Any],
              outcome: Outcome, run: StepRunner) -> bool | Outcome:
-    """A grasp that slipped is worth another round of attempts after a fresh look."""
+    """A grasp that slipped is worth another round of attempts after a fresh look; one
+    the robot would not even try (it said why: out of reach, every grasp it found
+    failed) is not."""
+    if outcome.status is Status.FAILED:
+        return False
     thing = str(args.get("object", "object"))
     speak(context, f"The {thing} {'keep' if is_plural(thing) else 'keeps'} slipping. "
                    "Let me try again.")

@@ -7,6 +7,11 @@ gives a detection's position and heading (a box's heading from the top face of i
 points) that is used; the positions of the other objects come from ``locate``, which the
 wiring layer supplies: the embodied robot's ``SeenObjects`` (``homebot.embodied.hands``),
 where its camera last saw each object. An object it has not seen is not in the scene.
+
+A pick that left the hand empty is remembered: the next pick of that object chooses none
+of the grasps that failed on it (aimed where it is seen now), and after
+``GRASPS_TRIED`` empty hands on one object, or with no other grasp left, the arm does not
+try again (``PickOutcome.TRIED_ALL``). A pick that holds it forgets its failures.
 """
 
 from __future__ import annotations
@@ -20,7 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from homebot.geometry import Pose, yaw_rotation
-from homebot.manipulation.grasps import IK_SEEDS, ObjectGeometry
+from homebot.manipulation.grasps import IK_SEEDS, GraspCandidate, ObjectGeometry
 from homebot.manipulation.ik import solve_ik
 from homebot.manipulation.pick import (
     GRIP_FORCE,
@@ -39,7 +44,7 @@ from homebot.manipulation.scene import Obstacle, PlanningScene
 from homebot.robot import Body
 from homebot.world import World, catalogue_entry, surface_height
 
-__all__ = ["ArmControl", "Locate", "PlaceOutcome", "free_spots"]
+__all__ = ["GRASPS_TRIED", "ArmControl", "Locate", "PlaceOutcome", "free_spots"]
 
 #: where an object stands: (x, y, heading, surface height), or None when not on a surface
 Locate = Callable[[str], tuple[float, float, float, float] | None]
@@ -59,6 +64,8 @@ _OFFER = np.array([0.2, 0.0, 0.5, 0.0, -1.2, 0.0, 0.7, 0.0])
 _OPEN = 0.2  #: a gripper command wider than the fingers open: fully open
 _CLOSING = 1.0  #: seconds the fingers get to close on what a person put in the hand
 _UNKNOWN_EXTENT = (0.08, 0.08, 0.12)  #: metres: what the robot assumes an unnamed thing is
+#: picks of one object that left the hand empty before the arm stops trying it
+GRASPS_TRIED = 4
 
 
 @dataclass(frozen=True)
@@ -115,6 +122,8 @@ class ArmControl:
         self.rng = np.random.default_rng([seed, 18])
         self.holding: _Holding | None = None
         self.last: PickResult | PlaceOutcome | None = None
+        #: the grasps that left the hand empty, by object, since it was last held
+        self.failed_grasps: dict[str, list[GraspCandidate]] = {}
 
     # ------------------------------------------------------------ the scene
 
@@ -158,6 +167,11 @@ class ArmControl:
         if where is None and seen_at is None:
             self.last = PickResult(PickOutcome.UNREACHABLE, detail=f"{name} is nowhere known")
             return self.last
+        failed = self.failed_grasps.get(name, [])
+        if self.tried_out(name):
+            self.last = PickResult(PickOutcome.TRIED_ALL,
+                                   detail=f"{len(failed)} grasps of {name} left the hand empty")
+            return self.last
         entry = catalogue_entry(self.world, name)
         x, y = seen_at if seen_at is not None else (where[0], where[1])  # type: ignore[index]
         yaw = where[2] if where is not None else 0.0
@@ -167,8 +181,12 @@ class ArmControl:
         scene = self._scene(base)
         plan = plan_pick(scene, geometry, current_configuration(self.body), self.rng,
                          mass=mass if mass is not None else entry.mass,
-                         payload=self.body.arm().payload)
+                         payload=self.body.arm().payload, avoid=failed)
         if not isinstance(plan, PickPlan):
+            if plan.outcome is PickOutcome.UNREACHABLE and failed:
+                plan = PickResult(PickOutcome.TRIED_ALL, detail=f"every grasp of {name} found "
+                                  f"from here is like one that failed",
+                                  planning_seconds=plan.planning_seconds)
             self.last = plan
             return plan
         result = execute_pick(self.body, plan, mass=entry.mass)
@@ -176,11 +194,18 @@ class ArmControl:
             at = plan.grasp.candidate.position
             self.holding = _Holding(name, float(at[2] - height), plan.grasp.candidate.rotation,
                                     math.hypot(entry.extent[0], entry.extent[1]) / 2)
+            self.failed_grasps.pop(name, None)
         else:
+            self.failed_grasps.setdefault(name, []).append(plan.grasp.candidate)
             self.body.gripper().command(0.2)
             self._tuck(scene)
         self.last = result
         return result
+
+    def tried_out(self, name: str) -> bool:
+        """Whether the arm has given up on ``name``: ``GRASPS_TRIED`` picks of it left the
+        hand empty (since it was last held)."""
+        return len(self.failed_grasps.get(name, ())) >= GRASPS_TRIED
 
     # ------------------------------------------------------------ taking from a person
 

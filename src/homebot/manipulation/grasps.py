@@ -8,12 +8,19 @@ a principal axis; side grasps approach vertically elongated ones horizontally fr
 robot's side. Candidates are ranked by efficiency and robustness criteria (the kind that
 suits the object's proportions, an approach from the robot's side, a grasp near the centre
 of mass, a comfortable width), then checked in rank order for kinematic feasibility (IK of
-pre-grasp and grasp) and collisions, as Cosero does.
+pre-grasp and grasp) and collisions, as Cosero does. A flat object gets no side grasp: the
+fingers, which cannot go lower beside it, would hold its top edge only. A round object's
+top grasps close across the line of sight, along it and on the diagonals between: a wide
+round thing (a plate) leaves the fingers a centimetre or two to spare, so a grasp aimed
+where perception was off along its closing axis misses, and one across another axis may
+not. Grasps like one that already failed (``GraspCandidate.resembles``) can be left out of
+the choice.
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Literal
 
@@ -35,6 +42,12 @@ _TABLE_CLEARANCE = 0.012  #: metres the fingers keep above the surface
 #: torso heights tried for a grasp, each leaving room to lift the object by the torso
 _TORSO_LEVELS = (0.25, 0.38, 0.1)
 _SIDE_YAWS = np.radians([-50.0, -25.0, 0.0, 25.0, 50.0])
+#: a round object's top grasps close at these angles to the line of sight (across it first),
+#: each ranked down by its penalty
+_ROUND_TOP_CLOSINGS = ((math.radians(90.0), 0.0), (0.0, 0.1), (math.radians(45.0), 0.3),
+                       (math.radians(135.0), 0.35))
+_SAME_AIM = 0.03  #: metres between two grasps' sites for them to aim at the same place
+_SAME_AXIS = math.radians(30.0)  #: radians between closing axes (or approaches) alike
 #: IK starts besides the arm's current configuration: bent forward over a table, hand
 #: down (top grasps) and hand level (side grasps); torso first
 IK_SEEDS = (np.array([0.2, 0.0, -1.2, 0.0, 2.3, 0.0, 0.6, 0.0]),
@@ -101,6 +114,17 @@ class GraspCandidate:
     def opening(self) -> float:
         return min(MAX_WIDTH, self.width + _WIDTH_MARGIN)
 
+    def resembles(self, other: GraspCandidate) -> bool:
+        """Whether this grasp is, for the object, the same as ``other``: of the same kind,
+        aimed within ``_SAME_AIM`` of it, approaching alike and closing along the same line
+        (the fingers swapped, or the wrist rolled half a turn, change nothing)."""
+        if self.kind != other.kind or \
+                float(np.linalg.norm(self.position - other.position)) > _SAME_AIM:
+            return False
+        approach = float(self.rotation[:, 0] @ other.rotation[:, 0])
+        closing = abs(float(self.rotation[:, 1] @ other.rotation[:, 1]))
+        return approach >= math.cos(_SAME_AXIS) and closing >= math.cos(_SAME_AXIS)
+
 
 @dataclass(frozen=True)
 class Grasp:
@@ -128,20 +152,29 @@ def grasp_candidates(obj: ObjectGeometry, robot: np.ndarray) -> list[GraspCandid
     towards = obj.center - robot[:2]
     towards /= max(float(np.linalg.norm(towards)), 1e-9)
     tall = obj.height > 1.2 * obj.extents[1]
-    # top grasps: straight down, closing across the minor (then the major) axis
+    # top grasps: straight down, closing across the minor (then the major) axis; a round
+    # object's across the line of sight, along it, then on the diagonals
     z = max(top_z - min(0.035, obj.height / 2), obj.base + _FINGER_TIP + _TABLE_CLEARANCE)
-    for index in (1, 0):
-        width = obj.extents[index]
+    closings: list[tuple[np.ndarray, float, float]] = []  # (axis, width, penalty)
+    if obj.round:
+        for angle, penalty in _ROUND_TOP_CLOSINGS:
+            c, s = math.cos(angle), math.sin(angle)
+            # the wider extent: a cluster's round outline is seldom quite round
+            closings.append((np.array([c * towards[0] - s * towards[1],
+                                       s * towards[0] + c * towards[1]]), obj.extents[0],
+                             penalty))
+    else:
+        closings = [(obj.axes[1], obj.extents[1], 0.0), (obj.axes[0], obj.extents[0], 0.1)]
+    for axis, width, penalty in closings:
         if width + 0.01 > MAX_WIDTH:
             continue
         for sign in (1.0, -1.0):
-            closing = np.array([*(sign * obj.axes[index]), 0.0])
+            closing = np.array([*(sign * axis), 0.0])
             rotation = _frame(np.array([0.0, 0.0, -1.0]), closing)
             # the palm faces forward-ish: prefer the wrist roll that keeps x of the hand's
             # z axis along the reach
             comfort = float(rotation[:2, 2] @ towards)
-            score = (1.0 if not tall else 0.4) + 0.2 * comfort - 0.5 * width \
-                - (0.1 if index == 0 else 0.0)
+            score = (1.0 if not tall else 0.4) + 0.2 * comfort - 0.5 * width - penalty
             found.append(GraspCandidate("top", np.array([*obj.center, z]), rotation, width,
                                         score))
     # side grasps: horizontal approach from the robot's side, closing horizontally
@@ -157,6 +190,10 @@ def grasp_candidates(obj: ObjectGeometry, robot: np.ndarray) -> list[GraspCandid
             for sign in (1.0, -1.0):
                 # approaching along one axis closes across the other
                 directions.append((sign * obj.axes[index], obj.extents[1 - index]))
+    # Lower than the hand can go beside it, a flat thing would be held by its top edge
+    # alone, and it tips out of the fingers once the hand turns (held out to a person).
+    if obj.height < z - obj.base + _FINGER_HALF_HEIGHT:
+        directions = []
     for direction, width in directions:
         facing = float(direction @ towards)
         if facing < 0.3 or width + 0.01 > MAX_WIDTH:
@@ -175,13 +212,17 @@ def grasp_candidates(obj: ObjectGeometry, robot: np.ndarray) -> list[GraspCandid
 
 
 def select_grasp(scene: PlanningScene, obj: ObjectGeometry, current: np.ndarray,
-                 *, keep: int = 3, budget: int = 12) -> Grasp | None:
+                 *, keep: int = 3, budget: int = 12,
+                 avoid: Sequence[GraspCandidate] = ()) -> Grasp | None:
     """The best feasible grasp: candidates in rank order, IK for the pre-grasp and the
     grasp, both free of collisions (the gripper may touch ``obj`` only at the grasp);
-    of the first ``keep`` feasible ones the one nearest ``current`` in joint space wins."""
+    of the first ``keep`` feasible ones the one nearest ``current`` in joint space wins.
+    A candidate that resembles one in ``avoid`` (grasps that failed) is left out."""
     feasible: list[tuple[float, Grasp]] = []
     allowed = scene.without([obj.name])
-    for candidate in grasp_candidates(obj, np.array(scene.base[:2]))[:budget]:
+    candidates = [candidate for candidate in grasp_candidates(obj, np.array(scene.base[:2]))
+                  if not any(candidate.resembles(failed) for failed in avoid)]
+    for candidate in candidates[:budget]:
         found = _feasible(scene, candidate, current, allowed)
         if found is None:
             continue

@@ -17,7 +17,7 @@ from typing import Protocol
 
 import numpy as np
 
-from homebot.manipulation.grasps import Grasp, ObjectGeometry, select_grasp
+from homebot.manipulation.grasps import Grasp, GraspCandidate, ObjectGeometry, select_grasp
 from homebot.manipulation.ik import solve_ik
 from homebot.manipulation.rrt import rrt_connect, shortcut
 from homebot.manipulation.scene import PlanningScene
@@ -76,6 +76,8 @@ class PickOutcome(StrEnum):
     UNREACHABLE = "unreachable"  #: no grasp is kinematically feasible and collision-free
     NO_PATH = "no_path"  #: grasps exist but the arm found no free way to them
     TOO_HEAVY = "too_heavy"  #: the object weighs more than the arm's payload
+    #: every grasp found has been tried on the object, and each left the hand empty
+    TRIED_ALL = "tried_all"
 
 
 @dataclass(frozen=True)
@@ -130,14 +132,16 @@ def plan_motion(scene: PlanningScene, start: np.ndarray, goal: np.ndarray,
 
 def plan_pick(scene: PlanningScene, obj: ObjectGeometry, current: np.ndarray,
               rng: np.random.Generator, *, mass: float | None = None,
-              payload: float = float("inf")) -> PickPlan | PickResult:
-    """Select a grasp for ``obj`` and plan the reach to its pre-grasp."""
+              payload: float = float("inf"),
+              avoid: Sequence[GraspCandidate] = ()) -> PickPlan | PickResult:
+    """Select a grasp for ``obj`` (none like those in ``avoid``, which failed) and plan the
+    reach to its pre-grasp."""
     started = time.process_time()
     if mass is not None and mass > payload:
         return PickResult(PickOutcome.TOO_HEAVY,
                           detail=f"{obj.name} weighs {mass:.2f} kg, above the arm's payload "
                                  f"of {payload:.2f} kg")
-    grasp = select_grasp(scene, obj, current)
+    grasp = select_grasp(scene, obj, current, avoid=avoid)
     if grasp is None:
         return PickResult(PickOutcome.UNREACHABLE,
                           detail=f"no feasible grasp for {obj.name} from here",

@@ -24,7 +24,8 @@ class Pick(Skill):
     Preconditions: a free hand (``hand`` names one, else the first free); the
     object's placement is believed. Effects: the
     object is in a hand. Monitor: the hand camera sees the object in the hand
-    (an empty hand or a different object is ``aborted``, and retried).
+    (an empty hand or a different object is ``aborted``, and retried). A robot that
+    does not even close its hand, and says why (``Robot.grasp``), has ``failed``.
     """
 
     name = "pick"
@@ -57,8 +58,11 @@ class Pick(Skill):
             return Outcome.failed(ErrorCode.NOT_FOUND, f"the {wanted} {be(wanted)} not "
                                   f"{place_in(context.world, placement)}", placement=placement)
         problem = context.robot.grasp(targets[0], hand)
-        if problem:  # the hand did not even close: nothing to sense
-            return Outcome.aborted(ErrorCode.NOT_GRASPED, problem, placement=placement)
+        if problem:
+            # The hand did not even close: nothing to sense, and the robot said why it would
+            # not try (out of reach, too heavy, every grasp it found failed): trying the
+            # same again would only repeat that.
+            return Outcome.failed(ErrorCode.NOT_GRASPED, problem, placement=placement)
         return Outcome.finished(f"closed my {hand} hand on the {targets[0].label}", hand=hand,
                                 object=targets[0].label, placement=placement)
 
