@@ -247,10 +247,13 @@ class SimHands:
         return self._driver
 
     def _at_the_door(self, pose: tuple[float, ...]) -> bool:
-        """Whether the scene has a door's leaf and the base is still by where the scene
-        was built: physics goes on with the base driven (the hand may hold a handle)."""
+        """Whether the scene has a door's leaf, the hand holds no object and the base is
+        still by where the scene was built: physics goes on with the base driven (the hand
+        may hold a handle). What a hand holds rides along with the base, as anywhere else:
+        a robot that picked something by a shut door and drove off shook it out of its
+        fingers."""
         return self._driver is not None and bool(self._driver.sim.doors) and \
-            self._built_at is not None and \
+            self._driver.sim.held_object() is None and self._built_at is not None and \
             float(np.hypot(pose[0] - self._built_at[0], pose[1] - self._built_at[1])) < \
             _DOOR_WORK
 
