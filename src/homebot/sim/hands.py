@@ -192,13 +192,12 @@ class SimHands:
     reach and the objects the truth has on them, and the leaves of the shut doors near it
     (``door_leaf``). It steps with the body's ticks while the base stands still; when the
     base moves, physics pauses (the arm and what it holds ride along) and the next use
-    rebuilds the scene where the robot then stands; but with a door's leaf in the scene,
-    physics goes on with the base driven, within ``_DOOR_WORK`` of where it was built (the
-    hand may hold the door's handle). A leaf swung open past ``DOOR_SWUNG_OPEN`` opens the
-    door in the truth. After every
-    step the truth follows physics: an object lifted between both fingers is in a hand,
-    an object that came to rest on a surface is on that placement, one on the floor is on
-    the floor of its room.
+    rebuilds the scene where the robot then stands; but with a door's leaf in the scene and
+    no object in the hand, physics goes on with the base driven, within ``_DOOR_WORK`` of
+    where it was built (the hand may hold the door's handle). A leaf swung open past
+    ``DOOR_SWUNG_OPEN`` opens the door in the truth. After every step the truth follows
+    physics: an object lifted between both fingers is in a hand, an object that came to
+    rest on a surface is on that placement, one on the floor is on the floor of its room.
 
     Args:
         simulation: the truth.
