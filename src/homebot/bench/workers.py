@@ -234,12 +234,22 @@ def _on_process_pool(function: Callable[[_Unit], _Value], units: Sequence[_Unit]
                     else:
                         suspects.append(index)
                 in_flight.clear()
-                pool.shutdown(wait=True, cancel_futures=True)
+                _close(pool)
                 print("a worker process died: the tasks it had in flight run once more, one "
                       "at a time", file=sys.stderr)
                 pool = ProcessPoolExecutor(workers, mp_context=get_context("spawn"))
     finally:
-        pool.shutdown(wait=True, cancel_futures=True)
+        _close(pool)
+
+
+def _close(pool: ProcessPoolExecutor) -> None:
+    """Shut ``pool`` down, its worker processes ended first. Python 3.11's pool, once
+    broken by a dead worker, joins the workers still alive, which wait for work that never
+    comes: the shutdown hung for ever now and then. Every task has returned by now, so an
+    idle worker loses nothing."""
+    for process in list((getattr(pool, "_processes", None) or {}).values()):
+        process.terminate()
+    pool.shutdown(wait=True, cancel_futures=True)
 
 
 @contextmanager
