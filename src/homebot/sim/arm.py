@@ -31,6 +31,7 @@ __all__ = [
     "ObjectBody",
     "SurfaceBox",
     "default_arm_model",
+    "drive_base",
     "load_arm_spec",
 ]
 
@@ -223,7 +224,7 @@ class ArmSimulation:
         for door in doors:
             _add_door(mujoco, spec, door)
         if doors:
-            _drive_base(mujoco, spec)
+            drive_base(mujoco, spec)
         self.model = spec.compile()
         self.data = mujoco.MjData(self.model)
         m = self.model
@@ -527,10 +528,13 @@ def _add_door(mujoco: Any, spec: Any, door: DoorLeaf) -> None:
                        rgba=[0.69, 0.69, 0.71, 1.0])
 
 
-def _drive_base(mujoco: Any, spec: Any) -> None:
-    """The mocap base turned into a body on three joints (x, y, yaw) that ``step`` drives
-    kinematically; heavy (armature), so what the arm does hardly moves it."""
+def drive_base(mujoco: Any, spec: Any) -> None:
+    """Turn ``spec``'s mocap base into a body on three joints (x, y, yaw) that the scene
+    drives kinematically; heavy (armature), so what the arm does within one physics step
+    hardly moves it, and it never touches the floor it stands on."""
     base = spec.body("base")
+    if base is None:
+        raise ValueError("no body named 'base' (the robot's arm.xml is not included)")
     base.mocap = False
     heavy = 1.0e4
     base.add_joint(name="base_x", type=mujoco.mjtJoint.mjJNT_SLIDE, axis=[1, 0, 0],

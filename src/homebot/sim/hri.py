@@ -38,6 +38,7 @@ import numpy as np
 from homebot.errors import SceneError
 from homebot.geometry import yaw_rotation
 from homebot.robot import CameraIntrinsics, HeadState, RgbdFrame
+from homebot.sim.arm import drive_base
 
 __all__ = ["ARM_JOINTS", "LASER_NOISE", "LASER_RANGE", "InteractionScene", "scene_path"]
 
@@ -56,25 +57,6 @@ _CAMERA_STREAM = 2078
 _CAMERA_RANGE = (0.4, 6.0)  #: metres the head's depth sensor measures between
 LASER_NOISE = 0.01  #: metres: the range noise of a laser scanner (1 sigma)
 LASER_RANGE = 5.0  #: metres: no return beyond this
-
-
-def _with_driven_base(mujoco: Any, spec: Any) -> Any:
-    """Compile ``spec`` with the mocap base turned into a body on three joints (x, y, yaw)
-    that the scene drives kinematically; heavy (armature), so what the arm does within
-    one physics step hardly moves it, and it never touches the floor it stands on."""
-    base = spec.body("base")
-    if base is None:
-        raise ValueError("no body named 'base' (the robot's arm.xml is not included)")
-    base.mocap = False
-    heavy = 1.0e4
-    base.add_joint(name="base_x", type=mujoco.mjtJoint.mjJNT_SLIDE, axis=[1, 0, 0],
-                   armature=heavy)
-    base.add_joint(name="base_y", type=mujoco.mjtJoint.mjJNT_SLIDE, axis=[0, 1, 0],
-                   armature=heavy)
-    base.add_joint(name="base_yaw", type=mujoco.mjtJoint.mjJNT_HINGE, axis=[0, 0, 1],
-                   armature=heavy)
-    spec.add_exclude(bodyname1="world", bodyname2="base")
-    return spec.compile()
 
 
 def scene_path(name: str) -> Path:
@@ -116,7 +98,8 @@ class InteractionScene:
             spec = mujoco.MjSpec.from_file(str(path))
             if edit is not None:  # a variant of the scene (a door's side, width, friction)
                 edit(spec)
-            self.model = _with_driven_base(mujoco, spec)
+            drive_base(mujoco, spec)
+            self.model = spec.compile()
         except ValueError as error:  # MuJoCo's message names the file, line and problem
             first = str(error).strip().splitlines()[0] if str(error).strip() else "unreadable"
             raise SceneError(f"{path}: not a usable MJCF scene ({first}); fix the file or "
