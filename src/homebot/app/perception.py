@@ -18,6 +18,7 @@ import os
 import pickle
 from collections.abc import Iterator, Mapping
 from pathlib import Path
+from typing import TypeVar
 
 import numpy as np
 
@@ -43,6 +44,8 @@ from homebot.world import CatalogueEntry, World, object_catalogue
 
 __all__ = ["face_memory", "household_faces", "labelled_frames", "perception_for",
            "trained_face_detector", "trained_recogniser"]
+
+_Model = TypeVar("_Model")
 
 _ENROLMENT_VIEWS = 20  #: face views of each member of the household the robot was taught
 _VIEWS_PER_OBJECT = 12  #: training views of each catalogue object (about)
@@ -71,12 +74,9 @@ def _trained(items: tuple[tuple[str, CatalogueEntry], ...], seed: int) -> Recogn
                     (recognition_module, perception_tabletop_module, sim_tabletop_module,
                      sim_camera_module, robot_camera_module))
     cached = cache_directory() / f"recogniser-{key}.pickle"
-    try:
-        loaded = pickle.loads(cached.read_bytes())
-        if isinstance(loaded, Recogniser):
-            return loaded
-    except (OSError, pickle.UnpicklingError, EOFError, AttributeError):
-        pass
+    loaded = _kept(cached, Recogniser)
+    if loaded is not None:
+        return loaded
     recogniser = _train(dict(items), seed)
     _keep(cached, recogniser)
     return recogniser
@@ -156,12 +156,9 @@ def _taught(names: tuple[str, ...]) -> FaceMemory:
     key = cache_key((names, _ENROLMENT_VIEWS),
                     (faces_module, sim_faces_module))
     cached = cache_directory() / f"household-{key}.pickle"
-    try:
-        loaded = pickle.loads(cached.read_bytes())
-        if isinstance(loaded, FaceMemory):
-            return loaded
-    except (OSError, pickle.UnpicklingError, EOFError, AttributeError):
-        pass
+    loaded = _kept(cached, FaceMemory)
+    if loaded is not None:
+        return loaded
     with progress.task(f"teaching the robot its household's faces (the first run only: "
                        f"kept in {cache_directory()} after)"):
         memory = face_memory()
@@ -172,6 +169,16 @@ def _taught(names: tuple[str, ...]) -> FaceMemory:
             memory.enrol_people(views)
     _keep(cached, memory)
     return memory
+
+
+def _kept(cached: Path, kind: type[_Model]) -> _Model | None:
+    """The ``kind`` pickled at ``cached`` by an earlier process; None when there is none
+    (or it is unreadable, or something else)."""
+    try:
+        loaded = pickle.loads(cached.read_bytes())
+    except (OSError, pickle.UnpicklingError, EOFError, AttributeError):
+        return None
+    return loaded if isinstance(loaded, kind) else None
 
 
 def _keep(cached: Path, model: object) -> None:
